@@ -1,0 +1,253 @@
+// The one small interface techniques call. GL and Vulkan each implement it once
+// (backends/gl, backends/vulkan); nothing above backends/ names either API.
+//
+// Conventions shared by both backends (so images match pixel for pixel):
+//  - NDC y=-1 is memory row 0, texture v=0 is row 0, depth range is [0,1]
+//    (GL uses glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE), Vulkan no y-flip).
+//  - No vertex input: shaders pull vertices from storage buffers by
+//    gl_VertexIndex, so pipelines carry no vertex layout.
+//  - Binding numbers are unique across kinds within a shader (set 0 in Vulkan).
+//  - Work is recorded between beginFrame() and endFrame(); endFrame() waits for
+//    completion and makes per-pass timings available.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace sb {
+
+// Any failure of a backend (no device, shader compile error, API error).
+struct DeviceError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+enum class Format {
+  RGBA8,     // unorm
+  RGBA16F,
+  RGBA32F,
+  R32F,
+  RG32F,
+  R32UI,
+  RGBA32UI,
+  Depth32F,
+};
+std::size_t bytesPerPixel(Format f);
+bool isDepthFormat(Format f);
+bool isIntegerFormat(Format f);
+const char* formatName(Format f);
+
+// Handles are plain ids; 0 means "none". The device owns every resource.
+struct Buffer {
+  uint32_t id = 0;
+  explicit operator bool() const { return id != 0; }
+};
+struct Texture {
+  uint32_t id = 0;
+  explicit operator bool() const { return id != 0; }
+};
+struct Pipeline {
+  uint32_t id = 0;
+  explicit operator bool() const { return id != 0; }
+};
+
+enum class BufferUsage { Uniform, Storage };
+
+struct BufferDesc {
+  std::string name;   // reported in memory accounting
+  std::string owner;  // "scene", "shadow", "oit", "frame"
+  BufferUsage usage = BufferUsage::Storage;
+  std::size_t bytes = 0;
+};
+
+struct TextureDesc {
+  std::string name;
+  std::string owner;
+  Format format = Format::RGBA8;
+  uint32_t width = 1, height = 1;
+  // Every texture can be a render target, sampled and read back. Sampling is
+  // nearest or linear, always clamp-to-edge.
+  bool linearFilter = false;
+};
+
+enum class Topology { Lines, Triangles };
+enum class CompareOp { Never, Less, LessEqual, Equal, Greater, GreaterEqual, NotEqual, Always };
+enum class BlendFactor {
+  Zero,
+  One,
+  SrcColor,
+  OneMinusSrcColor,
+  SrcAlpha,
+  OneMinusSrcAlpha,
+  DstColor,
+  OneMinusDstColor,
+  DstAlpha,
+  OneMinusDstAlpha,
+};
+enum class BlendOp { Add, Subtract, ReverseSubtract, Min, Max };
+
+struct BlendState {
+  bool enable = false;
+  BlendFactor srcColor = BlendFactor::One, dstColor = BlendFactor::Zero;
+  BlendOp colorOp = BlendOp::Add;
+  BlendFactor srcAlpha = BlendFactor::One, dstAlpha = BlendFactor::Zero;
+  BlendOp alphaOp = BlendOp::Add;
+
+  static BlendState replace() { return {}; }
+  // Non-premultiplied "over": c = a*src + (1-a)*dst, alpha likewise.
+  static BlendState over() {
+    return {true,           BlendFactor::SrcAlpha, BlendFactor::OneMinusSrcAlpha, BlendOp::Add,
+            BlendFactor::One, BlendFactor::OneMinusSrcAlpha, BlendOp::Add};
+  }
+  static BlendState additive() {
+    return {true, BlendFactor::One, BlendFactor::One, BlendOp::Add,
+            BlendFactor::One, BlendFactor::One, BlendOp::Add};
+  }
+  static BlendState min() {
+    return {true, BlendFactor::One, BlendFactor::One, BlendOp::Min,
+            BlendFactor::One, BlendFactor::One, BlendOp::Min};
+  }
+  static BlendState max() {
+    return {true, BlendFactor::One, BlendFactor::One, BlendOp::Max,
+            BlendFactor::One, BlendFactor::One, BlendOp::Max};
+  }
+};
+
+enum class BindingKind { UniformBuffer, StorageBuffer, SampledTexture };
+
+struct BindingSlot {
+  uint32_t binding = 0;
+  BindingKind kind = BindingKind::UniformBuffer;
+};
+
+// A shader as given to the device: already preprocessed (see shader_source.h),
+// with the table that maps its line numbers back to files for error messages.
+struct ShaderCode {
+  std::string name;                   // e.g. "techniques/shadowmap/depth.frag"
+  std::string text;                   // GLSL 4.50 body without #version / preamble
+  std::vector<std::string> fileNames; // index = source-string number used in #line
+};
+
+struct PipelineDesc {
+  std::string name;
+  std::string technique;  // named in compile errors
+  // Either vertex+fragment (graphics) or compute alone.
+  const ShaderCode* vertex = nullptr;
+  const ShaderCode* fragment = nullptr;
+  const ShaderCode* compute = nullptr;
+  Topology topology = Topology::Triangles;
+  std::vector<Format> colorFormats;  // render-target formats, in attachment order
+  Format depthFormat = Format::Depth32F;
+  bool hasDepth = false;
+  bool depthTest = false;
+  bool depthWrite = false;
+  CompareOp depthCompare = CompareOp::Less;
+  std::vector<BlendState> blend;  // one per colour target (empty: replace)
+  bool logicOpOr = false;         // bitwise OR into integer targets (both APIs: all targets)
+  std::vector<BindingSlot> bindings;
+};
+
+enum class LoadOp { Clear, Load };
+
+struct ColorAttachment {
+  Texture texture;
+  LoadOp load = LoadOp::Clear;
+  std::array<float, 4> clear{0, 0, 0, 0};      // float/unorm formats
+  std::array<uint32_t, 4> clearUint{0, 0, 0, 0};  // integer formats
+};
+
+struct DepthAttachment {
+  Texture texture;  // none: no depth
+  LoadOp load = LoadOp::Clear;
+  float clear = 1.0f;
+};
+
+// A render pass: what it writes (attachments) and what it reads (textures
+// sampled, buffers), declared up front so the backend can order and
+// transition resources, and so time and memory are reported per pass.
+struct PassDesc {
+  std::string name;
+  std::vector<ColorAttachment> color;
+  DepthAttachment depth;
+  std::vector<Texture> sampledTextures;
+};
+
+struct Binding {
+  uint32_t binding = 0;
+  Buffer buffer;
+  Texture texture;
+  static Binding buf(uint32_t b, Buffer x) { return {b, x, {}}; }
+  static Binding tex(uint32_t b, Texture t) { return {b, {}, t}; }
+};
+
+struct PassTiming {
+  std::string name;
+  double ms = 0;
+};
+
+struct ResourceBytes {
+  std::string name;
+  std::string owner;
+  std::size_t bytes = 0;
+};
+
+struct DeviceInfo {
+  std::string backend;   // "gl" | "vulkan"
+  std::string platform;  // "egl" | "osmesa" | "headless"
+  std::string device;    // renderer / deviceName
+  std::string driver;    // version string / driverInfo
+};
+
+class Device {
+ public:
+  virtual ~Device() = default;
+  virtual DeviceInfo info() const = 0;
+
+  virtual Buffer createBuffer(const BufferDesc& desc, const void* data = nullptr) = 0;
+  // Ordered with the recorded work: allowed between passes inside a frame.
+  virtual void updateBuffer(Buffer b, const void* data, std::size_t bytes,
+                            std::size_t offset = 0) = 0;
+  virtual void fillBuffer(Buffer b, uint32_t value) = 0;  // outside passes
+  virtual Texture createTexture(const TextureDesc& desc) = 0;
+  virtual Pipeline createPipeline(const PipelineDesc& desc) = 0;  // throws DeviceError
+  virtual void destroy(Buffer b) = 0;
+  virtual void destroy(Texture t) = 0;
+
+  virtual void beginFrame() = 0;
+  virtual void beginPass(const PassDesc& pass) = 0;
+  virtual void draw(Pipeline p, const std::vector<Binding>& bindings, uint32_t vertexCount,
+                    uint32_t instanceCount = 1) = 0;
+  virtual void endPass() = 0;
+  // Compute work runs as its own timed pass (outside render passes).
+  virtual void dispatch(const std::string& passName, Pipeline p,
+                        const std::vector<Binding>& bindings, uint32_t x, uint32_t y = 1,
+                        uint32_t z = 1) = 0;
+  virtual void endFrame() = 0;  // submits, waits
+  virtual std::vector<PassTiming> lastFrameTimings() const = 0;
+
+  // Read back after endFrame(). Rows are bottom-up (row 0 = NDC y=-1);
+  // tightly packed, bytesPerPixel(format) per pixel.
+  virtual std::vector<uint8_t> readTexture(Texture t) = 0;
+  virtual std::vector<uint8_t> readBuffer(Buffer b) = 0;
+
+  // Exact logical bytes of every live resource (width*height*bpp, buffer size).
+  virtual std::vector<ResourceBytes> allocations() const = 0;
+};
+
+struct DeviceOptions {
+  std::string backend = "gl";    // gl | vulkan
+  std::string platform = "egl";  // gl: egl | osmesa; vulkan: headless
+  bool validation = false;       // Vulkan validation layers; messages counted
+};
+
+// Throws DeviceError with a clear message when the backend is unavailable.
+std::unique_ptr<Device> createDevice(const DeviceOptions& opts);
+
+// Validation messages seen by Vulkan devices in this process (0 for GL).
+std::size_t validationMessageCount();
+
+}  // namespace sb

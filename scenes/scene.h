@@ -1,0 +1,97 @@
+// CPU-side scene data: strands (hair, fur) and an optional opaque mesh, plus the
+// camera and light fitted to them. Produced by generators and file loaders,
+// consumed by the renderer (which uploads it through the Device).
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace sb {
+
+// Bad input from the user (a file, a spec, an option): the CLI prints the
+// message and exits with status 2. The message names the file/option and the problem.
+struct InputError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct Strands {
+  // Strand s owns points [firstPoint[s], firstPoint[s] + pointCount[s]).
+  std::vector<uint32_t> firstPoint;
+  std::vector<uint32_t> pointCount;
+  std::vector<glm::vec3> points;
+  std::vector<glm::vec3> colors;     // per point, linear RGB
+  std::vector<float> thickness;      // per point, world units
+  std::vector<float> transparency;   // per point (HAIR semantics: 0 = opaque)
+
+  std::size_t strandCount() const { return pointCount.size(); }
+  std::size_t segmentCount() const;  // sum over strands of max(pointCount-1, 0)
+};
+
+struct Mesh {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;  // per position; computed (area-weighted) when absent
+  std::vector<uint32_t> indices;   // triangles
+  std::size_t triangleCount() const { return indices.size() / 3; }
+};
+
+struct Bounds {
+  glm::vec3 min{0.0f}, max{0.0f};
+  glm::vec3 center() const { return 0.5f * (min + max); }
+  float radius() const;  // half the diagonal
+};
+
+struct Scene {
+  std::string name;  // the spec it came from
+  Strands strands;
+  Mesh mesh;  // may be empty
+  float hairAlpha = 1.0f;    // hair opacity for transparency (scene option alpha=)
+  float shadowAlpha = 0.5f;  // per-fragment shadow opacity alpha_s (shadow_alpha=)
+  glm::vec3 hairColor{0.45f, 0.3f, 0.18f};
+  Bounds bounds() const;  // strands and mesh together
+};
+
+// "name:key=value,key=value" (glmark2 style). Values stay strings; helpers
+// below convert them with range checks and clear messages.
+struct Spec {
+  std::string name;
+  std::map<std::string, std::string> options;
+  static Spec parse(const std::string& text);  // throws InputError
+  std::string str() const;
+};
+
+// Description of an option for `strandbench list` and validation.
+struct OptionInfo {
+  std::string name;
+  std::string defaultValue;
+  std::string help;
+};
+struct SceneInfo {
+  std::string name;
+  std::string help;
+  std::vector<OptionInfo> options;
+};
+const std::vector<SceneInfo>& sceneCatalog();
+
+// Builds a scene from a spec such as "curly:strands=20000,points=32,seed=7" or
+// "file:path=../shared/models/straight.hair". Unknown scene or option names,
+// out-of-range values and bad files throw InputError.
+Scene makeScene(const Spec& spec);
+
+// Loaders (throw InputError naming the file and the problem).
+Strands loadHair(const std::string& path);  // Cem Yuksel's HAIR
+Strands loadTfx(const std::string& path);   // AMD TressFX .tfx, version 3 and 4
+Strands loadPly(const std::string& path);   // PLY strands: vertex + strand(nsegs)
+Mesh loadObj(const std::string& path);      // triangulated OBJ
+Strands loadStrandFile(const std::string& path);  // by extension
+
+// Same, from memory (used by the fuzz targets and tests).
+Strands parseHair(const uint8_t* data, std::size_t size, const std::string& name);
+Strands parseTfx(const uint8_t* data, std::size_t size, const std::string& name);
+Strands parsePly(const uint8_t* data, std::size_t size, const std::string& name);
+
+}  // namespace sb
