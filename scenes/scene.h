@@ -93,5 +93,6 @@ Strands loadStrandFile(const std::string& path);  // by extension
 Strands parseHair(const uint8_t* data, std::size_t size, const std::string& name);
 Strands parseTfx(const uint8_t* data, std::size_t size, const std::string& name);
 Strands parsePly(const uint8_t* data, std::size_t size, const std::string& name);
+Mesh parseObj(const std::string& text, const std::string& name);  // OBJ text
 
 }  // namespace sb

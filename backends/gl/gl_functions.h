@@ -1,0 +1,76 @@
+// The GL 4.5 entry points the GL backend uses, loaded at run time through the
+// platform's getProcAddress (EGL or OSMesa), so no libGL is linked: linking
+// libGL and libOSMesa into one process clashes on gl* symbols.
+#pragma once
+
+#include <GL/glcorearb.h>
+
+#define SB_GL_FUNCTIONS(X)                                           \
+  X(PFNGLGETSTRINGPROC, GetString)                                   \
+  X(PFNGLGETINTEGERVPROC, GetIntegerv)                               \
+  X(PFNGLGETERRORPROC, GetError)                                     \
+  X(PFNGLENABLEPROC, Enable)                                         \
+  X(PFNGLDISABLEPROC, Disable)                                       \
+  X(PFNGLENABLEIPROC, Enablei)                                       \
+  X(PFNGLDISABLEIPROC, Disablei)                                     \
+  X(PFNGLCLIPCONTROLPROC, ClipControl)                               \
+  X(PFNGLCREATEBUFFERSPROC, CreateBuffers)                           \
+  X(PFNGLNAMEDBUFFERSTORAGEPROC, NamedBufferStorage)                 \
+  X(PFNGLNAMEDBUFFERSUBDATAPROC, NamedBufferSubData)                 \
+  X(PFNGLCLEARNAMEDBUFFERDATAPROC, ClearNamedBufferData)             \
+  X(PFNGLGETNAMEDBUFFERSUBDATAPROC, GetNamedBufferSubData)           \
+  X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                           \
+  X(PFNGLBINDBUFFERBASEPROC, BindBufferBase)                         \
+  X(PFNGLCREATETEXTURESPROC, CreateTextures)                         \
+  X(PFNGLTEXTURESTORAGE2DPROC, TextureStorage2D)                     \
+  X(PFNGLTEXTUREPARAMETERIPROC, TextureParameteri)                   \
+  X(PFNGLDELETETEXTURESPROC, DeleteTextures)                         \
+  X(PFNGLBINDTEXTUREUNITPROC, BindTextureUnit)                       \
+  X(PFNGLGETTEXTUREIMAGEPROC, GetTextureImage)                       \
+  X(PFNGLCREATEFRAMEBUFFERSPROC, CreateFramebuffers)                 \
+  X(PFNGLNAMEDFRAMEBUFFERTEXTUREPROC, NamedFramebufferTexture)       \
+  X(PFNGLNAMEDFRAMEBUFFERDRAWBUFFERSPROC, NamedFramebufferDrawBuffers) \
+  X(PFNGLCHECKNAMEDFRAMEBUFFERSTATUSPROC, CheckNamedFramebufferStatus) \
+  X(PFNGLDELETEFRAMEBUFFERSPROC, DeleteFramebuffers)                 \
+  X(PFNGLBINDFRAMEBUFFERPROC, BindFramebuffer)                       \
+  X(PFNGLCLEARNAMEDFRAMEBUFFERFVPROC, ClearNamedFramebufferfv)       \
+  X(PFNGLCLEARNAMEDFRAMEBUFFERUIVPROC, ClearNamedFramebufferuiv)     \
+  X(PFNGLVIEWPORTPROC, Viewport)                                     \
+  X(PFNGLCREATESHADERPROC, CreateShader)                             \
+  X(PFNGLSHADERSOURCEPROC, ShaderSource)                             \
+  X(PFNGLCOMPILESHADERPROC, CompileShader)                           \
+  X(PFNGLGETSHADERIVPROC, GetShaderiv)                               \
+  X(PFNGLGETSHADERINFOLOGPROC, GetShaderInfoLog)                     \
+  X(PFNGLCREATEPROGRAMPROC, CreateProgram)                           \
+  X(PFNGLATTACHSHADERPROC, AttachShader)                             \
+  X(PFNGLLINKPROGRAMPROC, LinkProgram)                               \
+  X(PFNGLGETPROGRAMIVPROC, GetProgramiv)                             \
+  X(PFNGLGETPROGRAMINFOLOGPROC, GetProgramInfoLog)                   \
+  X(PFNGLDELETESHADERPROC, DeleteShader)                             \
+  X(PFNGLDELETEPROGRAMPROC, DeleteProgram)                           \
+  X(PFNGLUSEPROGRAMPROC, UseProgram)                                 \
+  X(PFNGLCREATEVERTEXARRAYSPROC, CreateVertexArrays)                 \
+  X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)                 \
+  X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)                       \
+  X(PFNGLDRAWARRAYSINSTANCEDPROC, DrawArraysInstanced)               \
+  X(PFNGLDISPATCHCOMPUTEPROC, DispatchCompute)                       \
+  X(PFNGLMEMORYBARRIERPROC, MemoryBarrier)                           \
+  X(PFNGLFINISHPROC, Finish)                                         \
+  X(PFNGLDEPTHMASKPROC, DepthMask)                                   \
+  X(PFNGLDEPTHFUNCPROC, DepthFunc)                                   \
+  X(PFNGLBLENDFUNCSEPARATEIPROC, BlendFuncSeparatei)                 \
+  X(PFNGLBLENDEQUATIONSEPARATEIPROC, BlendEquationSeparatei)         \
+  X(PFNGLLOGICOPPROC, LogicOp)                                       \
+  X(PFNGLCOLORMASKIPROC, ColorMaski)                                 \
+  X(PFNGLLINEWIDTHPROC, LineWidth)                                   \
+  X(PFNGLPIXELSTOREIPROC, PixelStorei)
+
+namespace sb {
+
+struct GLFunctions {
+#define SB_GL_DECLARE(type, name) type name = nullptr;
+  SB_GL_FUNCTIONS(SB_GL_DECLARE)
+#undef SB_GL_DECLARE
+};
+
+}  // namespace sb

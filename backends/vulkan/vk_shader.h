@@ -1,0 +1,19 @@
+// GLSL -> SPIR-V for the Vulkan backend (glslang C++ API), cached by source text.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "backends/device.h"
+#include "backends/shader_source.h"
+
+namespace sb {
+
+// Compiles code (completed with the Vulkan preamble) for one stage. Throws
+// DeviceError with describeCompileError()'s message on a compile or link error.
+// Results are cached per process by stage and complete source text.
+std::vector<uint32_t> compileVulkanSpirv(const ShaderCode& code, ShaderStage stage,
+                                         const std::string& technique);
+
+}  // namespace sb

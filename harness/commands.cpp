@@ -1,0 +1,201 @@
+#include "harness/commands.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include "backends/device.h"
+#include "harness/image.h"
+#include "harness/metrics.h"
+#include "harness/render.h"
+#include "scenes/scene.h"
+#include "techniques/common/technique.h"
+
+namespace sb {
+namespace {
+
+int gStatus = 0;
+
+// Runs a command body; bad input and unavailable backends exit with 2.
+template <typename F>
+void guarded(const char* command, F&& body) {
+  try {
+    gStatus = body();
+  } catch (const InputError& e) {
+    std::cerr << "strandbench " << command << ": " << e.what() << "\n";
+    gStatus = 2;
+  } catch (const DeviceError& e) {
+    std::cerr << "strandbench " << command << ": " << e.what() << "\n";
+    gStatus = 2;
+  }
+}
+
+void printOptions(const std::vector<OptionInfo>& options) {
+  for (const auto& o : options)
+    std::cout << "      " << o.name << "=" << o.defaultValue << "  " << o.help << "\n";
+}
+
+void registerList(CLI::App& app) {
+  auto* cmd = app.add_subcommand("list", "list scenes, techniques, their options and defaults");
+  auto json = std::make_shared<bool>(false);
+  cmd->add_flag("--json", *json, "print as JSON");
+  cmd->callback([json] {
+    guarded("list", [&] {
+      if (*json) {
+        nlohmann::json j;
+        auto opts = [](const std::vector<OptionInfo>& v) {
+          nlohmann::json a = nlohmann::json::array();
+          for (const auto& o : v) a.push_back({{"name", o.name}, {"default", o.defaultValue}, {"help", o.help}});
+          return a;
+        };
+        for (const auto& s : sceneCatalog())
+          j["scenes"].push_back({{"name", s.name}, {"help", s.help}, {"options", opts(s.options)}});
+        for (const auto& t : shadowCatalog())
+          j["shadow"].push_back({{"name", t.name}, {"help", t.help}, {"options", opts(t.options)}});
+        j["backends"] = {{{"name", "gl"}, {"platforms", {"egl", "osmesa"}}},
+                         {{"name", "vulkan"}, {"platforms", {"headless"}}}};
+        j["primitives"] = {"lines", "ribbons"};
+        std::cout << j.dump(2) << "\n";
+        return 0;
+      }
+      std::cout << "scenes (--scene NAME:key=value,...):\n";
+      for (const auto& s : sceneCatalog()) {
+        std::cout << "  " << s.name << "  " << s.help << "\n";
+        printOptions(s.options);
+      }
+      std::cout << "shadow techniques (--shadow NAME:key=value,...):\n";
+      for (const auto& t : shadowCatalog()) {
+        std::cout << "  " << t.name << "  " << t.help << "\n";
+        printOptions(t.options);
+      }
+      std::cout << "backends (--backend): gl (--platform egl|osmesa), vulkan (headless)\n"
+                << "primitives (--primitive): lines, ribbons (--ribbon-width PIXELS)\n";
+      return 0;
+    });
+  });
+}
+
+// Checked before any rendering so a long run never ends in an unwritable path.
+void checkOutputPath(const std::string& path) {
+  namespace fs = std::filesystem;
+  const std::string ext = fs::path(path).extension().string();
+  if (ext != ".png" && ext != ".exr")
+    throw InputError("--out " + path + ": the file must end in .png or .exr");
+  const fs::path dir = fs::absolute(path).parent_path();
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec))
+    throw InputError("--out " + path + ": folder " + dir.string() + " does not exist");
+  const fs::path probe = dir / (".strandbench-write-test-" + std::to_string(::getpid()));
+  FILE* f = std::fopen(probe.c_str(), "wb");
+  if (!f) throw InputError("--out " + path + ": folder " + dir.string() + " is not writable");
+  std::fclose(f);
+  fs::remove(probe, ec);
+}
+
+void registerRender(CLI::App& app) {
+  auto* cmd = app.add_subcommand("render", "render one scene with one technique on one backend");
+  auto req = std::make_shared<RenderRequest>();
+  auto size = std::make_shared<std::string>("512x512");
+  auto out = std::make_shared<std::string>();
+  auto json = std::make_shared<bool>(false);
+  auto view = std::make_shared<std::map<std::string, std::string>>();
+  cmd->add_option("--scene", req->scene, "scene spec, e.g. curly:strands=20000,points=32,seed=7")
+      ->capture_default_str();
+  cmd->add_option("--shadow", req->shadow, "shadow technique spec, e.g. shadowmap:size=1024")
+      ->capture_default_str();
+  cmd->add_option("--backend", req->backend, "gl | vulkan")->capture_default_str();
+  cmd->add_option("--platform", req->platform, "gl: egl (default) | osmesa; vulkan: headless");
+  cmd->add_option("--size", *size, "image size WIDTHxHEIGHT")->capture_default_str();
+  cmd->add_option("--primitive", req->primitive, "lines | ribbons")->capture_default_str();
+  cmd->add_option("--ribbon-width", req->ribbonWidth, "ribbon width in pixels")->capture_default_str();
+  cmd->add_option("--repeat", req->repeat, "timed frames")->capture_default_str();
+  cmd->add_option("--warmup", req->warmup, "untimed frames first")->capture_default_str();
+  cmd->add_option("--out", *out, "image file (.png 8-bit, .exr float)");
+  cmd->add_flag("--json", *json, "print the report as one JSON object on stdout");
+  cmd->add_flag("--validation", req->validation, "Vulkan validation layers on (counts messages)");
+  for (const char* name : {"camera-eye", "camera-target", "camera-up", "fov", "near", "far", "light",
+                           "light-position", "light-direction", "light-color", "light-intensity"})
+    cmd->add_option(std::string("--") + name, (*view)[name],
+                    "override (x,y,z for vectors; light: directional|point)");
+  cmd->callback([=] {
+    guarded("render", [&] {
+      auto [w, h] = parseSize(*size);
+      req->width = w;
+      req->height = h;
+      if (!out->empty()) checkOutputPath(*out);
+      auto get = [&](const char* k) -> const std::string& { return (*view)[k]; };
+      ViewOverrides& v = req->view;
+      auto num = [&](const char* k) -> std::optional<float> {
+        if (get(k).empty()) return std::nullopt;
+        try {
+          std::size_t used = 0;
+          const float x = std::stof(get(k), &used);
+          if (used == get(k).size() && std::isfinite(x)) return x;
+        } catch (const std::exception&) {
+        }
+        throw InputError(std::string("--") + k + " " + get(k) + ": not a finite number");
+      };
+      auto vec = [&](const char* k) -> std::optional<glm::vec3> {
+        if (get(k).empty()) return std::nullopt;
+        return parseVec3(get(k), std::string("--") + k);
+      };
+      v.cameraEye = vec("camera-eye");
+      v.cameraTarget = vec("camera-target");
+      v.cameraUp = vec("camera-up");
+      v.fov = num("fov");
+      v.nearPlane = num("near");
+      v.farPlane = num("far");
+      if (!get("light").empty()) v.lightType = get("light");
+      v.lightPosition = vec("light-position");
+      v.lightDirection = vec("light-direction");
+      v.lightColor = vec("light-color");
+      v.lightIntensity = num("light-intensity");
+      const RenderOutcome result = runRender(*req);
+      if (!out->empty()) writeImage(result.image, *out);
+      nlohmann::json report = result.report;
+      if (!out->empty()) report["image"] = *out;
+      if (*json) {
+        std::cout << report.dump(2) << "\n";
+      } else {
+        std::cout << req->scene << " | shadow " << req->shadow << " | "
+                  << report["backend"].get<std::string>() << "/"
+                  << report["platform"].get<std::string>() << " ("
+                  << report["device"].get<std::string>() << ") | "
+                  << report["scene"]["segments"].get<std::size_t>() << " segments | "
+                  << req->primitive << " | " << *size << "\n";
+        for (const auto& p : report["passes"])
+          std::cout << "  " << p["name"].get<std::string>() << ": median "
+                    << p["ms"]["median"].get<double>() << " ms (min "
+                    << p["ms"]["min"].get<double>() << ", max " << p["ms"]["max"].get<double>()
+                    << ", " << req->repeat << " runs)\n";
+        std::cout << "  frame: median " << report["frame_ms"]["median"].get<double>() << " ms\n";
+        if (!out->empty()) std::cout << "  wrote " << *out << "\n";
+      }
+      return 0;
+    });
+  });
+}
+
+void registerCompare(CLI::App& app) {
+  auto* cmd = app.add_subcommand("compare", "image error between two files (RMSE, PSNR, max abs)");
+  auto a = std::make_shared<std::string>();
+  auto b = std::make_shared<std::string>();
+  cmd->add_option("A", *a, "first image")->required();
+  cmd->add_option("B", *b, "second image")->required();
+  cmd->callback([=] { gStatus = runCompareCommand(*a, *b, std::cout, std::cerr); });
+}
+
+}  // namespace
+
+void registerCommands(CLI::App& app) {
+  registerList(app);
+  registerRender(app);
+  registerCompare(app);
+}
+
+int lastCommandStatus() { return gStatus; }
+
+}  // namespace sb

@@ -1,0 +1,210 @@
+#include "harness/metrics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <ostream>
+#include <stdexcept>
+
+#include "scenes/scene.h"
+
+namespace sb {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+std::string sizeText(const Image& img) {
+  return std::to_string(img.width) + "x" + std::to_string(img.height);
+}
+
+void checkConsistent(const Image& img, const char* which) {
+  const std::size_t expected = static_cast<std::size_t>(std::max(img.width, 0)) *
+                               static_cast<std::size_t>(std::max(img.height, 0)) *
+                               static_cast<std::size_t>(std::max(img.channels, 0));
+  if (img.pixels.size() != expected) {
+    throw std::invalid_argument(std::string("image ") + which + " (" + sizeText(img) + "x" +
+                                std::to_string(img.channels) + ") has " +
+                                std::to_string(img.pixels.size()) + " samples, expected " +
+                                std::to_string(expected));
+  }
+}
+
+void checkComparable(const Image& a, const Image& b, int channels) {
+  if (channels < 1) {
+    throw std::invalid_argument("compare: channels must be at least 1, got " +
+                                std::to_string(channels));
+  }
+  checkConsistent(a, "a");
+  checkConsistent(b, "b");
+  if (a.width != b.width || a.height != b.height) {
+    throw InputError("image sizes differ: " + sizeText(a) + " vs " + sizeText(b));
+  }
+  if (a.channels < channels || b.channels < channels) {
+    throw InputError("cannot compare " + std::to_string(channels) + " channels: images have " +
+                     std::to_string(a.channels) + " and " + std::to_string(b.channels));
+  }
+}
+
+// Largest |a - b| over channels [0, channels) of pixel i; NaN if any is NaN.
+double pixelMaxDiff(const Image& a, const Image& b, std::size_t i, int channels) {
+  const float* pa = a.pixels.data() + i * static_cast<std::size_t>(a.channels);
+  const float* pb = b.pixels.data() + i * static_cast<std::size_t>(b.channels);
+  double m = 0.0;
+  for (int c = 0; c < channels; ++c) {
+    const double d = std::fabs(static_cast<double>(pa[c]) - static_cast<double>(pb[c]));
+    if (std::isnan(d)) return std::numeric_limits<double>::quiet_NaN();
+    m = std::max(m, d);
+  }
+  return m;
+}
+
+nlohmann::json number(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
+// The viridis colour map: matplotlib's 256-entry table (CC0, van der Walt & Smith)
+// sampled at entries 0, 15, 30, ..., 255.
+constexpr int kViridisPoints = 18;
+constexpr float kViridis[kViridisPoints][3] = {
+    {0.267004f, 0.004874f, 0.329415f},  // 0
+    {0.281924f, 0.089666f, 0.412415f},  // 15
+    {0.280255f, 0.165693f, 0.476498f},  // 30
+    {0.263663f, 0.237631f, 0.518762f},  // 45
+    {0.237441f, 0.305202f, 0.541921f},  // 60
+    {0.208623f, 0.367752f, 0.552675f},  // 75
+    {0.182256f, 0.426184f, 0.557120f},  // 90
+    {0.159194f, 0.482237f, 0.558073f},  // 105
+    {0.137770f, 0.537492f, 0.554906f},  // 120
+    {0.121148f, 0.592739f, 0.544641f},  // 135
+    {0.128087f, 0.647749f, 0.523491f},  // 150
+    {0.180653f, 0.701402f, 0.488189f},  // 165
+    {0.274149f, 0.751988f, 0.436601f},  // 180
+    {0.395174f, 0.797475f, 0.367757f},  // 195
+    {0.535621f, 0.835785f, 0.281908f},  // 210
+    {0.688944f, 0.865448f, 0.182725f},  // 225
+    {0.845561f, 0.887322f, 0.099702f},  // 240
+    {0.993248f, 0.906157f, 0.143936f},  // 255
+};
+
+}  // namespace
+
+ImageError compareImages(const Image& a, const Image& b, double threshold, int channels) {
+  checkComparable(a, b, channels);
+  ImageError e;
+  e.width = a.width;
+  e.height = a.height;
+  e.channels = channels;
+  const double overLimit = threshold * (1.0 + 1e-4);
+  const std::size_t n = static_cast<std::size_t>(a.width) * static_cast<std::size_t>(a.height);
+  double sumSq = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const float* pa = a.pixels.data() + i * static_cast<std::size_t>(a.channels);
+    const float* pb = b.pixels.data() + i * static_cast<std::size_t>(b.channels);
+    double pixMax = 0.0;
+    bool nan = false;
+    for (int c = 0; c < channels; ++c) {
+      const double d = std::fabs(static_cast<double>(pa[c]) - static_cast<double>(pb[c]));
+      if (std::isnan(d)) {
+        nan = true;
+        continue;
+      }
+      sumSq += d * d;
+      pixMax = std::max(pixMax, d);
+    }
+    e.maxAbs = std::max(e.maxAbs, pixMax);
+    if (nan) {
+      ++e.nanPixels;
+      ++e.pixelsOver;
+    } else if (pixMax > overLimit) {
+      ++e.pixelsOver;
+    }
+  }
+  if (n == 0) {
+    e.rmse = 0.0;
+  } else if (e.nanPixels > 0) {
+    e.rmse = kInf;
+    e.maxAbs = kInf;
+  } else {
+    e.rmse = std::sqrt(sumSq / (static_cast<double>(n) * channels));
+  }
+  e.psnr = e.rmse == 0.0 ? kInf : 20.0 * std::log10(1.0 / e.rmse);
+  e.fractionOver = n == 0 ? 0.0 : static_cast<double>(e.pixelsOver) / static_cast<double>(n);
+  return e;
+}
+
+nlohmann::json toJson(const ImageError& e) {
+  return nlohmann::json{{"width", e.width},
+                        {"height", e.height},
+                        {"channels", e.channels},
+                        {"rmse", number(e.rmse)},
+                        {"psnr", number(e.psnr)},
+                        {"max_abs", number(e.maxAbs)},
+                        {"fraction_over", e.fractionOver},
+                        {"pixels_over", e.pixelsOver},
+                        {"nan_pixels", e.nanPixels},
+                        {"identical", e.identical()}};
+}
+
+std::array<float, 3> viridis(double t) {
+  if (std::isnan(t)) t = 0.0;
+  t = std::clamp(t, 0.0, 1.0);
+  const double x = t * (kViridisPoints - 1);
+  const int i = std::min(static_cast<int>(x), kViridisPoints - 2);
+  const double f = x - i;
+  std::array<float, 3> rgb{};
+  for (int c = 0; c < 3; ++c) {
+    const double lo = kViridis[i][c], hi = kViridis[i + 1][c];
+    rgb[static_cast<std::size_t>(c)] = static_cast<float>(lo + (hi - lo) * f);
+  }
+  return rgb;
+}
+
+Image diffHeatmap(const Image& a, const Image& b, double scale, int channels) {
+  if (!(scale > 0.0) || !std::isfinite(scale)) {
+    throw std::invalid_argument("diffHeatmap: scale must be a positive finite number, got " +
+                                std::to_string(scale));
+  }
+  checkComparable(a, b, channels);
+  Image out(a.width, a.height, 4, 1.0f);
+  const std::size_t n = static_cast<std::size_t>(a.width) * static_cast<std::size_t>(a.height);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double d = pixelMaxDiff(a, b, i, channels);
+    float* o = out.pixels.data() + i * 4;
+    if (std::isnan(d)) {
+      o[0] = 1.0f;
+      o[1] = 0.0f;
+      o[2] = 1.0f;
+    } else {
+      const auto rgb = viridis(d / scale);
+      o[0] = rgb[0];
+      o[1] = rgb[1];
+      o[2] = rgb[2];
+    }
+    o[3] = 1.0f;
+  }
+  return out;
+}
+
+int runCompareCommand(const std::string& a, const std::string& b, std::ostream& out,
+                      std::ostream& err, double threshold) {
+  try {
+    const Image ia = readImage(a);
+    const Image ib = readImage(b);
+    if (ia.width != ib.width || ia.height != ib.height) {
+      throw InputError("image sizes differ: '" + a + "' is " + sizeText(ia) + ", '" + b + "' is " +
+                       sizeText(ib));
+    }
+    const ImageError e = compareImages(ia, ib, threshold, 3);
+    nlohmann::json j{{"a", a}, {"b", b}, {"threshold", threshold}};
+    j.update(toJson(e));
+    out << j.dump(2) << "\n";
+    return 0;
+  } catch (const InputError& ex) {
+    err << "strandbench compare: " << ex.what() << "\n";
+    return 2;
+  }
+}
+
+}  // namespace sb

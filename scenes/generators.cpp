@@ -1,0 +1,637 @@
+// Scene catalog, option validation and the procedural generators (straight, wavy,
+// curly, clustered hair on a spherical head; fur on a mesh) plus the file scene.
+// Generators are deterministic for a seed: std::mt19937 with hand-written uniform
+// mapping (std::uniform_real_distribution differs between standard libraries).
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <numbers>
+#include <random>
+
+#include "scenes/loader_util.h"
+#include "scenes/scene.h"
+
+namespace sb {
+
+namespace {
+
+constexpr uint64_t kMaxTotalPoints = 200'000'000;  // strands x points cap
+constexpr int64_t kMaxStrands = 50'000'000;
+constexpr int64_t kMaxPointsPerStrand = 100'000;
+constexpr float kPi = std::numbers::pi_v<float>;
+
+// ---------------------------------------------------------------- catalog
+
+std::vector<OptionInfo> commonOptions(const char* strands, const char* points, const char* length,
+                                      const char* lengthHelp) {
+  return {
+      {"strands", strands, "number of strands"},
+      {"points", points, "points per strand (>= 2)"},
+      {"seed", "1", "random seed (same seed, same scene)"},
+      {"length", length, lengthHelp},
+      {"thickness", "0.005", "strand thickness in world units"},
+      {"alpha", "1", "hair opacity in [0,1] for transparency"},
+      {"shadow_alpha", "0.5", "per-fragment shadow opacity in [0,1]"},
+      {"mesh", "", "OBJ file drawn opaque (replaces the generated head)"},
+  };
+}
+
+std::vector<OptionInfo> hairOptions(const char* strands, const char* points, const char* length,
+                                    std::vector<OptionInfo> extra) {
+  std::vector<OptionInfo> o =
+      commonOptions(strands, points, length, "hair length in head radii (head radius is 1)");
+  o.push_back({"head", "1", "1: draw the spherical head as the opaque mesh; 0: no head"});
+  o.insert(o.end(), extra.begin(), extra.end());
+  return o;
+}
+
+std::vector<SceneInfo> buildCatalog() {
+  std::vector<SceneInfo> c;
+  c.push_back({"straight", "straight hair on a spherical head, draped by gravity",
+               hairOptions("2000", "16", "1.5", {})});
+  c.push_back({"wavy", "wavy hair: straight hair with a sinusoidal wave",
+               hairOptions("2000", "24", "1.5",
+                           {{"amplitude", "0.06", "wave amplitude in head radii"},
+                            {"frequency", "3", "waves per unit of hair length"}})});
+  c.push_back({"curly", "curly hair: helical curls around a draped strand",
+               hairOptions("1500", "48", "1.2",
+                           {{"radius", "0.05", "curl radius in head radii"},
+                            {"frequency", "5", "curl turns per unit of hair length"}})});
+  c.push_back({"clustered", "hair grouped into tight clumps that converge to their tips",
+               hairOptions("2000", "16", "1.5",
+                           {{"clusters", "64", "number of clumps (<= strands)"},
+                            {"spread", "0.1", "clump radius at the scalp in head radii"}})});
+  {
+    std::vector<OptionInfo> o = commonOptions(
+        "20000", "6", "0.1", "fur length as a fraction of the base mesh's bounding radius");
+    o[7].help = "OBJ mesh to grow fur on, drawn opaque (default: a unit sphere)";
+    o.push_back({"droop", "0.5", "gravity bend of the fur (0 = straight along the normal)"});
+    o.push_back({"density", "", "strands per unit of mesh area (replaces strands=)"});
+    c.push_back({"fur", "fur grown along a mesh's normals", std::move(o)});
+  }
+  c.push_back({"file",
+               "strands from a file (.hair, .tfx, .ply), optionally with an OBJ mesh",
+               {{"path", "", "strand file (required): .hair, .tfx or .ply"},
+                {"mesh", "", "OBJ file drawn opaque"},
+                {"strands", "all", "keep this many strands, evenly spaced (default: all)"},
+                {"alpha", "1", "hair opacity in [0,1] for transparency"},
+                {"shadow_alpha", "0.5", "per-fragment shadow opacity in [0,1]"}}});
+  return c;
+}
+
+// ---------------------------------------------------------------- suggestions
+
+std::size_t editDistance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    cur[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t sub = prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1);
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, sub});
+    }
+    std::swap(prev, cur);
+  }
+  return prev[b.size()];
+}
+
+// " (did you mean 'x'?)" when a candidate is close enough, else "".
+std::string suggestion(const std::string& word, const std::vector<std::string>& candidates) {
+  std::size_t best = std::numeric_limits<std::size_t>::max();
+  std::string bestName;
+  for (const std::string& c : candidates) {
+    const std::size_t d = editDistance(word, c);
+    if (d < best) {
+      best = d;
+      bestName = c;
+    }
+  }
+  const std::size_t limit = std::max<std::size_t>(2, (word.size() + 1) / 2);
+  return best <= limit ? " (did you mean '" + bestName + "'?)" : std::string();
+}
+
+std::string joinNames(const std::vector<std::string>& names) {
+  std::string s;
+  for (const std::string& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+// ---------------------------------------------------------------- options
+
+class Options {
+ public:
+  Options(const Spec& spec, const SceneInfo& info) : spec_(spec), info_(info) {
+    std::vector<std::string> names;
+    for (const OptionInfo& o : info.options) names.push_back(o.name);
+    for (const auto& kv : spec.options) {
+      if (std::find(names.begin(), names.end(), kv.first) == names.end()) {
+        throw InputError("scene '" + info.name + "': unknown option '" + kv.first + "'" +
+                         suggestion(kv.first, names) + "; its options are: " + joinNames(names));
+      }
+    }
+  }
+
+  bool given(const std::string& key) const { return spec_.options.count(key) != 0; }
+
+  std::string text(const std::string& key) const {
+    auto it = spec_.options.find(key);
+    if (it != spec_.options.end()) return it->second;
+    for (const OptionInfo& o : info_.options) {
+      if (o.name == key) return o.defaultValue;
+    }
+    return {};
+  }
+
+  int64_t integer(const std::string& key, int64_t lo, int64_t hi) const {
+    const std::string v = text(key);
+    int64_t x = 0;
+    const auto r = std::from_chars(v.data(), v.data() + v.size(), x);
+    if (r.ec == std::errc::result_out_of_range) {
+      throw error(key, v, "is out of range: " + rangeText(double(lo), double(hi)));
+    }
+    if (v.empty() || r.ec != std::errc() || r.ptr != v.data() + v.size()) {
+      throw error(key, v, "is not an integer");
+    }
+    if (x < lo || x > hi) throw error(key, v, "is out of range: " + rangeText(double(lo), double(hi)));
+    return x;
+  }
+
+  // A finite number in [lo, hi] (or (lo, hi] when loExclusive).
+  float real(const std::string& key, double lo, double hi, bool loExclusive = false) const {
+    const std::string v = text(key);
+    double x = 0;
+    const auto r = std::from_chars(v.data(), v.data() + v.size(), x);
+    if (v.empty() || (r.ec != std::errc() && r.ec != std::errc::result_out_of_range) ||
+        r.ptr != v.data() + v.size()) {
+      throw error(key, v, "is not a number");
+    }
+    if (!std::isfinite(x) || r.ec == std::errc::result_out_of_range) {
+      throw error(key, v, "is not a finite number");
+    }
+    if (x < lo || x > hi || (loExclusive && x <= lo)) {
+      throw error(key, v,
+                  "is out of range: " + (loExclusive ? "must be > " + num(lo) + " and <= " + num(hi)
+                                                     : rangeText(lo, hi)));
+    }
+    return float(x);
+  }
+
+  InputError error(const std::string& key, const std::string& value, const std::string& what) const {
+    return InputError("scene '" + info_.name + "': " + key + "=" + value + " " + what);
+  }
+  InputError error(const std::string& what) const {
+    return InputError("scene '" + info_.name + "': " + what);
+  }
+
+ private:
+  static std::string num(double v) {
+    char buf[64];
+    auto r = std::to_chars(buf, buf + sizeof buf, v);
+    return std::string(buf, r.ptr);
+  }
+  static std::string rangeText(double lo, double hi) {
+    return "must be between " + num(lo) + " and " + num(hi);
+  }
+
+  const Spec& spec_;
+  const SceneInfo& info_;
+};
+
+// ---------------------------------------------------------------- random numbers
+
+struct Rng {
+  explicit Rng(uint32_t seed) : g(seed) {}
+  // Uniform in [0, 1): the top 24 bits of one mt19937 output (identical everywhere).
+  float u() { return float(g() >> 8) * (1.0f / 16777216.0f); }
+  float range(float a, float b) { return a + (b - a) * u(); }
+  std::mt19937 g;
+};
+
+// ---------------------------------------------------------------- geometry helpers
+
+Mesh makeSphere(float radius, int slices, int stacks) {
+  Mesh m;
+  for (int i = 0; i <= stacks; ++i) {
+    const float theta = kPi * float(i) / float(stacks);
+    for (int j = 0; j <= slices; ++j) {
+      const float phi = 2.0f * kPi * float(j) / float(slices);
+      const glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta),
+                        std::sin(theta) * std::sin(phi));
+      m.positions.push_back(radius * n);
+      m.normals.push_back(n);
+    }
+  }
+  const uint32_t row = uint32_t(slices + 1);
+  for (uint32_t i = 0; i < uint32_t(stacks); ++i) {
+    for (uint32_t j = 0; j < uint32_t(slices); ++j) {
+      const uint32_t a = i * row + j, b = a + row, c = a + 1, d = b + 1;
+      if (i != 0) m.indices.insert(m.indices.end(), {a, c, b});
+      if (i + 1 != uint32_t(stacks)) m.indices.insert(m.indices.end(), {c, d, b});
+    }
+  }
+  return m;
+}
+
+// Two unit vectors perpendicular to n and to each other.
+void basis(const glm::vec3& n, glm::vec3& t1, glm::vec3& t2) {
+  const glm::vec3 a = std::abs(n.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+  t1 = glm::normalize(glm::cross(n, a));
+  t2 = glm::cross(n, t1);
+}
+
+// A root direction on the scalp of the unit-sphere head (not the face, not below the ears).
+glm::vec3 sampleScalp(Rng& rng) {
+  for (;;) {
+    const float z = rng.range(-1.0f, 1.0f);
+    const float phi = rng.range(0.0f, 2.0f * kPi);
+    const float rxy = std::sqrt(std::max(0.0f, 1.0f - z * z));
+    const glm::vec3 n(rxy * std::cos(phi), rxy * std::sin(phi), z);  // y up, z to the face
+    const bool scalp = n.y > -0.2f && !(n.z > 0.35f && n.y < 0.55f);
+    if (scalp) return n;
+  }
+}
+
+void pushOut(glm::vec3& p, float radius) {
+  const float len = glm::length(p);
+  if (len < radius) p = len > 1e-6f ? p * (radius / len) : glm::vec3(0, radius, 0);
+}
+
+// Hair draped over the unit-sphere head: starts along the scalp, combed back and
+// down, bent by gravity, kept outside a shell of radius 1 + layer. M segments.
+std::vector<glm::vec3> growDraped(const glm::vec3& n, float length, float layer, int M) {
+  std::vector<glm::vec3> c(std::size_t(M) + 1);
+  glm::vec3 h(n.x, 0.0f, n.z);
+  h += glm::vec3(0.0f, 0.0f, -0.5f);  // combed towards the back
+  h = glm::dot(h, h) > 1e-8f ? glm::normalize(h) : glm::vec3(0, 0, -1);
+  glm::vec3 dir = glm::normalize(0.5f * n + 0.85f * h);
+  const float ds = length / float(M);
+  const float gravity = 2.5f;  // turning per unit length
+  const float shell = 1.0f + layer;
+  glm::vec3 p = n;
+  c[0] = p;
+  for (int k = 1; k <= M; ++k) {
+    dir = glm::normalize(dir + glm::vec3(0.0f, -gravity * ds, 0.0f));
+    p += dir * ds;
+    const float len = glm::length(p);
+    if (len < shell) {
+      const glm::vec3 radial = p / std::max(len, 1e-6f);
+      p = radial * shell;
+      const float inward = glm::dot(dir, radial);
+      if (inward < 0.0f) {
+        const glm::vec3 t = dir - inward * radial;  // slide along the head
+        if (glm::dot(t, t) > 1e-8f) dir = glm::normalize(t);
+      }
+    }
+    c[std::size_t(k)] = p;
+  }
+  return c;
+}
+
+// Adds offset(s, B1, B2) (s = arc length parameter in [0, length]) to a curve,
+// using a parallel-transport frame, then keeps the curve outside the head.
+void addOffsets(std::vector<glm::vec3>& c, float length, float shell,
+                const std::function<glm::vec3(float, const glm::vec3&, const glm::vec3&)>& offset) {
+  const std::size_t n = c.size();
+  if (n < 2) return;
+  std::vector<glm::vec3> base = c;
+  glm::vec3 t = glm::normalize(base[1] - base[0]);
+  glm::vec3 b1, b2;
+  basis(t, b1, b2);
+  for (std::size_t k = 0; k < n; ++k) {
+    const glm::vec3 d = base[std::min(k + 1, n - 1)] - base[k > 0 ? k - 1 : 0];
+    if (glm::dot(d, d) > 1e-12f) t = glm::normalize(d);
+    glm::vec3 nb1 = b1 - glm::dot(b1, t) * t;
+    if (glm::dot(nb1, nb1) > 1e-12f) b1 = glm::normalize(nb1);
+    b2 = glm::cross(t, b1);
+    const float s = length * float(k) / float(n - 1);
+    // Ease in so that roots stay on the scalp.
+    const float ramp = std::min(1.0f, s / (0.15f * length));
+    c[k] = base[k] + ramp * ramp * (3.0f - 2.0f * ramp) * offset(s, b1, b2);
+    if (k > 0) pushOut(c[k], shell);
+  }
+}
+
+// Samples the fine curve at `points` evenly spaced parameters and appends a strand.
+void appendStrand(Strands& out, const std::vector<glm::vec3>& fine, int points,
+                  const glm::vec3& color, float thickness) {
+  out.firstPoint.push_back(uint32_t(out.points.size()));
+  out.pointCount.push_back(uint32_t(points));
+  const float last = float(fine.size() - 1);
+  for (int i = 0; i < points; ++i) {
+    const float u = last * float(i) / float(points - 1);
+    const std::size_t k = std::min(std::size_t(u), fine.size() - 2);
+    const float f = u - float(k);
+    out.points.push_back(glm::mix(fine[k], fine[k + 1], f));
+    const float t = float(i) / float(points - 1);
+    out.colors.push_back(glm::clamp(color * (1.0f + 0.12f * t), 0.0f, 1.0f));  // lighter tips
+    out.thickness.push_back(thickness);
+    out.transparency.push_back(0.0f);
+  }
+}
+
+glm::vec3 strandColor(Rng& rng, const glm::vec3& base) {
+  const float brightness = rng.range(0.85f, 1.15f);
+  const glm::vec3 tint(rng.range(0.97f, 1.03f), rng.range(0.97f, 1.03f), rng.range(0.97f, 1.03f));
+  return glm::clamp(base * brightness * tint, 0.0f, 1.0f);
+}
+
+void reserve(Strands& s, std::size_t strands, std::size_t points) {
+  s.firstPoint.reserve(strands);
+  s.pointCount.reserve(strands);
+  s.points.reserve(strands * points);
+  s.colors.reserve(strands * points);
+  s.thickness.reserve(strands * points);
+  s.transparency.reserve(strands * points);
+}
+
+// ---------------------------------------------------------------- scenes
+
+struct Common {
+  int64_t strands = 0;
+  int points = 0;
+  uint32_t seed = 1;
+  float length = 1.0f;
+  float thickness = 0.005f;
+};
+
+void checkTotal(const Options& o, uint64_t strands, uint64_t points) {
+  if (strands * points > kMaxTotalPoints) {
+    throw o.error(std::to_string(strands) + " strands x " + std::to_string(points) + " points = " +
+                  std::to_string(strands * points) + " points exceeds the limit of " +
+                  std::to_string(kMaxTotalPoints));
+  }
+}
+
+Common readCommon(const Options& o, Scene& scene, bool readStrands = true) {
+  Common c;
+  c.strands = readStrands ? o.integer("strands", 1, kMaxStrands) : 0;
+  c.points = int(o.integer("points", 2, kMaxPointsPerStrand));
+  c.seed = uint32_t(o.integer("seed", 0, std::numeric_limits<uint32_t>::max()));
+  c.length = o.real("length", 0.0, 100.0, true);
+  c.thickness = o.real("thickness", 0.0, 1000.0, true);
+  scene.hairAlpha = o.real("alpha", 0.0, 1.0);
+  scene.shadowAlpha = o.real("shadow_alpha", 0.0, 1.0);
+  if (readStrands) checkTotal(o, uint64_t(c.strands), uint64_t(c.points));
+  return c;
+}
+
+void addHeadOrMesh(const Options& o, Scene& scene) {
+  const bool head = o.integer("head", 0, 1) == 1;
+  const std::string mesh = o.text("mesh");
+  if (!mesh.empty()) {
+    scene.mesh = loadObj(mesh);
+  } else if (head) {
+    scene.mesh = makeSphere(1.0f, 48, 24);
+  }
+}
+
+int fineSegments(int points) { return std::max(128, 4 * (points - 1)); }
+
+enum class HairStyle { Straight, Wavy, Curly };
+
+Scene makeHair(const Options& o, HairStyle style) {
+  Scene scene;
+  const Common c = readCommon(o, scene);
+  float amplitude = 0, frequency = 0, radius = 0;
+  if (style == HairStyle::Wavy) {
+    amplitude = o.real("amplitude", 0.0, 10.0);
+    frequency = o.real("frequency", 0.0, 1000.0);
+  } else if (style == HairStyle::Curly) {
+    radius = o.real("radius", 0.0, 10.0);
+    frequency = o.real("frequency", 0.0, 1000.0);
+  }
+  addHeadOrMesh(o, scene);
+  Rng rng(c.seed);
+  const int M = fineSegments(c.points);
+  reserve(scene.strands, std::size_t(c.strands), std::size_t(c.points));
+  for (int64_t s = 0; s < c.strands; ++s) {
+    const glm::vec3 root = sampleScalp(rng);
+    const float length = c.length * rng.range(0.9f, 1.1f);
+    const float layer = rng.range(0.015f, 0.075f);
+    const float phase = rng.range(0.0f, 2.0f * kPi);
+    const glm::vec3 color = strandColor(rng, scene.hairColor);
+    std::vector<glm::vec3> fine = growDraped(root, length, layer, M);
+    if (style == HairStyle::Wavy) {
+      addOffsets(fine, length, 1.0f + 0.5f * layer,
+                 [&](float t, const glm::vec3& b1, const glm::vec3&) {
+                   return amplitude * std::sin(2.0f * kPi * frequency * t + phase) * b1;
+                 });
+    } else if (style == HairStyle::Curly) {
+      addOffsets(fine, length, 1.0f + 0.5f * layer,
+                 [&](float t, const glm::vec3& b1, const glm::vec3& b2) {
+                   const float a = 2.0f * kPi * frequency * t + phase;
+                   return radius * (std::cos(a) * b1 + std::sin(a) * b2);
+                 });
+    }
+    appendStrand(scene.strands, fine, c.points, color, c.thickness);
+  }
+  return scene;
+}
+
+Scene makeClustered(const Options& o) {
+  Scene scene;
+  const Common c = readCommon(o, scene);
+  const int64_t clusters = o.integer("clusters", 1, kMaxStrands);
+  const float spread = o.real("spread", 0.0, 10.0);
+  if (clusters > c.strands) {
+    throw o.error("clusters=" + std::to_string(clusters) + " exceeds strands=" +
+                  std::to_string(c.strands));
+  }
+  addHeadOrMesh(o, scene);
+  Rng rng(c.seed);
+  const int M = fineSegments(c.points);
+  reserve(scene.strands, std::size_t(c.strands), std::size_t(c.points));
+  for (int64_t k = 0; k < clusters; ++k) {
+    const int64_t members = c.strands / clusters + (k < c.strands % clusters ? 1 : 0);
+    const glm::vec3 root = sampleScalp(rng);
+    const float length = c.length * rng.range(0.9f, 1.1f);
+    const float layer = rng.range(0.015f, 0.075f);
+    const glm::vec3 clumpColor = strandColor(rng, scene.hairColor);
+    const std::vector<glm::vec3> guide = growDraped(root, length, layer, M);
+    glm::vec3 t1, t2;
+    basis(root, t1, t2);
+    std::vector<glm::vec3> fine(guide.size());
+    for (int64_t m = 0; m < members; ++m) {
+      const float r = spread * std::sqrt(rng.u());
+      const float phi = rng.range(0.0f, 2.0f * kPi);
+      const glm::vec3 memberRoot = glm::normalize(root + r * (std::cos(phi) * t1 + std::sin(phi) * t2));
+      const glm::vec3 delta = memberRoot - root;
+      const float tight = rng.range(0.75f, 0.95f);  // how close to the guide the tip ends
+      const glm::vec3 color = glm::clamp(clumpColor * rng.range(0.95f, 1.05f), 0.0f, 1.0f);
+      for (std::size_t i = 0; i < guide.size(); ++i) {
+        const float t = float(i) / float(guide.size() - 1);
+        fine[i] = guide[i] + delta * (1.0f - tight * t);
+        if (i > 0) pushOut(fine[i], 1.01f);
+      }
+      fine[0] = memberRoot;
+      appendStrand(scene.strands, fine, c.points, color, c.thickness);
+    }
+  }
+  return scene;
+}
+
+Scene makeFur(const Options& o) {
+  Scene scene;
+  Common c = readCommon(o, scene, false);
+  const float droop = o.real("droop", 0.0, 100.0);
+  const bool useDensity = o.given("density");
+  const float density = useDensity ? o.real("density", 0.0, 1e12, true) : 0.0f;
+  if (useDensity && o.given("strands")) {
+    throw o.error("give strands= (total) or density= (per unit area), not both");
+  }
+  if (!useDensity) c.strands = o.integer("strands", 1, kMaxStrands);
+  const std::string meshPath = o.text("mesh");
+  scene.mesh = meshPath.empty() ? makeSphere(1.0f, 64, 32) : loadObj(meshPath);
+  const Mesh& mesh = scene.mesh;
+
+  // Area table for uniform sampling over the surface.
+  const std::size_t tris = mesh.triangleCount();
+  std::vector<double> cumulative(tris);
+  double area = 0.0;
+  for (std::size_t t = 0; t < tris; ++t) {
+    const glm::vec3& a = mesh.positions[mesh.indices[3 * t]];
+    const glm::vec3& b = mesh.positions[mesh.indices[3 * t + 1]];
+    const glm::vec3& d = mesh.positions[mesh.indices[3 * t + 2]];
+    area += 0.5 * double(glm::length(glm::cross(b - a, d - a)));
+    cumulative[t] = area;
+  }
+  if (!(area > 0.0) || !std::isfinite(area)) throw o.error("the fur mesh has no surface area");
+  if (useDensity) {
+    const double n = std::round(double(density) * area);
+    if (n > double(kMaxStrands)) {
+      throw o.error("density=" + o.text("density") + " over an area of " + std::to_string(area) +
+                    " gives more than " + std::to_string(kMaxStrands) + " strands");
+    }
+    c.strands = std::max<int64_t>(1, int64_t(n));
+  }
+  checkTotal(o, uint64_t(c.strands), uint64_t(c.points));
+
+  Bounds mb;
+  mb.min = mb.max = mesh.positions.empty() ? glm::vec3(0.0f) : mesh.positions[0];
+  for (const glm::vec3& p : mesh.positions) {
+    mb.min = glm::min(mb.min, p);
+    mb.max = glm::max(mb.max, p);
+  }
+  const float furLength = c.length * mb.radius();
+  Rng rng(c.seed);
+  reserve(scene.strands, std::size_t(c.strands), std::size_t(c.points));
+  std::vector<glm::vec3> pts(std::size_t(c.points));
+  for (int64_t s = 0; s < c.strands; ++s) {
+    const double x = double(rng.u()) * area;
+    const std::size_t tri = std::min<std::size_t>(
+        std::size_t(std::upper_bound(cumulative.begin(), cumulative.end(), x) - cumulative.begin()),
+        tris - 1);
+    const uint32_t ia = mesh.indices[3 * tri], ib = mesh.indices[3 * tri + 1],
+                   ic = mesh.indices[3 * tri + 2];
+    const float r1 = std::sqrt(rng.u()), r2 = rng.u();
+    const float wa = 1.0f - r1, wb = r1 * (1.0f - r2), wc = r1 * r2;
+    const glm::vec3 root = wa * mesh.positions[ia] + wb * mesh.positions[ib] + wc * mesh.positions[ic];
+    glm::vec3 n = wa * mesh.normals[ia] + wb * mesh.normals[ib] + wc * mesh.normals[ic];
+    if (!(glm::dot(n, n) > 1e-12f)) {
+      n = glm::cross(mesh.positions[ib] - mesh.positions[ia], mesh.positions[ic] - mesh.positions[ia]);
+    }
+    n = glm::dot(n, n) > 1e-30f ? glm::normalize(n) : glm::vec3(0, 1, 0);
+    const float length = furLength * rng.range(0.8f, 1.2f);
+    const glm::vec3 color = strandColor(rng, scene.hairColor);
+    const float ds = length / float(c.points - 1);
+    // Gravity's component along the surface bends the fur; it never turns it back
+    // into the surface (fur on top stands, fur on the sides droops).
+    const glm::vec3 gravity(0.0f, -1.0f, 0.0f);
+    const glm::vec3 tangential = gravity - glm::dot(gravity, n) * n;
+    pts[0] = root;
+    for (int i = 1; i < c.points; ++i) {
+      const float t = (float(i) - 0.5f) / float(c.points - 1);
+      const glm::vec3 dir = glm::normalize(n + droop * t * tangential);
+      pts[std::size_t(i)] = pts[std::size_t(i) - 1] + dir * ds;
+    }
+    Strands& out = scene.strands;
+    out.firstPoint.push_back(uint32_t(out.points.size()));
+    out.pointCount.push_back(uint32_t(c.points));
+    for (int i = 0; i < c.points; ++i) {
+      const float t = float(i) / float(c.points - 1);
+      out.points.push_back(pts[std::size_t(i)]);
+      out.colors.push_back(glm::clamp(color * (1.0f + 0.12f * t), 0.0f, 1.0f));
+      out.thickness.push_back(c.thickness);
+      out.transparency.push_back(0.0f);
+    }
+  }
+  return scene;
+}
+
+Scene makeFile(const Options& o) {
+  Scene scene;
+  const std::string path = o.text("path");
+  if (path.empty()) throw o.error("path= is required (a .hair, .tfx or .ply strand file)");
+  scene.hairAlpha = o.real("alpha", 0.0, 1.0);
+  scene.shadowAlpha = o.real("shadow_alpha", 0.0, 1.0);
+  int64_t keep = 0;  // 0 = all
+  if (o.text("strands") != "all") keep = o.integer("strands", 1, kMaxStrands);
+  const std::string mesh = o.text("mesh");
+  if (!mesh.empty()) scene.mesh = loadObj(mesh);
+  Strands all = loadStrandFile(path);
+  if (keep == 0 || uint64_t(keep) == all.strandCount()) {
+    scene.strands = std::move(all);
+    return scene;
+  }
+  if (uint64_t(keep) > all.strandCount()) {
+    throw o.error("strands=" + std::to_string(keep) + " exceeds the " +
+                  std::to_string(all.strandCount()) + " strands in " + path);
+  }
+  Strands& out = scene.strands;
+  const uint64_t total = all.strandCount();
+  for (uint64_t i = 0; i < uint64_t(keep); ++i) {
+    const std::size_t s = std::size_t(i * total / uint64_t(keep));
+    const uint32_t first = all.firstPoint[s], count = all.pointCount[s];
+    out.firstPoint.push_back(uint32_t(out.points.size()));
+    out.pointCount.push_back(count);
+    out.points.insert(out.points.end(), all.points.begin() + first, all.points.begin() + first + count);
+    out.colors.insert(out.colors.end(), all.colors.begin() + first, all.colors.begin() + first + count);
+    out.thickness.insert(out.thickness.end(), all.thickness.begin() + first,
+                         all.thickness.begin() + first + count);
+    out.transparency.insert(out.transparency.end(), all.transparency.begin() + first,
+                            all.transparency.begin() + first + count);
+  }
+  return scene;
+}
+
+}  // namespace
+
+const std::vector<SceneInfo>& sceneCatalog() {
+  static const std::vector<SceneInfo> catalog = buildCatalog();
+  return catalog;
+}
+
+Scene makeScene(const Spec& spec) {
+  const std::vector<SceneInfo>& catalog = sceneCatalog();
+  const SceneInfo* info = nullptr;
+  std::vector<std::string> names;
+  for (const SceneInfo& s : catalog) {
+    names.push_back(s.name);
+    if (s.name == spec.name) info = &s;
+  }
+  if (!info) {
+    throw InputError("unknown scene '" + spec.name + "'" + suggestion(spec.name, names) +
+                     "; valid scenes: " + joinNames(names));
+  }
+  const Options o(spec, *info);
+  Scene scene;
+  if (spec.name == "straight") {
+    scene = makeHair(o, HairStyle::Straight);
+  } else if (spec.name == "wavy") {
+    scene = makeHair(o, HairStyle::Wavy);
+  } else if (spec.name == "curly") {
+    scene = makeHair(o, HairStyle::Curly);
+  } else if (spec.name == "clustered") {
+    scene = makeClustered(o);
+  } else if (spec.name == "fur") {
+    scene = makeFur(o);
+  } else {
+    scene = makeFile(o);
+  }
+  scene.name = spec.str();
+  return scene;
+}
+
+}  // namespace sb

@@ -1,0 +1,366 @@
+// PLY strands: element vertex (x, y, z and optional red, green, blue) and element
+// strand with one integer count property (nsegs: segments per strand, points = nsegs + 1).
+// ascii, binary_little_endian and binary_big_endian; other elements and properties,
+// list properties included, are skipped generically.
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <sstream>
+
+#include "scenes/loader_util.h"
+#include "scenes/scene.h"
+
+namespace sb {
+
+namespace {
+
+enum class Format { Ascii, BinaryLE, BinaryBE };
+
+struct Type {
+  int size = 0;  // bytes; 0 = invalid
+  bool isFloat = false;
+  bool isSigned = false;
+};
+
+Type typeFromName(const std::string& t) {
+  if (t == "char" || t == "int8") return {1, false, true};
+  if (t == "uchar" || t == "uint8") return {1, false, false};
+  if (t == "short" || t == "int16") return {2, false, true};
+  if (t == "ushort" || t == "uint16") return {2, false, false};
+  if (t == "int" || t == "int32") return {4, false, true};
+  if (t == "uint" || t == "uint32") return {4, false, false};
+  if (t == "float" || t == "float32") return {4, true, true};
+  if (t == "double" || t == "float64") return {8, true, true};
+  return {};
+}
+
+struct Property {
+  std::string name;
+  Type type;
+  bool isList = false;
+  Type countType;
+};
+
+struct Element {
+  std::string name;
+  uint64_t count = 0;
+  std::vector<Property> props;
+};
+
+// Sequential reader over the body; every read is bounds-checked.
+class BodyReader {
+ public:
+  BodyReader(const uint8_t* data, std::size_t size, std::size_t pos, Format format,
+             const std::string& name)
+      : data_(data), size_(size), pos_(pos), format_(format), name_(name) {}
+
+  std::size_t remaining() const { return size_ - pos_; }
+
+  double read(const Type& t, const std::string& what) {
+    return format_ == Format::Ascii ? readAscii(t, what) : readBinary(t, what);
+  }
+
+  // Skips n values of type t (list items we do not need).
+  void skip(uint64_t n, const Type& t, const std::string& what) {
+    if (format_ != Format::Ascii) {
+      if (n > remaining() / uint64_t(t.size)) {
+        detail::fail(name_, "truncated: list " + what + " has " + std::to_string(n) +
+                                " items but only " + std::to_string(remaining()) +
+                                " bytes remain");
+      }
+      pos_ += std::size_t(n) * std::size_t(t.size);
+      return;
+    }
+    for (uint64_t i = 0; i < n; ++i) readAscii(t, what);
+  }
+
+ private:
+  double readBinary(const Type& t, const std::string& what) {
+    if (remaining() < std::size_t(t.size)) {
+      detail::fail(name_, "truncated: the file ends while reading " + what);
+    }
+    uint8_t b[8];
+    std::memcpy(b, data_ + pos_, std::size_t(t.size));
+    pos_ += std::size_t(t.size);
+    if (format_ == Format::BinaryBE) {
+      for (int i = 0; i < t.size / 2; ++i) std::swap(b[i], b[t.size - 1 - i]);
+    }
+    if (t.isFloat) {
+      if (t.size == 4) {
+        float f;
+        std::memcpy(&f, b, 4);
+        return f;
+      }
+      double d;
+      std::memcpy(&d, b, 8);
+      return d;
+    }
+    uint64_t u = 0;
+    for (int i = t.size - 1; i >= 0; --i) u = (u << 8) | b[i];
+    if (t.isSigned) {
+      const uint64_t signBit = uint64_t(1) << (8 * t.size - 1);
+      if (u & signBit) return double(int64_t(u) - int64_t(signBit) - int64_t(signBit));
+    }
+    return double(u);
+  }
+
+  double readAscii(const Type& t, const std::string& what) {
+    while (pos_ < size_ && std::isspace(data_[pos_])) ++pos_;
+    const std::size_t start = pos_;
+    while (pos_ < size_ && !std::isspace(data_[pos_])) ++pos_;
+    if (start == pos_) detail::fail(name_, "truncated: the file ends while reading " + what);
+    const char* first = reinterpret_cast<const char*>(data_ + start);
+    const char* last = reinterpret_cast<const char*>(data_ + pos_);
+    const std::string token(first, last);
+    if (t.isFloat) {
+      double d = 0;
+      auto r = std::from_chars(first, last, d);
+      if (r.ec != std::errc() || r.ptr != last) {
+        detail::fail(name_, "'" + token.substr(0, 40) + "' is not a number (" + what + ")");
+      }
+      return d;
+    }
+    int64_t v = 0;
+    auto r = std::from_chars(first, last, v);
+    if (r.ec != std::errc() || r.ptr != last) {
+      detail::fail(name_, "'" + token.substr(0, 40) + "' is not an integer (" + what + ")");
+    }
+    const int bits = 8 * t.size;
+    const int64_t lo = t.isSigned ? -(int64_t(1) << (bits - 1)) : 0;
+    const int64_t hi = t.isSigned ? (int64_t(1) << (bits - 1)) - 1 : (int64_t(1) << bits) - 1;
+    if (v < lo || v > hi) {
+      detail::fail(name_, "value " + token + " does not fit its type (" + what + ")");
+    }
+    return double(v);
+  }
+
+  const uint8_t* data_;
+  std::size_t size_;
+  std::size_t pos_;
+  Format format_;
+  const std::string& name_;
+};
+
+float srgbToLinear(float c) {
+  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+}  // namespace
+
+Strands parsePly(const uint8_t* data, std::size_t size, const std::string& name) {
+  using detail::fail;
+  if (data == nullptr || size < 4 || std::memcmp(data, "ply", 3) != 0 ||
+      (data[3] != '\n' && data[3] != '\r')) {
+    fail(name, "not a PLY file (does not start with \"ply\")");
+  }
+
+  // --- header ---
+  std::vector<Element> elements;
+  bool haveFormat = false, haveEnd = false;
+  Format format = Format::Ascii;
+  std::size_t pos = 0;
+  int lineNo = 0;
+  while (pos < size) {
+    std::size_t eol = pos;
+    while (eol < size && data[eol] != '\n') ++eol;
+    std::string line(reinterpret_cast<const char*>(data + pos), eol - pos);
+    pos = eol < size ? eol + 1 : size;
+    ++lineNo;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (lineNo == 1) continue;  // "ply"
+    std::istringstream ls(line);
+    std::string kw;
+    ls >> kw;
+    const std::string where = "header line " + std::to_string(lineNo);
+    if (kw.empty() || kw == "comment" || kw == "obj_info") continue;
+    if (kw == "end_header") {
+      haveEnd = true;
+      break;
+    }
+    if (kw == "format") {
+      std::string f, v;
+      ls >> f >> v;
+      if (f == "ascii") {
+        format = Format::Ascii;
+      } else if (f == "binary_little_endian") {
+        format = Format::BinaryLE;
+      } else if (f == "binary_big_endian") {
+        format = Format::BinaryBE;
+      } else {
+        fail(name, where + ": unknown format '" + f + "'");
+      }
+      if (v != "1.0") fail(name, where + ": unsupported PLY version '" + v + "' (expected 1.0)");
+      haveFormat = true;
+    } else if (kw == "element") {
+      Element e;
+      std::string count, extra;
+      ls >> e.name >> count;
+      if (e.name.empty() || count.empty() || (ls >> extra)) {
+        fail(name, where + ": expected 'element <name> <count>'");
+      }
+      auto r = std::from_chars(count.data(), count.data() + count.size(), e.count);
+      if (r.ec != std::errc() || r.ptr != count.data() + count.size()) {
+        fail(name, where + ": element count '" + count + "' is not a non-negative integer");
+      }
+      elements.push_back(std::move(e));
+    } else if (kw == "property") {
+      if (elements.empty()) fail(name, where + ": property before any element");
+      Property p;
+      std::string t;
+      ls >> t;
+      if (t == "list") {
+        std::string ct, it;
+        ls >> ct >> it >> p.name;
+        p.isList = true;
+        p.countType = typeFromName(ct);
+        p.type = typeFromName(it);
+        if (p.countType.size == 0 || p.countType.isFloat) {
+          fail(name, where + ": list count type '" + ct + "' is not an integer type");
+        }
+        if (p.type.size == 0) fail(name, where + ": unknown list item type '" + it + "'");
+      } else {
+        ls >> p.name;
+        p.type = typeFromName(t);
+        if (p.type.size == 0) fail(name, where + ": unknown property type '" + t + "'");
+      }
+      if (p.name.empty()) fail(name, where + ": property without a name");
+      elements.back().props.push_back(std::move(p));
+    } else {
+      fail(name, where + ": unknown header keyword '" + kw.substr(0, 40) + "'");
+    }
+  }
+  if (!haveFormat) fail(name, "PLY header has no format line");
+  if (!haveEnd) fail(name, "PLY header has no end_header line");
+
+  // --- locate the vertex and strand elements and their properties ---
+  const Element* vertex = nullptr;
+  const Element* strand = nullptr;
+  for (const Element& e : elements) {
+    if (e.name == "vertex" && !vertex) vertex = &e;
+    if ((e.name == "strand" || e.name == "strands") && !strand) strand = &e;
+  }
+  if (!vertex) fail(name, "PLY has no 'vertex' element");
+  if (!strand) fail(name, "PLY has no 'strand' element (segments per strand)");
+  if (vertex->count == 0) fail(name, "PLY has zero vertices");
+  if (strand->count == 0) fail(name, "PLY has zero strands");
+  if (vertex->count > std::numeric_limits<uint32_t>::max()) {
+    fail(name, "too many vertices (" + std::to_string(vertex->count) + ")");
+  }
+  auto findScalar = [&](const Element& e, const char* prop) -> int {
+    for (std::size_t i = 0; i < e.props.size(); ++i) {
+      if (e.props[i].name == prop) {
+        if (e.props[i].isList) fail(name, std::string("property '") + prop + "' is a list");
+        return int(i);
+      }
+    }
+    return -1;
+  };
+  const int ix = findScalar(*vertex, "x"), iy = findScalar(*vertex, "y"),
+            iz = findScalar(*vertex, "z");
+  if (ix < 0 || iy < 0 || iz < 0) fail(name, "vertex element lacks an x, y or z property");
+  const int ir = findScalar(*vertex, "red"), ig = findScalar(*vertex, "green"),
+            ib = findScalar(*vertex, "blue");
+  const bool hasColor = ir >= 0 && ig >= 0 && ib >= 0;
+  int ic = findScalar(*strand, "nsegs");
+  if (ic < 0) {
+    for (std::size_t i = 0; i < strand->props.size(); ++i) {
+      if (!strand->props[i].isList && !strand->props[i].type.isFloat) {
+        if (ic >= 0) fail(name, "strand element has no 'nsegs' and several integer properties");
+        ic = int(i);
+      }
+    }
+    if (ic < 0) fail(name, "strand element has no integer segment-count property (nsegs)");
+  }
+  if (strand->props[ic].type.isFloat) {
+    fail(name, "strand property '" + strand->props[ic].name + "' must be an integer type");
+  }
+
+  // --- body ---
+  BodyReader in(data, size, pos, format, name);
+  Strands s;
+  std::vector<double> values;
+  for (const Element& e : elements) {
+    if (e.props.empty()) continue;  // no data to read
+    // Cheap sanity check before any allocation or long loop: each item needs at least
+    // this many bytes (binary) or one character (ascii).
+    uint64_t minBytes = 0;
+    for (const Property& p : e.props) minBytes += p.isList ? p.countType.size : p.type.size;
+    if (format == Format::Ascii) minBytes = 1;
+    if (e.count > in.remaining() / minBytes) {
+      fail(name, "truncated: element '" + e.name + "' declares " + std::to_string(e.count) +
+                     " items but only " + std::to_string(in.remaining()) + " bytes remain");
+    }
+    const bool isVertex = &e == vertex, isStrand = &e == strand;
+    if (isVertex) {
+      s.points.resize(e.count);
+      if (hasColor) s.colors.resize(e.count);
+    }
+    if (isStrand) s.pointCount.resize(e.count);
+    values.assign(e.props.size(), 0.0);
+    for (uint64_t i = 0; i < e.count; ++i) {
+      for (std::size_t k = 0; k < e.props.size(); ++k) {
+        const Property& p = e.props[k];
+        if (p.isList) {
+          const double n = in.read(p.countType, e.name + " list count '" + p.name + "'");
+          if (n < 0) fail(name, "negative list count in " + e.name + " '" + p.name + "'");
+          in.skip(uint64_t(n), p.type, "'" + p.name + "' of " + e.name);
+        } else {
+          values[k] = in.read(p.type, e.name + " " + std::to_string(i) + " '" + p.name + "'");
+        }
+      }
+      if (isVertex) {
+        const glm::vec3 v{float(values[std::size_t(ix)]), float(values[std::size_t(iy)]),
+                          float(values[std::size_t(iz)])};
+        if (!detail::finite3(v)) {
+          fail(name, "vertex " + std::to_string(i) + " has a NaN or infinite coordinate");
+        }
+        s.points[i] = v;
+        if (hasColor) {
+          glm::vec3 c;
+          const int idx[3] = {ir, ig, ib};
+          for (int j = 0; j < 3; ++j) {
+            const Type& t = e.props[idx[j]].type;
+            double val = values[idx[j]];
+            if (t.isFloat) {
+              c[j] = float(val);  // float colours are taken as linear
+            } else {
+              const double maxv = t.size == 1 ? 255.0 : double((uint64_t(1) << (8 * t.size)) - 1);
+              c[j] = srgbToLinear(float(std::clamp(val / maxv, 0.0, 1.0)));
+            }
+          }
+          if (!detail::finite3(c)) fail(name, "colour of vertex " + std::to_string(i) + " is NaN");
+          s.colors[i] = c;
+        }
+      } else if (isStrand) {
+        const double n = values[ic];
+        if (n < 0) fail(name, "strand " + std::to_string(i) + " has a negative segment count");
+        if (n >= double(std::numeric_limits<uint32_t>::max())) {
+          fail(name, "strand " + std::to_string(i) + " has too many segments");
+        }
+        s.pointCount[i] = uint32_t(n) + 1;
+      }
+    }
+  }
+
+  uint64_t total = 0;
+  s.firstPoint.resize(s.pointCount.size());
+  for (std::size_t i = 0; i < s.pointCount.size(); ++i) {
+    s.firstPoint[i] = uint32_t(std::min<uint64_t>(total, std::numeric_limits<uint32_t>::max()));
+    total += s.pointCount[i];
+  }
+  if (total != vertex->count) {
+    fail(name, "strand segment counts give " + std::to_string(total) +
+                   " points (sum of nsegs + 1) but there are " + std::to_string(vertex->count) +
+                   " vertices");
+  }
+  const std::size_t n = s.points.size();
+  if (!hasColor) s.colors.assign(n, detail::kDefaultHairColor);
+  s.thickness.assign(n, detail::kDefaultThickness);
+  s.transparency.assign(n, 0.0f);
+  return s;
+}
+
+}  // namespace sb

@@ -1,0 +1,34 @@
+// Reading "key=value" options of a Spec with validation: unknown names get the
+// closest valid name in the message, values are range-checked. Shared by
+// scenes and techniques.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "scenes/scene.h"
+
+namespace sb {
+
+// The valid name closest to `name` by edit distance ("" when none is close).
+std::string closestName(const std::string& name, const std::vector<std::string>& valid);
+
+class OptionReader {
+ public:
+  // what: e.g. "scene 'curly'" or "shadow technique 'shadowmap'", used in messages.
+  // Throws InputError for an option not in `known`.
+  OptionReader(const Spec& spec, const std::vector<OptionInfo>& known, std::string what);
+  double number(const std::string& name, double min, double max) const;
+  long long integer(const std::string& name, long long min, long long max) const;
+  std::string choice(const std::string& name, const std::vector<std::string>& valid) const;
+  std::string text(const std::string& name) const;
+  bool has(const std::string& name) const;  // given explicitly
+
+ private:
+  std::string raw(const std::string& name) const;  // given value or the default
+  const Spec& spec_;
+  const std::vector<OptionInfo>& known_;
+  std::string what_;
+};
+
+}  // namespace sb

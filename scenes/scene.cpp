@@ -1,0 +1,159 @@
+// Scene data helpers, spec parsing and file reading shared by the loaders.
+#include "scenes/scene.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <limits>
+
+#include "scenes/loader_util.h"
+
+namespace sb {
+
+std::size_t Strands::segmentCount() const {
+  std::size_t n = 0;
+  for (uint32_t c : pointCount) n += c > 0 ? c - 1 : 0;
+  return n;
+}
+
+float Bounds::radius() const { return 0.5f * glm::length(max - min); }
+
+Bounds Scene::bounds() const {
+  constexpr float inf = std::numeric_limits<float>::infinity();
+  glm::vec3 lo(inf), hi(-inf);
+  auto add = [&](const glm::vec3& p) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  };
+  for (const glm::vec3& p : strands.points) add(p);
+  for (const glm::vec3& p : mesh.positions) add(p);
+  Bounds b;
+  if (!(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z)) {
+    // Empty scene: a unit cube around the origin, so cameras and lights stay finite.
+    b.min = glm::vec3(-0.5f);
+    b.max = glm::vec3(0.5f);
+    return b;
+  }
+  b.min = lo;
+  b.max = hi;
+  return b;
+}
+
+namespace {
+
+std::string trim(const std::string& s) {
+  std::size_t a = 0, e = s.size();
+  while (a < e && std::isspace(static_cast<unsigned char>(s[a]))) ++a;
+  while (e > a && std::isspace(static_cast<unsigned char>(s[e - 1]))) --e;
+  return s.substr(a, e - a);
+}
+
+}  // namespace
+
+Spec Spec::parse(const std::string& text) {
+  Spec spec;
+  const std::size_t colon = text.find(':');
+  spec.name = trim(text.substr(0, colon));
+  if (spec.name.empty()) {
+    throw InputError("spec '" + text + "': empty scene name (expected name:key=value,...)");
+  }
+  if (colon == std::string::npos) return spec;
+  const std::string rest = text.substr(colon + 1);
+  if (trim(rest).empty()) return spec;  // "name:" is the same as "name"
+  std::size_t pos = 0;
+  while (pos <= rest.size()) {
+    std::size_t comma = rest.find(',', pos);
+    if (comma == std::string::npos) comma = rest.size();
+    const std::string item = rest.substr(pos, comma - pos);
+    pos = comma + 1;
+    if (trim(item).empty()) {
+      throw InputError("spec '" + text + "': empty option (two commas in a row or a trailing comma)");
+    }
+    const std::size_t eq = item.find('=');
+    if (eq == std::string::npos) {
+      throw InputError("spec '" + text + "': option '" + trim(item) +
+                       "' has no '=' (expected key=value)");
+    }
+    const std::string key = trim(item.substr(0, eq));
+    const std::string value = trim(item.substr(eq + 1));
+    if (key.empty()) {
+      throw InputError("spec '" + text + "': option '" + trim(item) + "' has an empty key");
+    }
+    if (!spec.options.emplace(key, value).second) {
+      throw InputError("spec '" + text + "': option '" + key + "' is given more than once");
+    }
+  }
+  return spec;
+}
+
+std::string Spec::str() const {
+  std::string s = name;
+  char sep = ':';
+  for (const auto& [key, value] : options) {
+    s += sep;
+    s += key;
+    s += '=';
+    s += value;
+    sep = ',';
+  }
+  return s;
+}
+
+namespace detail {
+
+void fail(const std::string& name, const std::string& what) {
+  throw InputError(name + ": " + what);
+}
+
+std::vector<uint8_t> readFileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    throw InputError("cannot open '" + path + "': " + std::strerror(errno));
+  }
+  in.seekg(0, std::ios::end);
+  const std::streamoff end = in.tellg();
+  if (end < 0) throw InputError("cannot read '" + path + "': not a regular file");
+  in.seekg(0, std::ios::beg);
+  std::vector<uint8_t> bytes(static_cast<std::size_t>(end));
+  if (!bytes.empty() &&
+      !in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()))) {
+    throw InputError("cannot read '" + path + "': read failed");
+  }
+  return bytes;
+}
+
+}  // namespace detail
+
+Strands loadHair(const std::string& path) {
+  const std::vector<uint8_t> bytes = detail::readFileBytes(path);
+  return parseHair(bytes.data(), bytes.size(), path);
+}
+
+Strands loadTfx(const std::string& path) {
+  const std::vector<uint8_t> bytes = detail::readFileBytes(path);
+  return parseTfx(bytes.data(), bytes.size(), path);
+}
+
+Strands loadPly(const std::string& path) {
+  const std::vector<uint8_t> bytes = detail::readFileBytes(path);
+  return parsePly(bytes.data(), bytes.size(), path);
+}
+
+Strands loadStrandFile(const std::string& path) {
+  const std::size_t dot = path.find_last_of('.');
+  const std::size_t slash = path.find_last_of('/');
+  std::string ext;
+  if (dot != std::string::npos && (slash == std::string::npos || dot > slash)) {
+    ext = path.substr(dot);
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  }
+  if (ext == ".hair") return loadHair(path);
+  if (ext == ".tfx") return loadTfx(path);
+  if (ext == ".ply") return loadPly(path);
+  throw InputError(path + ": unknown strand file extension '" + ext +
+                   "' (expected .hair, .tfx or .ply)");
+}
+
+}  // namespace sb

@@ -1,0 +1,2 @@
+// Depth-only passes write no colour.
+void main() {}

@@ -1,0 +1,65 @@
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "techniques/common/shader_library.h"
+#include "techniques/common/technique.h"
+
+namespace sb {
+
+ViewUniforms cameraView(const RenderSettings& s) {
+  const float aspect = static_cast<float>(s.width) / static_cast<float>(s.height);
+  ViewUniforms v{};
+  v.viewProj = s.camera.projection(aspect) * s.camera.view();
+  v.eye = glm::vec4(s.camera.eye, 1.0f);
+  v.forward = glm::vec4(glm::normalize(s.camera.target - s.camera.eye), 0.0f);
+  v.viewport = glm::vec4(static_cast<float>(s.width), static_cast<float>(s.height), s.ribbonWidth, 0);
+  return v;
+}
+
+ViewUniforms lightView(const RenderSettings& s, uint32_t mapWidth, uint32_t mapHeight) {
+  ViewUniforms v{};
+  v.viewProj = s.light.projection() * s.light.view();
+  const bool point = s.light.type == LightType::Point;
+  v.eye = glm::vec4(s.light.position, point ? 1.0f : 0.0f);
+  v.forward = glm::vec4(glm::normalize(s.light.direction), 0.0f);
+  v.viewport = glm::vec4(static_cast<float>(mapWidth), static_cast<float>(mapHeight),
+                         s.ribbonWidth, 0);
+  return v;
+}
+
+ShaderCode Geometry::strandVertexShader(const RenderSettings& s) {
+  ShaderDefines d;
+  if (s.primitive == Primitive::Ribbons) d.defines.push_back({"SB_RIBBONS", "1"});
+  return loadShader("techniques/common/strands.vert", d);
+}
+
+ShaderCode Geometry::meshVertexShader() { return loadShader("techniques/common/mesh.vert"); }
+
+Topology Geometry::strandTopology(const RenderSettings& s) {
+  return s.primitive == Primitive::Ribbons ? Topology::Triangles : Topology::Lines;
+}
+
+uint32_t Geometry::strandVertexCount(const GpuScene& g, const RenderSettings& s) {
+  return g.segmentCount * (s.primitive == Primitive::Ribbons ? 6u : 2u);
+}
+
+std::vector<BindingSlot> Geometry::slots() {
+  return {{bind::kView, BindingKind::UniformBuffer},
+          {bind::kPoints, BindingKind::StorageBuffer},
+          {bind::kColors, BindingKind::StorageBuffer},
+          {bind::kSegments, BindingKind::StorageBuffer},
+          {bind::kMeshPositions, BindingKind::StorageBuffer},
+          {bind::kMeshNormals, BindingKind::StorageBuffer},
+          {bind::kMeshIndices, BindingKind::StorageBuffer}};
+}
+
+std::vector<Binding> Geometry::bindings(const GpuScene& g, Buffer viewUbo) {
+  return {Binding::buf(bind::kView, viewUbo),
+          Binding::buf(bind::kPoints, g.points),
+          Binding::buf(bind::kColors, g.colors),
+          Binding::buf(bind::kSegments, g.segments),
+          Binding::buf(bind::kMeshPositions, g.meshPositions),
+          Binding::buf(bind::kMeshNormals, g.meshNormals),
+          Binding::buf(bind::kMeshIndices, g.meshIndices)};
+}
+
+}  // namespace sb

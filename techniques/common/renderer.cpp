@@ -1,0 +1,84 @@
+#include "techniques/common/renderer.h"
+
+namespace sb {
+
+namespace {
+// Vulkan needs every declared binding backed; a scene without a mesh gets
+// 16-byte placeholders (reported like any other buffer).
+Buffer makeBuffer(Device& dev, const std::string& name, const void* data, std::size_t bytes) {
+  static const uint8_t kZeros[16] = {};
+  if (bytes == 0) return dev.createBuffer({name, "scene", BufferUsage::Storage, 16}, kZeros);
+  return dev.createBuffer({name, "scene", BufferUsage::Storage, bytes}, data);
+}
+}  // namespace
+
+Renderer::Renderer(Device& dev, const Scene& scene, const RenderSettings& settings,
+                   std::unique_ptr<ShadowTechnique> shadow, const std::set<std::string>& outputs)
+    : dev_(dev), settings_(settings), shadow_(std::move(shadow)) {
+  upload(scene);
+  color_ = dev.createTexture(
+      {"frame.color", "frame", Format::RGBA32F, settings.width, settings.height, false});
+  depth_ = dev.createTexture(
+      {"frame.depth", "frame", Format::Depth32F, settings.width, settings.height, false});
+  shadow_->setup(dev, gpu_, settings_);
+  shading_.setup(dev, gpu_, settings_, *shadow_, color_, depth_);
+  shadow_->addPasses(graph_, dev);
+  shading_.addPasses(graph_, dev);
+  passes_ = graph_.compile(outputs);
+}
+
+void Renderer::upload(const Scene& scene) {
+  const Strands& st = scene.strands;
+  std::vector<glm::vec4> points(st.points.size()), colors(st.points.size());
+  for (std::size_t i = 0; i < st.points.size(); ++i) {
+    const float thickness = i < st.thickness.size() ? st.thickness[i] : 0.0f;
+    const float transparency = i < st.transparency.size() ? st.transparency[i] : 0.0f;
+    const glm::vec3 c = i < st.colors.size() ? st.colors[i] : scene.hairColor;
+    points[i] = glm::vec4(st.points[i], thickness);
+    colors[i] = glm::vec4(c, scene.hairAlpha * (1.0f - transparency));
+  }
+  std::vector<uint32_t> segments;
+  segments.reserve(st.segmentCount());
+  for (std::size_t s = 0; s < st.strandCount(); ++s)
+    for (uint32_t k = 0; k + 1 < st.pointCount[s]; ++k) segments.push_back(st.firstPoint[s] + k);
+
+  const Mesh& m = scene.mesh;
+  std::vector<glm::vec4> positions(m.positions.size()), normals(m.positions.size());
+  for (std::size_t i = 0; i < m.positions.size(); ++i) {
+    positions[i] = glm::vec4(m.positions[i], 1.0f);
+    normals[i] = glm::vec4(i < m.normals.size() ? m.normals[i] : glm::vec3(0, 1, 0), 0.0f);
+  }
+
+  gpu_.points = makeBuffer(dev_, "scene.points", points.data(), points.size() * sizeof(glm::vec4));
+  gpu_.colors = makeBuffer(dev_, "scene.colors", colors.data(), colors.size() * sizeof(glm::vec4));
+  gpu_.segments =
+      makeBuffer(dev_, "scene.segments", segments.data(), segments.size() * sizeof(uint32_t));
+  gpu_.segmentCount = static_cast<uint32_t>(segments.size());
+  gpu_.meshPositions = makeBuffer(dev_, "scene.mesh_positions", positions.data(),
+                                  positions.size() * sizeof(glm::vec4));
+  gpu_.meshNormals = makeBuffer(dev_, "scene.mesh_normals", normals.data(),
+                                normals.size() * sizeof(glm::vec4));
+  gpu_.meshIndices = makeBuffer(dev_, "scene.mesh_indices", m.indices.data(),
+                                m.indices.size() * sizeof(uint32_t));
+  gpu_.meshTriangles = static_cast<uint32_t>(m.triangleCount());
+  gpu_.hairAlpha = scene.hairAlpha;
+  gpu_.shadowAlpha = scene.shadowAlpha;
+  gpu_.bounds = scene.bounds();
+}
+
+std::vector<std::string> Renderer::passNames() const {
+  std::vector<std::string> names;
+  for (const auto* p : passes_) names.push_back(p->name);
+  return names;
+}
+
+std::vector<PassTiming> Renderer::renderFrame() {
+  dev_.beginFrame();
+  for (const auto* p : passes_) p->execute();
+  dev_.endFrame();
+  return dev_.lastFrameTimings();
+}
+
+std::vector<uint8_t> Renderer::readColor() { return dev_.readTexture(color_); }
+
+}  // namespace sb

@@ -1,0 +1,13 @@
+// Lighting parameters of the final shading passes (binding 1).
+layout(std140, binding = 1) uniform Shading {
+  vec4 eyePos;      // xyz
+  vec4 lightPos;    // w=1: point light position; w=0: direction towards the light
+  vec4 lightColor;  // rgb * intensity
+  vec4 hairMaterial;  // kd, ks, shininess, ambient
+  vec4 meshMaterial;  // rgb, ambient
+  vec4 sceneParams;   // hair alpha, shadow alpha, 0, 0
+};
+
+vec3 directionToLight(vec3 p) {
+  return lightPos.w > 0.5 ? normalize(lightPos.xyz - p) : normalize(lightPos.xyz);
+}

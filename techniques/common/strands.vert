@@ -1,0 +1,41 @@
+// Strands pulled from storage buffers by gl_VertexIndex: 2 vertices per segment
+// as lines, or 6 per segment as a camera-facing ribbon (SB_RIBBONS) whose width
+// is set in pixels, so both APIs rasterize the same triangles.
+#include "bindings.glsl"
+
+layout(location = 0) out vec3 vWorldPos;
+layout(location = 1) out vec3 vTangent;
+layout(location = 2) out vec4 vColor;
+
+void main() {
+#ifdef SB_RIBBONS
+  const uint kEnd[6] = uint[6](0u, 1u, 1u, 0u, 1u, 0u);
+  const float kSide[6] = float[6](-1.0, -1.0, 1.0, -1.0, 1.0, 1.0);
+  uint seg = uint(gl_VertexIndex) / 6u;
+  uint end = kEnd[uint(gl_VertexIndex) % 6u];
+#else
+  uint seg = uint(gl_VertexIndex) >> 1u;
+  uint end = uint(gl_VertexIndex) & 1u;
+#endif
+  uint first = segments[seg];
+  vec3 p0 = points[first].xyz;
+  vec3 p1 = points[first + 1u].xyz;
+  vec3 p = end == 0u ? p0 : p1;
+  vec3 d = p1 - p0;
+  // A zero-length segment still needs a valid tangent for shading.
+  vTangent = dot(d, d) > 1e-30 ? normalize(d) : vec3(0.0, 1.0, 0.0);
+  vColor = colors[first + end];
+  vWorldPos = p;
+  vec4 clip = viewProj * vec4(p, 1.0);
+#ifdef SB_RIBBONS
+  vec4 c0 = viewProj * vec4(p0, 1.0);
+  vec4 c1 = viewProj * vec4(p1, 1.0);
+  vec2 s = (c1.xy / c1.w - c0.xy / c0.w) * viewViewport.xy;
+  vec2 dir = dot(s, s) > 1e-12 ? normalize(s) : vec2(1.0, 0.0);
+  vec2 normal = vec2(-dir.y, dir.x);
+  float side = kSide[uint(gl_VertexIndex) % 6u];
+  // Half the width in pixels, converted to clip units at this vertex.
+  clip.xy += normal * side * viewViewport.z / viewViewport.xy * clip.w;
+#endif
+  gl_Position = clip;
+}

@@ -1,0 +1,98 @@
+// What every technique sees: the scene on the GPU, the render settings, and
+// the interface a shadow technique implements. Techniques never name GL or
+// Vulkan; they create resources and record passes through Device.
+#pragma once
+
+#include <glm/glm.hpp>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "backends/device.h"
+#include "scenes/scene.h"
+#include "scenes/view.h"
+#include "techniques/common/frame_graph.h"
+
+namespace sb {
+
+enum class Primitive { Lines, Ribbons };
+
+struct RenderSettings {
+  uint32_t width = 512, height = 512;
+  Primitive primitive = Primitive::Lines;
+  float ribbonWidth = 1.0f;  // pixels of the target being drawn
+  Camera camera;
+  Light light;
+  glm::vec3 background{0.0f, 0.0f, 0.0f};
+};
+
+// The scene's data on the device (owner "scene").
+struct GpuScene {
+  Buffer points;    // vec4: xyz, thickness
+  Buffer colors;    // vec4: rgb, alpha
+  Buffer segments;  // uint: index of a segment's first point
+  uint32_t segmentCount = 0;
+  Buffer meshPositions;  // vec4
+  Buffer meshNormals;    // vec4
+  Buffer meshIndices;    // uint, 3 per triangle
+  uint32_t meshTriangles = 0;
+  float hairAlpha = 1.0f;
+  float shadowAlpha = 0.5f;
+  Bounds bounds;
+  bool hasHair() const { return segmentCount > 0; }
+  bool hasMesh() const { return meshTriangles > 0; }
+};
+
+// A view's uniforms (binding 0 in every geometry pass), std140.
+struct ViewUniforms {
+  glm::mat4 viewProj;
+  glm::vec4 eye;       // xyz: camera/light position; w: 1 perspective, 0 orthographic
+  glm::vec4 forward;   // view direction (for orthographic views)
+  glm::vec4 viewport;  // width, height, ribbon width in pixels, 0
+};
+ViewUniforms cameraView(const RenderSettings& s);
+ViewUniforms lightView(const RenderSettings& s, uint32_t mapWidth, uint32_t mapHeight);
+
+// Binding numbers shared by every shader (see techniques/common/bindings.glsl).
+namespace bind {
+constexpr uint32_t kView = 0, kShading = 1, kPoints = 2, kColors = 3, kSegments = 4,
+                   kMeshPositions = 5, kMeshNormals = 6, kMeshIndices = 7,
+                   kShadowFirst = 8;  // 8..15 belong to the shadow technique
+}
+
+// Drawing strands and the mesh: the shared vertex shaders and their bindings.
+struct Geometry {
+  static ShaderCode strandVertexShader(const RenderSettings& s);
+  static ShaderCode meshVertexShader();
+  static Topology strandTopology(const RenderSettings& s);
+  static uint32_t strandVertexCount(const GpuScene& g, const RenderSettings& s);
+  static std::vector<BindingSlot> slots();  // view UBO + scene buffers
+  static std::vector<Binding> bindings(const GpuScene& g, Buffer viewUbo);
+};
+
+// A self-shadowing technique: its own passes (from the light) and a GLSL
+// lookup, `float shadowVisibility(vec3 worldPos)`, that shading passes include
+// as <shadow>. Resources it writes are named "shadow.*" in the frame graph.
+class ShadowTechnique {
+ public:
+  virtual ~ShadowTechnique() = default;
+  virtual std::string name() const = 0;
+  virtual void setup(Device& dev, const GpuScene& scene, const RenderSettings& s) = 0;
+  virtual void addPasses(FrameGraph& graph, Device& dev) = 0;
+  virtual std::string lookupShader() const = 0;
+  virtual std::vector<std::string> lookupReads() const = 0;
+  virtual std::vector<BindingSlot> lookupSlots() const = 0;
+  virtual std::vector<Binding> lookupBindings() const = 0;
+  virtual std::vector<Texture> lookupTextures() const = 0;
+};
+
+struct TechniqueInfo {
+  std::string name;
+  std::string help;
+  std::vector<OptionInfo> options;
+};
+const std::vector<TechniqueInfo>& shadowCatalog();
+// Throws InputError for unknown names/options (with the closest valid name).
+std::unique_ptr<ShadowTechnique> makeShadowTechnique(const Spec& spec);
+
+}  // namespace sb

@@ -1,0 +1,43 @@
+// The shadow techniques by name, with their options and defaults.
+#include "scenes/options.h"
+#include "techniques/common/technique.h"
+#include "techniques/none/none.h"
+#include "techniques/shadowmap/shadowmap.h"
+
+namespace sb {
+
+const std::vector<TechniqueInfo>& shadowCatalog() {
+  static const std::vector<TechniqueInfo> catalog = {
+      {"none", "no shadows: Kajiya-Kay shading with the light always visible", {}},
+      {"shadowmap",
+       "hard shadow map (Williams 1978) cast by the mesh and the hair onto both",
+       {{"size", "512", "shadow map resolution (size x size), 1..16384"},
+        {"bias", "0.002", "depth bias in light depth units [0,1], 0..1"}}},
+  };
+  return catalog;
+}
+
+std::unique_ptr<ShadowTechnique> makeShadowTechnique(const Spec& spec) {
+  const auto& catalog = shadowCatalog();
+  const TechniqueInfo* info = nullptr;
+  std::vector<std::string> names;
+  for (const auto& t : catalog) {
+    names.push_back(t.name);
+    if (t.name == spec.name) info = &t;
+  }
+  if (!info) {
+    std::string msg = "unknown shadow technique '" + spec.name + "'";
+    const std::string near = closestName(spec.name, names);
+    if (!near.empty()) msg += " (did you mean '" + near + "'?)";
+    msg += "; valid:";
+    for (const auto& n : names) msg += " " + n;
+    throw InputError(msg);
+  }
+  const OptionReader opts(spec, info->options, "shadow technique '" + spec.name + "'");
+  if (spec.name == "shadowmap")
+    return std::make_unique<ShadowMap>(static_cast<uint32_t>(opts.integer("size", 1, 16384)),
+                                       static_cast<float>(opts.number("bias", 0.0, 1.0)));
+  return std::make_unique<NoShadow>();
+}
+
+}  // namespace sb

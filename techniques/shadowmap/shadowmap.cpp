@@ -1,0 +1,71 @@
+#include "techniques/shadowmap/shadowmap.h"
+
+#include "techniques/common/shader_library.h"
+
+namespace sb {
+
+namespace {
+struct Params {
+  glm::mat4 lightViewProj;
+  glm::vec4 params;
+};
+}  // namespace
+
+void ShadowMap::setup(Device& dev, const GpuScene& scene, const RenderSettings& s) {
+  scene_ = &scene;
+  settings_ = s;
+  depth_ = dev.createTexture({"shadowmap.depth", "shadow", Format::Depth32F, size_, size_, false});
+  const ViewUniforms view = lightView(s, size_, size_);
+  lightViewUbo_ =
+      dev.createBuffer({"shadowmap.light_view", "shadow", BufferUsage::Uniform, sizeof view}, &view);
+  const Params p{view.viewProj, glm::vec4(bias_, 0, 0, 0)};
+  paramsUbo_ = dev.createBuffer({"shadowmap.params", "shadow", BufferUsage::Uniform, sizeof p}, &p);
+
+  const ShaderCode frag = loadShader("techniques/common/depth_only.frag");
+  PipelineDesc d;
+  d.technique = "shadowmap";
+  d.fragment = &frag;
+  d.hasDepth = d.depthTest = d.depthWrite = true;
+  d.depthCompare = CompareOp::Less;
+  d.bindings = Geometry::slots();
+  if (scene.hasHair()) {
+    const ShaderCode vert = Geometry::strandVertexShader(s);
+    d.name = "shadowmap.hair";
+    d.vertex = &vert;
+    d.topology = Geometry::strandTopology(s);
+    hairPipeline_ = dev.createPipeline(d);
+  }
+  if (scene.hasMesh()) {
+    const ShaderCode vert = Geometry::meshVertexShader();
+    d.name = "shadowmap.mesh";
+    d.vertex = &vert;
+    d.topology = Topology::Triangles;
+    meshPipeline_ = dev.createPipeline(d);
+  }
+}
+
+void ShadowMap::addPasses(FrameGraph& graph, Device& dev) {
+  // One pass: mesh and hair both occlude, so both go into the same depth map.
+  graph.add({"shadowmap.depth", {}, {"shadow.depth"}, [this, &dev] {
+               PassDesc pass;
+               pass.name = "shadowmap.depth";
+               pass.depth = {depth_, LoadOp::Clear, 1.0f};
+               dev.beginPass(pass);
+               const auto b = Geometry::bindings(*scene_, lightViewUbo_);
+               if (meshPipeline_) dev.draw(meshPipeline_, b, scene_->meshTriangles * 3);
+               if (hairPipeline_)
+                 dev.draw(hairPipeline_, b, Geometry::strandVertexCount(*scene_, settings_));
+               dev.endPass();
+             }});
+}
+
+std::vector<BindingSlot> ShadowMap::lookupSlots() const {
+  return {{bind::kShadowFirst, BindingKind::SampledTexture},
+          {bind::kShadowFirst + 1, BindingKind::UniformBuffer}};
+}
+
+std::vector<Binding> ShadowMap::lookupBindings() const {
+  return {Binding::tex(bind::kShadowFirst, depth_), Binding::buf(bind::kShadowFirst + 1, paramsUbo_)};
+}
+
+}  // namespace sb

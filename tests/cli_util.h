@@ -1,0 +1,54 @@
+// Runs the strandbench CLI from tests and captures its output and exit status.
+#pragma once
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+
+namespace sbtest {
+
+struct CliResult {
+  int status = -1;
+  std::string out, err;
+};
+
+inline std::string readFile(const std::filesystem::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::ostringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+// A fresh temporary folder per call.
+inline std::filesystem::path tempDir(const std::string& tag) {
+  std::random_device rd;
+  auto dir = std::filesystem::temp_directory_path() /
+             ("strandbench-" + tag + "-" + std::to_string(rd()));
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+// args are passed through the shell; quote them where needed.
+inline CliResult runCli(const std::string& args) {
+  const auto dir = tempDir("cli");
+  const std::string cmd = std::string(SB_CLI) + " " + args + " >" + (dir / "out").string() +
+                          " 2>" + (dir / "err").string();
+  CliResult r;
+  const int raw = std::system(cmd.c_str());
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  r.out = readFile(dir / "out");
+  r.err = readFile(dir / "err");
+  std::filesystem::remove_all(dir);
+  return r;
+}
+
+inline std::filesystem::path sharedModels() {
+  return std::filesystem::path(SB_SOURCE_DIR) / ".." / "shared" / "models";
+}
+
+}  // namespace sbtest

@@ -1,0 +1,282 @@
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "harness/image.h"
+#include "harness/metrics.h"
+#include "scenes/scene.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+sb::Image pattern(int w, int h) {
+  sb::Image img(w, h, 4);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      for (int c = 0; c < 4; ++c) {
+        img.at(x, y, c) = static_cast<float>((x * 3 + y * 5 + c * 11) % 17) / 20.0f;
+      }
+    }
+  }
+  return img;
+}
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+}  // namespace
+
+TEST(Metrics, IdenticalImages) {
+  const sb::Image a = pattern(10, 10);
+  const sb::ImageError e = sb::compareImages(a, a);
+  EXPECT_EQ(e.rmse, 0.0);
+  EXPECT_EQ(e.psnr, kInf);
+  EXPECT_EQ(e.maxAbs, 0.0);
+  EXPECT_EQ(e.fractionOver, 0.0);
+  EXPECT_EQ(e.nanPixels, 0);
+  EXPECT_EQ(e.width, 10);
+  EXPECT_EQ(e.height, 10);
+  EXPECT_TRUE(e.identical());
+
+  const nlohmann::json j = sb::toJson(e);
+  EXPECT_TRUE(j["psnr"].is_null());
+  EXPECT_EQ(j["identical"], true);
+  EXPECT_EQ(j["rmse"], 0.0);
+  EXPECT_EQ(j["max_abs"], 0.0);
+  EXPECT_EQ(j["nan_pixels"], 0);
+  // Valid JSON text (no inf / nan tokens).
+  EXPECT_NO_THROW(nlohmann::json::parse(j.dump()));
+}
+
+TEST(Metrics, ConstantOffsetOnRgb) {
+  const sb::Image a = pattern(8, 6);
+  sb::Image b = a;
+  for (int y = 0; y < b.height; ++y) {
+    for (int x = 0; x < b.width; ++x) {
+      for (int c = 0; c < 3; ++c) b.at(x, y, c) += 0.1f;
+      b.at(x, y, 3) = 0.0f;  // alpha differs wildly but is not compared
+    }
+  }
+  const sb::ImageError e = sb::compareImages(a, b);
+  EXPECT_NEAR(e.rmse, 0.1, 1e-6);
+  EXPECT_NEAR(e.psnr, 20.0, 1e-4);
+  EXPECT_NEAR(e.maxAbs, 0.1, 1e-6);
+  EXPECT_EQ(e.fractionOver, 1.0);
+  EXPECT_EQ(e.pixelsOver, 48);
+  EXPECT_FALSE(e.identical());
+
+  // Including alpha (4 channels) sees the alpha change.
+  EXPECT_GT(sb::compareImages(a, b, 1.0 / 255.0, 4).maxAbs, 0.1 + 1e-6);
+}
+
+TEST(Metrics, SingleChangedPixel) {
+  const sb::Image a(10, 10, 4, 0.25f);
+  sb::Image b = a;
+  for (int c = 0; c < 3; ++c) b.at(3, 7, c) = 0.75f;  // +0.5 exactly
+  const sb::ImageError e = sb::compareImages(a, b);
+  // 3 samples of 0.5 among 300: rmse = sqrt(3 * 0.25 / 300) = 0.05.
+  EXPECT_DOUBLE_EQ(e.rmse, std::sqrt(3 * 0.25 / 300.0));
+  EXPECT_DOUBLE_EQ(e.rmse, 0.05);
+  EXPECT_NEAR(e.psnr, 20.0 * std::log10(20.0), 1e-9);  // 26.0206 dB
+  EXPECT_DOUBLE_EQ(e.maxAbs, 0.5);
+  EXPECT_DOUBLE_EQ(e.fractionOver, 0.01);
+  EXPECT_EQ(e.pixelsOver, 1);
+}
+
+TEST(Metrics, ValuesAreNotClamped) {
+  const sb::Image a(2, 2, 4, 1.0f);
+  const sb::Image b(2, 2, 4, 3.0f);
+  const sb::ImageError e = sb::compareImages(a, b);
+  EXPECT_DOUBLE_EQ(e.maxAbs, 2.0);
+  EXPECT_DOUBLE_EQ(e.rmse, 2.0);
+  EXPECT_NEAR(e.psnr, -20.0 * std::log10(2.0), 1e-12);
+}
+
+TEST(Metrics, ThresholdIsOneCodeOfEightBit) {
+  sb::Image a(3, 1, 4, 0.0f);
+  sb::Image b = a;
+  for (int c = 0; c < 3; ++c) {
+    a.at(0, 0, c) = 200.0f / 255.0f;  // one code apart: not over
+    b.at(0, 0, c) = 201.0f / 255.0f;
+    a.at(1, 0, c) = 254.0f / 255.0f;  // one code apart near 1: not over
+    b.at(1, 0, c) = 255.0f / 255.0f;
+    a.at(2, 0, c) = 10.0f / 255.0f;  // two codes apart: over
+    b.at(2, 0, c) = 12.0f / 255.0f;
+  }
+  const sb::ImageError e = sb::compareImages(a, b);
+  EXPECT_EQ(e.pixelsOver, 1);
+  EXPECT_NEAR(e.fractionOver, 1.0 / 3.0, 1e-12);
+  // Threshold 0 counts any difference.
+  EXPECT_EQ(sb::compareImages(a, b, 0.0).pixelsOver, 3);
+}
+
+TEST(Metrics, SizeMismatchThrowsWithBothSizes) {
+  try {
+    sb::compareImages(sb::Image(10, 10), sb::Image(10, 12));
+    FAIL() << "expected InputError";
+  } catch (const sb::InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("10x10"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("10x12"), std::string::npos) << msg;
+  }
+  EXPECT_THROW(sb::diffHeatmap(sb::Image(4, 4), sb::Image(5, 4), 1.0), sb::InputError);
+}
+
+TEST(Metrics, TooFewChannelsThrows) {
+  EXPECT_THROW(sb::compareImages(sb::Image(2, 2, 1), sb::Image(2, 2, 4)), sb::InputError);
+  EXPECT_THROW(sb::compareImages(sb::Image(2, 2), sb::Image(2, 2), 0.1, 0), std::invalid_argument);
+}
+
+TEST(Metrics, NanPixelIsReportedNotHidden) {
+  const sb::Image a(10, 10, 4, 0.5f);
+  sb::Image b = a;
+  b.at(4, 4, 1) = std::numeric_limits<float>::quiet_NaN();
+  const sb::ImageError e = sb::compareImages(a, b);
+  EXPECT_EQ(e.nanPixels, 1);
+  EXPECT_EQ(e.pixelsOver, 1);
+  EXPECT_DOUBLE_EQ(e.fractionOver, 0.01);
+  EXPECT_EQ(e.maxAbs, kInf);
+  EXPECT_EQ(e.rmse, kInf);
+  EXPECT_EQ(e.psnr, -kInf);
+  EXPECT_FALSE(e.identical());
+
+  // NaN in both images at the same place is still a NaN difference.
+  const sb::ImageError both = sb::compareImages(b, b);
+  EXPECT_EQ(both.nanPixels, 1);
+  EXPECT_FALSE(both.identical());
+
+  const nlohmann::json j = sb::toJson(e);
+  EXPECT_EQ(j["nan_pixels"], 1);
+  EXPECT_EQ(j["identical"], false);
+  EXPECT_TRUE(j["rmse"].is_null());
+  EXPECT_TRUE(j["psnr"].is_null());
+  EXPECT_TRUE(j["max_abs"].is_null());
+  EXPECT_NO_THROW(nlohmann::json::parse(j.dump()));
+
+  // NaN in alpha is not compared by default.
+  sb::Image c = a;
+  c.at(0, 0, 3) = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_EQ(sb::compareImages(a, c).nanPixels, 0);
+  EXPECT_EQ(sb::compareImages(a, c, 1.0 / 255.0, 4).nanPixels, 1);
+}
+
+TEST(Metrics, ViridisEndpointsAndOrder) {
+  const auto lo = sb::viridis(0.0);
+  const auto hi = sb::viridis(1.0);
+  EXPECT_FLOAT_EQ(lo[0], 0.267004f);
+  EXPECT_FLOAT_EQ(lo[1], 0.004874f);
+  EXPECT_FLOAT_EQ(lo[2], 0.329415f);
+  EXPECT_FLOAT_EQ(hi[0], 0.993248f);
+  EXPECT_FLOAT_EQ(hi[1], 0.906157f);
+  EXPECT_FLOAT_EQ(hi[2], 0.143936f);
+  EXPECT_EQ(sb::viridis(-1.0), lo);
+  EXPECT_EQ(sb::viridis(7.0), hi);
+  // Matplotlib's viridis at entry 128 (t = 128/255): (0.128729, 0.563265, 0.551229).
+  const auto mid = sb::viridis(128.0 / 255.0);
+  EXPECT_NEAR(mid[0], 0.128729, 0.01);
+  EXPECT_NEAR(mid[1], 0.563265, 0.01);
+  EXPECT_NEAR(mid[2], 0.551229, 0.01);
+  // Green rises monotonically (viridis' lightness is monotonic).
+  float prev = -1.0f;
+  for (int i = 0; i <= 100; ++i) {
+    const float g = sb::viridis(i / 100.0)[1];
+    EXPECT_GT(g, prev);
+    prev = g;
+  }
+}
+
+TEST(Metrics, HeatmapEndpoints) {
+  const sb::Image a(4, 3, 4, 0.2f);
+  sb::Image b = a;
+  b.at(1, 1, 0) = 0.6f;                                     // diff 0.4 = scale -> top
+  b.at(2, 1, 2) = 0.4f;                                     // diff 0.2 = half scale
+  b.at(3, 2, 1) = 1.2f;                                     // diff 1.0 > scale -> top
+  b.at(0, 2, 0) = std::numeric_limits<float>::quiet_NaN();  // NaN -> magenta
+  const sb::Image h = sb::diffHeatmap(a, b, 0.4);
+  ASSERT_EQ(h.width, 4);
+  ASSERT_EQ(h.height, 3);
+  ASSERT_EQ(h.channels, 4);
+  const auto lo = sb::viridis(0.0), hi = sb::viridis(1.0), half = sb::viridis(0.5);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_EQ(h.at(0, 0, c), lo[c]);  // no difference
+    EXPECT_EQ(h.at(1, 1, c), hi[c]);
+    EXPECT_NEAR(h.at(2, 1, c), half[c], 1e-5);
+    EXPECT_EQ(h.at(3, 2, c), hi[c]);
+  }
+  EXPECT_EQ(h.at(0, 2, 0), 1.0f);
+  EXPECT_EQ(h.at(0, 2, 1), 0.0f);
+  EXPECT_EQ(h.at(0, 2, 2), 1.0f);
+  for (int y = 0; y < 3; ++y) {
+    for (int x = 0; x < 4; ++x) EXPECT_EQ(h.at(x, y, 3), 1.0f);
+  }
+  EXPECT_THROW(sb::diffHeatmap(a, b, 0.0), std::invalid_argument);
+}
+
+class CompareCommandTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("sb_test_compare_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
+  std::string file(const std::string& name) const { return (dir_ / name).string(); }
+  fs::path dir_;
+};
+
+TEST_F(CompareCommandTest, PrintsOneJsonObject) {
+  const sb::Image a(10, 10, 4, 0.25f);
+  sb::Image b = a;
+  for (int c = 0; c < 3; ++c) b.at(3, 7, c) = 0.75f;
+  sb::writeImage(a, file("a.exr"));
+  sb::writeImage(b, file("b.exr"));
+  std::ostringstream out, err;
+  ASSERT_EQ(sb::runCompareCommand(file("a.exr"), file("b.exr"), out, err), 0) << err.str();
+  EXPECT_EQ(err.str(), "");
+  const nlohmann::json j = nlohmann::json::parse(out.str());
+  for (const char* key : {"a", "b", "width", "height", "rmse", "psnr", "max_abs", "fraction_over",
+                          "nan_pixels", "identical"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+  EXPECT_EQ(j["a"], file("a.exr"));
+  EXPECT_EQ(j["b"], file("b.exr"));
+  EXPECT_EQ(j["width"], 10);
+  EXPECT_EQ(j["height"], 10);
+  EXPECT_DOUBLE_EQ(j["rmse"].get<double>(), 0.05);
+  EXPECT_DOUBLE_EQ(j["max_abs"].get<double>(), 0.5);
+  EXPECT_DOUBLE_EQ(j["fraction_over"].get<double>(), 0.01);
+  EXPECT_EQ(j["nan_pixels"], 0);
+  EXPECT_EQ(j["identical"], false);
+
+  std::ostringstream out2, err2;
+  ASSERT_EQ(sb::runCompareCommand(file("a.exr"), file("a.exr"), out2, err2), 0);
+  const nlohmann::json same = nlohmann::json::parse(out2.str());
+  EXPECT_TRUE(same["psnr"].is_null());
+  EXPECT_EQ(same["identical"], true);
+}
+
+TEST_F(CompareCommandTest, InputErrorsGiveStatus2) {
+  sb::writeImage(sb::Image(4, 4, 4, 0.5f), file("small.png"));
+  sb::writeImage(sb::Image(5, 4, 4, 0.5f), file("wide.png"));
+  {
+    std::ostringstream out, err;
+    EXPECT_EQ(sb::runCompareCommand(file("small.png"), file("missing.png"), out, err), 2);
+    EXPECT_EQ(out.str(), "");
+    EXPECT_EQ(err.str().rfind("strandbench compare: ", 0), 0u) << err.str();
+    EXPECT_NE(err.str().find(file("missing.png")), std::string::npos) << err.str();
+  }
+  {
+    std::ostringstream out, err;
+    EXPECT_EQ(sb::runCompareCommand(file("small.png"), file("wide.png"), out, err), 2);
+    EXPECT_NE(err.str().find("4x4"), std::string::npos) << err.str();
+    EXPECT_NE(err.str().find("5x4"), std::string::npos) << err.str();
+  }
+}
