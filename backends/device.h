@@ -200,6 +200,7 @@ struct DeviceInfo {
   std::string platform;  // "egl" | "osmesa" | "headless"
   std::string device;    // renderer / deviceName
   std::string driver;    // version string / driverInfo
+  std::string timing;    // how pass times are measured
 };
 
 class Device {

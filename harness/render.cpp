@@ -148,6 +148,7 @@ RenderOutcome runRender(const RenderRequest& req) {
   j["platform"] = info.platform;
   j["device"] = info.device;
   j["driver"] = info.driver;
+  j["timing"] = info.timing;
   j["scene"] = {{"spec", req.scene},
                 {"strands", scene.strands.strandCount()},
                 {"points", scene.strands.points.size()},

@@ -11,6 +11,7 @@
 #include <random>
 
 #include "scenes/loader_util.h"
+#include "scenes/options.h"
 #include "scenes/scene.h"
 
 namespace sb {
@@ -81,36 +82,7 @@ std::vector<SceneInfo> buildCatalog() {
   return c;
 }
 
-// ---------------------------------------------------------------- suggestions
-
-std::size_t editDistance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    cur[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t sub = prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1);
-      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, sub});
-    }
-    std::swap(prev, cur);
-  }
-  return prev[b.size()];
-}
-
-// " (did you mean 'x'?)" when a candidate is close enough, else "".
-std::string suggestion(const std::string& word, const std::vector<std::string>& candidates) {
-  std::size_t best = std::numeric_limits<std::size_t>::max();
-  std::string bestName;
-  for (const std::string& c : candidates) {
-    const std::size_t d = editDistance(word, c);
-    if (d < best) {
-      best = d;
-      bestName = c;
-    }
-  }
-  const std::size_t limit = std::max<std::size_t>(2, (word.size() + 1) / 2);
-  return best <= limit ? " (did you mean '" + bestName + "'?)" : std::string();
-}
+// ---------------------------------------------------------------- options
 
 std::string joinNames(const std::vector<std::string>& names) {
   std::string s;
@@ -118,85 +90,40 @@ std::string joinNames(const std::vector<std::string>& names) {
   return s;
 }
 
-// ---------------------------------------------------------------- options
+std::string shortest(double v) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
+}
 
+// OptionReader (shared with the techniques) plus what the generators need on top:
+// exclusive lower bounds and errors prefixed with the scene.
 class Options {
  public:
-  Options(const Spec& spec, const SceneInfo& info) : spec_(spec), info_(info) {
-    std::vector<std::string> names;
-    for (const OptionInfo& o : info.options) names.push_back(o.name);
-    for (const auto& kv : spec.options) {
-      if (std::find(names.begin(), names.end(), kv.first) == names.end()) {
-        throw InputError("scene '" + info.name + "': unknown option '" + kv.first + "'" +
-                         suggestion(kv.first, names) + "; its options are: " + joinNames(names));
-      }
-    }
-  }
+  Options(const Spec& spec, const SceneInfo& info)
+      : reader_(spec, info.options, "scene '" + info.name + "'"), name_(info.name) {}
 
-  bool given(const std::string& key) const { return spec_.options.count(key) != 0; }
-
-  std::string text(const std::string& key) const {
-    auto it = spec_.options.find(key);
-    if (it != spec_.options.end()) return it->second;
-    for (const OptionInfo& o : info_.options) {
-      if (o.name == key) return o.defaultValue;
-    }
-    return {};
-  }
-
+  bool given(const std::string& key) const { return reader_.has(key); }
+  std::string text(const std::string& key) const { return reader_.text(key); }
   int64_t integer(const std::string& key, int64_t lo, int64_t hi) const {
-    const std::string v = text(key);
-    int64_t x = 0;
-    const auto r = std::from_chars(v.data(), v.data() + v.size(), x);
-    if (r.ec == std::errc::result_out_of_range) {
-      throw error(key, v, "is out of range: " + rangeText(double(lo), double(hi)));
-    }
-    if (v.empty() || r.ec != std::errc() || r.ptr != v.data() + v.size()) {
-      throw error(key, v, "is not an integer");
-    }
-    if (x < lo || x > hi) throw error(key, v, "is out of range: " + rangeText(double(lo), double(hi)));
-    return x;
+    return int64_t(reader_.integer(key, lo, hi));
   }
-
   // A finite number in [lo, hi] (or (lo, hi] when loExclusive).
   float real(const std::string& key, double lo, double hi, bool loExclusive = false) const {
-    const std::string v = text(key);
-    double x = 0;
-    const auto r = std::from_chars(v.data(), v.data() + v.size(), x);
-    if (v.empty() || (r.ec != std::errc() && r.ec != std::errc::result_out_of_range) ||
-        r.ptr != v.data() + v.size()) {
-      throw error(key, v, "is not a number");
+    const double v = reader_.number(key, lo, hi);
+    if (loExclusive && !(v > lo)) {
+      throw error("option " + key + "=" + text(key) + " is out of range: must be greater than " +
+                  shortest(lo));
     }
-    if (!std::isfinite(x) || r.ec == std::errc::result_out_of_range) {
-      throw error(key, v, "is not a finite number");
-    }
-    if (x < lo || x > hi || (loExclusive && x <= lo)) {
-      throw error(key, v,
-                  "is out of range: " + (loExclusive ? "must be > " + num(lo) + " and <= " + num(hi)
-                                                     : rangeText(lo, hi)));
-    }
-    return float(x);
-  }
-
-  InputError error(const std::string& key, const std::string& value, const std::string& what) const {
-    return InputError("scene '" + info_.name + "': " + key + "=" + value + " " + what);
+    return float(v);
   }
   InputError error(const std::string& what) const {
-    return InputError("scene '" + info_.name + "': " + what);
+    return InputError("scene '" + name_ + "': " + what);
   }
 
  private:
-  static std::string num(double v) {
-    char buf[64];
-    auto r = std::to_chars(buf, buf + sizeof buf, v);
-    return std::string(buf, r.ptr);
-  }
-  static std::string rangeText(double lo, double hi) {
-    return "must be between " + num(lo) + " and " + num(hi);
-  }
-
-  const Spec& spec_;
-  const SceneInfo& info_;
+  OptionReader reader_;
+  std::string name_;
 };
 
 // ---------------------------------------------------------------- random numbers
@@ -358,9 +285,9 @@ struct Common {
 
 void checkTotal(const Options& o, uint64_t strands, uint64_t points) {
   if (strands * points > kMaxTotalPoints) {
-    throw o.error(std::to_string(strands) + " strands x " + std::to_string(points) + " points = " +
-                  std::to_string(strands * points) + " points exceeds the limit of " +
-                  std::to_string(kMaxTotalPoints));
+    throw o.error(std::to_string(strands) + " strands x " + std::to_string(points) +
+                  " points = " + std::to_string(strands * points) +
+                  " points exceeds the limit of " + std::to_string(kMaxTotalPoints));
   }
 }
 
@@ -436,8 +363,8 @@ Scene makeClustered(const Options& o) {
   const int64_t clusters = o.integer("clusters", 1, kMaxStrands);
   const float spread = o.real("spread", 0.0, 10.0);
   if (clusters > c.strands) {
-    throw o.error("clusters=" + std::to_string(clusters) + " exceeds strands=" +
-                  std::to_string(c.strands));
+    throw o.error("clusters=" + std::to_string(clusters) +
+                  " exceeds strands=" + std::to_string(c.strands));
   }
   addHeadOrMesh(o, scene);
   Rng rng(c.seed);
@@ -456,7 +383,8 @@ Scene makeClustered(const Options& o) {
     for (int64_t m = 0; m < members; ++m) {
       const float r = spread * std::sqrt(rng.u());
       const float phi = rng.range(0.0f, 2.0f * kPi);
-      const glm::vec3 memberRoot = glm::normalize(root + r * (std::cos(phi) * t1 + std::sin(phi) * t2));
+      const glm::vec3 memberRoot =
+          glm::normalize(root + r * (std::cos(phi) * t1 + std::sin(phi) * t2));
       const glm::vec3 delta = memberRoot - root;
       const float tight = rng.range(0.75f, 0.95f);  // how close to the guide the tip ends
       const glm::vec3 color = glm::clamp(clumpColor * rng.range(0.95f, 1.05f), 0.0f, 1.0f);
@@ -527,10 +455,12 @@ Scene makeFur(const Options& o) {
                    ic = mesh.indices[3 * tri + 2];
     const float r1 = std::sqrt(rng.u()), r2 = rng.u();
     const float wa = 1.0f - r1, wb = r1 * (1.0f - r2), wc = r1 * r2;
-    const glm::vec3 root = wa * mesh.positions[ia] + wb * mesh.positions[ib] + wc * mesh.positions[ic];
+    const glm::vec3 root =
+        wa * mesh.positions[ia] + wb * mesh.positions[ib] + wc * mesh.positions[ic];
     glm::vec3 n = wa * mesh.normals[ia] + wb * mesh.normals[ib] + wc * mesh.normals[ic];
     if (!(glm::dot(n, n) > 1e-12f)) {
-      n = glm::cross(mesh.positions[ib] - mesh.positions[ia], mesh.positions[ic] - mesh.positions[ia]);
+      n = glm::cross(mesh.positions[ib] - mesh.positions[ia],
+                     mesh.positions[ic] - mesh.positions[ia]);
     }
     n = glm::dot(n, n) > 1e-30f ? glm::normalize(n) : glm::vec3(0, 1, 0);
     const float length = furLength * rng.range(0.8f, 1.2f);
@@ -586,8 +516,10 @@ Scene makeFile(const Options& o) {
     const uint32_t first = all.firstPoint[s], count = all.pointCount[s];
     out.firstPoint.push_back(uint32_t(out.points.size()));
     out.pointCount.push_back(count);
-    out.points.insert(out.points.end(), all.points.begin() + first, all.points.begin() + first + count);
-    out.colors.insert(out.colors.end(), all.colors.begin() + first, all.colors.begin() + first + count);
+    out.points.insert(out.points.end(), all.points.begin() + first,
+                      all.points.begin() + first + count);
+    out.colors.insert(out.colors.end(), all.colors.begin() + first,
+                      all.colors.begin() + first + count);
     out.thickness.insert(out.thickness.end(), all.thickness.begin() + first,
                          all.thickness.begin() + first + count);
     out.transparency.insert(out.transparency.end(), all.transparency.begin() + first,
@@ -612,7 +544,9 @@ Scene makeScene(const Spec& spec) {
     if (s.name == spec.name) info = &s;
   }
   if (!info) {
-    throw InputError("unknown scene '" + spec.name + "'" + suggestion(spec.name, names) +
+    const std::string near = closestName(spec.name, names);
+    throw InputError("unknown scene '" + spec.name + "'" +
+                     (near.empty() ? std::string() : " (did you mean '" + near + "'?)") +
                      "; valid scenes: " + joinNames(names));
   }
   const Options o(spec, *info);

@@ -61,7 +61,8 @@ Strands parseHair(const uint8_t* data, std::size_t size, const std::string& name
   // Strand sizes.
   if (flags & kHasSegments) {
     s.pointCount.resize(numStrands);
-    for (uint64_t i = 0; i < numStrands; ++i) s.pointCount[i] = uint32_t(detail::rdU16(p + 2 * i)) + 1;
+    for (uint64_t i = 0; i < numStrands; ++i)
+      s.pointCount[i] = uint32_t(detail::rdU16(p + 2 * i)) + 1;
     p += segBytes;
   } else {
     if (defSegments >= std::numeric_limits<uint32_t>::max() ||
@@ -100,8 +101,7 @@ Strands parseHair(const uint8_t* data, std::size_t size, const std::string& name
       for (uint64_t i = 0; i < numPoints; ++i) {
         out[i] = detail::rdF32(p + 4 * i);
         if (!std::isfinite(out[i])) {
-          fail(name, std::string(what) + " of point " + std::to_string(i) +
-                         " is NaN or infinite");
+          fail(name, std::string(what) + " of point " + std::to_string(i) + " is NaN or infinite");
         }
       }
       p += numPoints * 4;

@@ -70,7 +70,8 @@ Mesh parseObj(const std::string& text, const std::string& name) {
   std::vector<glm::vec3> computed(numPositions, glm::vec3(0.0f));
   for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3) {
     const uint32_t a = m.indices[t], b = m.indices[t + 1], c = m.indices[t + 2];
-    const glm::vec3 n = glm::cross(m.positions[b] - m.positions[a], m.positions[c] - m.positions[a]);
+    const glm::vec3 n =
+        glm::cross(m.positions[b] - m.positions[a], m.positions[c] - m.positions[a]);
     computed[a] += n;
     computed[b] += n;
     computed[c] += n;

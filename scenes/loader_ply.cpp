@@ -68,8 +68,7 @@ class BodyReader {
     if (format_ != Format::Ascii) {
       if (n > remaining() / uint64_t(t.size)) {
         detail::fail(name_, "truncated: list " + what + " has " + std::to_string(n) +
-                                " items but only " + std::to_string(remaining()) +
-                                " bytes remain");
+                                " items but only " + std::to_string(remaining()) + " bytes remain");
       }
       pos_ += std::size_t(n) * std::size_t(t.size);
       return;

@@ -24,9 +24,10 @@ Strands parseTfx(const uint8_t* data, std::size_t size, const std::string& name)
     headerSize = 160;
     stride = 16;
   } else {
-    fail(name, "unsupported TressFX version " +
-                   (std::isfinite(version) ? std::to_string(version) : std::string("(not a number)")) +
-                   " (expected 3.0 or 4.0)");
+    fail(name,
+         "unsupported TressFX version " +
+             (std::isfinite(version) ? std::to_string(version) : std::string("(not a number)")) +
+             " (expected 3.0 or 4.0)");
   }
   if (size < headerSize) {
     fail(name, "truncated: the version " + std::to_string(int(version)) + " header needs " +

@@ -69,7 +69,8 @@ Spec Spec::parse(const std::string& text) {
     const std::string item = rest.substr(pos, comma - pos);
     pos = comma + 1;
     if (trim(item).empty()) {
-      throw InputError("spec '" + text + "': empty option (two commas in a row or a trailing comma)");
+      throw InputError("spec '" + text +
+                       "': empty option (two commas in a row or a trailing comma)");
     }
     const std::size_t eq = item.find('=');
     if (eq == std::string::npos) {

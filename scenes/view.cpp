@@ -21,8 +21,8 @@ glm::vec3 safeUp(const glm::vec3& dir, const glm::vec3& up) {
 // Radius of the bounds, never zero (a single point still gets a usable frustum).
 float safeRadius(const Bounds& b) {
   const float r = b.radius();
-  const float scale = std::max({1e-3f, std::abs(b.center().x), std::abs(b.center().y),
-                                std::abs(b.center().z)});
+  const float scale =
+      std::max({1e-3f, std::abs(b.center().x), std::abs(b.center().y), std::abs(b.center().z)});
   return std::isfinite(r) ? std::max(r, 1e-4f * scale) : 1.0f;
 }
 

@@ -19,9 +19,9 @@ using Bytes = std::vector<uint8_t>;
 
 std::string modelsDir() { return std::string(SB_SOURCE_DIR) + "/../shared/models"; }
 
-#define REQUIRE_MODEL(file)                                                            \
-  const std::string path = modelsDir() + "/" + (file);                                 \
-  if (!std::filesystem::exists(path)) {                                                \
+#define REQUIRE_MODEL(file)                                                  \
+  const std::string path = modelsDir() + "/" + (file);                       \
+  if (!std::filesystem::exists(path)) {                                      \
     GTEST_SKIP() << "../shared/models not found: " << path << " is missing"; \
   }
 
@@ -66,7 +66,7 @@ TEST(RealModels, StraightHair) {
   EXPECT_EQ(s.points.size(), 160000u);
   EXPECT_EQ(s.segmentCount(), 150000u);
   for (uint32_t c : s.pointCount) ASSERT_EQ(c, 16u);
-  EXPECT_FLOAT_EQ(s.thickness[0], 0.1f);  // header default
+  EXPECT_FLOAT_EQ(s.thickness[0], 0.1f);     // header default
   EXPECT_FLOAT_EQ(s.colors.back().x, 1.0f);  // per-point colours from the file (blond)
 }
 
@@ -168,10 +168,10 @@ Bytes smallHair(uint32_t flags = 0x1f) {
   put32(b, 4, 2);
   put32(b, 8, 5);
   put32(b, 12, flags);
-  put32(b, 16, 2);       // default segments
-  putF(b, 20, 0.25f);    // default thickness
-  putF(b, 24, 0.5f);     // default transparency
-  putF(b, 28, 0.1f);     // default colour
+  put32(b, 16, 2);     // default segments
+  putF(b, 20, 0.25f);  // default thickness
+  putF(b, 24, 0.5f);   // default transparency
+  putF(b, 28, 0.1f);   // default colour
   putF(b, 32, 0.2f);
   putF(b, 36, 0.3f);
   if (flags & 1) {
@@ -504,16 +504,15 @@ TEST(PlyParser, BadBodies) {
 // ---------------------------------------------------------------- OBJ
 
 TEST(ObjParser, QuadIsTriangulatedAndNormalsComputed) {
-  const sb::Mesh m = sb::parseObj(
-      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n", "mem.obj");
+  const sb::Mesh m = sb::parseObj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n", "mem.obj");
   EXPECT_EQ(m.positions.size(), 4u);
   EXPECT_EQ(m.triangleCount(), 2u);
   for (const glm::vec3& n : m.normals) EXPECT_NEAR(n.z, 1.0f, 1e-6f);
 }
 
 TEST(ObjParser, FileNormals) {
-  const sb::Mesh m = sb::parseObj(
-      "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 -1\nf 1//1 2//1 3//1\n", "mem.obj");
+  const sb::Mesh m =
+      sb::parseObj("v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 -1\nf 1//1 2//1 3//1\n", "mem.obj");
   for (const glm::vec3& n : m.normals) EXPECT_NEAR(n.z, -1.0f, 1e-6f);
 }
 
@@ -531,8 +530,8 @@ TEST(ObjParser, Malformed) {
 // or throw InputError (run under SB_SANITIZE for over-reads).
 TEST(LoaderRobustness, RandomAndMutatedInputs) {
   std::mt19937 rng(12345);
-  const std::vector<Bytes> seeds = {smallHair(), smallTfx(3), smallTfx(4), binaryPly(false),
-                                    binaryPly(true), text(kAsciiPly)};
+  const std::vector<Bytes> seeds = {smallHair(),      smallTfx(3),     smallTfx(4),
+                                    binaryPly(false), binaryPly(true), text(kAsciiPly)};
   using Parser = sb::Strands (*)(const uint8_t*, std::size_t, const std::string&);
   const Parser parsers[3] = {sb::parseHair, sb::parseTfx, sb::parsePly};
   for (int iter = 0; iter < 3000; ++iter) {
@@ -541,10 +540,18 @@ TEST(LoaderRobustness, RandomAndMutatedInputs) {
     for (int e = 0; e < edits && !b.empty(); ++e) {
       const std::size_t at = rng() % b.size();
       switch (rng() % 4) {
-        case 0: b[at] = uint8_t(rng()); break;
-        case 1: b.resize(at); break;
-        case 2: b[at] = 0xff; break;
-        default: b.insert(b.begin() + std::ptrdiff_t(at), uint8_t(rng())); break;
+        case 0:
+          b[at] = uint8_t(rng());
+          break;
+        case 1:
+          b.resize(at);
+          break;
+        case 2:
+          b[at] = 0xff;
+          break;
+        default:
+          b.insert(b.begin() + std::ptrdiff_t(at), uint8_t(rng()));
+          break;
       }
     }
     if (iter % 10 == 0) {

@@ -106,6 +106,7 @@ class GLDevice : public Device {
     info_.platform = platform_->name();
     info_.device = reinterpret_cast<const char*>(gl_.GetString(GL_RENDERER));
     info_.driver = reinterpret_cast<const char*>(gl_.GetString(GL_VERSION));
+    info_.timing = "cpu clock per pass (glFinish before and after)";
     // Same conventions as Vulkan: NDC y=-1 at row 0, depth in [0,1].
     gl_.ClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
     gl_.CreateVertexArrays(1, &vao_);  // core profile needs one bound, even if empty
@@ -228,8 +229,11 @@ class GLDevice : public Device {
     auto it = textures_.find(t.id);
     if (it == textures_.end()) return;
     // Framebuffers that used it are dropped too.
+    std::string needle = ",";
+    needle += std::to_string(t.id);
+    needle += ",";
     for (auto f = fbos_.begin(); f != fbos_.end();) {
-      if (f->first.find("," + std::to_string(t.id) + ",") != std::string::npos) {
+      if (f->first.find(needle) != std::string::npos) {
         gl_.DeleteFramebuffers(1, &f->second);
         f = fbos_.erase(f);
       } else {
