@@ -201,6 +201,7 @@ struct DeviceInfo {
   std::string device;    // renderer / deviceName
   std::string driver;    // version string / driverInfo
   std::string timing;    // how pass times are measured
+  std::string lines;     // how Lines topology is rasterized
 };
 
 class Device {

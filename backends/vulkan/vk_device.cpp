@@ -263,7 +263,6 @@ class VulkanDevice final : public Device {
   VulkanDevice(const VulkanDevice&) = delete;
   VulkanDevice& operator=(const VulkanDevice&) = delete;
 
-  bool bresenhamLines() const { return bresenham_; }
 
   DeviceInfo info() const override { return info_; }
 
@@ -1110,7 +1109,12 @@ class VulkanDevice final : public Device {
     f11.protectedMemory = VK_FALSE;
     f13.robustImageAccess = VK_FALSE;
     logicOp_ = f2.features.logicOp == VK_TRUE;
-    bresenham_ = haveLineExt && line.bresenhamLines == VK_TRUE;
+    // SB_VULKAN_LINES=default keeps the API's default (rectangular) lines, to
+    // measure how far they are from GL's aliased lines.
+    const char* linesEnv = std::getenv("SB_VULKAN_LINES");
+    const bool wantBresenham = !(linesEnv && std::string(linesEnv) == "default");
+    bresenham_ = wantBresenham && haveLineExt && line.bresenhamLines == VK_TRUE;
+    info_.lines = bresenham_ ? "bresenham (VK_EXT_line_rasterization)" : "default (rectangular)";
     line.rectangularLines = VK_FALSE;
     line.smoothLines = VK_FALSE;
     line.stippledRectangularLines = VK_FALSE;
@@ -1639,10 +1643,6 @@ std::unique_ptr<Device> createVulkanDevice(const DeviceOptions& opts) {
   return std::make_unique<VulkanDevice>(opts);
 }
 
-bool vulkanUsesBresenhamLines(const Device& device) {
-  const auto* vk = dynamic_cast<const VulkanDevice*>(&device);
-  return vk != nullptr && vk->bresenhamLines();
-}
 
 std::size_t validationMessageCount() { return g_validationMessages.load(); }
 

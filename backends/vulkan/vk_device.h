@@ -13,8 +13,4 @@ namespace sb {
 // integrated, then CPU. Validation: opts.validation or env SB_VALIDATION=1.
 std::unique_ptr<Device> createVulkanDevice(const DeviceOptions& opts);
 
-// True when `device` is a Vulkan device that rasterizes Lines topology with
-// VK_EXT_line_rasterization Bresenham mode (closest to GL aliased lines).
-bool vulkanUsesBresenhamLines(const Device& device);
-
 }  // namespace sb

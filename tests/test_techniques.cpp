@@ -1,0 +1,127 @@
+// CPU tests of technique code: the Kajiya-Kay math shared with GLSL, frame
+// graph culling, the shader loader's #include/#line handling, the technique
+// registry's validation, and a broken shader named in the CLI's message.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "cli_util.h"
+#include "backends/shader_source.h"
+#include "techniques/common/frame_graph.h"
+#include "techniques/common/shader_library.h"
+#include "techniques/common/technique.h"
+#include "techniques/kajiya_kay/kajiya_kay.h"
+
+namespace sb {
+namespace {
+
+TEST(KajiyaKay, DiffuseIsSineOfTangentAndLight) {
+  const glm::vec3 T(0, 1, 0), V(0, 0, 1);
+  EXPECT_NEAR(glsl::kajiyaKay(T, glm::vec3(1, 0, 0), V, 10).x, 1.0f, 1e-6f);  // perpendicular
+  EXPECT_NEAR(glsl::kajiyaKay(T, glm::vec3(0, 1, 0), V, 10).x, 0.0f, 1e-6f);  // along the strand
+  const glm::vec3 L45 = glm::normalize(glm::vec3(1, 1, 0));
+  EXPECT_NEAR(glsl::kajiyaKay(T, L45, V, 10).x, std::sqrt(0.5f), 1e-6f);
+}
+
+TEST(KajiyaKay, SpecularPeaksOnTheReflectionCone) {
+  const glm::vec3 T(0, 1, 0);
+  const glm::vec3 L = glm::normalize(glm::vec3(1, 1, 0));   // 45 deg from T
+  const glm::vec3 Vmirror = glm::normalize(glm::vec3(0, -1, 1));  // 135 deg from T: on the cone
+  const glm::vec3 Vsame = glm::normalize(glm::vec3(0, 1, 1));     // 45 deg: off the cone
+  EXPECT_NEAR(glsl::kajiyaKay(T, L, Vmirror, 50).y, 1.0f, 1e-5f);
+  EXPECT_NEAR(glsl::kajiyaKay(T, L, Vsame, 50).y, 0.0f, 1e-6f);
+  // Degenerate: light along the tangent gives no diffuse and no NaN.
+  const glm::vec2 d = glsl::kajiyaKay(T, T, T, 50);
+  EXPECT_TRUE(std::isfinite(d.x) && std::isfinite(d.y));
+}
+
+TEST(FrameGraph, LeavesOutPassesNoOutputNeeds) {
+  FrameGraph g;
+  std::vector<std::string> ran;
+  auto pass = [&](std::string name, std::vector<std::string> reads, std::vector<std::string> writes) {
+    g.add({name, reads, writes, [&ran, name] { ran.push_back(name); }});
+  };
+  pass("shadow", {}, {"shadow.map"});
+  pass("unused", {}, {"debug.image"});
+  pass("opaque", {"shadow.map"}, {"color", "depth"});
+  pass("hair", {"shadow.map", "color", "depth"}, {"color", "depth"});
+  std::vector<std::string> names;
+  for (const auto* p : g.compile({"color"})) names.push_back(p->name);
+  EXPECT_EQ(names, (std::vector<std::string>{"shadow", "opaque", "hair"}));
+  names.clear();
+  for (const auto* p : g.compile({"shadow.map"})) names.push_back(p->name);
+  EXPECT_EQ(names, (std::vector<std::string>{"shadow"}));
+  EXPECT_TRUE(g.compile({"nothing"}).empty());
+}
+
+TEST(ShaderLibrary, ResolvesIncludesAndAliasesWithLineDirectives) {
+  ShaderDefines defs;
+  defs.aliases["shadow"] = "techniques/shadowmap/lookup.glsl";
+  defs.defines.push_back({"SB_TEST", "1"});
+  const ShaderCode code = loadShader("techniques/kajiya_kay/hair.frag", defs);
+  EXPECT_EQ(code.fileNames.front(), "techniques/kajiya_kay/hair.frag");
+  const std::vector<std::string> expected = {"techniques/common/shading.glsl",
+                                             "techniques/kajiya_kay/kajiya_kay.glsl",
+                                             "techniques/shadowmap/lookup.glsl"};
+  for (const auto& f : expected)
+    EXPECT_NE(std::find(code.fileNames.begin(), code.fileNames.end(), f), code.fileNames.end()) << f;
+  EXPECT_NE(code.text.find("#define SB_TEST 1"), std::string::npos);
+  EXPECT_NE(code.text.find("float shadowVisibility"), std::string::npos);
+  EXPECT_THROW(loadShader("techniques/kajiya_kay/hair.frag"), DeviceError);  // <shadow> unbound
+  EXPECT_THROW(loadShader("techniques/nope.frag"), DeviceError);
+}
+
+TEST(ShaderLibrary, CompileLogLinesMapToFiles) {
+  ShaderCode code;
+  code.name = "techniques/x/main.frag";
+  code.fileNames = {"techniques/x/main.frag", "techniques/x/inc.glsl"};
+  const std::string msg = describeCompileError(code, "xtech", "ERROR: 1:7: 'foo' : undeclared");
+  EXPECT_NE(msg.find("techniques/x/inc.glsl:7:"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("xtech"), std::string::npos);
+}
+
+TEST(Registry, ValidatesTechniqueNamesAndOptions) {
+  EXPECT_EQ(makeShadowTechnique(Spec::parse("none"))->name(), "none");
+  EXPECT_EQ(makeShadowTechnique(Spec::parse("shadowmap:size=64,bias=0.01"))->name(), "shadowmap");
+  try {
+    makeShadowTechnique(Spec::parse("shadowmpa"));
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("did you mean 'shadowmap'"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(makeShadowTechnique(Spec::parse("shadowmap:size=0")), InputError);
+  EXPECT_THROW(makeShadowTechnique(Spec::parse("shadowmap:bias=nan")), InputError);
+  EXPECT_THROW(makeShadowTechnique(Spec::parse("shadowmap:sise=5")), InputError);
+  EXPECT_THROW(makeShadowTechnique(Spec::parse("none:size=5")), InputError);
+}
+
+// A technique shader with a syntax error: both backends name the file, the
+// line and the technique, and the CLI exits with 2.
+TEST(ShaderErrors, BrokenTechniqueShaderIsNamedByTheCli) {
+  namespace fs = std::filesystem;
+  const fs::path dir = sbtest::tempDir("shaders");
+  fs::copy(fs::path(SB_SOURCE_DIR) / "techniques", dir / "techniques", fs::copy_options::recursive);
+  {
+    std::ofstream f(dir / "techniques/shadowmap/lookup.glsl", std::ios::app);
+    f << "this is not glsl;\n";
+  }
+  std::ifstream in(dir / "techniques/shadowmap/lookup.glsl");
+  int lines = 0;
+  for (std::string l; std::getline(in, l);) ++lines;
+  for (const std::string backend : {"gl", "vulkan"}) {
+    const std::string cmd = "SB_SHADER_DIR=" + dir.string() + " " + SB_CLI +
+                            " render --scene straight:strands=10 --shadow shadowmap --size 16x16 "
+                            "--backend " + backend + " 2>" + (dir / "err").string();
+    const int raw = std::system(cmd.c_str());
+    EXPECT_EQ(WEXITSTATUS(raw), 2) << backend;
+    const std::string err = sbtest::readFile(dir / "err");
+    EXPECT_NE(err.find("techniques/shadowmap/lookup.glsl:" + std::to_string(lines)),
+              std::string::npos) << backend << ": " << err;
+    EXPECT_NE(err.find("shadowmap"), std::string::npos) << err;
+  }
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace sb
