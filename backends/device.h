@@ -27,7 +27,7 @@ struct DeviceError : std::runtime_error {
 };
 
 enum class Format {
-  RGBA8,     // unorm
+  RGBA8,  // unorm
   RGBA16F,
   RGBA32F,
   R32F,
@@ -100,20 +100,24 @@ struct BlendState {
   static BlendState replace() { return {}; }
   // Non-premultiplied "over": c = a*src + (1-a)*dst, alpha likewise.
   static BlendState over() {
-    return {true,           BlendFactor::SrcAlpha, BlendFactor::OneMinusSrcAlpha, BlendOp::Add,
-            BlendFactor::One, BlendFactor::OneMinusSrcAlpha, BlendOp::Add};
+    return {true,         BlendFactor::SrcAlpha, BlendFactor::OneMinusSrcAlpha,
+            BlendOp::Add, BlendFactor::One,      BlendFactor::OneMinusSrcAlpha,
+            BlendOp::Add};
   }
   static BlendState additive() {
-    return {true, BlendFactor::One, BlendFactor::One, BlendOp::Add,
-            BlendFactor::One, BlendFactor::One, BlendOp::Add};
+    return {true,         BlendFactor::One, BlendFactor::One,
+            BlendOp::Add, BlendFactor::One, BlendFactor::One,
+            BlendOp::Add};
   }
   static BlendState min() {
-    return {true, BlendFactor::One, BlendFactor::One, BlendOp::Min,
-            BlendFactor::One, BlendFactor::One, BlendOp::Min};
+    return {true,         BlendFactor::One, BlendFactor::One,
+            BlendOp::Min, BlendFactor::One, BlendFactor::One,
+            BlendOp::Min};
   }
   static BlendState max() {
-    return {true, BlendFactor::One, BlendFactor::One, BlendOp::Max,
-            BlendFactor::One, BlendFactor::One, BlendOp::Max};
+    return {true,         BlendFactor::One, BlendFactor::One,
+            BlendOp::Max, BlendFactor::One, BlendFactor::One,
+            BlendOp::Max};
   }
 };
 
@@ -127,9 +131,9 @@ struct BindingSlot {
 // A shader as given to the device: already preprocessed (see shader_source.h),
 // with the table that maps its line numbers back to files for error messages.
 struct ShaderCode {
-  std::string name;                   // e.g. "techniques/shadowmap/depth.frag"
-  std::string text;                   // GLSL 4.50 body without #version / preamble
-  std::vector<std::string> fileNames; // index = source-string number used in #line
+  std::string name;                    // e.g. "techniques/shadowmap/depth.frag"
+  std::string text;                    // GLSL 4.50 body without #version / preamble
+  std::vector<std::string> fileNames;  // index = source-string number used in #line
 };
 
 struct PipelineDesc {
@@ -156,7 +160,7 @@ enum class LoadOp { Clear, Load };
 struct ColorAttachment {
   Texture texture;
   LoadOp load = LoadOp::Clear;
-  std::array<float, 4> clear{0, 0, 0, 0};      // float/unorm formats
+  std::array<float, 4> clear{0, 0, 0, 0};         // float/unorm formats
   std::array<uint32_t, 4> clearUint{0, 0, 0, 0};  // integer formats
 };
 

@@ -40,8 +40,7 @@ std::string describeCompileError(const ShaderCode& code, const std::string& tech
   }
   mapped += rest;
   std::ostringstream s;
-  s << "shader compile error in " << code.name << " (technique '" << technique << "'):\n"
-    << mapped;
+  s << "shader compile error in " << code.name << " (technique '" << technique << "'):\n" << mapped;
   return s.str();
 }
 

@@ -48,7 +48,8 @@ void registerList(CLI::App& app) {
         nlohmann::json j;
         auto opts = [](const std::vector<OptionInfo>& v) {
           nlohmann::json a = nlohmann::json::array();
-          for (const auto& o : v) a.push_back({{"name", o.name}, {"default", o.defaultValue}, {"help", o.help}});
+          for (const auto& o : v)
+            a.push_back({{"name", o.name}, {"default", o.defaultValue}, {"help", o.help}});
           return a;
         };
         for (const auto& s : sceneCatalog())
@@ -110,14 +111,16 @@ void registerRender(CLI::App& app) {
   cmd->add_option("--platform", req->platform, "gl: egl (default) | osmesa; vulkan: headless");
   cmd->add_option("--size", *size, "image size WIDTHxHEIGHT")->capture_default_str();
   cmd->add_option("--primitive", req->primitive, "lines | ribbons")->capture_default_str();
-  cmd->add_option("--ribbon-width", req->ribbonWidth, "ribbon width in pixels")->capture_default_str();
+  cmd->add_option("--ribbon-width", req->ribbonWidth, "ribbon width in pixels")
+      ->capture_default_str();
   cmd->add_option("--repeat", req->repeat, "timed frames")->capture_default_str();
   cmd->add_option("--warmup", req->warmup, "untimed frames first")->capture_default_str();
   cmd->add_option("--out", *out, "image file (.png 8-bit, .exr float)");
   cmd->add_flag("--json", *json, "print the report as one JSON object on stdout");
   cmd->add_flag("--validation", req->validation, "Vulkan validation layers on (counts messages)");
-  for (const char* name : {"camera-eye", "camera-target", "camera-up", "fov", "near", "far", "light",
-                           "light-position", "light-direction", "light-color", "light-intensity"})
+  for (const char* name :
+       {"camera-eye", "camera-target", "camera-up", "fov", "near", "far", "light", "light-position",
+        "light-direction", "light-color", "light-intensity"})
     cmd->add_option(std::string("--") + name, (*view)[name],
                     "override (x,y,z for vectors; light: directional|point)");
   cmd->callback([=] {

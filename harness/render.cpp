@@ -15,7 +15,8 @@ std::pair<uint32_t, uint32_t> parseSize(const std::string& text) {
   unsigned long w = 0, h = 0;
   char x = 0;
   std::istringstream in(text);
-  if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || !in.eof() || text.find('-') != std::string::npos)
+  if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || !in.eof() ||
+      text.find('-') != std::string::npos)
     throw InputError("--size " + text + ": expected WIDTHxHEIGHT, e.g. 512x512");
   if (w < 1 || h < 1 || w > 16384 || h > 16384)
     throw InputError("--size " + text + ": width and height must be in 1..16384");
@@ -54,12 +55,7 @@ RenderSettings makeSettings(const RenderRequest& req, const Scene& scene) {
   if (o.cameraEye) s.camera.eye = *o.cameraEye;
   if (o.cameraTarget) s.camera.target = *o.cameraTarget;
   if (o.cameraUp) s.camera.up = *o.cameraUp;
-  if (o.cameraEye || o.cameraTarget) {
-    // Keep the scene inside near/far from the new viewpoint.
-    const float dist = glm::length(b.center() - s.camera.eye);
-    s.camera.nearPlane = std::max(1e-4f * (dist + b.radius()), dist - 1.5f * b.radius());
-    s.camera.farPlane = dist + 1.5f * b.radius();
-  }
+  if (o.cameraEye || o.cameraTarget) fitCameraPlanes(s.camera, b);  // keep the scene inside
   if (o.fov) s.camera.fovYDegrees = *o.fov;
   if (o.nearPlane) s.camera.nearPlane = *o.nearPlane;
   if (o.farPlane) s.camera.farPlane = *o.farPlane;
@@ -89,13 +85,7 @@ RenderSettings makeSettings(const RenderRequest& req, const Scene& scene) {
     if (!o.lightDirection && glm::length(b.center() - s.light.position) > 0)
       s.light.direction = glm::normalize(b.center() - s.light.position);
   }
-  if (o.lightDirection || o.lightPosition) {
-    // Refit the light frustum so it still encloses the scene.
-    const float dist = glm::dot(b.center() - s.light.position, s.light.direction);
-    s.light.nearPlane = std::max(1e-4f * (std::abs(dist) + b.radius()), dist - 1.01f * b.radius());
-    s.light.farPlane = std::max(s.light.nearPlane * 1.001f, dist + 1.01f * b.radius());
-    s.light.orthoHalfExtent = 1.01f * b.radius();
-  }
+  if (o.lightDirection || o.lightPosition) fitLightFrustum(s.light, b);
   if (o.lightColor) s.light.color = *o.lightColor;
   if (o.lightIntensity) s.light.intensity = *o.lightIntensity;
   return s;
@@ -117,11 +107,12 @@ RenderOutcome runRender(const RenderRequest& req) {
 
   DeviceOptions dopts;
   dopts.backend = req.backend;
-  dopts.platform = req.platform.empty() ? (req.backend == "vulkan" ? "headless" : "egl")
-                                        : req.platform;
+  dopts.platform =
+      req.platform.empty() ? (req.backend == "vulkan" ? "headless" : "egl") : req.platform;
   dopts.validation = req.validation;
   if (req.backend == "vulkan" && dopts.platform != "headless")
-    throw InputError("--platform " + dopts.platform + " is not a Vulkan platform (valid: headless)");
+    throw InputError("--platform " + dopts.platform +
+                     " is not a Vulkan platform (valid: headless)");
   auto dev = createDevice(dopts);
 
   Renderer renderer(*dev, scene, settings, std::move(shadow));
@@ -162,8 +153,11 @@ RenderOutcome runRender(const RenderRequest& req) {
   j["repeat"] = req.repeat;
   j["warmup"] = req.warmup;
   auto statsJson = [](const Stats& s) {
-    return nlohmann::json{{"median", s.median}, {"min", s.min}, {"max", s.max},
-                          {"mean", s.mean}, {"stddev", s.stddev}};
+    return nlohmann::json{{"median", s.median},
+                          {"min", s.min},
+                          {"max", s.max},
+                          {"mean", s.mean},
+                          {"stddev", s.stddev}};
   };
   j["passes"] = nlohmann::json::array();
   for (const auto& name : renderer.passNames())
@@ -181,9 +175,12 @@ RenderOutcome runRender(const RenderRequest& req) {
     byOwner[r.owner] += r.bytes;
     total += r.bytes;
   }
-  j["memory"] = {{"shadow_bytes", byOwner["shadow"]}, {"oit_bytes", byOwner["oit"]},
-                 {"scene_bytes", byOwner["scene"]},   {"frame_bytes", byOwner["frame"]},
-                 {"total_bytes", total},              {"resources", resources}};
+  j["memory"] = {{"shadow_bytes", byOwner["shadow"]},
+                 {"oit_bytes", byOwner["oit"]},
+                 {"scene_bytes", byOwner["scene"]},
+                 {"frame_bytes", byOwner["frame"]},
+                 {"total_bytes", total},
+                 {"resources", resources}};
   if (req.validation) j["validation_messages"] = validationMessageCount();
   return out;
 }

@@ -84,12 +84,6 @@ std::vector<SceneInfo> buildCatalog() {
 
 // ---------------------------------------------------------------- options
 
-std::string joinNames(const std::vector<std::string>& names) {
-  std::string s;
-  for (const std::string& n : names) s += (s.empty() ? "" : ", ") + n;
-  return s;
-}
-
 std::string shortest(double v) {
   char buf[32];
   const auto r = std::to_chars(buf, buf + sizeof buf, v);
@@ -543,12 +537,7 @@ Scene makeScene(const Spec& spec) {
     names.push_back(s.name);
     if (s.name == spec.name) info = &s;
   }
-  if (!info) {
-    const std::string near = closestName(spec.name, names);
-    throw InputError("unknown scene '" + spec.name + "'" +
-                     (near.empty() ? std::string() : " (did you mean '" + near + "'?)") +
-                     "; valid scenes: " + joinNames(names));
-  }
+  if (!info) throw InputError(unknownNameMessage("scene", spec.name, names));
   const Options o(spec, *info);
   Scene scene;
   if (spec.name == "straight") {

@@ -31,6 +31,16 @@ std::string closestName(const std::string& name, const std::vector<std::string>&
   return bestDist <= std::max<std::size_t>(2, name.size() / 3) ? best : "";
 }
 
+std::string unknownNameMessage(const std::string& kind, const std::string& name,
+                               const std::vector<std::string>& valid) {
+  std::string msg = "unknown " + kind + " '" + name + "'";
+  const std::string near = closestName(name, valid);
+  if (!near.empty()) msg += " (did you mean '" + near + "'?)";
+  msg += "; valid " + kind + "s:";
+  for (std::size_t i = 0; i < valid.size(); ++i) msg += (i ? ", " : " ") + valid[i];
+  return msg;
+}
+
 OptionReader::OptionReader(const Spec& spec, const std::vector<OptionInfo>& known, std::string what)
     : spec_(spec), known_(known), what_(std::move(what)) {
   std::vector<std::string> names;

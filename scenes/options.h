@@ -13,6 +13,10 @@ namespace sb {
 // The valid name closest to `name` by edit distance ("" when none is close).
 std::string closestName(const std::string& name, const std::vector<std::string>& valid);
 
+// "unknown <kind> '<name>' (did you mean '<closest>'?); valid <kind>s: a, b, c"
+std::string unknownNameMessage(const std::string& kind, const std::string& name,
+                               const std::vector<std::string>& valid);
+
 class OptionReader {
  public:
   // what: e.g. "scene 'curly'" or "shadow technique 'shadowmap'", used in messages.

@@ -3,9 +3,8 @@
 // consumed by the renderer (which uploads it through the Device).
 #pragma once
 
-#include <glm/glm.hpp>
-
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -24,9 +23,9 @@ struct Strands {
   std::vector<uint32_t> firstPoint;
   std::vector<uint32_t> pointCount;
   std::vector<glm::vec3> points;
-  std::vector<glm::vec3> colors;     // per point, linear RGB
-  std::vector<float> thickness;      // per point, world units
-  std::vector<float> transparency;   // per point (HAIR semantics: 0 = opaque)
+  std::vector<glm::vec3> colors;    // per point, linear RGB
+  std::vector<float> thickness;     // per point, world units
+  std::vector<float> transparency;  // per point (HAIR semantics: 0 = opaque)
 
   std::size_t strandCount() const { return pointCount.size(); }
   std::size_t segmentCount() const;  // sum over strands of max(pointCount-1, 0)
@@ -48,7 +47,7 @@ struct Bounds {
 struct Scene {
   std::string name;  // the spec it came from
   Strands strands;
-  Mesh mesh;  // may be empty
+  Mesh mesh;                 // may be empty
   float hairAlpha = 1.0f;    // hair opacity for transparency (scene option alpha=)
   float shadowAlpha = 0.5f;  // per-fragment shadow opacity alpha_s (shadow_alpha=)
   glm::vec3 hairColor{0.45f, 0.3f, 0.18f};
@@ -83,10 +82,10 @@ const std::vector<SceneInfo>& sceneCatalog();
 Scene makeScene(const Spec& spec);
 
 // Loaders (throw InputError naming the file and the problem).
-Strands loadHair(const std::string& path);  // Cem Yuksel's HAIR
-Strands loadTfx(const std::string& path);   // AMD TressFX .tfx, version 3 and 4
-Strands loadPly(const std::string& path);   // PLY strands: vertex + strand(nsegs)
-Mesh loadObj(const std::string& path);      // triangulated OBJ
+Strands loadHair(const std::string& path);        // Cem Yuksel's HAIR
+Strands loadTfx(const std::string& path);         // AMD TressFX .tfx, version 3 and 4
+Strands loadPly(const std::string& path);         // PLY strands: vertex + strand(nsegs)
+Mesh loadObj(const std::string& path);            // triangulated OBJ
 Strands loadStrandFile(const std::string& path);  // by extension
 
 // Same, from memory (used by the fuzz targets and tests).

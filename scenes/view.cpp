@@ -46,6 +46,13 @@ glm::mat4 Light::projection() const {
   return glm::perspective(glm::radians(fovYDegrees), 1.0f, nearPlane, farPlane);
 }
 
+void fitCameraPlanes(Camera& cam, const Bounds& b) {
+  const float r = safeRadius(b);
+  const float dist = glm::length(b.center() - cam.eye);
+  cam.nearPlane = std::max(dist - 1.02f * r, 1e-3f * (dist + r));
+  cam.farPlane = dist + 1.02f * r;
+}
+
 Camera fitCamera(const Bounds& b, float aspect) {
   Camera cam;
   const glm::vec3 c = b.center();
@@ -59,33 +66,32 @@ Camera fitCamera(const Bounds& b, float aspect) {
   cam.target = c;
   cam.eye = c + glm::vec3(0.0f, 0.0f, dist);  // looks along -z
   cam.up = glm::vec3(0, 1, 0);
-  cam.nearPlane = std::max(dist - 1.02f * r, 1e-3f * dist);
-  cam.farPlane = dist + 1.02f * r;
+  fitCameraPlanes(cam, b);
   return cam;
+}
+
+void fitLightFrustum(Light& light, const Bounds& b) {
+  const float r = safeRadius(b);
+  const float pad = 1.01f;  // a little slack so the sphere's extremes are not clipped
+  const float dist = glm::dot(b.center() - light.position, light.direction);
+  light.nearPlane = std::max(dist - pad * r, 1e-4f * (std::abs(dist) + r));
+  light.farPlane = std::max(dist + pad * r, 1.001f * light.nearPlane);
+  light.orthoHalfExtent = pad * r;
+  // Point light: half-angle of the cone tangent to the sphere, padded.
+  const float toCenter = glm::length(b.center() - light.position);
+  light.fovYDegrees =
+      toCenter > pad * r ? glm::degrees(2.0f * std::asin(pad * r / toCenter)) : 170.0f;
 }
 
 Light fitLight(const Bounds& b, LightType type) {
   Light light;
   light.type = type;
-  const glm::vec3 c = b.center();
-  const float r = safeRadius(b);
   // Travels down, back and to -x: from above and in front of the scene.
   light.direction = glm::normalize(glm::vec3(-1.0f, -1.2f, -0.8f));
-  const float pad = 1.01f;  // a little slack so the sphere's extremes are not clipped
-  if (type == LightType::Directional) {
-    const float dist = 2.0f * r;  // outside the bounding sphere
-    light.position = c - light.direction * dist;
-    light.nearPlane = dist - pad * r;
-    light.farPlane = dist + pad * r;
-    light.orthoHalfExtent = pad * r;
-  } else {
-    const float dist = 3.0f * r;
-    light.position = c - light.direction * dist;
-    light.nearPlane = dist - pad * r;
-    light.farPlane = dist + pad * r;
-    // Half-angle of the cone tangent to the sphere, padded.
-    light.fovYDegrees = glm::degrees(2.0f * std::asin(std::min(1.0f, pad * r / dist)));
-  }
+  // Outside the bounding sphere; a point light further, for a narrower cone.
+  const float dist = (type == LightType::Directional ? 2.0f : 3.0f) * safeRadius(b);
+  light.position = b.center() - light.direction * dist;
+  fitLightFrustum(light, b);
   return light;
 }
 

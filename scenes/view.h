@@ -24,8 +24,8 @@ enum class LightType { Directional, Point };
 
 struct Light {
   LightType type = LightType::Directional;
-  glm::vec3 position{5, 5, 5};   // point light position; for directional, a point on the
-                                 // light side used to place the orthographic frustum
+  glm::vec3 position{5, 5, 5};      // point light position; for directional, a point on the
+                                    // light side used to place the orthographic frustum
   glm::vec3 direction{-1, -1, -1};  // directional: direction light travels (normalized)
   glm::vec3 color{1, 1, 1};
   float intensity = 1.0f;
@@ -38,6 +38,11 @@ struct Light {
   float fovYDegrees = 60.0f;     // point
 };
 
+// Near/far planes that enclose the bounds from the camera's eye.
+void fitCameraPlanes(Camera& cam, const Bounds& b);
+// Near/far, orthographic extent and cone angle that enclose the bounds from
+// the light's position and direction.
+void fitLightFrustum(Light& light, const Bounds& b);
 // Front view at a distance that frames the bounds with a small margin.
 Camera fitCamera(const Bounds& b, float aspect);
 // Key light from above-front-left; near/far and extent enclose the bounds.

@@ -25,14 +25,7 @@ std::unique_ptr<ShadowTechnique> makeShadowTechnique(const Spec& spec) {
     names.push_back(t.name);
     if (t.name == spec.name) info = &t;
   }
-  if (!info) {
-    std::string msg = "unknown shadow technique '" + spec.name + "'";
-    const std::string near = closestName(spec.name, names);
-    if (!near.empty()) msg += " (did you mean '" + near + "'?)";
-    msg += "; valid:";
-    for (const auto& n : names) msg += " " + n;
-    throw InputError(msg);
-  }
+  if (!info) throw InputError(unknownNameMessage("shadow technique", spec.name, names));
   const OptionReader opts(spec, info->options, "shadow technique '" + spec.name + "'");
   if (spec.name == "shadowmap")
     return std::make_unique<ShadowMap>(static_cast<uint32_t>(opts.integer("size", 1, 16384)),

@@ -5,9 +5,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli_util.h"
 #include "harness/image.h"
 #include "harness/metrics.h"
+#include "test_util.h"
 
 using sbtest::readFile;
 using sbtest::runCli;
@@ -17,8 +17,8 @@ namespace {
 
 const char* kScene = "straight:strands=300,points=12,seed=3";
 
-std::string render(const std::string& backend, const std::string& out, const std::string& extra = "",
-                   const std::string& scene = kScene) {
+std::string render(const std::string& backend, const std::string& out,
+                   const std::string& extra = "", const std::string& scene = kScene) {
   auto r = runCli("render --scene '" + scene + "' --backend " + backend +
                   " --size 96x96 --repeat 1 --out " + out + " " + extra);
   EXPECT_EQ(r.status, 0) << r.err;
@@ -80,8 +80,8 @@ TEST(Cli, SameCommandTwiceGivesIdenticalBytes) {
 TEST(Cli, EglAndOsmesaGiveIdenticalBytes) {
   const auto dir = tempDir("plat");
   for (const std::string prim : {"lines", "ribbons"}) {
-    const std::string a =
-        render("gl", (dir / "egl.png").string(), "--platform egl --shadow shadowmap --primitive " + prim);
+    const std::string a = render("gl", (dir / "egl.png").string(),
+                                 "--platform egl --shadow shadowmap --primitive " + prim);
     const std::string b = render("gl", (dir / "osmesa.png").string(),
                                  "--platform osmesa --shadow shadowmap --primitive " + prim);
     ASSERT_FALSE(a.empty());
@@ -99,13 +99,15 @@ TEST(Cli, GlAndVulkanImagesMatch) {
       const auto gl = dir / "gl.exr", vk = dir / "vk.exr";
       const std::string extra = "--primitive " + prim + " --shadow " + shadow + " --json";
       render("gl", gl.string(), extra, "curly:strands=200,points=24,seed=5");
-      auto r = runCli("render --scene curly:strands=200,points=24,seed=5 --backend vulkan "
-                      "--size 96x96 --out " + vk.string() + " " + extra);
+      auto r = runCli(
+          "render --scene curly:strands=200,points=24,seed=5 --backend vulkan "
+          "--size 96x96 --out " +
+          vk.string() + " " + extra);
       ASSERT_EQ(r.status, 0) << r.err;
       const std::string vkLines = nlohmann::json::parse(r.out)["lines"];
       const auto e = sb::compareImages(sb::readImage(gl.string()), sb::readImage(vk.string()));
-      std::cout << "[ measured ] GL vs Vulkan, " << prim << ", " << shadow << ": PSNR "
-                << e.psnr << " dB, RMSE " << e.rmse << ", max abs " << e.maxAbs << "\n";
+      std::cout << "[ measured ] GL vs Vulkan, " << prim << ", " << shadow << ": PSNR " << e.psnr
+                << " dB, RMSE " << e.rmse << ", max abs " << e.maxAbs << "\n";
       RecordProperty(prim + "_" + shadow + "_psnr", std::to_string(e.psnr));
       // Ribbons are triangles: they must match everywhere. Lines match GL's
       // aliased lines only with Bresenham rasterization; otherwise the figure
@@ -122,9 +124,10 @@ TEST(Cli, GlAndVulkanImagesMatch) {
 TEST(Cli, VulkanValidationIsSilent) {
   const auto dir = tempDir("val");
   for (const std::string prim : {"lines", "ribbons"}) {
-    auto r = runCli("render --scene 'fur:strands=300,points=6' --shadow shadowmap --backend vulkan "
-                    "--validation --size 64x64 --json --primitive " + prim + " --out " +
-                    (dir / "v.png").string());
+    auto r = runCli(
+        "render --scene 'fur:strands=300,points=6' --shadow shadowmap --backend vulkan "
+        "--validation --size 64x64 --json --primitive " +
+        prim + " --out " + (dir / "v.png").string());
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(nlohmann::json::parse(r.out)["validation_messages"], 0) << r.err;
   }
@@ -171,25 +174,25 @@ TEST_P(CliBadInput, ClearMessageExit2NothingWritten) {
 
 INSTANTIATE_TEST_SUITE_P(
     Render, CliBadInput,
-    ::testing::Values(
-        BadInput{"render --scene nosuch --out @OUT@", "unknown scene 'nosuch'"},
-        BadInput{"render --scene curli --out @OUT@", "curly"},
-        BadInput{"render --scene straight:strandz=5 --out @OUT@", "strands"},
-        BadInput{"render --scene straight:strands=-1 --out @OUT@", "strands"},
-        BadInput{"render --scene straight:strands=abc --out @OUT@", "strands"},
-        BadInput{"render --size 0x0 --out @OUT@", "--size"},
-        BadInput{"render --size 12 --out @OUT@", "--size"},
-        BadInput{"render --shadow shadowmapp --out @OUT@", "shadowmap"},
-        BadInput{"render --shadow shadowmap:size=0 --out @OUT@", "size"},
-        BadInput{"render --backend metal --out @OUT@", "metal"},
-        BadInput{"render --platform glx --out @OUT@", "glx"},
-        BadInput{"render --primitive points --out @OUT@", "lines or ribbons"},
-        BadInput{"render --scene file:path=/nonexistent/x.hair --out @OUT@", "/nonexistent/x.hair"},
-        BadInput{"render --out /nonexistent-dir/x.png", "/nonexistent-dir"},
-        BadInput{"render --out @OUT@.jpg", ".png or .exr"},
-        BadInput{"render --camera-eye 1,2 --out @OUT@", "--camera-eye"},
-        BadInput{"render --repeat 0 --out @OUT@", "--repeat"},
-        BadInput{"render --nosuchflag", "nosuchflag"}));
+    ::testing::Values(BadInput{"render --scene nosuch --out @OUT@", "unknown scene 'nosuch'"},
+                      BadInput{"render --scene curli --out @OUT@", "curly"},
+                      BadInput{"render --scene straight:strandz=5 --out @OUT@", "strands"},
+                      BadInput{"render --scene straight:strands=-1 --out @OUT@", "strands"},
+                      BadInput{"render --scene straight:strands=abc --out @OUT@", "strands"},
+                      BadInput{"render --size 0x0 --out @OUT@", "--size"},
+                      BadInput{"render --size 12 --out @OUT@", "--size"},
+                      BadInput{"render --shadow shadowmapp --out @OUT@", "shadowmap"},
+                      BadInput{"render --shadow shadowmap:size=0 --out @OUT@", "size"},
+                      BadInput{"render --backend metal --out @OUT@", "metal"},
+                      BadInput{"render --platform glx --out @OUT@", "glx"},
+                      BadInput{"render --primitive points --out @OUT@", "lines or ribbons"},
+                      BadInput{"render --scene file:path=/nonexistent/x.hair --out @OUT@",
+                               "/nonexistent/x.hair"},
+                      BadInput{"render --out /nonexistent-dir/x.png", "/nonexistent-dir"},
+                      BadInput{"render --out @OUT@.jpg", ".png or .exr"},
+                      BadInput{"render --camera-eye 1,2 --out @OUT@", "--camera-eye"},
+                      BadInput{"render --repeat 0 --out @OUT@", "--repeat"},
+                      BadInput{"render --nosuchflag", "nosuchflag"}));
 
 // Malformed strand files through the CLI: the message names the file.
 TEST(CliBadFiles, TruncatedAndCorruptFilesExit2) {
@@ -200,11 +203,12 @@ TEST(CliBadFiles, TruncatedAndCorruptFilesExit2) {
   };
   std::string hair(128, '\0');
   hair.replace(0, 4, "HAIR");
-  hair[4] = 10;  // 10 strands
+  hair[4] = 10;   // 10 strands
   hair[8] = 100;  // 100 points, flags 0, arrays missing
-  const std::vector<std::string> files = {write("short.hair", "HAI"), write("sig.hair", "NOPE" + hair.substr(4)),
-                                          write("trunc.hair", hair), write("bad.ply", "ply\nformat ascii 1.0\nelement vertex 5\n"),
-                                          write("bad.tfx", std::string(10, '\x01'))};
+  const std::vector<std::string> files = {
+      write("short.hair", "HAI"), write("sig.hair", "NOPE" + hair.substr(4)),
+      write("trunc.hair", hair), write("bad.ply", "ply\nformat ascii 1.0\nelement vertex 5\n"),
+      write("bad.tfx", std::string(10, '\x01'))};
   for (const auto& f : files) {
     auto r = runCli("render --scene file:path=" + f + " --out " + (dir / "o.png").string());
     EXPECT_EQ(r.status, 2) << f << ": " << r.err;

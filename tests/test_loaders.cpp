@@ -12,6 +12,9 @@
 #include <vector>
 
 #include "scenes/scene.h"
+#include "test_util.h"
+
+using sbtest::expectInputError;
 
 namespace {
 
@@ -24,21 +27,6 @@ std::string modelsDir() { return std::string(SB_SOURCE_DIR) + "/../shared/models
   if (!std::filesystem::exists(path)) {                                      \
     GTEST_SKIP() << "../shared/models not found: " << path << " is missing"; \
   }
-
-// Runs f, expects an sb::InputError whose message contains every given substring.
-void expectInputError(const std::function<void()>& f, std::vector<std::string> needles) {
-  try {
-    f();
-    ADD_FAILURE() << "no InputError thrown (expected one mentioning '" << needles[0] << "')";
-  } catch (const sb::InputError& e) {
-    const std::string msg = e.what();
-    for (const std::string& n : needles) {
-      EXPECT_NE(msg.find(n), std::string::npos) << "message: " << msg << "\nlacks: " << n;
-    }
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "wrong exception type: " << e.what();
-  }
-}
 
 void checkConsistent(const sb::Strands& s) {
   ASSERT_EQ(s.firstPoint.size(), s.pointCount.size());

@@ -10,25 +10,13 @@
 
 #include "scenes/scene.h"
 #include "scenes/view.h"
+#include "test_util.h"
+
+using sbtest::expectInputError;
 
 namespace {
 
 sb::Scene make(const std::string& spec) { return sb::makeScene(sb::Spec::parse(spec)); }
-
-// Expects an sb::InputError whose message contains every needle.
-void expectInputError(const std::function<void()>& f, std::vector<std::string> needles) {
-  try {
-    f();
-    ADD_FAILURE() << "no InputError thrown (expected one mentioning '" << needles[0] << "')";
-  } catch (const sb::InputError& e) {
-    const std::string msg = e.what();
-    for (const std::string& n : needles) {
-      EXPECT_NE(msg.find(n), std::string::npos) << "message: " << msg << "\nlacks: " << n;
-    }
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "wrong exception type: " << e.what();
-  }
-}
 
 void expectSpecError(const std::string& spec, const std::string& needle) {
   expectInputError([&] { sb::Spec::parse(spec); }, {needle});

@@ -6,12 +6,12 @@
 #include <algorithm>
 #include <cmath>
 
-#include "cli_util.h"
 #include "backends/shader_source.h"
 #include "techniques/common/frame_graph.h"
 #include "techniques/common/shader_library.h"
 #include "techniques/common/technique.h"
 #include "techniques/kajiya_kay/kajiya_kay.h"
+#include "test_util.h"
 
 namespace sb {
 namespace {
@@ -26,7 +26,7 @@ TEST(KajiyaKay, DiffuseIsSineOfTangentAndLight) {
 
 TEST(KajiyaKay, SpecularPeaksOnTheReflectionCone) {
   const glm::vec3 T(0, 1, 0);
-  const glm::vec3 L = glm::normalize(glm::vec3(1, 1, 0));   // 45 deg from T
+  const glm::vec3 L = glm::normalize(glm::vec3(1, 1, 0));         // 45 deg from T
   const glm::vec3 Vmirror = glm::normalize(glm::vec3(0, -1, 1));  // 135 deg from T: on the cone
   const glm::vec3 Vsame = glm::normalize(glm::vec3(0, 1, 1));     // 45 deg: off the cone
   EXPECT_NEAR(glsl::kajiyaKay(T, L, Vmirror, 50).y, 1.0f, 1e-5f);
@@ -39,7 +39,8 @@ TEST(KajiyaKay, SpecularPeaksOnTheReflectionCone) {
 TEST(FrameGraph, LeavesOutPassesNoOutputNeeds) {
   FrameGraph g;
   std::vector<std::string> ran;
-  auto pass = [&](std::string name, std::vector<std::string> reads, std::vector<std::string> writes) {
+  auto pass = [&](std::string name, std::vector<std::string> reads,
+                  std::vector<std::string> writes) {
     g.add({name, reads, writes, [&ran, name] { ran.push_back(name); }});
   };
   pass("shadow", {}, {"shadow.map"});
@@ -65,7 +66,8 @@ TEST(ShaderLibrary, ResolvesIncludesAndAliasesWithLineDirectives) {
                                              "techniques/kajiya_kay/kajiya_kay.glsl",
                                              "techniques/shadowmap/lookup.glsl"};
   for (const auto& f : expected)
-    EXPECT_NE(std::find(code.fileNames.begin(), code.fileNames.end(), f), code.fileNames.end()) << f;
+    EXPECT_NE(std::find(code.fileNames.begin(), code.fileNames.end(), f), code.fileNames.end())
+        << f;
   EXPECT_NE(code.text.find("#define SB_TEST 1"), std::string::npos);
   EXPECT_NE(code.text.find("float shadowVisibility"), std::string::npos);
   EXPECT_THROW(loadShader("techniques/kajiya_kay/hair.frag"), DeviceError);  // <shadow> unbound
@@ -88,7 +90,8 @@ TEST(Registry, ValidatesTechniqueNamesAndOptions) {
     makeShadowTechnique(Spec::parse("shadowmpa"));
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("did you mean 'shadowmap'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("did you mean 'shadowmap'"), std::string::npos)
+        << e.what();
   }
   EXPECT_THROW(makeShadowTechnique(Spec::parse("shadowmap:size=0")), InputError);
   EXPECT_THROW(makeShadowTechnique(Spec::parse("shadowmap:bias=nan")), InputError);
@@ -112,12 +115,14 @@ TEST(ShaderErrors, BrokenTechniqueShaderIsNamedByTheCli) {
   for (const std::string backend : {"gl", "vulkan"}) {
     const std::string cmd = "SB_SHADER_DIR=" + dir.string() + " " + SB_CLI +
                             " render --scene straight:strands=10 --shadow shadowmap --size 16x16 "
-                            "--backend " + backend + " 2>" + (dir / "err").string();
+                            "--backend " +
+                            backend + " 2>" + (dir / "err").string();
     const int raw = std::system(cmd.c_str());
     EXPECT_EQ(WEXITSTATUS(raw), 2) << backend;
     const std::string err = sbtest::readFile(dir / "err");
     EXPECT_NE(err.find("techniques/shadowmap/lookup.glsl:" + std::to_string(lines)),
-              std::string::npos) << backend << ": " << err;
+              std::string::npos)
+        << backend << ": " << err;
     EXPECT_NE(err.find("shadowmap"), std::string::npos) << err;
   }
   fs::remove_all(dir);

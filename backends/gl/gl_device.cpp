@@ -5,7 +5,6 @@
 #include <cstring>
 #include <map>
 #include <string>
-
 #include <vector>
 
 #include "backends/gl/gl_functions.h"
@@ -21,67 +20,104 @@ struct GLFormat {
 
 GLFormat glFormat(Format f) {
   switch (f) {
-    case Format::RGBA8: return {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE};
-    case Format::RGBA16F: return {GL_RGBA16F, GL_RGBA, GL_HALF_FLOAT};
-    case Format::RGBA32F: return {GL_RGBA32F, GL_RGBA, GL_FLOAT};
-    case Format::R32F: return {GL_R32F, GL_RED, GL_FLOAT};
-    case Format::RG32F: return {GL_RG32F, GL_RG, GL_FLOAT};
-    case Format::R32UI: return {GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT};
-    case Format::RGBA32UI: return {GL_RGBA32UI, GL_RGBA_INTEGER, GL_UNSIGNED_INT};
-    case Format::Depth32F: return {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT};
+    case Format::RGBA8:
+      return {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE};
+    case Format::RGBA16F:
+      return {GL_RGBA16F, GL_RGBA, GL_HALF_FLOAT};
+    case Format::RGBA32F:
+      return {GL_RGBA32F, GL_RGBA, GL_FLOAT};
+    case Format::R32F:
+      return {GL_R32F, GL_RED, GL_FLOAT};
+    case Format::RG32F:
+      return {GL_RG32F, GL_RG, GL_FLOAT};
+    case Format::R32UI:
+      return {GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT};
+    case Format::RGBA32UI:
+      return {GL_RGBA32UI, GL_RGBA_INTEGER, GL_UNSIGNED_INT};
+    case Format::Depth32F:
+      return {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT};
   }
   return {0, 0, 0};
 }
 
 GLenum glCompare(CompareOp op) {
   switch (op) {
-    case CompareOp::Never: return GL_NEVER;
-    case CompareOp::Less: return GL_LESS;
-    case CompareOp::LessEqual: return GL_LEQUAL;
-    case CompareOp::Equal: return GL_EQUAL;
-    case CompareOp::Greater: return GL_GREATER;
-    case CompareOp::GreaterEqual: return GL_GEQUAL;
-    case CompareOp::NotEqual: return GL_NOTEQUAL;
-    case CompareOp::Always: return GL_ALWAYS;
+    case CompareOp::Never:
+      return GL_NEVER;
+    case CompareOp::Less:
+      return GL_LESS;
+    case CompareOp::LessEqual:
+      return GL_LEQUAL;
+    case CompareOp::Equal:
+      return GL_EQUAL;
+    case CompareOp::Greater:
+      return GL_GREATER;
+    case CompareOp::GreaterEqual:
+      return GL_GEQUAL;
+    case CompareOp::NotEqual:
+      return GL_NOTEQUAL;
+    case CompareOp::Always:
+      return GL_ALWAYS;
   }
   return GL_LESS;
 }
 
 GLenum glBlendFactor(BlendFactor f) {
   switch (f) {
-    case BlendFactor::Zero: return GL_ZERO;
-    case BlendFactor::One: return GL_ONE;
-    case BlendFactor::SrcColor: return GL_SRC_COLOR;
-    case BlendFactor::OneMinusSrcColor: return GL_ONE_MINUS_SRC_COLOR;
-    case BlendFactor::SrcAlpha: return GL_SRC_ALPHA;
-    case BlendFactor::OneMinusSrcAlpha: return GL_ONE_MINUS_SRC_ALPHA;
-    case BlendFactor::DstColor: return GL_DST_COLOR;
-    case BlendFactor::OneMinusDstColor: return GL_ONE_MINUS_DST_COLOR;
-    case BlendFactor::DstAlpha: return GL_DST_ALPHA;
-    case BlendFactor::OneMinusDstAlpha: return GL_ONE_MINUS_DST_ALPHA;
+    case BlendFactor::Zero:
+      return GL_ZERO;
+    case BlendFactor::One:
+      return GL_ONE;
+    case BlendFactor::SrcColor:
+      return GL_SRC_COLOR;
+    case BlendFactor::OneMinusSrcColor:
+      return GL_ONE_MINUS_SRC_COLOR;
+    case BlendFactor::SrcAlpha:
+      return GL_SRC_ALPHA;
+    case BlendFactor::OneMinusSrcAlpha:
+      return GL_ONE_MINUS_SRC_ALPHA;
+    case BlendFactor::DstColor:
+      return GL_DST_COLOR;
+    case BlendFactor::OneMinusDstColor:
+      return GL_ONE_MINUS_DST_COLOR;
+    case BlendFactor::DstAlpha:
+      return GL_DST_ALPHA;
+    case BlendFactor::OneMinusDstAlpha:
+      return GL_ONE_MINUS_DST_ALPHA;
   }
   return GL_ONE;
 }
 
 GLenum glBlendOp(BlendOp op) {
   switch (op) {
-    case BlendOp::Add: return GL_FUNC_ADD;
-    case BlendOp::Subtract: return GL_FUNC_SUBTRACT;
-    case BlendOp::ReverseSubtract: return GL_FUNC_REVERSE_SUBTRACT;
-    case BlendOp::Min: return GL_MIN;
-    case BlendOp::Max: return GL_MAX;
+    case BlendOp::Add:
+      return GL_FUNC_ADD;
+    case BlendOp::Subtract:
+      return GL_FUNC_SUBTRACT;
+    case BlendOp::ReverseSubtract:
+      return GL_FUNC_REVERSE_SUBTRACT;
+    case BlendOp::Min:
+      return GL_MIN;
+    case BlendOp::Max:
+      return GL_MAX;
   }
   return GL_FUNC_ADD;
 }
 
 const char* glErrorName(GLenum e) {
   switch (e) {
-    case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
-    case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
-    case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
-    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
-    case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
-    default: return "GL error";
+    case GL_INVALID_ENUM:
+      return "GL_INVALID_ENUM";
+    case GL_INVALID_VALUE:
+      return "GL_INVALID_VALUE";
+    case GL_INVALID_OPERATION:
+      return "GL_INVALID_OPERATION";
+    case GL_OUT_OF_MEMORY:
+      return "GL_OUT_OF_MEMORY";
+    case GL_INVALID_FRAMEBUFFER_OPERATION:
+      return "GL_INVALID_FRAMEBUFFER_OPERATION";
+    default:
+      return "GL error";
   }
 }
 
@@ -90,9 +126,9 @@ using Clock = std::chrono::steady_clock;
 class GLDevice : public Device {
  public:
   explicit GLDevice(std::unique_ptr<GLPlatform> platform) : platform_(std::move(platform)) {
-#define SB_GL_LOAD(type, fn)                                                  \
-  gl_.fn = reinterpret_cast<type>(platform_->getProcAddress("gl" #fn));       \
-  if (!gl_.fn)                                                                \
+#define SB_GL_LOAD(type, fn)                                            \
+  gl_.fn = reinterpret_cast<type>(platform_->getProcAddress("gl" #fn)); \
+  if (!gl_.fn)                                                          \
     throw DeviceError("GL (" + platform_->name() + "): missing gl" #fn " (need OpenGL 4.5 core)");
     SB_GL_FUNCTIONS(SB_GL_LOAD)
 #undef SB_GL_LOAD
@@ -147,7 +183,8 @@ class GLDevice : public Device {
   void updateBuffer(Buffer b, const void* data, std::size_t bytes, std::size_t offset) override {
     if (inPass_) throw DeviceError("updateBuffer inside a pass");
     auto& r = buffer(b);
-    if (offset + bytes > r.desc.bytes) throw DeviceError("updateBuffer past the end of " + r.desc.name);
+    if (offset + bytes > r.desc.bytes)
+      throw DeviceError("updateBuffer past the end of " + r.desc.name);
     gl_.NamedBufferSubData(r.name, static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes),
                            data);
   }
@@ -297,8 +334,7 @@ class GLDevice : public Device {
     applyState(r.desc);
     bind(r.desc, bindings, true);
     gl_.DrawArraysInstanced(r.desc.topology == Topology::Lines ? GL_LINES : GL_TRIANGLES, 0,
-                            static_cast<GLsizei>(vertexCount),
-                            static_cast<GLsizei>(instanceCount));
+                            static_cast<GLsizei>(vertexCount), static_cast<GLsizei>(instanceCount));
   }
 
   void endPass() override {
@@ -357,8 +393,8 @@ class GLDevice : public Device {
     std::vector<ResourceBytes> out;
     for (auto& [id, b] : buffers_) out.push_back({b.desc.name, b.desc.owner, b.desc.bytes});
     for (auto& [id, t] : textures_)
-      out.push_back({t.desc.name, t.desc.owner,
-                     t.desc.width * t.desc.height * bytesPerPixel(t.desc.format)});
+      out.push_back(
+          {t.desc.name, t.desc.owner, t.desc.width * t.desc.height * bytesPerPixel(t.desc.format)});
     return out;
   }
 

@@ -31,15 +31,26 @@ class OSMesaPlatform : public GLPlatform {
       if (handle_) break;
     }
     if (!handle_)
-      throw DeviceError("OSMesa: libOSMesa not found (install libosmesa6; removed in Mesa >= 25.1)");
-    auto create = reinterpret_cast<CreateContextAttribsFn>(dlsym(handle_, "OSMesaCreateContextAttribs"));
+      throw DeviceError(
+          "OSMesa: libOSMesa not found (install libosmesa6; removed in Mesa >= 25.1)");
+    auto create =
+        reinterpret_cast<CreateContextAttribsFn>(dlsym(handle_, "OSMesaCreateContextAttribs"));
     auto makeCurrent = reinterpret_cast<MakeCurrentFn>(dlsym(handle_, "OSMesaMakeCurrent"));
     destroy_ = reinterpret_cast<DestroyContextFn>(dlsym(handle_, "OSMesaDestroyContext"));
     getProc_ = reinterpret_cast<GetProcAddressFn>(dlsym(handle_, "OSMesaGetProcAddress"));
     if (!create || !makeCurrent || !destroy_ || !getProc_)
       throw DeviceError("OSMesa: libOSMesa lacks OSMesaCreateContextAttribs (too old)");
-    const int attribs[] = {kOSMesaFormat, kOSMesaRGBA, kOSMesaDepthBits, 0, kOSMesaProfile,
-                           kOSMesaCoreProfile, kOSMesaMajor, 4, kOSMesaMinor, 5, 0};
+    const int attribs[] = {kOSMesaFormat,
+                           kOSMesaRGBA,
+                           kOSMesaDepthBits,
+                           0,
+                           kOSMesaProfile,
+                           kOSMesaCoreProfile,
+                           kOSMesaMajor,
+                           4,
+                           kOSMesaMinor,
+                           5,
+                           0};
     context_ = create(attribs, nullptr);
     if (!context_) throw DeviceError("OSMesa: could not create an OpenGL 4.5 core context");
     // OSMesa needs a colour buffer to be current; rendering goes to FBOs.

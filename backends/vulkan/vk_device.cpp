@@ -263,7 +263,6 @@ class VulkanDevice final : public Device {
   VulkanDevice(const VulkanDevice&) = delete;
   VulkanDevice& operator=(const VulkanDevice&) = delete;
 
-
   DeviceInfo info() const override { return info_; }
 
   Buffer createBuffer(const BufferDesc& desc, const void* data) override {
@@ -1055,9 +1054,9 @@ class VulkanDevice final : public Device {
     // lavapipe writes a pass's end timestamp before llvmpipe has finished
     // rasterizing it (measured: 0.6 ms by timestamps vs 33 ms by wall clock for
     // a 30k-segment pass), so CPU devices are timed per pass on the CPU, as GL is.
-    cpuTiming_ = timestampBits_ == 0 || envFlag("SB_VULKAN_CPU_TIMING") ||
-                 (pick->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU &&
-                  !envFlag("SB_VULKAN_GPU_TIMING"));
+    cpuTiming_ =
+        timestampBits_ == 0 || envFlag("SB_VULKAN_CPU_TIMING") ||
+        (pick->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU && !envFlag("SB_VULKAN_GPU_TIMING"));
 
     VkPhysicalDeviceDriverProperties drv{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
     VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &drv};
@@ -1642,7 +1641,6 @@ class VulkanDevice final : public Device {
 std::unique_ptr<Device> createVulkanDevice(const DeviceOptions& opts) {
   return std::make_unique<VulkanDevice>(opts);
 }
-
 
 std::size_t validationMessageCount() { return g_validationMessages.load(); }
 

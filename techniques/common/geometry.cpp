@@ -11,7 +11,8 @@ ViewUniforms cameraView(const RenderSettings& s) {
   v.viewProj = s.camera.projection(aspect) * s.camera.view();
   v.eye = glm::vec4(s.camera.eye, 1.0f);
   v.forward = glm::vec4(glm::normalize(s.camera.target - s.camera.eye), 0.0f);
-  v.viewport = glm::vec4(static_cast<float>(s.width), static_cast<float>(s.height), s.ribbonWidth, 0);
+  v.viewport =
+      glm::vec4(static_cast<float>(s.width), static_cast<float>(s.height), s.ribbonWidth, 0);
   return v;
 }
 
@@ -21,8 +22,8 @@ ViewUniforms lightView(const RenderSettings& s, uint32_t mapWidth, uint32_t mapH
   const bool point = s.light.type == LightType::Point;
   v.eye = glm::vec4(s.light.position, point ? 1.0f : 0.0f);
   v.forward = glm::vec4(glm::normalize(s.light.direction), 0.0f);
-  v.viewport = glm::vec4(static_cast<float>(mapWidth), static_cast<float>(mapHeight),
-                         s.ribbonWidth, 0);
+  v.viewport =
+      glm::vec4(static_cast<float>(mapWidth), static_cast<float>(mapHeight), s.ribbonWidth, 0);
   return v;
 }
 

@@ -56,10 +56,10 @@ void Renderer::upload(const Scene& scene) {
   gpu_.segmentCount = static_cast<uint32_t>(segments.size());
   gpu_.meshPositions = makeBuffer(dev_, "scene.mesh_positions", positions.data(),
                                   positions.size() * sizeof(glm::vec4));
-  gpu_.meshNormals = makeBuffer(dev_, "scene.mesh_normals", normals.data(),
-                                normals.size() * sizeof(glm::vec4));
-  gpu_.meshIndices = makeBuffer(dev_, "scene.mesh_indices", m.indices.data(),
-                                m.indices.size() * sizeof(uint32_t));
+  gpu_.meshNormals =
+      makeBuffer(dev_, "scene.mesh_normals", normals.data(), normals.size() * sizeof(glm::vec4));
+  gpu_.meshIndices =
+      makeBuffer(dev_, "scene.mesh_indices", m.indices.data(), m.indices.size() * sizeof(uint32_t));
   gpu_.meshTriangles = static_cast<uint32_t>(m.triangleCount());
   gpu_.hairAlpha = scene.hairAlpha;
   gpu_.shadowAlpha = scene.shadowAlpha;

@@ -65,7 +65,8 @@ ShaderCode loadShader(const std::string& path, const ShaderDefines& defs) {
   ShaderCode code;
   code.name = path;
   // Defines come first, attributed to the shader itself; #line resets numbering.
-  for (const auto& [name, value] : defs.defines) code.text += "#define " + name + " " + value + "\n";
+  for (const auto& [name, value] : defs.defines)
+    code.text += "#define " + name + " " + value + "\n";
   expand(path, defs, code, 0);
   return code;
 }

@@ -88,7 +88,8 @@ void KajiyaKayShading::addPasses(FrameGraph& graph, Device& dev) {
     }
     graph.add({"shading.hair", reads, {"color", "depth"}, [this, &dev, clear] {
                  dev.beginPass(passDesc("shading.hair", clear));
-                 dev.draw(hairPipeline_, bindings(), Geometry::strandVertexCount(*scene_, settings_));
+                 dev.draw(hairPipeline_, bindings(),
+                          Geometry::strandVertexCount(*scene_, settings_));
                  dev.endPass();
                }});
   }

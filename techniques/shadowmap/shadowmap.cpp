@@ -16,8 +16,8 @@ void ShadowMap::setup(Device& dev, const GpuScene& scene, const RenderSettings& 
   settings_ = s;
   depth_ = dev.createTexture({"shadowmap.depth", "shadow", Format::Depth32F, size_, size_, false});
   const ViewUniforms view = lightView(s, size_, size_);
-  lightViewUbo_ =
-      dev.createBuffer({"shadowmap.light_view", "shadow", BufferUsage::Uniform, sizeof view}, &view);
+  lightViewUbo_ = dev.createBuffer(
+      {"shadowmap.light_view", "shadow", BufferUsage::Uniform, sizeof view}, &view);
   const Params p{view.viewProj, glm::vec4(bias_, 0, 0, 0)};
   paramsUbo_ = dev.createBuffer({"shadowmap.params", "shadow", BufferUsage::Uniform, sizeof p}, &p);
 
@@ -65,7 +65,8 @@ std::vector<BindingSlot> ShadowMap::lookupSlots() const {
 }
 
 std::vector<Binding> ShadowMap::lookupBindings() const {
-  return {Binding::tex(bind::kShadowFirst, depth_), Binding::buf(bind::kShadowFirst + 1, paramsUbo_)};
+  return {Binding::tex(bind::kShadowFirst, depth_),
+          Binding::buf(bind::kShadowFirst + 1, paramsUbo_)};
 }
 
 }  // namespace sb

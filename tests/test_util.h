@@ -1,0 +1,70 @@
+// Helpers shared by the tests: running the CLI, temporary folders, expected errors.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "scenes/scene.h"
+
+namespace sbtest {
+
+// Runs f, expects an sb::InputError whose message contains every given substring.
+inline void expectInputError(const std::function<void()>& f, std::vector<std::string> needles) {
+  try {
+    f();
+    ADD_FAILURE() << "no InputError thrown (expected one mentioning '" << needles[0] << "')";
+  } catch (const sb::InputError& e) {
+    const std::string msg = e.what();
+    for (const std::string& n : needles) {
+      EXPECT_NE(msg.find(n), std::string::npos) << "message: " << msg << "\nlacks: " << n;
+    }
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "wrong exception type: " << e.what();
+  }
+}
+
+struct CliResult {
+  int status = -1;
+  std::string out, err;
+};
+
+inline std::string readFile(const std::filesystem::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::ostringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+// A fresh temporary folder per call.
+inline std::filesystem::path tempDir(const std::string& tag) {
+  std::random_device rd;
+  auto dir =
+      std::filesystem::temp_directory_path() / ("strandbench-" + tag + "-" + std::to_string(rd()));
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+// args are passed through the shell; quote them where needed.
+inline CliResult runCli(const std::string& args) {
+  const auto dir = tempDir("cli");
+  const std::string cmd = std::string(SB_CLI) + " " + args + " >" + (dir / "out").string() + " 2>" +
+                          (dir / "err").string();
+  CliResult r;
+  const int raw = std::system(cmd.c_str());
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  r.out = readFile(dir / "out");
+  r.err = readFile(dir / "err");
+  std::filesystem::remove_all(dir);
+  return r;
+}
+
+}  // namespace sbtest
