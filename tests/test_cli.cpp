@@ -3,6 +3,8 @@
 // and bad input (clear message, exit status 2, nothing written).
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
 #include <nlohmann/json.hpp>
 
 #include "harness/image.h"
@@ -201,14 +203,37 @@ TEST(CliBadFiles, TruncatedAndCorruptFilesExit2) {
     std::ofstream(dir / name, std::ios::binary) << bytes;
     return (dir / name).string();
   };
-  std::string hair(128, '\0');
-  hair.replace(0, 4, "HAIR");
-  hair[4] = 10;   // 10 strands
-  hair[8] = 100;  // 100 points, flags 0, arrays missing
+  // A HAIR file: header (strands, points, flags, default segments) + arrays.
+  auto hairFile = [](uint32_t strands, uint32_t points, uint32_t flags, uint32_t segments,
+                     const std::vector<uint16_t>& segs, const std::vector<float>& xyz) {
+    std::string h(128, '\0');
+    h.replace(0, 4, "HAIR");
+    std::memcpy(&h[4], &strands, 4);
+    std::memcpy(&h[8], &points, 4);
+    std::memcpy(&h[12], &flags, 4);
+    std::memcpy(&h[16], &segments, 4);
+    h.append(reinterpret_cast<const char*>(segs.data()), segs.size() * 2);
+    h.append(reinterpret_cast<const char*>(xyz.data()), xyz.size() * 4);
+    return h;
+  };
+  const float nan = std::nanf(""), inf = INFINITY;
+  const std::vector<float> twoPoints = {0, 0, 0, 0, 1, 0};
   const std::vector<std::string> files = {
-      write("short.hair", "HAI"), write("sig.hair", "NOPE" + hair.substr(4)),
-      write("trunc.hair", hair), write("bad.ply", "ply\nformat ascii 1.0\nelement vertex 5\n"),
+      write("short.hair", "HAI"),
+      write("sig.hair", "NOPE" + hairFile(1, 2, 2, 1, {}, twoPoints).substr(4)),
+      write("trunc.hair", hairFile(1, 2, 2, 1, {}, twoPoints).substr(0, 140)),
+      write("toomany.hair", hairFile(1000000, 2000000, 2, 1, {}, twoPoints)),
+      write("nan.hair", hairFile(1, 2, 2, 1, {}, {0, 0, 0, nan, 1, 0})),
+      write("inf.hair", hairFile(1, 2, 2, 1, {}, {0, 0, inf, 0, 1, 0})),
+      write("zero.hair", hairFile(0, 0, 2, 1, {}, {})),
+      write("segs.hair", hairFile(1, 2, 3, 1, {5}, twoPoints)),
+      write("bad.ply", "ply\nformat ascii 1.0\nelement vertex 5\n"),
       write("bad.tfx", std::string(10, '\x01'))};
+  // The well-formed file loads: the failures above are the defects alone.
+  auto ok =
+      runCli("render --scene file:path=" + write("ok.hair", hairFile(1, 2, 2, 1, {}, twoPoints)) +
+             " --size 8x8");
+  EXPECT_EQ(ok.status, 0) << ok.err;
   for (const auto& f : files) {
     auto r = runCli("render --scene file:path=" + f + " --out " + (dir / "o.png").string());
     EXPECT_EQ(r.status, 2) << f << ": " << r.err;

@@ -28,28 +28,12 @@ std::string modelsDir() { return std::string(SB_SOURCE_DIR) + "/../shared/models
     GTEST_SKIP() << "../shared/models not found: " << path << " is missing"; \
   }
 
-void checkConsistent(const sb::Strands& s) {
-  ASSERT_EQ(s.firstPoint.size(), s.pointCount.size());
-  ASSERT_EQ(s.colors.size(), s.points.size());
-  ASSERT_EQ(s.thickness.size(), s.points.size());
-  ASSERT_EQ(s.transparency.size(), s.points.size());
-  uint64_t next = 0;
-  for (std::size_t i = 0; i < s.strandCount(); ++i) {
-    ASSERT_EQ(s.firstPoint[i], next);
-    next += s.pointCount[i];
-  }
-  ASSERT_EQ(next, s.points.size());
-  for (const glm::vec3& p : s.points) {
-    ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
-  }
-}
-
 // ---------------------------------------------------------------- real models
 
 TEST(RealModels, StraightHair) {
   REQUIRE_MODEL("straight.hair");
   const sb::Strands s = sb::loadHair(path);
-  checkConsistent(s);
+  sbtest::expectWellFormed(s);
   EXPECT_EQ(s.strandCount(), 10000u);
   EXPECT_EQ(s.points.size(), 160000u);
   EXPECT_EQ(s.segmentCount(), 150000u);
@@ -61,7 +45,7 @@ TEST(RealModels, StraightHair) {
 TEST(RealModels, BearTfxVersion3) {
   REQUIRE_MODEL("bear.tfx");
   const sb::Strands s = sb::loadTfx(path);
-  checkConsistent(s);
+  sbtest::expectWellFormed(s);
   EXPECT_EQ(s.strandCount(), 48113u);
   EXPECT_EQ(s.points.size(), 48113u * 4u);
   for (uint32_t c : s.pointCount) ASSERT_EQ(c, 4u);
@@ -70,7 +54,7 @@ TEST(RealModels, BearTfxVersion3) {
 TEST(RealModels, RatboyTfxVersion4) {
   REQUIRE_MODEL("Ratboy_mohawk.tfx");
   const sb::Strands s = sb::loadTfx(path);
-  checkConsistent(s);
+  sbtest::expectWellFormed(s);
   EXPECT_EQ(s.strandCount(), 2228u);
   EXPECT_EQ(s.points.size(), 2228u * 32u);
   // float4 positions: consecutive points of a strand are close (w ignored, stride right).
@@ -80,7 +64,7 @@ TEST(RealModels, RatboyTfxVersion4) {
 TEST(RealModels, CurlyPly) {
   REQUIRE_MODEL("Curly_100.ply");
   const sb::Strands s = sb::loadPly(path);
-  checkConsistent(s);
+  sbtest::expectWellFormed(s);
   EXPECT_EQ(s.strandCount(), 100u);
   EXPECT_EQ(s.points.size(), 2528u);
   EXPECT_EQ(s.segmentCount(), 2428u);  // matches the file's edge element
@@ -117,7 +101,7 @@ TEST(RealModels, FileScene) {
   EXPECT_TRUE(all.mesh.positions.empty());
   const sb::Scene some = sb::makeScene(
       sb::Spec::parse("file:path=" + path + ",strands=2500,mesh=" + modelsDir() + "/teapot.obj"));
-  checkConsistent(some.strands);
+  sbtest::expectWellFormed(some.strands);
   EXPECT_EQ(some.strands.strandCount(), 2500u);
   EXPECT_EQ(some.strands.points.size(), 2500u * 16u);
   EXPECT_EQ(some.mesh.positions.size(), 3644u);
@@ -185,7 +169,7 @@ sb::Strands hair(const Bytes& b) { return sb::parseHair(b.data(), b.size(), "mem
 
 TEST(HairParser, SmallValidFile) {
   const sb::Strands s = hair(smallHair());
-  checkConsistent(s);
+  sbtest::expectWellFormed(s);
   ASSERT_EQ(s.strandCount(), 2u);
   EXPECT_EQ(s.pointCount[0], 3u);
   EXPECT_EQ(s.pointCount[1], 2u);
@@ -202,7 +186,7 @@ TEST(HairParser, DefaultsForAbsentArrays) {
   put32(b, 8, 6);  // 2 strands x 3 points
   for (int i = 0; i < 3; ++i) appendF(b, 1.0f);
   const sb::Strands s = hair(b);
-  checkConsistent(s);
+  sbtest::expectWellFormed(s);
   EXPECT_EQ(s.strandCount(), 2u);
   EXPECT_EQ(s.pointCount[1], 3u);
   EXPECT_FLOAT_EQ(s.thickness[3], 0.25f);
@@ -279,7 +263,7 @@ sb::Strands tfx(const Bytes& b) { return sb::parseTfx(b.data(), b.size(), "mem.t
 TEST(TfxParser, Versions3And4) {
   for (int v : {3, 4}) {
     const sb::Strands s = tfx(smallTfx(v));
-    checkConsistent(s);
+    sbtest::expectWellFormed(s);
     EXPECT_EQ(s.strandCount(), 3u);
     EXPECT_EQ(s.points.size(), 12u);
     EXPECT_EQ(s.points[5], glm::vec3(5, 1, -5)) << "version " << v;
@@ -386,7 +370,7 @@ Bytes binaryPly(bool bigEndian, uint16_t firstSegs = 2) {
 
 TEST(PlyParser, AsciiWithColoursAndLists) {
   const sb::Strands s = ply(text(kAsciiPly));
-  checkConsistent(s);
+  sbtest::expectWellFormed(s);
   ASSERT_EQ(s.strandCount(), 2u);
   EXPECT_EQ(s.pointCount[0], 3u);
   EXPECT_EQ(s.pointCount[1], 2u);
@@ -398,7 +382,7 @@ TEST(PlyParser, AsciiWithColoursAndLists) {
 TEST(PlyParser, BinaryBothEndians) {
   for (bool be : {false, true}) {
     const sb::Strands s = ply(binaryPly(be));
-    checkConsistent(s);
+    sbtest::expectWellFormed(s);
     ASSERT_EQ(s.strandCount(), 2u) << (be ? "big" : "little");
     EXPECT_EQ(s.points[3], glm::vec3(30, 31, 32));
     EXPECT_EQ(s.pointCount[0], 3u);
@@ -549,7 +533,7 @@ TEST(LoaderRobustness, RandomAndMutatedInputs) {
     for (Parser p : parsers) {
       try {
         const sb::Strands s = p(b.data(), b.size(), "fuzz.bin");
-        checkConsistent(s);
+        sbtest::expectWellFormed(s);
       } catch (const sb::InputError& err) {
         ASSERT_NE(std::string(err.what()).find("fuzz.bin"), std::string::npos) << err.what();
       }

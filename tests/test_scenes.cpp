@@ -27,19 +27,8 @@ void expectSceneError(const std::string& spec, std::vector<std::string> needles)
 }
 
 void checkStrands(const sb::Strands& s) {
-  ASSERT_EQ(s.firstPoint.size(), s.pointCount.size());
-  ASSERT_EQ(s.colors.size(), s.points.size());
-  ASSERT_EQ(s.thickness.size(), s.points.size());
-  ASSERT_EQ(s.transparency.size(), s.points.size());
-  uint64_t next = 0;
-  for (std::size_t i = 0; i < s.strandCount(); ++i) {
-    ASSERT_EQ(s.firstPoint[i], next);
-    next += s.pointCount[i];
-  }
-  ASSERT_EQ(next, s.points.size());
+  ASSERT_NO_FATAL_FAILURE(sbtest::expectWellFormed(s));
   for (std::size_t i = 0; i < s.points.size(); ++i) {
-    const glm::vec3& p = s.points[i];
-    ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
     const glm::vec3& c = s.colors[i];
     ASSERT_TRUE(c.r >= 0 && c.r <= 1 && c.g >= 0 && c.g <= 1 && c.b >= 0 && c.b <= 1);
     ASSERT_GT(s.thickness[i], 0.0f);

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -29,6 +30,23 @@ inline void expectInputError(const std::function<void()>& f, std::vector<std::st
     }
   } catch (const std::exception& e) {
     ADD_FAILURE() << "wrong exception type: " << e.what();
+  }
+}
+
+// Strand arrays agree with each other and every point is finite.
+inline void expectWellFormed(const sb::Strands& s) {
+  ASSERT_EQ(s.firstPoint.size(), s.pointCount.size());
+  ASSERT_EQ(s.colors.size(), s.points.size());
+  ASSERT_EQ(s.thickness.size(), s.points.size());
+  ASSERT_EQ(s.transparency.size(), s.points.size());
+  uint64_t next = 0;
+  for (std::size_t i = 0; i < s.strandCount(); ++i) {
+    ASSERT_EQ(s.firstPoint[i], next);
+    next += s.pointCount[i];
+  }
+  ASSERT_EQ(next, s.points.size());
+  for (const glm::vec3& p : s.points) {
+    ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
   }
 }
 
