@@ -178,6 +178,9 @@ struct PassDesc {
   std::vector<ColorAttachment> color;
   DepthAttachment depth;
   std::vector<Texture> sampledTextures;
+  // Size of a pass without attachments (fragments write storage buffers only);
+  // ignored when the pass has attachments.
+  uint32_t width = 0, height = 0;
 };
 
 struct Binding {

@@ -19,20 +19,6 @@ namespace {
 
 int gStatus = 0;
 
-// Runs a command body; bad input and unavailable backends exit with 2.
-template <typename F>
-void guarded(const char* command, F&& body) {
-  try {
-    gStatus = body();
-  } catch (const InputError& e) {
-    std::cerr << "strandbench " << command << ": " << e.what() << "\n";
-    gStatus = 2;
-  } catch (const DeviceError& e) {
-    std::cerr << "strandbench " << command << ": " << e.what() << "\n";
-    gStatus = 2;
-  }
-}
-
 void printOptions(const std::vector<OptionInfo>& options) {
   for (const auto& o : options)
     std::cout << "      " << o.name << "=" << o.defaultValue << "  " << o.help << "\n";
@@ -43,7 +29,7 @@ void registerList(CLI::App& app) {
   auto json = std::make_shared<bool>(false);
   cmd->add_flag("--json", *json, "print as JSON");
   cmd->callback([json] {
-    guarded("list", [&] {
+    runGuarded("list", [&] {
       if (*json) {
         nlohmann::json j;
         auto opts = [](const std::vector<OptionInfo>& v) {
@@ -56,6 +42,8 @@ void registerList(CLI::App& app) {
           j["scenes"].push_back({{"name", s.name}, {"help", s.help}, {"options", opts(s.options)}});
         for (const auto& t : shadowCatalog())
           j["shadow"].push_back({{"name", t.name}, {"help", t.help}, {"options", opts(t.options)}});
+        for (const auto& t : oitCatalog())
+          j["oit"].push_back({{"name", t.name}, {"help", t.help}, {"options", opts(t.options)}});
         j["backends"] = {{{"name", "gl"}, {"platforms", {"egl", "osmesa"}}},
                          {{"name", "vulkan"}, {"platforms", {"headless"}}}};
         j["primitives"] = {"lines", "ribbons"};
@@ -69,6 +57,11 @@ void registerList(CLI::App& app) {
       }
       std::cout << "shadow techniques (--shadow NAME:key=value,...):\n";
       for (const auto& t : shadowCatalog()) {
+        std::cout << "  " << t.name << "  " << t.help << "\n";
+        printOptions(t.options);
+      }
+      std::cout << "transparency techniques (--oit NAME:key=value,...):\n";
+      for (const auto& t : oitCatalog()) {
         std::cout << "  " << t.name << "  " << t.help << "\n";
         printOptions(t.options);
       }
@@ -107,6 +100,10 @@ void registerRender(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--shadow", req->shadow, "shadow technique spec, e.g. shadowmap:size=1024")
       ->capture_default_str();
+  cmd->add_option("--oit", req->oit, "transparency technique spec, e.g. peel, abuffer")
+      ->capture_default_str();
+  cmd->add_flag("--reference", req->reference,
+                "also render the reference (exact shadows + depth peeling) and report the error");
   cmd->add_option("--backend", req->backend, "gl | vulkan")->capture_default_str();
   cmd->add_option("--platform", req->platform, "gl: egl (default) | osmesa; vulkan: headless");
   cmd->add_option("--size", *size, "image size WIDTHxHEIGHT")->capture_default_str();
@@ -124,7 +121,7 @@ void registerRender(CLI::App& app) {
     cmd->add_option(std::string("--") + name, (*view)[name],
                     "override (x,y,z for vectors; light: directional|point)");
   cmd->callback([=] {
-    guarded("render", [&] {
+    runGuarded("render", [&] {
       auto [w, h] = parseSize(*size);
       req->width = w;
       req->height = h;
@@ -163,7 +160,7 @@ void registerRender(CLI::App& app) {
       if (*json) {
         std::cout << report.dump(2) << "\n";
       } else {
-        std::cout << req->scene << " | shadow " << req->shadow << " | "
+        std::cout << req->scene << " | shadow " << req->shadow << " | oit " << req->oit << " | "
                   << report["backend"].get<std::string>() << "/"
                   << report["platform"].get<std::string>() << " ("
                   << report["device"].get<std::string>() << ") | "
@@ -175,6 +172,15 @@ void registerRender(CLI::App& app) {
                     << p["ms"]["min"].get<double>() << ", max " << p["ms"]["max"].get<double>()
                     << ", " << req->repeat << " runs)\n";
         std::cout << "  frame: median " << report["frame_ms"]["median"].get<double>() << " ms\n";
+        if (report.contains("error"))
+          std::cout << "  error against " << report["reference"]["shadow"].get<std::string>()
+                    << " + " << report["reference"]["oit"].get<std::string>() << ": image "
+                    << report["error"]["image"].dump() << ", visibility "
+                    << report["error"]["visibility"].dump() << "\n";
+        if (report.contains("depth_complexity"))
+          std::cout << "  depth complexity: " << report["depth_complexity"].dump() << "\n";
+        for (const auto& warning : report["warnings"])
+          std::cout << "  warning: " << warning.get<std::string>() << "\n";
         if (!out->empty()) std::cout << "  wrote " << *out << "\n";
       }
       return 0;
@@ -197,8 +203,21 @@ void registerCommands(CLI::App& app) {
   registerList(app);
   registerRender(app);
   registerCompare(app);
+  registerCheckCommands(app);
 }
 
 int lastCommandStatus() { return gStatus; }
+
+void runGuarded(const char* command, const std::function<int()>& body) {
+  try {
+    gStatus = body();
+  } catch (const InputError& e) {
+    std::cerr << "strandbench " << command << ": " << e.what() << "\n";
+    gStatus = 2;
+  } catch (const DeviceError& e) {
+    std::cerr << "strandbench " << command << ": " << e.what() << "\n";
+    gStatus = 2;
+  }
+}
 
 }  // namespace sb

@@ -1,9 +1,16 @@
-// The subcommands of the CLI (list, render, compare).
+// The subcommands of the CLI (list, render, compare, check, bless).
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <functional>
 
 namespace sb {
 void registerCommands(CLI::App& app);
+// `check` and `bless` (harness/check_command.cpp).
+void registerCheckCommands(CLI::App& app);
 int lastCommandStatus();
+// Runs a command's body and records its exit status; bad input (InputError) and
+// unavailable backends (DeviceError) print "strandbench <command>: <message>"
+// to stderr and give status 2.
+void runGuarded(const char* command, const std::function<int()>& body);
 }  // namespace sb

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <ostream>
 #include <stdexcept>
+#include <vector>
 
 #include "scenes/scene.h"
 
@@ -88,6 +89,94 @@ constexpr float kViridis[kViridisPoints][3] = {
     {0.993248f, 0.906157f, 0.143936f},  // 255
 };
 
+// Normalized 1-D Gaussian weights, sigma 1.5, `size` taps (odd) centred.
+std::vector<double> gaussianWindow(int size) {
+  constexpr double kSigma = 1.5;
+  std::vector<double> w(static_cast<std::size_t>(size));
+  const int half = size / 2;
+  double sum = 0.0;
+  for (int i = 0; i < size; ++i) {
+    const double d = i - half;
+    w[static_cast<std::size_t>(i)] = std::exp(-d * d / (2.0 * kSigma * kSigma));
+    sum += w[static_cast<std::size_t>(i)];
+  }
+  for (double& v : w) v /= sum;
+  return w;
+}
+
+// Mean SSIM of channel c over all valid window positions (Wang et al. 2004),
+// with the separable Gaussian window applied to a, b, a^2, b^2 and ab.
+double channelSsim(const Image& a, const Image& b, int c, const std::vector<double>& w) {
+  constexpr double kC1 = 0.01 * 0.01, kC2 = 0.03 * 0.03;  // (K L)^2, L = 1
+  const int k = static_cast<int>(w.size());
+  const int width = a.width, height = a.height;
+  const int vw = width - k + 1, vh = height - k + 1;  // valid positions
+  // Horizontal pass: for every row and valid x, the five weighted sums.
+  constexpr int kMoments = 5;  // a, b, a^2, b^2, ab
+  std::vector<double> rows(static_cast<std::size_t>(height) * static_cast<std::size_t>(vw) *
+                           kMoments);
+  for (int y = 0; y < height; ++y) {
+    for (int x0 = 0; x0 < vw; ++x0) {
+      double m[kMoments] = {0, 0, 0, 0, 0};
+      for (int i = 0; i < k; ++i) {
+        const double wa = w[static_cast<std::size_t>(i)];
+        const double va = a.at(x0 + i, y, c), vb = b.at(x0 + i, y, c);
+        m[0] += wa * va;
+        m[1] += wa * vb;
+        m[2] += wa * va * va;
+        m[3] += wa * vb * vb;
+        m[4] += wa * va * vb;
+      }
+      double* out = rows.data() + (static_cast<std::size_t>(y) * static_cast<std::size_t>(vw) +
+                                   static_cast<std::size_t>(x0)) *
+                                      kMoments;
+      for (int j = 0; j < kMoments; ++j) out[j] = m[j];
+    }
+  }
+  // Vertical pass and the SSIM map, summed.
+  double sum = 0.0;
+  for (int y0 = 0; y0 < vh; ++y0) {
+    for (int x0 = 0; x0 < vw; ++x0) {
+      double m[kMoments] = {0, 0, 0, 0, 0};
+      for (int i = 0; i < k; ++i) {
+        const double wv = w[static_cast<std::size_t>(i)];
+        const double* in =
+            rows.data() + (static_cast<std::size_t>(y0 + i) * static_cast<std::size_t>(vw) +
+                           static_cast<std::size_t>(x0)) *
+                              kMoments;
+        for (int j = 0; j < kMoments; ++j) m[j] += wv * in[j];
+      }
+      const double muA = m[0], muB = m[1];
+      const double varA = m[2] - muA * muA, varB = m[3] - muB * muB, cov = m[4] - muA * muB;
+      sum += ((2.0 * muA * muB + kC1) * (2.0 * cov + kC2)) /
+             ((muA * muA + muB * muB + kC1) * (varA + varB + kC2));
+    }
+  }
+  return sum / (static_cast<double>(vw) * static_cast<double>(vh));
+}
+
+// Mean SSIM over channels [0, channels); NaN if any compared sample is not finite.
+double meanSsim(const Image& a, const Image& b, int channels) {
+  if (a.width <= 0 || a.height <= 0) return 1.0;
+  const std::size_t n = static_cast<std::size_t>(a.width) * static_cast<std::size_t>(a.height);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int c = 0; c < channels; ++c) {
+      if (!std::isfinite(
+              a.pixels[i * static_cast<std::size_t>(a.channels) + static_cast<std::size_t>(c)]) ||
+          !std::isfinite(
+              b.pixels[i * static_cast<std::size_t>(b.channels) + static_cast<std::size_t>(c)])) {
+        return std::numeric_limits<double>::quiet_NaN();
+      }
+    }
+  }
+  int size = std::min({11, a.width, a.height});
+  if (size % 2 == 0) --size;
+  const std::vector<double> w = gaussianWindow(size);
+  double sum = 0.0;
+  for (int c = 0; c < channels; ++c) sum += channelSsim(a, b, c, w);
+  return sum / channels;
+}
+
 }  // namespace
 
 ImageError compareImages(const Image& a, const Image& b, double threshold, int channels) {
@@ -131,6 +220,7 @@ ImageError compareImages(const Image& a, const Image& b, double threshold, int c
   }
   e.psnr = e.rmse == 0.0 ? kInf : 20.0 * std::log10(1.0 / e.rmse);
   e.fractionOver = n == 0 ? 0.0 : static_cast<double>(e.pixelsOver) / static_cast<double>(n);
+  e.ssim = meanSsim(a, b, channels);
   return e;
 }
 
@@ -141,6 +231,7 @@ nlohmann::json toJson(const ImageError& e) {
                         {"rmse", number(e.rmse)},
                         {"psnr", number(e.psnr)},
                         {"max_abs", number(e.maxAbs)},
+                        {"ssim", number(e.ssim)},
                         {"fraction_over", e.fractionOver},
                         {"pixels_over", e.pixelsOver},
                         {"nan_pixels", e.nanPixels},

@@ -7,6 +7,8 @@
 //    psnr = -inf and maxAbs = +inf.
 //  - An infinite difference (inf vs a finite value) is simply infinite: it makes
 //    rmse and maxAbs +inf and psnr -inf.
+//  - SSIM is NaN (JSON null) when any compared sample is NaN or infinite; a
+//    test "ssim >= x" is then false.
 //
 // JSON (toJson, compare): JSON has no infinity or NaN, so a non-finite number is
 // written as null. "identical": true says the images are equal in the compared
@@ -33,6 +35,14 @@ struct ImageError {
   int channels = 0;             // channels compared (0 .. channels-1)
   std::int64_t pixelsOver = 0;  // pixels whose max channel |a - b| > threshold, or NaN
   std::int64_t nanPixels = 0;   // pixels with a NaN difference in a compared channel
+  // Structural similarity (Wang, Bovik, Sheikh & Simoncelli 2004): Gaussian
+  // window 11x11, sigma 1.5, K1 = 0.01, K2 = 0.03, dynamic range L = 1; the
+  // SSIM map's mean over every window position that lies wholly inside the
+  // image (no padding), per compared channel, averaged over those channels.
+  // 1 for identical images; below 1 for any difference. Images narrower or
+  // shorter than 11 pixels use the largest odd window that fits (same sigma,
+  // weights renormalized). NaN when a compared sample is NaN or infinite.
+  double ssim = 1.0;
   bool identical() const { return rmse == 0.0 && nanPixels == 0; }
 };
 
@@ -48,8 +58,9 @@ struct ImageError {
 ImageError compareImages(const Image& a, const Image& b, double threshold = 1.0 / 255.0,
                          int channels = 3);
 
-// {"width", "height", "channels", "rmse", "psnr", "max_abs", "fraction_over",
-//  "pixels_over", "nan_pixels", "identical"}; non-finite numbers -> null.
+// {"width", "height", "channels", "rmse", "psnr", "max_abs", "ssim",
+//  "fraction_over", "pixels_over", "nan_pixels", "identical"}; non-finite
+// numbers -> null.
 nlohmann::json toJson(const ImageError& e);
 
 // The viridis colour map (matplotlib's, 18 control points from its 256-entry
@@ -68,7 +79,7 @@ Image diffHeatmap(const Image& a, const Image& b, double scale, int channels = 3
 // `strandbench compare A B`: reads both images (readImage), compares RGB, prints
 // one JSON object to `out`:
 //   {"a", "b", "width", "height", "channels", "threshold", "rmse", "psnr",
-//    "max_abs", "fraction_over", "pixels_over", "nan_pixels", "identical"}
+//    "max_abs", "ssim", "fraction_over", "pixels_over", "nan_pixels", "identical"}
 // and returns 0. On InputError (unreadable file, size mismatch) prints
 // "strandbench compare: <message>" to `err` and returns 2.
 int runCompareCommand(const std::string& a, const std::string& b, std::ostream& out,

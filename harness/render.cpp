@@ -2,10 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <map>
+#include <optional>
+#include <set>
 #include <sstream>
 
 #include "backends/device.h"
+#include "harness/metrics.h"
 #include "harness/stats.h"
 #include "techniques/common/renderer.h"
 
@@ -97,12 +101,59 @@ nlohmann::json boundsJson(const Bounds& b) {
 
 }  // namespace
 
+namespace {
+
+// Visibility error over the pixels where both images see a surface (>= 0).
+nlohmann::json visibilityError(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
+  const std::size_t n = std::min(a.size(), b.size()) / sizeof(float);
+  double sq = 0, maxAbs = 0;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    float x = 0, y = 0;
+    std::memcpy(&x, a.data() + i * sizeof(float), sizeof x);
+    std::memcpy(&y, b.data() + i * sizeof(float), sizeof y);
+    if (!(x >= 0.0f) || !(y >= 0.0f)) continue;
+    const double d = std::abs(double(x) - double(y));
+    sq += d * d;
+    maxAbs = std::max(maxAbs, d);
+    ++count;
+  }
+  return {
+      {"rmse", count ? std::sqrt(sq / double(count)) : 0.0}, {"max", maxAbs}, {"pixels", count}};
+}
+
+nlohmann::json complexityJson(const std::optional<DepthComplexity>& c) {
+  if (!c) return nullptr;
+  return {{"max", c->max}, {"mean", c->mean}, {"fragments", c->total}};
+}
+
+Image colorImage(Renderer& r, const RenderSettings& s) {
+  Image img = imageFromRows(r.readColor(), static_cast<int>(s.width), static_cast<int>(s.height),
+                            PixelType::Float32, 4);
+  for (std::size_t i = 3; i < img.pixels.size(); i += 4) img.pixels[i] = 1.0f;
+  return img;
+}
+
+// The reference for a technique: exact shadows at the technique's light-map
+// size (visibility is per light texel) and exact transparency by depth peeling.
+Spec referenceShadowSpec(const Spec& shadow) {
+  Spec ref;
+  ref.name = "exact";
+  auto size = shadow.options.find("size");
+  if (size != shadow.options.end()) ref.options["size"] = size->second;
+  return ref;
+}
+
+}  // namespace
+
 RenderOutcome runRender(const RenderRequest& req) {
   if (req.repeat < 1) throw InputError("--repeat must be at least 1");
   if (req.warmup < 0) throw InputError("--warmup must be at least 0");
   const Scene scene = makeScene(Spec::parse(req.scene));
   const Spec shadowSpec = Spec::parse(req.shadow);
+  const Spec oitSpec = Spec::parse(req.oit);
   auto shadow = makeShadowTechnique(shadowSpec);
+  auto oit = makeOitTechnique(oitSpec);
   const RenderSettings settings = makeSettings(req, scene);
 
   DeviceOptions dopts;
@@ -115,23 +166,30 @@ RenderOutcome runRender(const RenderRequest& req) {
                      " is not a Vulkan platform (valid: headless)");
   auto dev = createDevice(dopts);
 
-  Renderer renderer(*dev, scene, settings, std::move(shadow));
+  std::set<std::string> outputs = {"color"};
+  if (req.reference) outputs.insert("visibility");
+  Renderer renderer(*dev, scene, settings, std::move(shadow), std::move(oit), outputs);
   for (int i = 0; i < req.warmup; ++i) renderer.renderFrame();
+  std::vector<std::string> order;
   std::map<std::string, std::vector<double>> times;
+  std::map<std::string, int> executions;
   std::vector<double> totals;
   for (int i = 0; i < req.repeat; ++i) {
     double total = 0;
     for (const auto& t : renderer.renderFrame()) {
+      if (!times.count(t.name)) order.push_back(t.name);
       times[t.name].push_back(t.ms);
+      executions[t.name] = t.executions;
       total += t.ms;
     }
     totals.push_back(total);
   }
 
   RenderOutcome out;
-  out.image = imageFromRows(renderer.readColor(), static_cast<int>(settings.width),
-                            static_cast<int>(settings.height), PixelType::Float32, 4);
-  for (std::size_t i = 3; i < out.image.pixels.size(); i += 4) out.image.pixels[i] = 1.0f;
+  out.image = colorImage(renderer, settings);
+  // Memory of this run's techniques only (before any reference is built).
+  auto allocations = dev->allocations();
+  std::vector<std::string> warnings = renderer.warnings();
 
   const DeviceInfo info = dev->info();
   nlohmann::json& j = out.report;
@@ -148,6 +206,7 @@ RenderOutcome runRender(const RenderRequest& req) {
                 {"mesh_triangles", scene.mesh.triangleCount()},
                 {"bounds", boundsJson(scene.bounds())}};
   j["shadow"] = shadowSpec.str();
+  j["oit"] = oitSpec.str();
   j["primitive"] = req.primitive;
   j["size"] = {settings.width, settings.height};
   j["repeat"] = req.repeat;
@@ -159,15 +218,17 @@ RenderOutcome runRender(const RenderRequest& req) {
                           {"mean", s.mean},
                           {"stddev", s.stddev}};
   };
+  j["graph"] = renderer.graphPasses();
   j["passes"] = nlohmann::json::array();
-  for (const auto& name : renderer.passNames())
-    j["passes"].push_back({{"name", name}, {"ms", statsJson(summarize(times[name]))}});
+  for (const auto& name : order)
+    j["passes"].push_back({{"name", name},
+                           {"executions", executions[name]},
+                           {"ms", statsJson(summarize(times[name]))}});
   j["frame_ms"] = statsJson(summarize(totals));
 
   std::map<std::string, std::size_t> byOwner;
   std::size_t total = 0;
   nlohmann::json resources = nlohmann::json::array();
-  auto allocations = dev->allocations();
   std::sort(allocations.begin(), allocations.end(),
             [](const ResourceBytes& a, const ResourceBytes& b) { return a.name < b.name; });
   for (const auto& r : allocations) {
@@ -181,6 +242,26 @@ RenderOutcome runRender(const RenderRequest& req) {
                  {"frame_bytes", byOwner["frame"]},
                  {"total_bytes", total},
                  {"resources", resources}};
+
+  std::optional<DepthComplexity> eye = renderer.oit().depthComplexity();
+  std::optional<DepthComplexity> light = renderer.shadow().depthComplexity();
+  if (req.reference) {
+    const Spec refShadow = referenceShadowSpec(shadowSpec);
+    Renderer ref(*dev, scene, settings, makeShadowTechnique(refShadow),
+                 makeOitTechnique(Spec::parse("peel")), {"color", "visibility"});
+    ref.renderFrame();
+    out.reference = colorImage(ref, settings);
+    for (auto& w : ref.warnings()) warnings.push_back("reference: " + w);
+    const ImageError e = compareImages(out.image, out.reference);
+    j["reference"] = {{"shadow", refShadow.str()}, {"oit", "peel"}};
+    j["error"] = {{"image", toJson(e)},
+                  {"visibility", visibilityError(renderer.readVisibility(), ref.readVisibility())}};
+    if (!eye) eye = ref.oit().depthComplexity();
+    if (!light) light = ref.shadow().depthComplexity();
+  }
+  if (eye || light)
+    j["depth_complexity"] = {{"eye", complexityJson(eye)}, {"light", complexityJson(light)}};
+  j["warnings"] = warnings;
   if (req.validation) j["validation_messages"] = validationMessageCount();
   return out;
 }

@@ -23,6 +23,8 @@ struct ViewOverrides {
 struct RenderRequest {
   std::string scene = "straight";
   std::string shadow = "none";
+  std::string oit = "none";  // transparency technique (none | peel | abuffer, ...)
+  bool reference = false;    // also render the reference and report errors against it
   std::string backend = "gl";
   std::string platform;  // empty: egl for gl, headless for vulkan
   uint32_t width = 512, height = 512;
@@ -37,6 +39,7 @@ struct RenderRequest {
 struct RenderOutcome {
   nlohmann::json report;  // the keys documented for `render --json`
   Image image;            // top row first
+  Image reference;        // the reference image (when requested)
 };
 
 // Throws InputError (bad scene/technique/options) or DeviceError (backend).

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <random>
 #include <sstream>
 #include <string>
 
@@ -218,6 +219,90 @@ TEST(Metrics, HeatmapEndpoints) {
   EXPECT_THROW(sb::diffHeatmap(a, b, 0.0), std::invalid_argument);
 }
 
+// --------------------------------------------------------------------- SSIM
+
+// SSIM of two flat images a and b: the variances and the covariance are 0, so
+// only the luminance term is left: (2ab + C1) / (a^2 + b^2 + C1), C1 = 0.01^2.
+double flatSsim(double a, double b) {
+  const double c1 = 0.01 * 0.01;
+  return (2.0 * a * b + c1) / (a * a + b * b + c1);
+}
+
+TEST(Ssim, IdenticalImagesGiveExactlyOne) {
+  const sb::Image a = pattern(20, 17);
+  EXPECT_EQ(sb::compareImages(a, a).ssim, 1.0);
+  EXPECT_EQ(sb::compareImages(a, a, 0.0, 4).ssim, 1.0);
+  EXPECT_EQ(sb::toJson(sb::compareImages(a, a))["ssim"], 1.0);
+  // Smaller than the 11x11 window: the largest odd window that fits.
+  const sb::Image tiny = pattern(4, 6);
+  EXPECT_EQ(sb::compareImages(tiny, tiny).ssim, 1.0);
+}
+
+TEST(Ssim, ConstantOffsetOnFlatImagesIsTheLuminanceTerm) {
+  for (const auto& [a, b] : {std::pair{0.25f, 0.35f}, {0.0f, 0.1f}, {0.8f, 0.5f}}) {
+    const sb::ImageError e =
+        sb::compareImages(sb::Image(16, 16, 4, a), sb::Image(16, 16, 4, b), 1.0 / 255.0);
+    EXPECT_NEAR(e.ssim, flatSsim(a, b), 1e-9) << a << " vs " << b;
+    // A 5x5 image (window 5x5) gives the same value.
+    EXPECT_NEAR(sb::compareImages(sb::Image(5, 5, 4, a), sb::Image(5, 5, 4, b)).ssim,
+                flatSsim(a, b), 1e-9);
+  }
+  // 0.25 vs 0.35: (0.175 + 1e-4) / (0.185 + 1e-4).
+  EXPECT_NEAR(flatSsim(0.25f, 0.35f), 0.1751 / 0.1851, 1e-7);
+}
+
+TEST(Ssim, MatchesADirectTwoDimensionalComputation) {
+  // Reference value from a direct (non-separable) evaluation of Wang et al.'s
+  // formula in Python, float32 inputs, double arithmetic: a pattern against
+  // itself shifted left by one pixel (wrapping), 16x14, RGB.
+  const sb::Image a = pattern(16, 14);
+  sb::Image b = a;
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x)
+      for (int c = 0; c < 4; ++c) b.at(x, y, c) = a.at((x + 1) % a.width, y, c);
+  EXPECT_NEAR(sb::compareImages(a, b).ssim, 0.12940303084244445, 1e-9);
+}
+
+TEST(Ssim, OneChangedPixelIsBelowOne) {
+  const sb::Image a(20, 20, 4, 0.25f);
+  sb::Image b = a;
+  b.at(9, 9, 1) = 0.3f;
+  const double s = sb::compareImages(a, b).ssim;
+  EXPECT_LT(s, 1.0);
+  EXPECT_GT(s, 0.9);
+  // A change in alpha is not compared by default.
+  sb::Image c = a;
+  c.at(9, 9, 3) = 0.0f;
+  EXPECT_EQ(sb::compareImages(a, c).ssim, 1.0);
+  EXPECT_LT(sb::compareImages(a, c, 0.0, 4).ssim, 1.0);
+}
+
+TEST(Ssim, DecreasesWithNoise) {
+  const sb::Image a = pattern(48, 40);
+  double previous = 1.0;
+  for (const double sigma : {0.005, 0.02, 0.05, 0.1, 0.3}) {
+    std::mt19937 rng(42);
+    std::normal_distribution<float> noise(0.0f, static_cast<float>(sigma));
+    sb::Image b = a;
+    for (float& v : b.pixels) v += noise(rng);
+    const double s = sb::compareImages(a, b).ssim;
+    EXPECT_LT(s, previous) << "sigma " << sigma;
+    EXPECT_GT(s, -1.0);
+    previous = s;
+  }
+  EXPECT_LT(previous, 0.7);  // 0.58 at sigma 0.3 (the pattern itself varies a lot)
+}
+
+TEST(Ssim, NonFiniteSampleGivesNullNotOne) {
+  const sb::Image a(12, 12, 4, 0.5f);
+  sb::Image b = a;
+  b.at(3, 3, 0) = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_TRUE(std::isnan(sb::compareImages(a, b).ssim));
+  EXPECT_TRUE(sb::toJson(sb::compareImages(a, b))["ssim"].is_null());
+  b.at(3, 3, 0) = std::numeric_limits<float>::infinity();
+  EXPECT_TRUE(std::isnan(sb::compareImages(a, b).ssim));
+}
+
 class CompareCommandTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -242,8 +327,8 @@ TEST_F(CompareCommandTest, PrintsOneJsonObject) {
   ASSERT_EQ(sb::runCompareCommand(file("a.exr"), file("b.exr"), out, err), 0) << err.str();
   EXPECT_EQ(err.str(), "");
   const nlohmann::json j = nlohmann::json::parse(out.str());
-  for (const char* key : {"a", "b", "width", "height", "rmse", "psnr", "max_abs", "fraction_over",
-                          "nan_pixels", "identical"}) {
+  for (const char* key : {"a", "b", "width", "height", "rmse", "psnr", "max_abs", "ssim",
+                          "fraction_over", "nan_pixels", "identical"}) {
     EXPECT_TRUE(j.contains(key)) << key;
   }
   EXPECT_EQ(j["a"], file("a.exr"));
@@ -255,12 +340,14 @@ TEST_F(CompareCommandTest, PrintsOneJsonObject) {
   EXPECT_DOUBLE_EQ(j["fraction_over"].get<double>(), 0.01);
   EXPECT_EQ(j["nan_pixels"], 0);
   EXPECT_EQ(j["identical"], false);
+  EXPECT_LT(j["ssim"].get<double>(), 1.0);
 
   std::ostringstream out2, err2;
   ASSERT_EQ(sb::runCompareCommand(file("a.exr"), file("a.exr"), out2, err2), 0);
   const nlohmann::json same = nlohmann::json::parse(out2.str());
   EXPECT_TRUE(same["psnr"].is_null());
   EXPECT_EQ(same["identical"], true);
+  EXPECT_EQ(same["ssim"], 1.0);
 }
 
 TEST_F(CompareCommandTest, InputErrorsGiveStatus2) {

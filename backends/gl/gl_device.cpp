@@ -299,7 +299,7 @@ class GLDevice : public Device {
     gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
     GLuint fbo = framebuffer(pass);
     gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
-    uint32_t w = 0, h = 0;
+    uint32_t w = pass.width, h = pass.height;
     for (auto& a : pass.color) {
       w = texture(a.texture).desc.width;
       h = texture(a.texture).desc.height;
@@ -449,9 +449,13 @@ class GLDevice : public Device {
 
   // One framebuffer object per distinct attachment set, kept for reuse.
   GLuint framebuffer(const PassDesc& pass) {
+    if (pass.color.empty() && !pass.depth.texture && (pass.width == 0 || pass.height == 0))
+      throw DeviceError("beginPass('" + pass.name + "'): no attachments and no size");
     std::string key = ",";
     for (auto& a : pass.color) key += std::to_string(a.texture.id) + ",";
     key += "d," + std::to_string(pass.depth.texture.id) + ",";
+    if (pass.color.empty() && !pass.depth.texture)
+      key += "size," + std::to_string(pass.width) + "x" + std::to_string(pass.height);
     auto it = fbos_.find(key);
     if (it != fbos_.end()) return it->second;
     GLuint fbo = 0;
@@ -464,6 +468,12 @@ class GLDevice : public Device {
     }
     if (pass.depth.texture)
       gl_.NamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, texture(pass.depth.texture).name, 0);
+    if (pass.color.empty() && !pass.depth.texture) {
+      gl_.NamedFramebufferParameteri(fbo, GL_FRAMEBUFFER_DEFAULT_WIDTH,
+                                     static_cast<GLint>(pass.width));
+      gl_.NamedFramebufferParameteri(fbo, GL_FRAMEBUFFER_DEFAULT_HEIGHT,
+                                     static_cast<GLint>(pass.height));
+    }
     if (drawBuffers.empty()) {
       const GLenum none = GL_NONE;
       gl_.NamedFramebufferDrawBuffers(fbo, 1, &none);

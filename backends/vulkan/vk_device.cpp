@@ -619,7 +619,12 @@ class VulkanDevice final : public Device {
       cp.hasDepth = true;
       attachments.push_back(pd.depth.texture.id);
     }
-    if (attachments.empty()) throw DeviceError("beginPass('" + pd.name + "'): no attachments");
+    if (attachments.empty()) {
+      if (pd.width == 0 || pd.height == 0)
+        throw DeviceError("beginPass('" + pd.name + "'): no attachments and no size");
+      cp.width = pd.width;
+      cp.height = pd.height;
+    }
     for (Texture s : pd.sampledTextures) {
       texture(s, "beginPass");
       if (std::find(attachments.begin(), attachments.end(), s.id) != attachments.end()) {

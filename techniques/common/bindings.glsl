@@ -1,10 +1,6 @@
-// Bindings shared by every geometry pass (numbers match techniques/common/technique.h).
-layout(std140, binding = 0) uniform View {
-  mat4 viewProj;
-  vec4 viewEye;       // xyz position; w: 1 perspective, 0 orthographic
-  vec4 viewForward;   // view direction (orthographic views)
-  vec4 viewViewport;  // width, height, ribbon width in pixels, 0
-};
+// Bindings shared by every geometry pass (numbers match techniques/common/technique.h):
+// the view and the scene's storage buffers, pulled by the vertex shaders.
+#include "view.glsl"
 layout(std430, binding = 2) readonly buffer Points { vec4 points[]; };    // xyz, thickness
 layout(std430, binding = 3) readonly buffer Colors { vec4 colors[]; };    // rgb, alpha
 layout(std430, binding = 4) readonly buffer Segments { uint segments[]; };  // first point

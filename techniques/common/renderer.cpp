@@ -1,5 +1,7 @@
 #include "techniques/common/renderer.h"
 
+#include <algorithm>
+
 namespace sb {
 
 namespace {
@@ -13,8 +15,9 @@ Buffer makeBuffer(Device& dev, const std::string& name, const void* data, std::s
 }  // namespace
 
 Renderer::Renderer(Device& dev, const Scene& scene, const RenderSettings& settings,
-                   std::unique_ptr<ShadowTechnique> shadow, const std::set<std::string>& outputs)
-    : dev_(dev), settings_(settings), shadow_(std::move(shadow)) {
+                   std::unique_ptr<ShadowTechnique> shadow, std::unique_ptr<OitTechnique> oit,
+                   const std::set<std::string>& outputs)
+    : dev_(dev), settings_(settings), shadow_(std::move(shadow)), oit_(std::move(oit)) {
   upload(scene);
   color_ = dev.createTexture(
       {"frame.color", "frame", Format::RGBA32F, settings.width, settings.height, false});
@@ -22,8 +25,25 @@ Renderer::Renderer(Device& dev, const Scene& scene, const RenderSettings& settin
       {"frame.depth", "frame", Format::Depth32F, settings.width, settings.height, false});
   shadow_->setup(dev, gpu_, settings_);
   shading_.setup(dev, gpu_, settings_, *shadow_, color_, depth_);
+  oit_->setup(dev, gpu_, settings_, shading_, {color_, depth_, shading_.drawsMesh()});
+  wantVisibility_ = outputs.count("visibility") > 0;
+  if (wantVisibility_) visibility_.setup(dev, gpu_, settings_, shading_);
+
+  shadow_->prepare(dev);
   shadow_->addPasses(graph_, dev);
-  shading_.addPasses(graph_, dev);
+  shading_.addMeshPass(graph_, dev);
+  if (oit_->needsPrepare()) {
+    // The transparency technique sizes itself against the opaque depth.
+    if (shading_.drawsMesh()) {
+      const auto opaque = graph_.compile({"depth"});
+      dev.beginFrame();
+      for (const auto* p : opaque) p->execute();
+      dev.endFrame();
+    }
+    oit_->prepare(dev);
+  }
+  oit_->addPasses(graph_, dev);
+  if (wantVisibility_) visibility_.addPasses(graph_, dev);
   passes_ = graph_.compile(outputs);
 }
 
@@ -66,19 +86,38 @@ void Renderer::upload(const Scene& scene) {
   gpu_.bounds = scene.bounds();
 }
 
-std::vector<std::string> Renderer::passNames() const {
+std::vector<std::string> Renderer::graphPasses() const {
   std::vector<std::string> names;
   for (const auto* p : passes_) names.push_back(p->name);
   return names;
 }
 
-std::vector<PassTiming> Renderer::renderFrame() {
+std::vector<PassTime> Renderer::renderFrame() {
   dev_.beginFrame();
   for (const auto* p : passes_) p->execute();
   dev_.endFrame();
-  return dev_.lastFrameTimings();
+  std::vector<PassTime> out;
+  for (const auto& t : dev_.lastFrameTimings()) {
+    auto it =
+        std::find_if(out.begin(), out.end(), [&](const PassTime& x) { return x.name == t.name; });
+    if (it == out.end()) it = out.insert(out.end(), {t.name, 0.0, 0});
+    it->ms += t.ms;
+    ++it->executions;
+  }
+  return out;
 }
 
 std::vector<uint8_t> Renderer::readColor() { return dev_.readTexture(color_); }
+
+std::vector<uint8_t> Renderer::readVisibility() {
+  if (!wantVisibility_) throw DeviceError("visibility output was not requested");
+  return dev_.readTexture(visibility_.image());
+}
+
+std::vector<std::string> Renderer::warnings() {
+  auto w = shadow_->warnings(dev_);
+  for (auto& x : oit_->warnings(dev_)) w.push_back(x);
+  return w;
+}
 
 }  // namespace sb

@@ -1,6 +1,7 @@
 // Puts a frame together: the scene on the device, the shadow technique's
-// passes and the final shading, as a frame graph culled to the requested
-// outputs. Runs frames and reads back the image.
+// passes, the opaque mesh, the transparency technique and the optional
+// visibility output, as a frame graph culled to the requested outputs
+// ("color", "visibility"). Runs frames and reads back the images.
 #pragma once
 
 #include <memory>
@@ -10,21 +11,33 @@
 
 #include "techniques/common/technique.h"
 #include "techniques/kajiya_kay/shading.h"
+#include "techniques/visibility/visibility.h"
 
 namespace sb {
+
+struct PassTime {
+  std::string name;
+  double ms = 0;  // summed over every execution of the pass in the frame
+  int executions = 0;
+};
 
 class Renderer {
  public:
   Renderer(Device& dev, const Scene& scene, const RenderSettings& settings,
-           std::unique_ptr<ShadowTechnique> shadow,
+           std::unique_ptr<ShadowTechnique> shadow, std::unique_ptr<OitTechnique> oit,
            const std::set<std::string>& outputs = {"color"});
-  // The passes that run, in order (those no output needs are left out).
-  std::vector<std::string> passNames() const;
-  // Records and runs one frame; returns its per-pass timings.
-  std::vector<PassTiming> renderFrame();
-  // The colour target: RGBA32F, rows bottom-up (row 0 = NDC y=-1).
+  // The graph nodes that run, in order (those no output needs are left out).
+  std::vector<std::string> graphPasses() const;
+  // Records and runs one frame; device passes with the same name are summed.
+  std::vector<PassTime> renderFrame();
+  // RGBA32F, rows bottom-up (row 0 = NDC y=-1).
   std::vector<uint8_t> readColor();
+  // R32F, rows bottom-up; -1 where no surface.
+  std::vector<uint8_t> readVisibility();
   const GpuScene& gpuScene() const { return gpu_; }
+  ShadowTechnique& shadow() { return *shadow_; }
+  OitTechnique& oit() { return *oit_; }
+  std::vector<std::string> warnings();
 
  private:
   void upload(const Scene& scene);
@@ -33,7 +46,10 @@ class Renderer {
   RenderSettings settings_;
   GpuScene gpu_;
   std::unique_ptr<ShadowTechnique> shadow_;
+  std::unique_ptr<OitTechnique> oit_;
   KajiyaKayShading shading_;
+  VisibilityOutput visibility_;
+  bool wantVisibility_ = false;
   Texture color_, depth_;
   FrameGraph graph_;
   std::vector<const PassNode*> passes_;

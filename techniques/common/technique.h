@@ -5,6 +5,7 @@
 
 #include <glm/glm.hpp>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,12 @@ struct GpuScene {
   bool hasMesh() const { return meshTriangles > 0; }
 };
 
+struct DepthComplexity {
+  uint32_t max = 0;
+  double mean = 0;  // over pixels with at least one fragment
+  uint64_t total = 0;
+};
+
 // A view's uniforms (binding 0 in every geometry pass), std140.
 struct ViewUniforms {
   glm::mat4 viewProj;
@@ -78,12 +85,44 @@ class ShadowTechnique {
   virtual ~ShadowTechnique() = default;
   virtual std::string name() const = 0;
   virtual void setup(Device& dev, const GpuScene& scene, const RenderSettings& s) = 0;
+  // Work done once before the first frame (e.g. sizing fragment lists); may run frames.
+  virtual void prepare(Device& /*dev*/) {}
   virtual void addPasses(FrameGraph& graph, Device& dev) = 0;
+  // Depth complexity from the light, for techniques that measure it.
+  virtual std::optional<DepthComplexity> depthComplexity() const { return std::nullopt; }
+  // Problems found while rendering (e.g. a fragment-list overflow, a layer cap hit).
+  virtual std::vector<std::string> warnings(Device& /*dev*/) { return {}; }
   virtual std::string lookupShader() const = 0;
   virtual std::vector<std::string> lookupReads() const = 0;
   virtual std::vector<BindingSlot> lookupSlots() const = 0;
   virtual std::vector<Binding> lookupBindings() const = 0;
   virtual std::vector<Texture> lookupTextures() const = 0;
+};
+
+// An order-independent transparency technique: composites the hair over the
+// opaque result ("color", "depth" written by the mesh pass, or cleared by the
+// technique itself when the scene has no mesh). Hair is shaded through the
+// shadow technique's lookup (techniques/kajiya_kay/hair_shading.glsl).
+struct OitTargets {
+  Texture color, depth;
+  bool opaqueDrawn = false;  // false: the technique's first pass clears them
+};
+
+class KajiyaKayShading;
+
+class OitTechnique {
+ public:
+  virtual ~OitTechnique() = default;
+  virtual std::string name() const = 0;
+  virtual void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
+                     const KajiyaKayShading& shading, const OitTargets& targets) = 0;
+  // True when prepare() does work; the renderer then draws the opaque depth first.
+  virtual bool needsPrepare() const { return false; }
+  virtual void prepare(Device& /*dev*/) {}
+  // Reads "color"/"depth" (the opaque result), writes "color".
+  virtual void addPasses(FrameGraph& graph, Device& dev) = 0;
+  virtual std::optional<DepthComplexity> depthComplexity() const { return std::nullopt; }
+  virtual std::vector<std::string> warnings(Device& /*dev*/) { return {}; }
 };
 
 struct TechniqueInfo {
@@ -94,5 +133,7 @@ struct TechniqueInfo {
 const std::vector<TechniqueInfo>& shadowCatalog();
 // Throws InputError for unknown names/options (with the closest valid name).
 std::unique_ptr<ShadowTechnique> makeShadowTechnique(const Spec& spec);
+const std::vector<TechniqueInfo>& oitCatalog();
+std::unique_ptr<OitTechnique> makeOitTechnique(const Spec& spec);
 
 }  // namespace sb

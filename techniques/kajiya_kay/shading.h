@@ -1,5 +1,6 @@
 #pragma once
 
+#include "techniques/common/shader_library.h"
 #include "techniques/common/technique.h"
 
 namespace sb {
@@ -13,24 +14,35 @@ struct ShadingUniforms {
   glm::vec4 sceneParams;   // hair alpha, shadow alpha
 };
 
-// Final shading: the opaque mesh (Lambert) and depth-tested hair (Kajiya-Kay),
-// both lit through the shadow technique's lookup. Writes "color" and "depth".
+// Final shading from the camera: the opaque mesh (Lambert, pass "shading.mesh")
+// and what every hair pass of a transparency technique needs to shade hair with
+// Kajiya-Kay through the shadow technique's lookup (hair_shading.glsl).
 class KajiyaKayShading {
  public:
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
              const ShadowTechnique& shadow, Texture color, Texture depth);
-  void addPasses(FrameGraph& graph, Device& dev);
+  // Writes "color" and "depth" (clearing them); only when the scene has a mesh.
+  void addMeshPass(FrameGraph& graph, Device& dev);
+  bool drawsMesh() const { return bool(meshPipeline_); }
+
+  // For hair passes: the shader defines (<shadow> bound), binding slots and
+  // bindings (geometry, shading uniforms, shadow lookup), the graph resources
+  // the lookup reads and the textures a pass must declare as sampled.
+  ShaderDefines hairDefines() const;
+  std::vector<BindingSlot> hairSlots() const;
+  std::vector<Binding> hairBindings() const;
+  std::vector<std::string> shadowReads() const { return shadow_->lookupReads(); }
+  std::vector<Texture> sampledTextures() const { return shadow_->lookupTextures(); }
+  Buffer viewUbo() const { return viewUbo_; }
+  const ShadowTechnique& shadow() const { return *shadow_; }
 
  private:
-  std::vector<Binding> bindings() const;
-  PassDesc passDesc(const std::string& name, bool clear) const;
-
   const GpuScene* scene_ = nullptr;
   const ShadowTechnique* shadow_ = nullptr;
   RenderSettings settings_;
   Texture color_, depth_;
   Buffer viewUbo_, shadingUbo_;
-  Pipeline hairPipeline_, meshPipeline_;
+  Pipeline meshPipeline_;
 };
 
 }  // namespace sb

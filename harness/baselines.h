@@ -1,0 +1,124 @@
+// Visual-regression baselines: the manifest (baselines/manifest.json), the
+// pass/fail rule, `strandbench check` and `strandbench bless`.
+//
+// Manifest (JSON, one object; every object may carry a "comment" string):
+//   {
+//     "format": 1,
+//     "tolerances": { "<preset>": {"max_abs": .., "max_failing_fraction": ..,
+//                                   "failing_threshold": .., "min_psnr": ..}, ... },
+//     "defaults": { <any case key except name and scene> },
+//     "cases": [ { "name": "straight-lines",          // [A-Za-z0-9_-]+, unique
+//                  "scene": "straight:strands=300",   // --scene spec
+//                  "shadow": "none", "oit": "none",   // technique specs
+//                  "size": "96x96", "primitive": "lines", "ribbon_width": 1.0,
+//                  "backends": ["gl", "vulkan"],
+//                  "tolerance": "<preset>" or {fields overriding the default's} }, ... ]
+//   }
+// A case key that is absent comes from "defaults", then from the built-in
+// defaults (shadow none, oit none, primitive lines, ribbon_width 1, backends gl
+// and vulkan); name, scene, size and a complete tolerance must be known.
+// Unknown keys are errors. Images are "<case>.<backend>.png", 16-bit PNG, beside
+// the manifest.
+//
+// Tolerance (all comparisons are on RGB as a 16-bit PNG stores it, i.e. values
+// clamped to [0, 1] and rounded to 1/65535): a comparison passes when
+//   max |a - b| <= max_abs, and
+//   the fraction of pixels whose largest channel difference exceeds
+//     failing_threshold is <= max_failing_fraction, and
+//   PSNR >= min_psnr (dB; identical images have PSNR +inf).
+// max_abs and min_psnr may be null (no limit).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "harness/image.h"
+#include "harness/metrics.h"
+#include "harness/render.h"
+
+namespace sb {
+
+struct Tolerance {
+  double maxAbs = 0.0;              // +inf: no limit
+  double maxFailingFraction = 0.0;  // 0..1
+  double failingThreshold = 0.0;    // >= 0
+  double minPsnr = 0.0;             // dB; -inf: no limit
+};
+
+struct BaselineCase {
+  std::string name;
+  std::string scene;
+  std::string shadow = "none";
+  std::string oit = "none";
+  std::uint32_t width = 0, height = 0;
+  std::string primitive = "lines";
+  float ribbonWidth = 1.0f;
+  std::vector<std::string> backends{"gl", "vulkan"};
+  Tolerance tolerance;
+};
+
+struct Manifest {
+  std::filesystem::path file;  // the manifest.json it came from
+  std::vector<BaselineCase> cases;
+};
+
+// Reads and validates a manifest. Throws InputError naming the file: with the
+// line and column for invalid JSON; with the case and key for an unknown key, a
+// wrong type, a bad value, a duplicate or missing name.
+Manifest loadManifest(const std::filesystem::path& file);
+
+// The cases whose name matches `regex` (std::regex_search, ECMAScript); all for
+// an empty filter. Throws InputError for a bad regex or when nothing matches.
+std::vector<BaselineCase> selectCases(const Manifest& m, const std::string& regex);
+
+// "<case>.<backend>.png"
+std::string baselineFileName(const std::string& caseName, const std::string& backend);
+
+// The render request of one case on one backend (repeat 1, warmup 0).
+RenderRequest caseRequest(const BaselineCase& c, const std::string& backend);
+
+// What a 16-bit PNG stores: round(clamp(v, 0, 1) * 65535) / 65535 per sample;
+// NaN stays NaN so that a comparison still sees it.
+Image quantize16(const Image& img);
+
+// The result of comparing an image against a reference under a tolerance.
+struct Verdict {
+  ImageError error;                   // compareImages(actual, expected, failingThreshold)
+  std::vector<std::string> failures;  // one human-readable reason per violated limit
+  bool ok() const { return failures.empty(); }
+};
+// Throws InputError when the sizes differ.
+Verdict judge(const Image& actual, const Image& expected, const Tolerance& t);
+
+// `strandbench check`: renders the selected cases on each of their backends,
+// compares each with "<baselines>/<case>.<backend>.png" and the backends with the
+// first one; prints a line per comparison and "N passed, N failed, N missing";
+// writes actual, expected, diff heatmap and JSON numbers of each failure to `outDir`.
+// Returns 0 when everything passed, 1 otherwise. Throws InputError / DeviceError.
+int runCheck(const std::filesystem::path& baselines, const std::filesystem::path& outDir,
+             const std::string& filter, std::ostream& out);
+
+// `strandbench bless`: copies `baselines` to a staging folder beside it, renders
+// the selected cases into it, and swaps it in with renameat2(RENAME_EXCHANGE)
+// (two renames where the filesystem refuses); the old copy is removed. Staging
+// leftovers of an interrupted bless ("<parent>/.<name>.bless-*") are removed
+// first. Env SB_BLESS_ABORT_AFTER=N: std::_Exit(3) after writing N images into
+// staging (a test hook that simulates a kill). Returns 0.
+int runBless(const std::filesystem::path& baselines, const std::string& filter, std::ostream& out);
+
+// Swaps two existing directory entries atomically (renameat2 RENAME_EXCHANGE);
+// where the filesystem does not support it, renames `current` to `aside` and
+// `replacement` to `current` (then `replacement` no longer exists and `aside`
+// holds the old one). Returns the path that now holds the old contents.
+// Throws InputError on failure.
+std::filesystem::path swapDirectories(const std::filesystem::path& replacement,
+                                      const std::filesystem::path& current,
+                                      const std::filesystem::path& aside);
+
+// The repository's baselines folder (SB_SOURCE_DIR/baselines).
+std::filesystem::path defaultBaselinesDir();
+
+}  // namespace sb

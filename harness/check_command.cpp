@@ -1,0 +1,40 @@
+// `strandbench check` and `strandbench bless` (the logic is in harness/baselines.cpp).
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "harness/baselines.h"
+#include "harness/commands.h"
+
+namespace sb {
+
+void registerCheckCommands(CLI::App& app) {
+  {
+    auto* cmd = app.add_subcommand(
+        "check", "render the baseline cases and compare them with baselines/ (exit 1 on failure)");
+    auto filter = std::make_shared<std::string>();
+    auto baselines = std::make_shared<std::string>(defaultBaselinesDir().string());
+    auto out = std::make_shared<std::string>("out/check");
+    cmd->add_option("--filter", *filter, "only the cases whose name matches this regex");
+    cmd->add_option("--baselines", *baselines, "baselines folder (holds manifest.json)")
+        ->capture_default_str();
+    cmd->add_option("--out", *out, "where failures are written (actual, expected, diff, JSON)")
+        ->capture_default_str();
+    cmd->callback([=] {
+      runGuarded("check", [&] { return runCheck(*baselines, *out, *filter, std::cout); });
+    });
+  }
+  {
+    auto* cmd = app.add_subcommand(
+        "bless", "re-render the baseline images (staged, then swapped in atomically)");
+    auto filter = std::make_shared<std::string>();
+    auto baselines = std::make_shared<std::string>(defaultBaselinesDir().string());
+    cmd->add_option("--filter", *filter, "only the cases whose name matches this regex");
+    cmd->add_option("--baselines", *baselines, "baselines folder (holds manifest.json)")
+        ->capture_default_str();
+    cmd->callback(
+        [=] { runGuarded("bless", [&] { return runBless(*baselines, *filter, std::cout); }); });
+  }
+}
+
+}  // namespace sb

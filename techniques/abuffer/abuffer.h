@@ -1,0 +1,40 @@
+#pragma once
+
+#include "techniques/common/composite.h"
+#include "techniques/common/fragment_lists.h"
+#include "techniques/common/technique.h"
+
+namespace sb {
+
+// Exact transparency by an eye-space A-buffer: every hair fragment in front of
+// the opaque depth is shaded and stored in its pixel's list (sized by a
+// counting pass in prepare()), then each list is sorted by fragment key and
+// composited front to back: the cross-check of depth peeling. A list
+// overflow is detected and reported, never truncated silently.
+class ABufferOit : public OitTechnique {
+ public:
+  explicit ABufferOit(uint64_t maxFragments) : maxFragments_(maxFragments) {}
+  std::string name() const override { return "abuffer"; }
+  void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
+             const KajiyaKayShading& shading, const OitTargets& targets) override;
+  bool needsPrepare() const override { return true; }
+  void prepare(Device& dev) override;
+  void addPasses(FrameGraph& graph, Device& dev) override;
+  std::optional<DepthComplexity> depthComplexity() const override { return complexity_; }
+  std::vector<std::string> warnings(Device& dev) override;
+
+ private:
+  PassDesc hairPass(const std::string& name) const;
+
+  uint64_t maxFragments_;
+  const GpuScene* scene_ = nullptr;
+  const KajiyaKayShading* shading_ = nullptr;
+  RenderSettings settings_;
+  OitTargets targets_;
+  AccumComposite composite_;
+  DepthComplexity complexity_;
+  Buffer counts_, offsets_, cursor_, fragments_, status_, sizeUbo_;
+  Pipeline count_, fill_, resolve_;
+};
+
+}  // namespace sb

@@ -1,0 +1,23 @@
+// Eye-space A-buffer: every hair fragment in front of the opaque depth is
+// shaded and stored in its pixel's list.
+#include "../common/view.glsl"
+#include "../common/shading.glsl"
+#include <shadow>
+#include "../kajiya_kay/hair_shading.glsl"
+#include "../common/fragment_key.glsl"
+#include "abuffer.glsl"
+
+layout(location = 0) in vec3 vWorldPos;
+layout(location = 1) in vec3 vTangent;
+layout(location = 2) in vec4 vColor;
+
+void main() {
+  uint p = pixelIndex(viewViewport.x);
+  uint i = atomicAdd(cursor[p], 1u);
+  if (i >= counts[p]) {  // more fragments than counted: reported, never silent
+    atomicOr(overflow, 1u);
+    return;
+  }
+  fragments[offsets[p] + i] =
+      Fragment(vec4(shadeHair(vWorldPos, vTangent, vColor.rgb), vColor.a), uvec4(fragmentKey(), 0u, 0u));
+}

@@ -1,0 +1,28 @@
+// Sorts each pixel's fragments front to back and composites them, with the
+// same arithmetic as depth peeling.
+#include "../common/key_order.glsl"
+#include "abuffer.glsl"
+layout(local_size_x = 64) in;
+layout(std140, binding = 0) uniform Size { uvec4 size; };  // x: pixel count
+
+void main() {
+  uint p = gl_GlobalInvocationID.x;
+  if (p >= size.x) return;
+  uint base = offsets[p];
+  uint n = min(cursor[p], counts[p]);
+  for (uint i = 1u; i < n; ++i) {
+    Fragment f = fragments[base + i];
+    uint j = i;
+    while (j > 0u && keyLess(f.key.xy, fragments[base + j - 1u].key.xy)) {
+      fragments[base + j] = fragments[base + j - 1u];
+      --j;
+    }
+    fragments[base + j] = f;
+  }
+  vec4 acc = vec4(0.0);
+  for (uint i = 0u; i < n; ++i) {
+    Fragment f = fragments[base + i];
+    acc = acc + (1.0 - acc.a) * vec4(f.color.rgb * f.color.a, f.color.a);
+  }
+  accum[p] = acc;
+}

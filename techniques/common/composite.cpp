@@ -1,0 +1,42 @@
+#include "techniques/common/composite.h"
+
+#include "techniques/common/shader_library.h"
+
+namespace sb {
+
+void AccumComposite::setup(Device& dev, const RenderSettings& s, Buffer viewUbo,
+                           const OitTargets& targets, const std::string& technique) {
+  settings_ = s;
+  targets_ = targets;
+  viewUbo_ = viewUbo;
+  accum_ = dev.createBuffer(
+      {technique + ".accum", "oit", BufferUsage::Storage, std::size_t(s.width) * s.height * 16});
+  const ShaderCode vert = loadShader("techniques/common/composite.vert");
+  const ShaderCode frag = loadShader("techniques/common/composite.frag");
+  PipelineDesc d;
+  d.name = technique + ".composite";
+  d.technique = technique;
+  d.vertex = &vert;
+  d.fragment = &frag;
+  d.colorFormats = {Format::RGBA32F};
+  d.blend = {{true, BlendFactor::One, BlendFactor::OneMinusSrcAlpha, BlendOp::Add, BlendFactor::One,
+              BlendFactor::OneMinusSrcAlpha, BlendOp::Add}};
+  d.bindings = {{bind::kView, BindingKind::UniformBuffer},
+                {kAccumBinding, BindingKind::StorageBuffer}};
+  pipeline_ = dev.createPipeline(d);
+}
+
+void AccumComposite::record(Device& dev) const {
+  PassDesc pass;
+  pass.name = "oit.composite";
+  const glm::vec3 bg = settings_.background;
+  pass.color = {{targets_.color,
+                 targets_.opaqueDrawn ? LoadOp::Load : LoadOp::Clear,
+                 {bg.r, bg.g, bg.b, 1.0f}}};
+  dev.beginPass(pass);
+  dev.draw(pipeline_, {Binding::buf(bind::kView, viewUbo_), Binding::buf(kAccumBinding, accum_)},
+           3);
+  dev.endPass();
+}
+
+}  // namespace sb

@@ -1,0 +1,9 @@
+// Puts the premultiplied front-to-back accumulation of the hair over what is
+// in the target (blend One, OneMinusSrcAlpha): c = acc.rgb + (1 - acc.a) * dst.
+#include "view.glsl"
+#include "fragment_key.glsl"
+
+layout(std430, binding = 16) readonly buffer Accum { vec4 accum[]; };
+layout(location = 0) out vec4 outColor;
+
+void main() { outColor = accum[pixelIndex(viewViewport.x)]; }

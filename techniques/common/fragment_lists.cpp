@@ -1,0 +1,72 @@
+#include "techniques/common/fragment_lists.h"
+
+#include <cstring>
+
+#include "techniques/common/shader_library.h"
+
+namespace sb {
+
+ListLayout layoutFromCounts(const std::vector<uint8_t>& countBytes) {
+  ListLayout l;
+  const std::size_t n = countBytes.size() / sizeof(uint32_t);
+  l.offsets.resize(n);
+  uint64_t covered = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    uint32_t c = 0;
+    std::memcpy(&c, countBytes.data() + i * sizeof(uint32_t), sizeof c);
+    if (l.complexity.total > 0xFFFFFFFFull)
+      throw InputError("fragment lists need more than 2^32 entries; lower the resolution");
+    l.offsets[i] = static_cast<uint32_t>(l.complexity.total);
+    l.complexity.total += c;
+    l.complexity.max = std::max(l.complexity.max, c);
+    covered += c > 0;
+  }
+  l.complexity.mean =
+      covered ? static_cast<double>(l.complexity.total) / static_cast<double>(covered) : 0.0;
+  return l;
+}
+
+Pipeline makeHairCountPipeline(Device& dev, const RenderSettings& s, uint32_t countsBinding,
+                               bool depthTest, const std::string& technique) {
+  ShaderDefines defs;
+  defs.defines.push_back({"COUNTS_BINDING", std::to_string(countsBinding)});
+  const ShaderCode vert = Geometry::strandVertexShader(s);
+  const ShaderCode frag = loadShader("techniques/common/count.frag", defs);
+  PipelineDesc d;
+  d.name = technique + ".count";
+  d.technique = technique;
+  d.vertex = &vert;
+  d.fragment = &frag;
+  d.topology = Geometry::strandTopology(s);
+  d.hasDepth = d.depthTest = depthTest;
+  d.depthCompare = CompareOp::Less;
+  d.bindings = Geometry::slots();
+  d.bindings.push_back({countsBinding, BindingKind::StorageBuffer});
+  return dev.createPipeline(d);
+}
+
+Pipeline makePeelAdvancePipeline(Device& dev, uint32_t stateBinding, uint32_t peeledBinding,
+                                 uint32_t offsetsBinding, uint32_t nodesBinding,
+                                 const std::string& technique) {
+  ShaderDefines defs;
+  defs.defines = {{"STATE_BINDING", std::to_string(stateBinding)},
+                  {"PEELED_BINDING", std::to_string(peeledBinding)},
+                  {"SIZE_BINDING", "0"}};
+  PipelineDesc d;
+  d.bindings = {{0, BindingKind::UniformBuffer},
+                {stateBinding, BindingKind::StorageBuffer},
+                {peeledBinding, BindingKind::StorageBuffer}};
+  if (nodesBinding) {
+    defs.defines.push_back({"OFFSETS_BINDING", std::to_string(offsetsBinding)});
+    defs.defines.push_back({"NODES_BINDING", std::to_string(nodesBinding)});
+    d.bindings.push_back({offsetsBinding, BindingKind::StorageBuffer});
+    d.bindings.push_back({nodesBinding, BindingKind::StorageBuffer});
+  }
+  const ShaderCode comp = loadShader("techniques/common/peel_advance.comp", defs);
+  d.name = technique + ".peel_advance";
+  d.technique = technique;
+  d.compute = &comp;
+  return dev.createPipeline(d);
+}
+
+}  // namespace sb

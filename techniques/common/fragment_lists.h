@@ -1,0 +1,34 @@
+// Per-pixel fragment lists stored contiguously (pixel p owns entries
+// [offsets[p], offsets[p] + counts[p])), used by the exact ground truths:
+// a counting pass sizes them, a prefix sum places them.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "techniques/common/technique.h"
+
+namespace sb {
+
+struct ListLayout {
+  std::vector<uint32_t> offsets;  // exclusive prefix sum of the counts
+  DepthComplexity complexity;
+};
+
+// From the read-back per-pixel counts (uint32 each).
+ListLayout layoutFromCounts(const std::vector<uint8_t>& countBytes);
+
+// A pipeline that counts the hair fragments of every pixel into the storage
+// buffer at `countsBinding` (depth-tested against an opaque depth when
+// `depthTest`, no colour targets).
+Pipeline makeHairCountPipeline(Device& dev, const RenderSettings& s, uint32_t countsBinding,
+                               bool depthTest, const std::string& technique);
+
+// A compute pipeline finishing one peel layer (techniques/common/peel_advance.comp).
+// nodesBinding/offsetsBinding are 0 when layers are not stored in lists.
+Pipeline makePeelAdvancePipeline(Device& dev, uint32_t stateBinding, uint32_t peeledBinding,
+                                 uint32_t offsetsBinding, uint32_t nodesBinding,
+                                 const std::string& technique);
+
+}  // namespace sb

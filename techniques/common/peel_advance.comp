@@ -1,0 +1,23 @@
+// After a peel layer: the key found becomes the previous key, the layer count
+// grows, and the minimum is reset. STATE_BINDING / PEELED_BINDING / SIZE_BINDING.
+layout(local_size_x = 64) in;
+layout(std430, binding = STATE_BINDING) buffer PeelState { uvec4 peelState[]; };
+layout(std430, binding = PEELED_BINDING) buffer Peeled { uint peeled[]; };
+#ifdef NODES_BINDING
+// Light-space peeling stores each layer's key in the texel's list.
+layout(std430, binding = OFFSETS_BINDING) readonly buffer Offsets { uint offsets[]; };
+layout(std430, binding = NODES_BINDING) buffer Nodes { uvec2 nodes[]; };
+#endif
+layout(std140, binding = SIZE_BINDING) uniform PeelSize { uvec4 peelSize; };  // x: pixel count
+
+void main() {
+  uint p = gl_GlobalInvocationID.x;
+  if (p >= peelSize.x) return;
+  uvec4 s = peelState[p];
+  if (s.z == 0xFFFFFFFFu && s.w == 0xFFFFFFFFu) return;  // nothing left in this pixel
+#ifdef NODES_BINDING
+  nodes[offsets[p] + peeled[p]] = s.zw;
+#endif
+  peelState[p] = uvec4(s.zw, 0xFFFFFFFFu, 0xFFFFFFFFu);
+  peeled[p] += 1u;
+}

@@ -1,0 +1,9 @@
+// The current view (binding 0): camera or light. Kept apart from the scene's
+// storage buffers because GL counts every std430 block a fragment shader
+// declares against its limit (16 on llvmpipe), used or not.
+layout(std140, binding = 0) uniform View {
+  mat4 viewProj;
+  vec4 viewEye;       // xyz position; w: 1 perspective, 0 orthographic
+  vec4 viewForward;   // view direction (orthographic views)
+  vec4 viewViewport;  // width, height, ribbon width in pixels, 0
+};

@@ -1,0 +1,228 @@
+#include "techniques/exact/exact.h"
+
+#include <cstring>
+
+#include "techniques/common/shader_library.h"
+
+namespace sb {
+
+namespace {
+// Binding numbers, as in techniques/exact/exact.glsl.
+constexpr uint32_t kParams = 8, kCounts = 9, kOffsets = 10, kCursor = 11, kNodes = 12, kState = 13,
+                   kOpaque = 14, kStatus = 15;
+
+struct Params {
+  glm::mat4 viewProj;
+  glm::vec4 params;  // bias, size, shadow alpha, has opaque map
+};
+
+uint32_t groups(uint32_t n) { return (n + 63) / 64; }
+}  // namespace
+
+ExactShadow::ExactShadow(Method method, uint32_t size, float bias, uint32_t maxLayers)
+    : method_(method), size_(size), bias_(bias), maxLayers_(maxLayers) {}
+
+void ExactShadow::setup(Device& dev, const GpuScene& scene, const RenderSettings& s) {
+  scene_ = &scene;
+  settings_ = s;
+  const std::size_t texels = std::size_t(size_) * size_;
+  const ViewUniforms view = lightView(s, size_, size_);
+  lightView_ =
+      dev.createBuffer({"exact.light_view", "shadow", BufferUsage::Uniform, sizeof view}, &view);
+  const Params p{view.viewProj,
+                 glm::vec4(bias_, float(size_), scene.shadowAlpha, scene.hasMesh() ? 1.0f : 0.0f)};
+  params_ = dev.createBuffer({"exact.params", "shadow", BufferUsage::Uniform, sizeof p}, &p);
+  const glm::uvec4 sizeData(uint32_t(texels), size_, 0, 0);
+  sizeUbo_ =
+      dev.createBuffer({"exact.size", "shadow", BufferUsage::Uniform, sizeof sizeData}, &sizeData);
+  counts_ = dev.createBuffer({"exact.counts", "shadow", BufferUsage::Storage, texels * 4});
+  offsets_ = dev.createBuffer({"exact.offsets", "shadow", BufferUsage::Storage, texels * 4});
+  cursor_ = dev.createBuffer({"exact.cursor", "shadow", BufferUsage::Storage, texels * 4});
+  status_ = dev.createBuffer({"exact.status", "shadow", BufferUsage::Storage, 16});
+  if (method_ == Method::Peel)
+    state_ = dev.createBuffer({"exact.peel_state", "shadow", BufferUsage::Storage, texels * 16});
+  else
+    state_ = dev.createBuffer({"exact.peel_state", "shadow", BufferUsage::Storage, 16});
+  // The mesh's hard shadow; a 1x1 placeholder keeps the binding valid without a mesh.
+  const uint32_t opaqueSize = scene.hasMesh() ? size_ : 1;
+  opaqueDepth_ = dev.createTexture(
+      {"exact.opaque_depth", "shadow", Format::Depth32F, opaqueSize, opaqueSize, false});
+
+  count_ = makeHairCountPipeline(dev, s, kCounts, false, "exact");
+  const ShaderCode vert = Geometry::strandVertexShader(s);
+  PipelineDesc d;
+  d.technique = "exact";
+  d.vertex = &vert;
+  d.topology = Geometry::strandTopology(s);
+  d.bindings = Geometry::slots();
+  for (const auto& slot : allSlots()) d.bindings.push_back(slot);
+  if (method_ == Method::ABuffer) {
+    const ShaderCode frag = loadShader("techniques/exact/fill.frag");
+    d.name = "exact.fill";
+    d.fragment = &frag;
+    fill_ = dev.createPipeline(d);
+    const ShaderCode comp = loadShader("techniques/exact/sort.comp");
+    PipelineDesc c;
+    c.name = "exact.sort";
+    c.technique = "exact";
+    c.compute = &comp;
+    c.bindings = allSlots();
+    sort_ = dev.createPipeline(c);
+  } else {
+    for (int pass = 0; pass < 2; ++pass) {
+      ShaderDefines defs;
+      defs.defines.push_back({"SB_PEEL_PASS", std::to_string(pass)});
+      const ShaderCode frag = loadShader("techniques/exact/peel.frag", defs);
+      d.name = pass == 0 ? "exact.peel.depth" : "exact.peel.id";
+      d.fragment = &frag;
+      (pass == 0 ? peel0_ : peel1_) = dev.createPipeline(d);
+    }
+    advance_ = makePeelAdvancePipeline(dev, kState, kCursor, kOffsets, kNodes, "exact");
+  }
+  if (scene.hasMesh()) {
+    const ShaderCode mv = Geometry::meshVertexShader();
+    const ShaderCode mf = loadShader("techniques/common/depth_only.frag");
+    PipelineDesc m;
+    m.name = "exact.opaque";
+    m.technique = "exact";
+    m.vertex = &mv;
+    m.fragment = &mf;
+    m.hasDepth = m.depthTest = m.depthWrite = true;
+    m.bindings = Geometry::slots();
+    opaque_ = dev.createPipeline(m);
+  }
+}
+
+void ExactShadow::prepare(Device& dev) {
+  // Count the fragments of every texel once: it sizes the lists and the
+  // number of peel layers (in place of an occlusion query per layer).
+  dev.fillBuffer(counts_, 0);
+  dev.beginFrame();
+  PassDesc pass = listPass("exact.count");
+  dev.beginPass(pass);
+  auto b = Geometry::bindings(*scene_, lightView_);
+  b.push_back(Binding::buf(kCounts, counts_));
+  dev.draw(count_, b, Geometry::strandVertexCount(*scene_, settings_));
+  dev.endPass();
+  dev.endFrame();
+  const ListLayout layout = layoutFromCounts(dev.readBuffer(counts_));
+  complexity_ = layout.complexity;
+  dev.updateBuffer(offsets_, layout.offsets.data(), layout.offsets.size() * 4);
+  const std::size_t nodes = std::max<uint64_t>(layout.complexity.total, 1);
+  nodes_ = dev.createBuffer({"exact.nodes", "shadow", BufferUsage::Storage, nodes * 8});
+  layers_ = std::min(complexity_.max, maxLayers_);
+}
+
+std::vector<BindingSlot> ExactShadow::allSlots() const {
+  return {{kParams, BindingKind::UniformBuffer},  {kCounts, BindingKind::StorageBuffer},
+          {kOffsets, BindingKind::StorageBuffer}, {kCursor, BindingKind::StorageBuffer},
+          {kNodes, BindingKind::StorageBuffer},   {kState, BindingKind::StorageBuffer},
+          {kStatus, BindingKind::StorageBuffer}};
+}
+
+std::vector<Binding> ExactShadow::allBindings() const {
+  return {Binding::buf(kParams, params_),   Binding::buf(kCounts, counts_),
+          Binding::buf(kOffsets, offsets_), Binding::buf(kCursor, cursor_),
+          Binding::buf(kNodes, nodes_),     Binding::buf(kState, state_),
+          Binding::buf(kStatus, status_)};
+}
+
+PassDesc ExactShadow::listPass(const std::string& name) const {
+  PassDesc pass;
+  pass.name = name;
+  pass.width = pass.height = size_;
+  return pass;
+}
+
+void ExactShadow::addPasses(FrameGraph& graph, Device& dev) {
+  const uint32_t vertices = Geometry::strandVertexCount(*scene_, settings_);
+  if (opaque_) {
+    graph.add({"exact.opaque", {}, {"shadow.opaque"}, [this, &dev] {
+                 PassDesc pass;
+                 pass.name = "exact.opaque";
+                 pass.depth = {opaqueDepth_, LoadOp::Clear, 1.0f};
+                 dev.beginPass(pass);
+                 dev.draw(opaque_, Geometry::bindings(*scene_, lightView_),
+                          scene_->meshTriangles * 3);
+                 dev.endPass();
+               }});
+  }
+  if (method_ == Method::ABuffer) {
+    graph.add({"exact.fill", {}, {"shadow.lists"}, [this, &dev, vertices] {
+                 dev.fillBuffer(cursor_, 0);
+                 dev.fillBuffer(status_, 0);
+                 dev.beginPass(listPass("exact.fill"));
+                 auto b = Geometry::bindings(*scene_, lightView_);
+                 for (const auto& x : allBindings()) b.push_back(x);
+                 dev.draw(fill_, b, vertices);
+                 dev.endPass();
+                 dev.dispatch("exact.sort", sort_, allBindings(), groups(size_ * size_));
+               }});
+    return;
+  }
+  graph.add({"exact.peel", {}, {"shadow.lists"}, [this, &dev, vertices] {
+               dev.fillBuffer(cursor_, 0);
+               dev.fillBuffer(state_, 0xFFFFFFFFu);
+               auto b = Geometry::bindings(*scene_, lightView_);
+               for (const auto& x : allBindings()) b.push_back(x);
+               const std::vector<Binding> advance = {
+                   Binding::buf(0, sizeUbo_), Binding::buf(kState, state_),
+                   Binding::buf(kCursor, cursor_), Binding::buf(kOffsets, offsets_),
+                   Binding::buf(kNodes, nodes_)};
+               for (uint32_t layer = 0; layer < layers_; ++layer) {
+                 dev.beginPass(listPass("exact.peel.depth"));
+                 dev.draw(peel0_, b, vertices);
+                 dev.endPass();
+                 dev.beginPass(listPass("exact.peel.id"));
+                 dev.draw(peel1_, b, vertices);
+                 dev.endPass();
+                 dev.dispatch("exact.peel.advance", advance_, advance, groups(size_ * size_));
+               }
+             }});
+}
+
+std::vector<std::string> ExactShadow::lookupReads() const {
+  std::vector<std::string> r = {"shadow.lists"};
+  if (opaque_) r.push_back("shadow.opaque");
+  return r;
+}
+
+std::vector<BindingSlot> ExactShadow::lookupSlots() const {
+  auto s = allSlots();
+  s.push_back({kOpaque, BindingKind::SampledTexture});
+  return s;
+}
+
+std::vector<Binding> ExactShadow::lookupBindings() const {
+  auto b = allBindings();
+  b.push_back(Binding::tex(kOpaque, opaqueDepth_));
+  return b;
+}
+
+ExactShadow::Lists ExactShadow::readLists(Device& dev) {
+  auto toUints = [](const std::vector<uint8_t>& bytes) {
+    std::vector<uint32_t> v(bytes.size() / 4);
+    std::memcpy(v.data(), bytes.data(), v.size() * 4);
+    return v;
+  };
+  Lists l;
+  l.stored = toUints(dev.readBuffer(cursor_));
+  l.keys = toUints(dev.readBuffer(nodes_));
+  l.keys.resize(complexity_.total * 2);
+  return l;
+}
+
+std::vector<std::string> ExactShadow::warnings(Device& dev) {
+  std::vector<std::string> w;
+  if (method_ == Method::Peel && layers_ < complexity_.max)
+    w.push_back("exact shadows: peeling capped at " + std::to_string(layers_) + " of " +
+                std::to_string(complexity_.max) + " layers (option layers=)");
+  if (method_ == Method::ABuffer) {
+    const auto status = dev.readBuffer(status_);
+    if (status[0] || status[1] || status[2] || status[3])
+      w.push_back("exact shadows: light-space fragment list overflow");
+  }
+  return w;
+}
+
+}  // namespace sb

@@ -1,0 +1,56 @@
+#pragma once
+
+#include "techniques/common/fragment_lists.h"
+#include "techniques/common/technique.h"
+
+namespace sb {
+
+// Exact self-shadowing, the shadow ground truth: every light texel keeps the
+// sorted depths of all hair fragments in it, and a point's visibility is
+// (1 - alpha_s)^n for the n fragments in front of it. Built two independent
+// ways that must agree: depth peeling from the light (method=peel: one layer
+// per step, ties broken by primitive id) and a light-space A-buffer sorted per
+// texel (method=abuffer). The mesh casts a hard shadow through its own depth map.
+class ExactShadow : public ShadowTechnique {
+ public:
+  enum class Method { Peel, ABuffer };
+  ExactShadow(Method method, uint32_t size, float bias, uint32_t maxLayers);
+  std::string name() const override { return "exact"; }
+  void setup(Device& dev, const GpuScene& scene, const RenderSettings& s) override;
+  void prepare(Device& dev) override;
+  void addPasses(FrameGraph& graph, Device& dev) override;
+  std::optional<DepthComplexity> depthComplexity() const override { return complexity_; }
+  std::string lookupShader() const override { return "techniques/exact/lookup.glsl"; }
+  std::vector<std::string> lookupReads() const override;
+  std::vector<BindingSlot> lookupSlots() const override;
+  std::vector<Binding> lookupBindings() const override;
+  std::vector<Texture> lookupTextures() const override { return {opaqueDepth_}; }
+
+  // After a frame: per texel, the number of fragments stored and their keys
+  // (for checking the two methods against each other), and problems seen.
+  struct Lists {
+    std::vector<uint32_t> stored;
+    std::vector<uint32_t> keys;  // (depth bits, primitive id) pairs
+  };
+  Lists readLists(Device& dev);
+  std::vector<std::string> warnings(Device& dev) override;
+
+ private:
+  std::vector<Binding> allBindings() const;
+  std::vector<BindingSlot> allSlots() const;
+  PassDesc listPass(const std::string& name) const;
+
+  Method method_;
+  uint32_t size_;
+  float bias_;
+  uint32_t maxLayers_;
+  uint32_t layers_ = 0;
+  const GpuScene* scene_ = nullptr;
+  RenderSettings settings_;
+  DepthComplexity complexity_;
+  Buffer params_, lightView_, counts_, offsets_, cursor_, nodes_, state_, status_, sizeUbo_;
+  Texture opaqueDepth_;
+  Pipeline count_, fill_, sort_, peel0_, peel1_, advance_, opaque_;
+};
+
+}  // namespace sb

@@ -1,0 +1,34 @@
+// Exact self-shadowing ("opacity maps with infinitely many slices"): the
+// visibility of a point is (1 - alpha_s)^n, n = the hair fragments in front of
+// it in its light texel, found by binary search in the texel's sorted list;
+// times 0 when the opaque mesh is in front (hard shadow).
+// Only the blocks the lookup reads (GL counts declared blocks per stage).
+layout(std140, binding = 8) uniform ExactShadowParams {
+  mat4 exactViewProj;
+  vec4 exactParams;  // x: bias (light depth units), y: map size, z: shadow alpha, w: 1 = opaque map
+};
+layout(std430, binding = 9) readonly buffer ExactCounts { uint exactCounts[]; };
+layout(std430, binding = 10) readonly buffer ExactOffsets { uint exactOffsets[]; };
+layout(std430, binding = 12) readonly buffer ExactNodes { uvec2 exactNodes[]; };
+layout(binding = 14) uniform sampler2D exactOpaqueDepth;  // the mesh seen from the light
+
+float shadowVisibility(vec3 worldPos) {
+  vec4 clip = exactViewProj * vec4(worldPos, 1.0);
+  vec3 ndc = clip.xyz / clip.w;
+  vec2 uv = ndc.xy * 0.5 + 0.5;
+  if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || ndc.z > 1.0) return 1.0;
+  float z = ndc.z - exactParams.x;
+  if (exactParams.w > 0.5 && z > texture(exactOpaqueDepth, uv).r) return 0.0;
+  uint size = uint(exactParams.y);
+  uvec2 t = min(uvec2(uv * exactParams.y), uvec2(size - 1u));
+  uint texel = t.y * size + t.x;
+  uint base = exactOffsets[texel];
+  uint lo = 0u, hi = exactCounts[texel];
+  uint zBits = floatBitsToUint(max(z, 0.0));
+  while (lo < hi) {
+    uint mid = (lo + hi) / 2u;
+    if (exactNodes[base + mid].x < zBits) lo = mid + 1u; else hi = mid;
+  }
+  // pow(0, 0) is undefined in GLSL: no fragment in front means fully lit.
+  return lo == 0u ? 1.0 : pow(1.0 - exactParams.z, float(lo));
+}

@@ -1,0 +1,22 @@
+// Sorts each texel's fragment keys (insertion sort: lists are short on
+// average, and any length works).
+#include "../common/key_order.glsl"
+#include "exact.glsl"
+layout(local_size_x = 64) in;
+
+void main() {
+  uint size = uint(exactParams.y);
+  uint p = gl_GlobalInvocationID.x;
+  if (p >= size * size) return;
+  uint base = exactOffsets[p];
+  uint n = min(exactCursor[p], exactCounts[p]);
+  for (uint i = 1u; i < n; ++i) {
+    uvec2 key = exactNodes[base + i];
+    uint j = i;
+    while (j > 0u && keyLess(key, exactNodes[base + j - 1u])) {
+      exactNodes[base + j] = exactNodes[base + j - 1u];
+      --j;
+    }
+    exactNodes[base + j] = key;
+  }
+}

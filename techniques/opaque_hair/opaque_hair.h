@@ -1,0 +1,24 @@
+#pragma once
+
+#include "techniques/common/technique.h"
+
+namespace sb {
+
+// No transparency (--oit none): hair drawn opaque with depth test and write,
+// the baseline the papers quote frame rates against.
+class OpaqueHair : public OitTechnique {
+ public:
+  std::string name() const override { return "none"; }
+  void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
+             const KajiyaKayShading& shading, const OitTargets& targets) override;
+  void addPasses(FrameGraph& graph, Device& dev) override;
+
+ private:
+  const GpuScene* scene_ = nullptr;
+  const KajiyaKayShading* shading_ = nullptr;
+  RenderSettings settings_;
+  OitTargets targets_;
+  Pipeline pipeline_;
+};
+
+}  // namespace sb

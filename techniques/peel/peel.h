@@ -1,0 +1,41 @@
+#pragma once
+
+#include "techniques/common/composite.h"
+#include "techniques/common/fragment_lists.h"
+#include "techniques/common/technique.h"
+
+namespace sb {
+
+// Exact transparency by depth peeling from the eye, front to back, one layer
+// per step (three hair draws: smallest depth, smallest primitive id at that
+// depth, shade and accumulate), for as many layers as the deepest pixel holds
+// (counted once in prepare(), standing in for an occlusion query per layer),
+// capped by layers= (a cap that is reported).
+class PeelOit : public OitTechnique {
+ public:
+  explicit PeelOit(uint32_t maxLayers) : maxLayers_(maxLayers) {}
+  std::string name() const override { return "peel"; }
+  void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
+             const KajiyaKayShading& shading, const OitTargets& targets) override;
+  bool needsPrepare() const override { return true; }
+  void prepare(Device& dev) override;
+  void addPasses(FrameGraph& graph, Device& dev) override;
+  std::optional<DepthComplexity> depthComplexity() const override { return complexity_; }
+  std::vector<std::string> warnings(Device& dev) override;
+
+ private:
+  PassDesc hairPass(const std::string& name, bool first) const;
+
+  uint32_t maxLayers_;
+  uint32_t layers_ = 0;
+  const GpuScene* scene_ = nullptr;
+  const KajiyaKayShading* shading_ = nullptr;
+  RenderSettings settings_;
+  OitTargets targets_;
+  AccumComposite composite_;
+  DepthComplexity complexity_;
+  Buffer state_, peeled_, counts_, sizeUbo_;
+  Pipeline count_, step_[3], advance_;
+};
+
+}  // namespace sb

@@ -1,0 +1,56 @@
+#include "techniques/visibility/visibility.h"
+
+#include "techniques/common/shader_library.h"
+#include "techniques/kajiya_kay/shading.h"
+
+namespace sb {
+
+void VisibilityOutput::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
+                             const KajiyaKayShading& shading) {
+  scene_ = &scene;
+  shading_ = &shading;
+  settings_ = s;
+  image_ = dev.createTexture({"visibility.image", "frame", Format::R32F, s.width, s.height, false});
+  depth_ =
+      dev.createTexture({"visibility.depth", "frame", Format::Depth32F, s.width, s.height, false});
+  const ShaderCode frag =
+      loadShader("techniques/visibility/visibility.frag", shading.hairDefines());
+  PipelineDesc d;
+  d.technique = "visibility+" + shading.shadow().name();
+  d.fragment = &frag;
+  d.colorFormats = {Format::R32F};
+  d.hasDepth = d.depthTest = d.depthWrite = true;
+  d.depthCompare = CompareOp::Less;
+  d.bindings = shading.hairSlots();
+  if (scene.hasHair()) {
+    const ShaderCode vert = Geometry::strandVertexShader(s);
+    d.name = "visibility.hair";
+    d.vertex = &vert;
+    d.topology = Geometry::strandTopology(s);
+    hair_ = dev.createPipeline(d);
+  }
+  if (scene.hasMesh()) {
+    const ShaderCode vert = Geometry::meshVertexShader();
+    d.name = "visibility.mesh";
+    d.vertex = &vert;
+    d.topology = Topology::Triangles;
+    mesh_ = dev.createPipeline(d);
+  }
+}
+
+void VisibilityOutput::addPasses(FrameGraph& graph, Device& dev) {
+  graph.add({"visibility", shading_->shadowReads(), {"visibility"}, [this, &dev] {
+               PassDesc pass;
+               pass.name = "visibility";
+               pass.color = {{image_, LoadOp::Clear, {-1.0f, 0, 0, 0}}};
+               pass.depth = {depth_, LoadOp::Clear, 1.0f};
+               pass.sampledTextures = shading_->sampledTextures();
+               dev.beginPass(pass);
+               const auto b = shading_->hairBindings();
+               if (mesh_) dev.draw(mesh_, b, scene_->meshTriangles * 3);
+               if (hair_) dev.draw(hair_, b, Geometry::strandVertexCount(*scene_, settings_));
+               dev.endPass();
+             }});
+}
+
+}  // namespace sb

@@ -1,0 +1,409 @@
+// `strandbench check` and `strandbench bless` end to end, always on temporary
+// copies of baselines/ (the committed files are only read): the committed set
+// passes on both backends; a shifted, a brighter and a one-strand-short image
+// fail with the failure files written; a missing baseline and a malformed
+// manifest are reported; a bless stopped half way leaves the old baselines
+// byte-identical and the next bless cleans up.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "harness/baselines.h"
+#include "harness/image.h"
+#include "harness/metrics.h"
+#include "scenes/scene.h"
+#include "test_util.h"
+
+namespace fs = std::filesystem;
+using sbtest::readFile;
+using sbtest::runCli;
+using sbtest::tempDir;
+
+namespace {
+
+const fs::path kCommitted = fs::path(SB_SOURCE_DIR) / "baselines";
+// The committed case the perturbation tests use (small and fast).
+const std::string kCase = "straight-lines-none";
+
+// A temporary folder with a copy of the committed baselines (or an empty one).
+struct Sandbox {
+  fs::path root = tempDir("check");
+  fs::path baselines = root / "baselines";
+  fs::path out = root / "out";
+
+  explicit Sandbox(bool copyCommitted = true) {
+    if (copyCommitted)
+      fs::copy(kCommitted, baselines, fs::copy_options::recursive);
+    else
+      fs::create_directories(baselines);
+  }
+  ~Sandbox() {
+    std::error_code ec;
+    fs::remove_all(root, ec);
+  }
+  fs::path image(const std::string& c, const std::string& backend) const {
+    return baselines / sb::baselineFileName(c, backend);
+  }
+  sbtest::CliResult check(const std::string& extra = "") const {
+    return runCli("check --baselines " + baselines.string() + " --out " + out.string() + " " +
+                  extra);
+  }
+  sbtest::CliResult bless(const std::string& extra = "") const {
+    return runCli("bless --baselines " + baselines.string() + " " + extra);
+  }
+  void writeManifest(const nlohmann::json& j) const {
+    std::ofstream(baselines / "manifest.json") << j.dump(2) << "\n";
+  }
+  // Entries beside the baselines folder left by a bless.
+  std::vector<std::string> leftovers() const {
+    std::vector<std::string> v;
+    for (const auto& e : fs::directory_iterator(root)) {
+      const std::string n = e.path().filename().string();
+      if (n.rfind(".baselines.bless-", 0) == 0) v.push_back(n);
+    }
+    return v;
+  }
+};
+
+nlohmann::json committedManifest() {
+  return nlohmann::json::parse(readFile(kCommitted / "manifest.json"));
+}
+
+// Every file under dir (relative name -> bytes).
+std::map<std::string, std::string> snapshot(const fs::path& dir) {
+  std::map<std::string, std::string> m;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file()) m[fs::relative(e.path(), dir).string()] = readFile(e.path());
+  return m;
+}
+
+bool hasLine(const std::string& text, const std::string& prefix) {
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind(prefix, 0) == 0) return true;
+  return false;
+}
+
+std::string filterArg(const std::string& c) { return "--filter '^" + c + "$'"; }
+
+void expectFailureFiles(const fs::path& out, const std::string& c, const std::string& label) {
+  const std::string stem = (out / (c + "." + label)).string();
+  for (const char* suffix : {".actual.png", ".expected.png", ".diff.png", ".json"})
+    EXPECT_TRUE(fs::exists(stem + suffix)) << stem + suffix;
+  const auto j = nlohmann::json::parse(readFile(stem + ".json"));
+  EXPECT_EQ(j["case"], c);
+  EXPECT_EQ(j["label"], label);
+  EXPECT_FALSE(j["failures"].empty());
+  for (const char* k : {"max_abs", "psnr", "ssim", "fraction_over", "pixels_over"})
+    EXPECT_TRUE(j["metrics"].contains(k)) << k;
+  for (const char* k : {"max_abs", "max_failing_fraction", "failing_threshold", "min_psnr"})
+    EXPECT_TRUE(j["tolerance"].contains(k)) << k;
+  const sb::Image heat = sb::readImage(stem + ".diff.png");
+  EXPECT_EQ(heat.width, sb::readImage(stem + ".actual.png").width);
+}
+
+// Applies f to a baseline image and writes it back (16-bit, as bless does).
+template <typename F>
+void perturb(const fs::path& file, F&& f) {
+  const sb::Image img = sb::readImage(file.string());
+  sb::writeImage(f(img), file.string(), sb::ImageBitDepth::U16);
+}
+
+struct EnvVar {
+  std::string name;
+  EnvVar(std::string n, const std::string& value) : name(std::move(n)) {
+    ::setenv(name.c_str(), value.c_str(), 1);
+  }
+  ~EnvVar() { ::unsetenv(name.c_str()); }
+};
+
+}  // namespace
+
+// ------------------------------------------------------------------ committed set
+
+TEST(Baselines, ManifestCoversScenesTechniquesAndPrimitives) {
+  const sb::Manifest m = sb::loadManifest(kCommitted / "manifest.json");
+  std::map<std::string, std::set<std::string>> primitives;  // generator -> primitives
+  std::set<std::string> shadows;
+  for (const auto& c : m.cases) {
+    const sb::Spec spec = sb::Spec::parse(c.scene);
+    EXPECT_EQ(spec.options.count("mesh"), 0u) << c.name << ": only generated meshes";
+    EXPECT_EQ(spec.options.count("path"), 0u) << c.name << ": only generated scenes";
+    primitives[spec.name].insert(c.primitive);
+    shadows.insert(c.shadow);
+    EXPECT_EQ(c.backends, (std::vector<std::string>{"gl", "vulkan"})) << c.name;
+    EXPECT_LE(c.width * c.height, 128u * 128u) << c.name;
+    for (const auto& b : c.backends)
+      EXPECT_TRUE(fs::exists(kCommitted / (c.name + "." + b + ".png")));
+  }
+  for (const char* g : {"straight", "wavy", "curly", "clustered", "fur"})
+    EXPECT_EQ(primitives.count(g), 1u) << g;
+  int both = 0;
+  for (const auto& [g, p] : primitives) both += p.size() == 2 ? 1 : 0;
+  EXPECT_GE(both, 2);
+  EXPECT_EQ(shadows, (std::set<std::string>{"none", "shadowmap"}));
+}
+
+TEST(Check, CommittedBaselinesPassOnBothBackends) {
+  Sandbox s;
+  const auto r = s.check();
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_TRUE(hasLine(r.out, "0 failed, 0 missing") ||
+              r.out.find(" passed, 0 failed, 0 missing\n") != std::string::npos)
+      << r.out;
+  const sb::Manifest m = sb::loadManifest(s.baselines / "manifest.json");
+  for (const auto& c : m.cases) {
+    EXPECT_TRUE(hasLine(r.out, "OK " + c.name + " gl:")) << c.name << "\n" << r.out;
+    EXPECT_TRUE(hasLine(r.out, "OK " + c.name + " vulkan:")) << c.name << "\n" << r.out;
+    EXPECT_TRUE(hasLine(r.out, "OK " + c.name + " gl-vs-vulkan:")) << c.name << "\n" << r.out;
+  }
+  const std::string summary = std::to_string(3 * m.cases.size()) + " passed, 0 failed, 0 missing";
+  EXPECT_TRUE(hasLine(r.out, summary)) << r.out;
+  EXPECT_FALSE(fs::exists(s.out)) << "nothing is written when everything passes";
+  EXPECT_EQ(snapshot(s.baselines), snapshot(kCommitted));
+}
+
+// ------------------------------------------------------------------ perturbations
+
+TEST(Check, OnePixelShiftFails) {
+  Sandbox s;
+  perturb(s.image(kCase, "gl"), [](const sb::Image& img) {
+    sb::Image out = img;
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 1; x < img.width; ++x)
+        for (int c = 0; c < img.channels; ++c) out.at(x, y, c) = img.at(x - 1, y, c);
+    return out;
+  });
+  const auto r = s.check(filterArg(kCase));
+  EXPECT_EQ(r.status, 1) << r.out << r.err;
+  EXPECT_TRUE(hasLine(r.out, "FAILED " + kCase + " gl:")) << r.out;
+  EXPECT_TRUE(hasLine(r.out, "OK " + kCase + " vulkan:")) << r.out;
+  EXPECT_TRUE(hasLine(r.out, "OK " + kCase + " gl-vs-vulkan:")) << r.out;
+  EXPECT_TRUE(hasLine(r.out, "2 passed, 1 failed, 0 missing")) << r.out;
+  expectFailureFiles(s.out, kCase, "gl");
+}
+
+TEST(Check, TwoPercentBrighterFails) {
+  Sandbox s;
+  perturb(s.image(kCase, "vulkan"), [](const sb::Image& img) {
+    sb::Image out = img;
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x)
+        for (int c = 0; c < 3; ++c) out.at(x, y, c) = img.at(x, y, c) * 1.02f;
+    return out;
+  });
+  const auto r = s.check(filterArg(kCase));
+  EXPECT_EQ(r.status, 1) << r.out << r.err;
+  EXPECT_TRUE(hasLine(r.out, "FAILED " + kCase + " vulkan:")) << r.out;
+  EXPECT_TRUE(hasLine(r.out, "OK " + kCase + " gl:")) << r.out;
+  EXPECT_TRUE(hasLine(r.out, "1 failed")) << r.out;
+  EXPECT_TRUE(hasLine(r.out, "2 passed, 1 failed, 0 missing")) << r.out;
+  expectFailureFiles(s.out, kCase, "vulkan");
+}
+
+// One strand fewer: the straight generator draws strand i from the i-th draws of
+// its random stream, so strands=N-1 is strands=N without the last strand; the
+// camera and light are fitted to the bounds, which this strand does not change.
+TEST(Check, OneStrandRemovedFails) {
+  const std::string full = "straight:strands=300,points=12,seed=3";
+  const std::string fewer = "straight:strands=299,points=12,seed=3";
+  const sb::Bounds a = sb::makeScene(sb::Spec::parse(full)).bounds();
+  const sb::Bounds b = sb::makeScene(sb::Spec::parse(fewer)).bounds();
+  ASSERT_EQ(a.min, b.min) << "the removed strand must not move the fitted camera";
+  ASSERT_EQ(a.max, b.max) << "the removed strand must not move the fitted camera";
+
+  Sandbox s(false);
+  nlohmann::json m = committedManifest();  // the committed tolerances and defaults
+  m["cases"] = nlohmann::json::array(
+      {{{"name", "one-strand"}, {"scene", full}, {"shadow", "shadowmap"}, {"primitive", "lines"}}});
+  s.writeManifest(m);
+  const auto blessed = s.bless();
+  ASSERT_EQ(blessed.status, 0) << blessed.out << blessed.err;
+  ASSERT_EQ(s.check().status, 0);
+
+  m["cases"][0]["scene"] = fewer;
+  s.writeManifest(m);
+  const auto r = s.check();
+  EXPECT_EQ(r.status, 1) << r.out << r.err;
+  EXPECT_TRUE(hasLine(r.out, "FAILED one-strand gl:")) << r.out;
+  EXPECT_TRUE(hasLine(r.out, "FAILED one-strand vulkan:")) << r.out;
+  EXPECT_TRUE(hasLine(r.out, "OK one-strand gl-vs-vulkan:")) << r.out;
+  EXPECT_TRUE(hasLine(r.out, "1 passed, 2 failed, 0 missing")) << r.out;
+  expectFailureFiles(s.out, "one-strand", "gl");
+  expectFailureFiles(s.out, "one-strand", "vulkan");
+}
+
+TEST(Check, JudgeAppliesEveryLimit) {
+  const sb::Image a(20, 10, 4, 0.5f);
+  sb::Image b = a;
+  const sb::Tolerance t{0.01, 0.01, 1e-4, 60.0};
+  EXPECT_TRUE(sb::judge(a, b, t).ok());
+  b.at(3, 3, 0) = 0.52f;  // one pixel over max_abs
+  EXPECT_FALSE(sb::judge(a, b, t).ok());
+  b = a;
+  for (int x = 0; x < 20; ++x) b.at(x, 0, 1) = 0.5005f;  // 10% of pixels over 1e-4
+  const sb::Verdict v = sb::judge(a, b, t);
+  ASSERT_EQ(v.failures.size(), 1u);
+  EXPECT_NE(v.failures[0].find("failing"), std::string::npos) << v.failures[0];
+  b = a;
+  for (float& p : b.pixels) p += 0.002f;  // every pixel: PSNR 54 dB
+  EXPECT_FALSE(sb::judge(a, b, {1.0, 1.0, 1.0, 60.0}).ok());
+  EXPECT_TRUE(sb::judge(a, b, {1.0, 1.0, 1.0, 50.0}).ok());
+  // A NaN fails even without limits.
+  b = a;
+  b.at(0, 0, 2) = std::numeric_limits<float>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(sb::judge(a, b, {inf, 1.0, 0.0, -inf}).ok());
+}
+
+// ------------------------------------------------------------------ bad input
+
+TEST(Check, MissingBaselineIsReported) {
+  Sandbox s;
+  fs::remove(s.image(kCase, "vulkan"));
+  const auto r = s.check(filterArg(kCase));
+  EXPECT_EQ(r.status, 1) << r.out << r.err;
+  EXPECT_TRUE(hasLine(r.out, "MISSING " + kCase + " vulkan:")) << r.out;
+  EXPECT_NE(r.out.find(s.image(kCase, "vulkan").string()), std::string::npos) << r.out;
+  EXPECT_TRUE(hasLine(r.out, "2 passed, 0 failed, 1 missing")) << r.out;
+  EXPECT_TRUE(fs::exists(s.out / (kCase + ".vulkan.actual.png")));
+}
+
+TEST(Check, MalformedManifestExits2NamingTheFile) {
+  Sandbox s;
+  const std::string file = (s.baselines / "manifest.json").string();
+  const auto before = snapshot(s.baselines);
+  {
+    std::ofstream(file) << "{\n  \"format\": 1,\n  \"cases\": [,]\n}\n";
+    for (const std::string cmd : {"check", "bless"}) {
+      const auto r = cmd == "check" ? s.check() : s.bless();
+      EXPECT_EQ(r.status, 2) << cmd << r.out << r.err;
+      EXPECT_NE(r.err.find(file), std::string::npos) << r.err;
+      EXPECT_NE(r.err.find("line 3"), std::string::npos) << r.err;
+      EXPECT_EQ(r.err.rfind("strandbench " + cmd + ": ", 0), 0u) << r.err;
+    }
+  }
+  struct Bad {
+    std::function<void(nlohmann::json&)> edit;
+    std::vector<std::string> needles;
+  };
+  const std::vector<Bad> cases = {
+      {[](nlohmann::json& j) { j["cases"][0]["colour"] = "red"; }, {"unknown key 'colour'"}},
+      {[](nlohmann::json& j) { j["extra"] = 1; }, {"unknown key 'extra'"}},
+      {[](nlohmann::json& j) { j["cases"][0]["size"] = 96; }, {"\"size\""}},
+      {[](nlohmann::json& j) { j["cases"][0]["backends"] = {"metal"}; }, {"metal"}},
+      {[](nlohmann::json& j) { j["cases"][1]["name"] = j["cases"][0]["name"]; }, {"duplicate"}},
+      {[](nlohmann::json& j) {
+         j["cases"][0]["tolerance"] = {{"max_abs", "small"}};
+       },
+       {"max_abs"}},
+      {[](nlohmann::json& j) { j["cases"][0]["tolerance"] = "no-such-preset"; },
+       {"no-such-preset"}},
+      {[](nlohmann::json& j) { j["format"] = 2; }, {"format"}},
+  };
+  for (const Bad& bad : cases) {
+    nlohmann::json j = committedManifest();
+    bad.edit(j);
+    s.writeManifest(j);
+    const auto r = s.check();
+    EXPECT_EQ(r.status, 2) << r.out << r.err;
+    EXPECT_NE(r.err.find(file), std::string::npos) << r.err;
+    for (const auto& n : bad.needles) EXPECT_NE(r.err.find(n), std::string::npos) << r.err;
+  }
+  // A case with a bad scene option names the manifest and the case.
+  nlohmann::json j = committedManifest();
+  j["cases"] = nlohmann::json::array({{{"name", "bad-scene"}, {"scene", "straight:hairs=3"}}});
+  s.writeManifest(j);
+  const auto r = s.check();
+  EXPECT_EQ(r.status, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find(file), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("bad-scene"), std::string::npos) << r.err;
+  // --filter that matches nothing, or is not a regex.
+  s.writeManifest(committedManifest());
+  EXPECT_EQ(s.check("--filter no-such-case").status, 2);
+  EXPECT_EQ(s.check("--filter '('").status, 2);
+  EXPECT_EQ(runCli("check --baselines " + (s.root / "nowhere").string()).status, 2);
+  // Nothing in the baselines folder changed but the manifest we rewrote.
+  std::ofstream(file, std::ios::binary) << readFile(kCommitted / "manifest.json");
+  EXPECT_EQ(snapshot(s.baselines), before);
+  EXPECT_TRUE(s.leftovers().empty());
+}
+
+// ------------------------------------------------------------------ bless
+
+TEST(Bless, StoppedHalfWayLeavesOldBaselinesAndTheNextBlessCleansUp) {
+  Sandbox s;
+  // Make the old baselines differ from what a bless writes, so that a partial
+  // bless would be visible.
+  perturb(s.image(kCase, "gl"), [](sb::Image img) {
+    for (float& v : img.pixels) v *= 0.5f;
+    return img;
+  });
+  const auto before = snapshot(s.baselines);
+  {
+    EnvVar abort("SB_BLESS_ABORT_AFTER", "1");
+    const auto r = s.bless(filterArg(kCase));
+    EXPECT_EQ(r.status, 3) << r.out << r.err;
+    EXPECT_NE(r.out.find("wrote " + kCase + ".gl.png"), std::string::npos) << r.out;
+  }
+  EXPECT_EQ(snapshot(s.baselines), before) << "an interrupted bless changed the baselines";
+  EXPECT_FALSE(s.leftovers().empty()) << "the killed bless should have left its staging folder";
+
+  const auto r = s.bless();
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("removed leftover"), std::string::npos) << r.out;
+  EXPECT_TRUE(s.leftovers().empty());
+  // Rendering is deterministic: a full bless reproduces the committed set.
+  EXPECT_EQ(snapshot(s.baselines), snapshot(kCommitted));
+}
+
+TEST(Bless, FilteredBlessKeepsTheOtherCases) {
+  Sandbox s;
+  const nlohmann::json m = committedManifest();
+  const std::string other = m["cases"][1]["name"];
+  perturb(s.image(other, "gl"), [](sb::Image img) {
+    for (float& v : img.pixels) v *= 0.5f;
+    return img;
+  });
+  fs::remove(s.image(kCase, "vulkan"));
+  const auto before = readFile(s.image(other, "gl"));
+  const auto r = s.bless(filterArg(kCase));
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_EQ(readFile(s.image(other, "gl")), before);
+  EXPECT_EQ(readFile(s.image(kCase, "vulkan")), readFile(kCommitted / (kCase + ".vulkan.png")));
+  EXPECT_TRUE(s.leftovers().empty());
+}
+
+TEST(Bless, RestoresTheOldFolderAfterAStopBetweenTheFallbackRenames) {
+  Sandbox s;
+  const auto before = snapshot(s.baselines);
+  fs::rename(s.baselines, s.root / ".baselines.bless-old-12345");
+  const auto r = s.bless(filterArg(kCase));
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("restored"), std::string::npos) << r.out;
+  EXPECT_EQ(snapshot(s.baselines), before);
+  EXPECT_TRUE(s.leftovers().empty());
+}
+
+TEST(Bless, SwapDirectoriesExchangesBothFolders) {
+  const fs::path root = tempDir("swap");
+  fs::create_directories(root / "a");
+  fs::create_directories(root / "b");
+  std::ofstream(root / "a" / "x") << "new";
+  std::ofstream(root / "b" / "x") << "old";
+  const fs::path old = sb::swapDirectories(root / "a", root / "b", root / "aside");
+  EXPECT_EQ(readFile(root / "b" / "x"), "new");
+  EXPECT_EQ(readFile(old / "x"), "old");
+  EXPECT_THROW(sb::swapDirectories(root / "missing", root / "b", root / "aside"), sb::InputError);
+  fs::remove_all(root);
+}
