@@ -302,11 +302,11 @@ class ManifestReader {
 
 // ------------------------------------------------------------------ helpers
 
-std::string fmt(double v) {
+std::string fmt(double v, int digits = 3) {
   if (std::isnan(v)) return "nan";
   if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
   return buf;
 }
 
@@ -372,7 +372,7 @@ class Checker {
     if (v.ok()) {
       ++counts.passed;
       out_ << "OK " << c.name << " " << label << ": max_abs " << fmt(e.maxAbs) << ", failing "
-           << fmt(e.fractionOver) << ", psnr " << fmt(e.psnr) << " dB, ssim " << fmt(e.ssim)
+           << fmt(e.fractionOver) << ", psnr " << fmt(e.psnr) << " dB, ssim " << fmt(e.ssim, 6)
            << "\n";
       return;
     }
@@ -381,7 +381,7 @@ class Checker {
     for (const auto& f : v.failures) reasons += (reasons.empty() ? "" : "; ") + f;
     const std::string stem = (outDir_ / (c.name + "." + label)).string();
     out_ << "FAILED " << c.name << " " << label << ": " << reasons;
-    if (e.width > 0) out_ << " (psnr " << fmt(e.psnr) << " dB, ssim " << fmt(e.ssim) << ")";
+    if (e.width > 0) out_ << " (ssim " << fmt(e.ssim, 6) << ")";
     out_ << " -> " << stem << ".*\n";
     writeFailure(c, label, actual, &expected, v, expectedName, actualName);
   }
@@ -528,7 +528,7 @@ Image quantize16(const Image& img) {
     if (std::isnan(v)) continue;
     // Same arithmetic as writeImage (float product, lround) and readImage.
     const long code = std::lround(std::clamp(v, 0.0f, 1.0f) * 65535.0f);
-    v = static_cast<float>(code) / 65535.0f;
+    v = static_cast<float>(code) * (1.0f / 65535.0f);
   }
   return q;
 }

@@ -37,7 +37,9 @@ const std::vector<TechniqueInfo>& shadowCatalog() {
         {"bias", "0.002", "depth bias in light depth units [0,1], 0..1"}}},
       {"exact",
        "ground truth: (1-shadow_alpha)^n for the n hair fragments in front, per light texel",
-       {{"method", "peel", "peel (depth peeling from the light) | abuffer (sorted fragment lists)"},
+       {{"method", "abuffer",
+         "abuffer (sorted light-space fragment lists) | peel (depth peeling from the light); "
+         "the tests prove them identical"},
         {"size", "512", "light map resolution (size x size), 1..16384"},
         {"bias", "0.002", "depth bias in light depth units [0,1], 0..1"},
         {"layers", "65536", "most layers peeled (a cap that is reported), 1..1000000"}}},

@@ -134,13 +134,13 @@ struct EnvVar {
 TEST(Baselines, ManifestCoversScenesTechniquesAndPrimitives) {
   const sb::Manifest m = sb::loadManifest(kCommitted / "manifest.json");
   std::map<std::string, std::set<std::string>> primitives;  // generator -> primitives
-  std::set<std::string> shadows;
+  std::set<std::string> shadows;  // technique names
   for (const auto& c : m.cases) {
     const sb::Spec spec = sb::Spec::parse(c.scene);
     EXPECT_EQ(spec.options.count("mesh"), 0u) << c.name << ": only generated meshes";
     EXPECT_EQ(spec.options.count("path"), 0u) << c.name << ": only generated scenes";
     primitives[spec.name].insert(c.primitive);
-    shadows.insert(c.shadow);
+    shadows.insert(sb::Spec::parse(c.shadow).name);
     EXPECT_EQ(c.backends, (std::vector<std::string>{"gl", "vulkan"})) << c.name;
     EXPECT_LE(c.width * c.height, 128u * 128u) << c.name;
     for (const auto& b : c.backends)
@@ -206,7 +206,6 @@ TEST(Check, TwoPercentBrighterFails) {
   EXPECT_EQ(r.status, 1) << r.out << r.err;
   EXPECT_TRUE(hasLine(r.out, "FAILED " + kCase + " vulkan:")) << r.out;
   EXPECT_TRUE(hasLine(r.out, "OK " + kCase + " gl:")) << r.out;
-  EXPECT_TRUE(hasLine(r.out, "1 failed")) << r.out;
   EXPECT_TRUE(hasLine(r.out, "2 passed, 1 failed, 0 missing")) << r.out;
   expectFailureFiles(s.out, kCase, "vulkan");
 }
@@ -214,9 +213,12 @@ TEST(Check, TwoPercentBrighterFails) {
 // One strand fewer: the straight generator draws strand i from the i-th draws of
 // its random stream, so strands=N-1 is strands=N without the last strand; the
 // camera and light are fitted to the bounds, which this strand does not change.
+// Strand 299 of this scene is visible but mostly behind other hair: removing it
+// changes 7 pixels by more than 1/255, at most by 0.067 (strand 300 is hidden
+// behind the head and changes nothing).
 TEST(Check, OneStrandRemovedFails) {
-  const std::string full = "straight:strands=300,points=12,seed=3";
-  const std::string fewer = "straight:strands=299,points=12,seed=3";
+  const std::string full = "straight:strands=299,points=12,seed=3";
+  const std::string fewer = "straight:strands=298,points=12,seed=3";
   const sb::Bounds a = sb::makeScene(sb::Spec::parse(full)).bounds();
   const sb::Bounds b = sb::makeScene(sb::Spec::parse(fewer)).bounds();
   ASSERT_EQ(a.min, b.min) << "the removed strand must not move the fitted camera";

@@ -31,7 +31,7 @@ TEST(Cli, ListShowsScenesAndTechniques) {
   auto r = runCli("list");
   ASSERT_EQ(r.status, 0) << r.err;
   for (const char* name : {"straight", "wavy", "curly", "clustered", "fur", "file", "shadowmap",
-                           "none", "strands=", "seed="})
+                           "exact", "peel", "abuffer", "none", "strands=", "seed="})
     EXPECT_NE(r.out.find(name), std::string::npos) << name;
   auto j = runCli("list --json");
   ASSERT_EQ(j.status, 0);
@@ -66,6 +66,38 @@ TEST(Cli, RenderJsonHasTheDocumentedKeys) {
     EXPECT_EQ(m["oit_bytes"], 0);
   }
   std::filesystem::remove_all(dir);
+}
+
+// --reference adds the error against exact shadows + exact transparency, in
+// image and visibility space, and the depth complexity from eye and light.
+TEST(Cli, ReferenceReportsErrorsAndDepthComplexity) {
+  for (const std::string backend : {"gl", "vulkan"}) {
+    auto r = runCli(std::string("render --scene 'straight:strands=300,points=10,alpha=0.5' ") +
+                    "--shadow shadowmap:size=128 --oit none --reference --size 64x64 --json " +
+                    "--backend " + backend);
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    for (const char* k : {"rmse", "psnr", "ssim", "max_abs"})
+      EXPECT_TRUE(j["error"]["image"].contains(k)) << k;
+    EXPECT_GT(j["error"]["image"]["rmse"].get<double>(), 0.0);  // opaque hair is not the truth
+    EXPECT_GT(j["error"]["visibility"]["rmse"].get<double>(), 0.0);
+    EXPECT_LE(j["error"]["visibility"]["max"].get<double>(), 1.0);
+    for (const char* side : {"eye", "light"}) {
+      EXPECT_GT(j["depth_complexity"][side]["max"].get<int>(), 1) << side;
+      EXPECT_GT(j["depth_complexity"][side]["mean"].get<double>(), 1.0) << side;
+    }
+    // The reference against itself: no error.
+    auto self = runCli(std::string("render --scene 'straight:strands=300,points=10,alpha=0.5' ") +
+                       "--shadow exact:size=128 --oit abuffer --reference --size 64x64 --json " +
+                       "--backend " + backend);
+    ASSERT_EQ(self.status, 0) << self.err;
+    const auto k = nlohmann::json::parse(self.out);
+    EXPECT_EQ(k["error"]["image"]["max_abs"].get<double>(), 0.0);
+    EXPECT_EQ(k["error"]["visibility"]["max"].get<double>(), 0.0);
+    // Only the run's own techniques are counted in memory, not the reference's.
+    for (const auto& res : j["memory"]["resources"])
+      EXPECT_EQ(res["name"].get<std::string>().rfind("exact.", 0), std::string::npos) << res;
+  }
 }
 
 TEST(Cli, SameCommandTwiceGivesIdenticalBytes) {
