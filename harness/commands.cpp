@@ -95,6 +95,8 @@ void registerRender(CLI::App& app) {
   auto size = std::make_shared<std::string>("512x512");
   auto out = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
+  auto referenceOut = std::make_shared<std::string>();
+  auto heatmap = std::make_shared<std::string>();
   auto view = std::make_shared<std::map<std::string, std::string>>();
   cmd->add_option("--scene", req->scene, "scene spec, e.g. curly:strands=20000,points=32,seed=7")
       ->capture_default_str();
@@ -104,6 +106,9 @@ void registerRender(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--reference", req->reference,
                 "also render the reference (exact shadows + depth peeling) and report the error");
+  cmd->add_option("--reference-out", *referenceOut, "with --reference: write the reference image");
+  cmd->add_option("--heatmap", *heatmap,
+                  "with --reference: write a heatmap of |image - reference| (full scale 0.25)");
   cmd->add_option("--backend", req->backend, "gl | vulkan")->capture_default_str();
   cmd->add_option("--platform", req->platform, "gl: egl (default) | osmesa; vulkan: headless");
   cmd->add_option("--size", *size, "image size WIDTHxHEIGHT")->capture_default_str();
@@ -126,6 +131,11 @@ void registerRender(CLI::App& app) {
       req->width = w;
       req->height = h;
       if (!out->empty()) checkOutputPath(*out);
+      for (const auto* extra : {referenceOut.get(), heatmap.get()}) {
+        if (extra->empty()) continue;
+        if (!req->reference) throw InputError("--reference-out and --heatmap need --reference");
+        checkOutputPath(*extra);
+      }
       auto get = [&](const char* k) -> const std::string& { return (*view)[k]; };
       ViewOverrides& v = req->view;
       auto num = [&](const char* k) -> std::optional<float> {
@@ -155,6 +165,9 @@ void registerRender(CLI::App& app) {
       v.lightIntensity = num("light-intensity");
       const RenderOutcome result = runRender(*req);
       if (!out->empty()) writeImage(result.image, *out);
+      if (!referenceOut->empty()) writeImage(result.reference, *referenceOut);
+      if (!heatmap->empty())
+        writeImage(diffHeatmap(result.image, result.reference, 0.25), *heatmap);
       nlohmann::json report = result.report;
       if (!out->empty()) report["image"] = *out;
       if (*json) {

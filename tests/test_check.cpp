@@ -134,13 +134,14 @@ struct EnvVar {
 TEST(Baselines, ManifestCoversScenesTechniquesAndPrimitives) {
   const sb::Manifest m = sb::loadManifest(kCommitted / "manifest.json");
   std::map<std::string, std::set<std::string>> primitives;  // generator -> primitives
-  std::set<std::string> shadows;  // technique names
+  std::set<std::string> shadows, oits;                      // technique names
   for (const auto& c : m.cases) {
     const sb::Spec spec = sb::Spec::parse(c.scene);
     EXPECT_EQ(spec.options.count("mesh"), 0u) << c.name << ": only generated meshes";
     EXPECT_EQ(spec.options.count("path"), 0u) << c.name << ": only generated scenes";
     primitives[spec.name].insert(c.primitive);
     shadows.insert(sb::Spec::parse(c.shadow).name);
+    oits.insert(sb::Spec::parse(c.oit).name);
     EXPECT_EQ(c.backends, (std::vector<std::string>{"gl", "vulkan"})) << c.name;
     EXPECT_LE(c.width * c.height, 128u * 128u) << c.name;
     for (const auto& b : c.backends)
@@ -151,7 +152,9 @@ TEST(Baselines, ManifestCoversScenesTechniquesAndPrimitives) {
   int both = 0;
   for (const auto& [g, p] : primitives) both += p.size() == 2 ? 1 : 0;
   EXPECT_GE(both, 2);
-  EXPECT_EQ(shadows, (std::set<std::string>{"none", "shadowmap"}));
+  // Every technique so far, the ground truths included.
+  EXPECT_EQ(shadows, (std::set<std::string>{"none", "shadowmap", "exact"}));
+  EXPECT_EQ(oits, (std::set<std::string>{"none", "peel", "abuffer"}));
 }
 
 TEST(Check, CommittedBaselinesPassOnBothBackends) {
@@ -208,6 +211,20 @@ TEST(Check, TwoPercentBrighterFails) {
   EXPECT_TRUE(hasLine(r.out, "OK " + kCase + " gl:")) << r.out;
   EXPECT_TRUE(hasLine(r.out, "2 passed, 1 failed, 0 missing")) << r.out;
   expectFailureFiles(s.out, kCase, "vulkan");
+
+  // +0.1%: every difference stays under max_abs; the failing fraction catches it.
+  fs::copy_file(kCommitted / (kCase + ".vulkan.png"), s.image(kCase, "vulkan"),
+                fs::copy_options::overwrite_existing);
+  perturb(s.image(kCase, "vulkan"), [](sb::Image img) {
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x)
+        for (int c = 0; c < 3; ++c) img.at(x, y, c) *= 1.001f;
+    return img;
+  });
+  const auto small = s.check(filterArg(kCase));
+  EXPECT_EQ(small.status, 1) << small.out << small.err;
+  EXPECT_TRUE(hasLine(small.out, "FAILED " + kCase + " vulkan: failing ")) << small.out;
+  EXPECT_EQ(small.out.find("max_abs 0.00"), std::string::npos) << small.out;
 }
 
 // One strand fewer: the straight generator draws strand i from the i-th draws of
