@@ -6,42 +6,22 @@
 namespace sb {
 
 namespace {
-// As in techniques/abuffer/abuffer.glsl.
-constexpr uint32_t kCounts = 17, kOffsets = 18, kCursor = 19, kFragments = 20, kStatus = 21;
+// As in techniques/abuffer/abuffer.glsl (16 is the accumulation, 17 the counts).
+constexpr uint32_t kOffsets = 18, kCursor = 19, kFragments = 20, kStatus = 21;
 constexpr std::size_t kFragmentBytes = 32;
+const std::vector<uint32_t> kLists = {
+    AccumComposite::kAccumBinding, HairOit::kCountsBinding, kOffsets, kCursor, kFragments, kStatus};
 }  // namespace
 
 void ABufferOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
                        const KajiyaKayShading& shading, const OitTargets& targets) {
-  scene_ = &scene;
-  shading_ = &shading;
-  settings_ = s;
-  targets_ = targets;
-  const std::size_t pixels = std::size_t(s.width) * s.height;
-  composite_.setup(dev, s, shading.viewUbo(), targets, "abuffer");
-  counts_ = dev.createBuffer({"abuffer.counts", "oit", BufferUsage::Storage, pixels * 4});
-  offsets_ = dev.createBuffer({"abuffer.offsets", "oit", BufferUsage::Storage, pixels * 4});
-  cursor_ = dev.createBuffer({"abuffer.cursor", "oit", BufferUsage::Storage, pixels * 4});
+  setupCommon(dev, scene, s, shading, targets);
+  offsets_ = dev.createBuffer({"abuffer.offsets", "oit", BufferUsage::Storage, pixels() * 4ull});
+  cursor_ = dev.createBuffer({"abuffer.cursor", "oit", BufferUsage::Storage, pixels() * 4ull});
   status_ = dev.createBuffer({"abuffer.status", "oit", BufferUsage::Storage, 16});
-  const glm::uvec4 size(uint32_t(pixels), s.width, s.height, 0);
+  const glm::uvec4 size(pixels(), s.width, s.height, 0);
   sizeUbo_ = dev.createBuffer({"abuffer.size", "oit", BufferUsage::Uniform, sizeof size}, &size);
-
-  count_ = makeHairCountPipeline(dev, s, kCounts, true, "abuffer");
-  const ShaderCode vert = Geometry::strandVertexShader(s);
-  const ShaderCode frag = loadShader("techniques/abuffer/fill.frag", shading.hairDefines());
-  PipelineDesc d;
-  d.name = "abuffer.fill";
-  d.technique = "abuffer+" + shading.shadow().name();
-  d.vertex = &vert;
-  d.fragment = &frag;
-  d.topology = Geometry::strandTopology(s);
-  d.hasDepth = d.depthTest = true;  // hair behind the opaque mesh is left out
-  d.depthCompare = CompareOp::Less;
-  d.bindings = shading.hairSlots();
-  for (uint32_t b :
-       {AccumComposite::kAccumBinding, kCounts, kOffsets, kCursor, kFragments, kStatus})
-    d.bindings.push_back({b, BindingKind::StorageBuffer});
-  fill_ = dev.createPipeline(d);
+  fill_ = hairPipeline(dev, "abuffer.fill", "techniques/abuffer/fill.frag", {}, kLists);
 
   const ShaderCode comp = loadShader("techniques/abuffer/resolve.comp");
   PipelineDesc c;
@@ -49,31 +29,12 @@ void ABufferOit::setup(Device& dev, const GpuScene& scene, const RenderSettings&
   c.technique = "abuffer";
   c.compute = &comp;
   c.bindings = {{0, BindingKind::UniformBuffer}};
-  for (uint32_t b :
-       {AccumComposite::kAccumBinding, kCounts, kOffsets, kCursor, kFragments, kStatus})
-    c.bindings.push_back({b, BindingKind::StorageBuffer});
+  for (uint32_t b : kLists) c.bindings.push_back({b, BindingKind::StorageBuffer});
   resolve_ = dev.createPipeline(c);
 }
 
-PassDesc ABufferOit::hairPass(const std::string& name) const {
-  PassDesc pass;
-  pass.name = name;
-  pass.depth = {targets_.depth, targets_.opaqueDrawn ? LoadOp::Load : LoadOp::Clear, 1.0f};
-  pass.sampledTextures = shading_->sampledTextures();
-  return pass;
-}
-
 void ABufferOit::prepare(Device& dev) {
-  dev.fillBuffer(counts_, 0);
-  dev.beginFrame();
-  dev.beginPass(hairPass("abuffer.count"));
-  auto b = Geometry::bindings(*scene_, shading_->viewUbo());
-  b.push_back(Binding::buf(kCounts, counts_));
-  dev.draw(count_, b, Geometry::strandVertexCount(*scene_, settings_));
-  dev.endPass();
-  dev.endFrame();
-  const ListLayout layout = layoutFromCounts(dev.readBuffer(counts_));
-  complexity_ = layout.complexity;
+  const ListLayout layout = countFragments(dev);
   if (complexity_.total > maxFragments_)
     throw InputError(
         "A-buffer: the scene has " + std::to_string(complexity_.total) +
@@ -85,29 +46,27 @@ void ABufferOit::prepare(Device& dev) {
                                  std::max<uint64_t>(complexity_.total, 1) * kFragmentBytes});
 }
 
+std::vector<Binding> ABufferOit::listBindings() const {
+  return {Binding::buf(AccumComposite::kAccumBinding, composite_.accum()),
+          Binding::buf(kCountsBinding, counts_),
+          Binding::buf(kOffsets, offsets_),
+          Binding::buf(kCursor, cursor_),
+          Binding::buf(kFragments, fragments_),
+          Binding::buf(kStatus, status_)};
+}
+
 void ABufferOit::addPasses(FrameGraph& graph, Device& dev) {
-  auto reads = shading_->shadowReads();
-  reads.push_back("depth");
-  if (targets_.opaqueDrawn) reads.push_back("color");
-  graph.add({"abuffer", reads, {"color"}, [this, &dev] {
+  graph.add({"abuffer", graphReads(), {"color"}, [this, &dev] {
                dev.fillBuffer(cursor_, 0);
                dev.fillBuffer(status_, 0);
-               const std::vector<Binding> lists = {
-                   Binding::buf(AccumComposite::kAccumBinding, composite_.accum()),
-                   Binding::buf(kCounts, counts_),
-                   Binding::buf(kOffsets, offsets_),
-                   Binding::buf(kCursor, cursor_),
-                   Binding::buf(kFragments, fragments_),
-                   Binding::buf(kStatus, status_)};
                auto b = shading_->hairBindings();
-               b.insert(b.end(), lists.begin(), lists.end());
-               dev.beginPass(hairPass("abuffer.fill"));
-               dev.draw(fill_, b, Geometry::strandVertexCount(*scene_, settings_));
+               for (const auto& x : listBindings()) b.push_back(x);
+               dev.beginPass(hairPass("abuffer.fill", true));
+               dev.draw(fill_, b, hairVertices());
                dev.endPass();
-               auto r = lists;
+               auto r = listBindings();
                r.push_back(Binding::buf(0, sizeUbo_));
-               const uint32_t pixels = settings_.width * settings_.height;
-               dev.dispatch("abuffer.resolve", resolve_, r, (pixels + 63) / 64);
+               dev.dispatch("abuffer.resolve", resolve_, r, (pixels() + 63) / 64);
                composite_.record(dev);
              }});
 }

@@ -1,8 +1,6 @@
 #pragma once
 
-#include "techniques/common/composite.h"
-#include "techniques/common/fragment_lists.h"
-#include "techniques/common/technique.h"
+#include "techniques/common/hair_oit.h"
 
 namespace sb {
 
@@ -11,7 +9,7 @@ namespace sb {
 // counting pass in prepare()), then each list is sorted by fragment key and
 // composited front to back: the cross-check of depth peeling. A list
 // overflow is detected and reported, never truncated silently.
-class ABufferOit : public OitTechnique {
+class ABufferOit : public HairOit {
  public:
   explicit ABufferOit(uint64_t maxFragments) : maxFragments_(maxFragments) {}
   std::string name() const override { return "abuffer"; }
@@ -24,17 +22,11 @@ class ABufferOit : public OitTechnique {
   std::vector<std::string> warnings(Device& dev) override;
 
  private:
-  PassDesc hairPass(const std::string& name) const;
+  std::vector<Binding> listBindings() const;
 
   uint64_t maxFragments_;
-  const GpuScene* scene_ = nullptr;
-  const KajiyaKayShading* shading_ = nullptr;
-  RenderSettings settings_;
-  OitTargets targets_;
-  AccumComposite composite_;
-  DepthComplexity complexity_;
-  Buffer counts_, offsets_, cursor_, fragments_, status_, sizeUbo_;
-  Pipeline count_, fill_, resolve_;
+  Buffer offsets_, cursor_, fragments_, status_, sizeUbo_;
+  Pipeline fill_, resolve_;
 };
 
 }  // namespace sb

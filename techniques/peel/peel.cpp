@@ -1,78 +1,38 @@
 #include "techniques/peel/peel.h"
 
-#include "techniques/common/shader_library.h"
 #include "techniques/kajiya_kay/shading.h"
 
 namespace sb {
 
 namespace {
-constexpr uint32_t kState = 17, kPeeled = 18, kCounts = 19;
-}
+// As in techniques/peel/peel.frag (16 is the accumulation, 17 the counts).
+constexpr uint32_t kState = 18, kPeeled = 19;
+}  // namespace
 
 void PeelOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
                     const KajiyaKayShading& shading, const OitTargets& targets) {
-  scene_ = &scene;
-  shading_ = &shading;
-  settings_ = s;
-  targets_ = targets;
-  const std::size_t pixels = std::size_t(s.width) * s.height;
-  composite_.setup(dev, s, shading.viewUbo(), targets, "peel");
-  state_ = dev.createBuffer({"peel.state", "oit", BufferUsage::Storage, pixels * 16});
-  peeled_ = dev.createBuffer({"peel.layers", "oit", BufferUsage::Storage, pixels * 4});
-  counts_ = dev.createBuffer({"peel.counts", "oit", BufferUsage::Storage, pixels * 4});
-  const glm::uvec4 size(uint32_t(pixels), s.width, s.height, 0);
+  setupCommon(dev, scene, s, shading, targets);
+  state_ = dev.createBuffer({"peel.state", "oit", BufferUsage::Storage, pixels() * 16ull});
+  peeled_ = dev.createBuffer({"peel.layers", "oit", BufferUsage::Storage, pixels() * 4ull});
+  const glm::uvec4 size(pixels(), s.width, s.height, 0);
   sizeUbo_ = dev.createBuffer({"peel.size", "oit", BufferUsage::Uniform, sizeof size}, &size);
-
-  count_ = makeHairCountPipeline(dev, s, kCounts, true, "peel");
-  const ShaderCode vert = Geometry::strandVertexShader(s);
-  PipelineDesc d;
-  d.technique = "peel+" + shading.shadow().name();
-  d.vertex = &vert;
-  d.topology = Geometry::strandTopology(s);
-  d.hasDepth = d.depthTest = true;  // hair behind the opaque mesh is left out
-  d.depthCompare = CompareOp::Less;
-  d.bindings = shading.hairSlots();
-  for (uint32_t b : {AccumComposite::kAccumBinding, kState, kPeeled})
-    d.bindings.push_back({b, BindingKind::StorageBuffer});
+  const char* names[3] = {"peel.depth", "peel.id", "peel.shade"};
   for (int pass = 0; pass < 3; ++pass) {
-    ShaderDefines defs = shading.hairDefines();
+    ShaderDefines defs;
     defs.defines.push_back({"SB_PEEL_PASS", std::to_string(pass)});
-    const ShaderCode frag = loadShader("techniques/peel/peel.frag", defs);
-    d.name = pass == 0 ? "peel.depth" : pass == 1 ? "peel.id" : "peel.shade";
-    d.fragment = &frag;
-    step_[pass] = dev.createPipeline(d);
+    step_[pass] = hairPipeline(dev, names[pass], "techniques/peel/peel.frag", defs,
+                               {AccumComposite::kAccumBinding, kState, kPeeled});
   }
   advance_ = makePeelAdvancePipeline(dev, kState, kPeeled, 0, 0, "peel");
 }
 
-PassDesc PeelOit::hairPass(const std::string& name, bool first) const {
-  PassDesc pass;
-  pass.name = name;
-  // Without a mesh nothing wrote the depth: the first pass of a frame clears it.
-  pass.depth = {targets_.depth, first && !targets_.opaqueDrawn ? LoadOp::Clear : LoadOp::Load,
-                1.0f};
-  pass.sampledTextures = shading_->sampledTextures();
-  return pass;
-}
-
 void PeelOit::prepare(Device& dev) {
-  dev.fillBuffer(counts_, 0);
-  dev.beginFrame();
-  dev.beginPass(hairPass("peel.count", true));
-  auto b = Geometry::bindings(*scene_, shading_->viewUbo());
-  b.push_back(Binding::buf(kCounts, counts_));
-  dev.draw(count_, b, Geometry::strandVertexCount(*scene_, settings_));
-  dev.endPass();
-  dev.endFrame();
-  complexity_ = layoutFromCounts(dev.readBuffer(counts_)).complexity;
+  countFragments(dev);
   layers_ = std::min(complexity_.max, maxLayers_);
 }
 
 void PeelOit::addPasses(FrameGraph& graph, Device& dev) {
-  auto reads = shading_->shadowReads();
-  reads.push_back("depth");
-  if (targets_.opaqueDrawn) reads.push_back("color");
-  graph.add({"peel", reads, {"color"}, [this, &dev] {
+  graph.add({"peel", graphReads(), {"color"}, [this, &dev] {
                dev.fillBuffer(composite_.accum(), 0);
                dev.fillBuffer(peeled_, 0);
                dev.fillBuffer(state_, 0xFFFFFFFFu);
@@ -83,16 +43,14 @@ void PeelOit::addPasses(FrameGraph& graph, Device& dev) {
                const std::vector<Binding> advance = {Binding::buf(0, sizeUbo_),
                                                      Binding::buf(kState, state_),
                                                      Binding::buf(kPeeled, peeled_)};
-               const uint32_t vertices = Geometry::strandVertexCount(*scene_, settings_);
-               const uint32_t pixels = settings_.width * settings_.height;
                const char* names[3] = {"peel.depth", "peel.id", "peel.shade"};
                for (uint32_t layer = 0; layer < layers_; ++layer) {
                  for (int pass = 0; pass < 3; ++pass) {
                    dev.beginPass(hairPass(names[pass], layer == 0 && pass == 0));
-                   dev.draw(step_[pass], b, vertices);
+                   dev.draw(step_[pass], b, hairVertices());
                    dev.endPass();
                  }
-                 dev.dispatch("peel.advance", advance_, advance, (pixels + 63) / 64);
+                 dev.dispatch("peel.advance", advance_, advance, (pixels() + 63) / 64);
                }
                if (layers_ == 0 && !targets_.opaqueDrawn) {  // still clear the depth
                  dev.beginPass(hairPass("peel.depth", true));

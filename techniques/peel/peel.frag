@@ -8,8 +8,8 @@
 #include "../common/fragment_key.glsl"
 
 layout(std430, binding = 16) buffer Accum { vec4 accum[]; };
-layout(std430, binding = 17) buffer PeelState { uvec4 peelState[]; };
-layout(std430, binding = 18) buffer Peeled { uint peeled[]; };
+layout(std430, binding = 18) buffer PeelState { uvec4 peelState[]; };
+layout(std430, binding = 19) buffer Peeled { uint peeled[]; };
 #include "../common/peel_step.glsl"
 
 layout(location = 0) in vec3 vWorldPos;

@@ -1,8 +1,6 @@
 #pragma once
 
-#include "techniques/common/composite.h"
-#include "techniques/common/fragment_lists.h"
-#include "techniques/common/technique.h"
+#include "techniques/common/hair_oit.h"
 
 namespace sb {
 
@@ -11,7 +9,7 @@ namespace sb {
 // depth, shade and accumulate), for as many layers as the deepest pixel holds
 // (counted once in prepare(), standing in for an occlusion query per layer),
 // capped by layers= (a cap that is reported).
-class PeelOit : public OitTechnique {
+class PeelOit : public HairOit {
  public:
   explicit PeelOit(uint32_t maxLayers) : maxLayers_(maxLayers) {}
   std::string name() const override { return "peel"; }
@@ -24,18 +22,10 @@ class PeelOit : public OitTechnique {
   std::vector<std::string> warnings(Device& dev) override;
 
  private:
-  PassDesc hairPass(const std::string& name, bool first) const;
-
   uint32_t maxLayers_;
   uint32_t layers_ = 0;
-  const GpuScene* scene_ = nullptr;
-  const KajiyaKayShading* shading_ = nullptr;
-  RenderSettings settings_;
-  OitTargets targets_;
-  AccumComposite composite_;
-  DepthComplexity complexity_;
-  Buffer state_, peeled_, counts_, sizeUbo_;
-  Pipeline count_, step_[3], advance_;
+  Buffer state_, peeled_, sizeUbo_;
+  Pipeline step_[3], advance_;
 };
 
 }  // namespace sb

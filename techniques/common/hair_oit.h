@@ -1,0 +1,44 @@
+// What the exact transparency techniques share: the state kept from setup(),
+// hair passes depth-tested against the opaque depth, the counting pass that
+// sizes them, and the accumulation they composite.
+#pragma once
+
+#include "techniques/common/composite.h"
+#include "techniques/common/fragment_lists.h"
+#include "techniques/common/shader_library.h"
+#include "techniques/common/technique.h"
+
+namespace sb {
+
+class HairOit : public OitTechnique {
+ public:
+  static constexpr uint32_t kCountsBinding = 17;
+
+ protected:
+  // Keeps the inputs, creates the per-pixel count buffer, the counting
+  // pipeline and the accumulation/composite.
+  void setupCommon(Device& dev, const GpuScene& scene, const RenderSettings& s,
+                   const KajiyaKayShading& shading, const OitTargets& targets);
+  // A hair pass with no colour target, depth-tested against the opaque depth
+  // (cleared instead when nothing opaque was drawn and `first` is set).
+  PassDesc hairPass(const std::string& name, bool first) const;
+  // A hair pipeline for `fragShader` with the shading and shadow bindings plus `storage`.
+  Pipeline hairPipeline(Device& dev, const std::string& name, const std::string& fragShader,
+                        ShaderDefines defs, const std::vector<uint32_t>& storage) const;
+  // Counts the visible hair fragments of every pixel (one frame).
+  ListLayout countFragments(Device& dev);
+  std::vector<std::string> graphReads() const;
+  uint32_t hairVertices() const { return Geometry::strandVertexCount(*scene_, settings_); }
+  uint32_t pixels() const { return settings_.width * settings_.height; }
+
+  const GpuScene* scene_ = nullptr;
+  const KajiyaKayShading* shading_ = nullptr;
+  RenderSettings settings_;
+  OitTargets targets_;
+  AccumComposite composite_;
+  DepthComplexity complexity_;
+  Buffer counts_;
+  Pipeline count_;
+};
+
+}  // namespace sb
