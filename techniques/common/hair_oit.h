@@ -13,6 +13,8 @@ namespace sb {
 class HairOit : public OitTechnique {
  public:
   static constexpr uint32_t kCountsBinding = 17;
+  bool needsPrepare() const override { return true; }  // the counting pass
+  std::optional<DepthComplexity> depthComplexity() const override { return complexity_; }
 
  protected:
   // Keeps the inputs, creates the per-pixel count buffer, the counting

@@ -15,10 +15,8 @@ class PeelOit : public HairOit {
   std::string name() const override { return "peel"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
              const KajiyaKayShading& shading, const OitTargets& targets) override;
-  bool needsPrepare() const override { return true; }
   void prepare(Device& dev) override;
   void addPasses(FrameGraph& graph, Device& dev) override;
-  std::optional<DepthComplexity> depthComplexity() const override { return complexity_; }
   std::vector<std::string> warnings(Device& dev) override;
 
  private:
