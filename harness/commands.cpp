@@ -207,7 +207,23 @@ void registerCompare(CLI::App& app) {
   auto b = std::make_shared<std::string>();
   cmd->add_option("A", *a, "first image")->required();
   cmd->add_option("B", *b, "second image")->required();
-  cmd->callback([=] { gStatus = runCompareCommand(*a, *b, std::cout, std::cerr); });
+  auto heatmap = std::make_shared<std::string>();
+  auto scale = std::make_shared<double>(0.25);
+  cmd->add_option("--heatmap", *heatmap, "write a viridis heatmap of |A - B| (PNG or EXR)");
+  cmd->add_option("--heatmap-scale", *scale, "difference shown as the top colour")
+      ->capture_default_str();
+  cmd->callback([=] {
+    runGuarded("compare", [&] {
+      if (!heatmap->empty()) {
+        if (!(*scale > 0)) throw InputError("--heatmap-scale must be positive");
+        checkOutputPath(*heatmap);
+      }
+      const int status = runCompareCommand(*a, *b, std::cout, std::cerr);
+      if (status == 0 && !heatmap->empty())
+        writeImage(diffHeatmap(readImage(*a), readImage(*b), *scale), *heatmap);
+      return status;
+    });
+  });
 }
 
 }  // namespace

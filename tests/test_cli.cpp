@@ -179,6 +179,11 @@ TEST(Cli, CompareReportsErrors) {
   auto diff = runCli("compare " + a.string() + " " + b.string());
   ASSERT_EQ(diff.status, 0) << diff.err;
   EXPECT_GT(nlohmann::json::parse(diff.out)["rmse"].get<double>(), 0.0);
+  auto heat = runCli("compare " + a.string() + " " + b.string() + " --heatmap " +
+                     (dir / "heat.png").string());
+  ASSERT_EQ(heat.status, 0) << heat.err;
+  const sb::Image h = sb::readImage((dir / "heat.png").string());
+  EXPECT_EQ(h.width, 96);
   auto missing = runCli("compare " + a.string() + " " + (dir / "none.png").string());
   EXPECT_EQ(missing.status, 2);
   EXPECT_NE(missing.err.find("none.png"), std::string::npos);
