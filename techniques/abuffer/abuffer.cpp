@@ -20,7 +20,7 @@ void ABufferOit::setup(Device& dev, const GpuScene& scene, const RenderSettings&
   cursor_ = dev.createBuffer({"abuffer.cursor", "oit", BufferUsage::Storage, pixels() * 4ull});
   status_ = dev.createBuffer({"abuffer.status", "oit", BufferUsage::Storage, 16});
   const glm::uvec4 size(pixels(), s.width, s.height, 0);
-  sizeUbo_ = dev.createBuffer({"abuffer.size", "oit", BufferUsage::Uniform, sizeof size}, &size);
+  sizeUbo_ = dev.createBuffer({"abuffer.size", "frame", BufferUsage::Uniform, sizeof size}, &size);
   fill_ = hairPipeline(dev, "abuffer.fill", "techniques/abuffer/fill.frag", {}, kLists);
 
   const ShaderCode comp = loadShader("techniques/abuffer/resolve.comp");

@@ -28,7 +28,9 @@ PassDesc HairOit::hairPass(const std::string& name, bool first) const {
 
 Pipeline HairOit::hairPipeline(Device& dev, const std::string& name, const std::string& fragShader,
                                ShaderDefines defs, const std::vector<uint32_t>& storage) const {
-  for (auto& [alias, file] : shading_->hairDefines().aliases) defs.aliases[alias] = file;
+  const ShaderDefines hair = shading_->hairDefines();
+  for (auto& [alias, file] : hair.aliases) defs.aliases[alias] = file;
+  defs.defines.insert(defs.defines.end(), hair.defines.begin(), hair.defines.end());
   const ShaderCode vert = Geometry::strandVertexShader(settings_);
   const ShaderCode frag = loadShader(fragShader, defs);
   PipelineDesc d;

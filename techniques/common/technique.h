@@ -13,6 +13,7 @@
 #include "scenes/scene.h"
 #include "scenes/view.h"
 #include "techniques/common/frame_graph.h"
+#include "techniques/common/shader_library.h"
 
 namespace sb {
 
@@ -93,6 +94,8 @@ class ShadowTechnique {
   // Problems found while rendering (e.g. a fragment-list overflow, a layer cap hit).
   virtual std::vector<std::string> warnings(Device& /*dev*/) { return {}; }
   virtual std::string lookupShader() const = 0;
+  // Defines the lookup needs (e.g. SB_OPAQUE_SHADOW from OpaqueShadow).
+  virtual ShaderDefines lookupDefines() const { return {}; }
   virtual std::vector<std::string> lookupReads() const = 0;
   virtual std::vector<BindingSlot> lookupSlots() const = 0;
   virtual std::vector<Binding> lookupBindings() const = 0;

@@ -8,12 +8,13 @@ namespace sb {
 
 namespace {
 // Binding numbers, as in techniques/exact/exact.glsl.
+// 15 is the opaque mesh's depth map (OpaqueShadow).
 constexpr uint32_t kParams = 8, kCounts = 9, kOffsets = 10, kCursor = 11, kNodes = 12, kState = 13,
-                   kOpaque = 14, kStatus = 15;
+                   kStatus = 14;
 
 struct Params {
   glm::mat4 viewProj;
-  glm::vec4 params;  // bias, size, shadow alpha, has opaque map
+  glm::vec4 params;  // bias, size, shadow alpha, 0
 };
 
 uint32_t groups(uint32_t n) { return (n + 63) / 64; }
@@ -28,13 +29,12 @@ void ExactShadow::setup(Device& dev, const GpuScene& scene, const RenderSettings
   const std::size_t texels = std::size_t(size_) * size_;
   const ViewUniforms view = lightView(s, size_, size_);
   lightView_ =
-      dev.createBuffer({"exact.light_view", "shadow", BufferUsage::Uniform, sizeof view}, &view);
-  const Params p{view.viewProj,
-                 glm::vec4(bias_, float(size_), scene.shadowAlpha, scene.hasMesh() ? 1.0f : 0.0f)};
-  params_ = dev.createBuffer({"exact.params", "shadow", BufferUsage::Uniform, sizeof p}, &p);
+      dev.createBuffer({"exact.light_view", "frame", BufferUsage::Uniform, sizeof view}, &view);
+  const Params p{view.viewProj, glm::vec4(bias_, float(size_), scene.shadowAlpha, 0.0f)};
+  params_ = dev.createBuffer({"exact.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
   const glm::uvec4 sizeData(uint32_t(texels), size_, 0, 0);
   sizeUbo_ =
-      dev.createBuffer({"exact.size", "shadow", BufferUsage::Uniform, sizeof sizeData}, &sizeData);
+      dev.createBuffer({"exact.size", "frame", BufferUsage::Uniform, sizeof sizeData}, &sizeData);
   counts_ = dev.createBuffer({"exact.counts", "shadow", BufferUsage::Storage, texels * 4});
   offsets_ = dev.createBuffer({"exact.offsets", "shadow", BufferUsage::Storage, texels * 4});
   cursor_ = dev.createBuffer({"exact.cursor", "shadow", BufferUsage::Storage, texels * 4});
@@ -43,10 +43,7 @@ void ExactShadow::setup(Device& dev, const GpuScene& scene, const RenderSettings
     state_ = dev.createBuffer({"exact.peel_state", "shadow", BufferUsage::Storage, texels * 16});
   else
     state_ = dev.createBuffer({"exact.peel_state", "shadow", BufferUsage::Storage, 16});
-  // The mesh's hard shadow; a 1x1 placeholder keeps the binding valid without a mesh.
-  const uint32_t opaqueSize = scene.hasMesh() ? size_ : 1;
-  opaqueDepth_ = dev.createTexture(
-      {"exact.opaque_depth", "shadow", Format::Depth32F, opaqueSize, opaqueSize, false});
+  opaque_.setup(dev, scene, size_, lightView_, "exact");
 
   count_ = makeHairCountPipeline(dev, s, kCounts, false, "exact");
   const ShaderCode vert = Geometry::strandVertexShader(s);
@@ -78,18 +75,6 @@ void ExactShadow::setup(Device& dev, const GpuScene& scene, const RenderSettings
       (pass == 0 ? peel0_ : peel1_) = dev.createPipeline(d);
     }
     advance_ = makePeelAdvancePipeline(dev, kState, kCursor, kOffsets, kNodes, "exact");
-  }
-  if (scene.hasMesh()) {
-    const ShaderCode mv = Geometry::meshVertexShader();
-    const ShaderCode mf = loadShader("techniques/common/depth_only.frag");
-    PipelineDesc m;
-    m.name = "exact.opaque";
-    m.technique = "exact";
-    m.vertex = &mv;
-    m.fragment = &mf;
-    m.hasDepth = m.depthTest = m.depthWrite = true;
-    m.bindings = Geometry::slots();
-    opaque_ = dev.createPipeline(m);
   }
 }
 
@@ -136,17 +121,7 @@ PassDesc ExactShadow::listPass(const std::string& name) const {
 
 void ExactShadow::addPasses(FrameGraph& graph, Device& dev) {
   const uint32_t vertices = Geometry::strandVertexCount(*scene_, settings_);
-  if (opaque_) {
-    graph.add({"exact.opaque", {}, {"shadow.opaque"}, [this, &dev] {
-                 PassDesc pass;
-                 pass.name = "exact.opaque";
-                 pass.depth = {opaqueDepth_, LoadOp::Clear, 1.0f};
-                 dev.beginPass(pass);
-                 dev.draw(opaque_, Geometry::bindings(*scene_, lightView_),
-                          scene_->meshTriangles * 3);
-                 dev.endPass();
-               }});
-  }
+  opaque_.addPass(graph, dev);
   if (method_ == Method::ABuffer) {
     graph.add({"exact.fill", {}, {"shadow.lists"}, [this, &dev, vertices] {
                  dev.fillBuffer(cursor_, 0);
@@ -183,19 +158,31 @@ void ExactShadow::addPasses(FrameGraph& graph, Device& dev) {
 
 std::vector<std::string> ExactShadow::lookupReads() const {
   std::vector<std::string> r = {"shadow.lists"};
-  if (opaque_) r.push_back("shadow.opaque");
+  opaque_.addReads(r);
   return r;
+}
+
+std::vector<Texture> ExactShadow::lookupTextures() const {
+  std::vector<Texture> t;
+  opaque_.addTextures(t);
+  return t;
+}
+
+ShaderDefines ExactShadow::lookupDefines() const {
+  ShaderDefines d;
+  opaque_.addDefines(d);
+  return d;
 }
 
 std::vector<BindingSlot> ExactShadow::lookupSlots() const {
   auto s = allSlots();
-  s.push_back({kOpaque, BindingKind::SampledTexture});
+  opaque_.addSlots(s);
   return s;
 }
 
 std::vector<Binding> ExactShadow::lookupBindings() const {
   auto b = allBindings();
-  b.push_back(Binding::tex(kOpaque, opaqueDepth_));
+  opaque_.addBindings(b);
   return b;
 }
 

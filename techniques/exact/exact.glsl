@@ -8,4 +8,4 @@ layout(std430, binding = 10) buffer ExactOffsets { uint exactOffsets[]; };  // p
 layout(std430, binding = 11) buffer ExactCursor { uint exactCursor[]; };    // fill / layers peeled
 layout(std430, binding = 12) buffer ExactNodes { uvec2 exactNodes[]; };     // sorted keys per texel
 layout(std430, binding = 13) buffer ExactState { uvec4 exactState[]; };     // peeling state
-layout(std430, binding = 15) buffer ExactStatus { uint exactOverflow; };
+layout(std430, binding = 14) buffer ExactStatus { uint exactOverflow; };

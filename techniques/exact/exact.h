@@ -1,6 +1,7 @@
 #pragma once
 
 #include "techniques/common/fragment_lists.h"
+#include "techniques/common/opaque_shadow.h"
 #include "techniques/common/technique.h"
 
 namespace sb {
@@ -10,7 +11,7 @@ namespace sb {
 // (1 - alpha_s)^n for the n fragments in front of it. Built two independent
 // ways that must agree: depth peeling from the light (method=peel: one layer
 // per step, ties broken by primitive id) and a light-space A-buffer sorted per
-// texel (method=abuffer). The mesh casts a hard shadow through its own depth map.
+// texel (method=abuffer). The mesh casts a hard shadow (OpaqueShadow).
 class ExactShadow : public ShadowTechnique {
  public:
   enum class Method { Peel, ABuffer };
@@ -24,7 +25,8 @@ class ExactShadow : public ShadowTechnique {
   std::vector<std::string> lookupReads() const override;
   std::vector<BindingSlot> lookupSlots() const override;
   std::vector<Binding> lookupBindings() const override;
-  std::vector<Texture> lookupTextures() const override { return {opaqueDepth_}; }
+  std::vector<Texture> lookupTextures() const override;
+  ShaderDefines lookupDefines() const override;
 
   // After a frame: per texel, the number of fragments stored and their keys
   // (for checking the two methods against each other), and problems seen.
@@ -49,8 +51,8 @@ class ExactShadow : public ShadowTechnique {
   RenderSettings settings_;
   DepthComplexity complexity_;
   Buffer params_, lightView_, counts_, offsets_, cursor_, nodes_, state_, status_, sizeUbo_;
-  Texture opaqueDepth_;
-  Pipeline count_, fill_, sort_, peel0_, peel1_, advance_, opaque_;
+  OpaqueShadow opaque_;
+  Pipeline count_, fill_, sort_, peel0_, peel1_, advance_;
 };
 
 }  // namespace sb

@@ -2,15 +2,16 @@
 // visibility of a point is (1 - alpha_s)^n, n = the hair fragments in front of
 // it in its light texel, found by binary search in the texel's sorted list;
 // times 0 when the opaque mesh is in front (hard shadow).
+#include "../common/opaque_shadow.glsl"
+
 // Only the blocks the lookup reads (GL counts declared blocks per stage).
 layout(std140, binding = 8) uniform ExactShadowParams {
   mat4 exactViewProj;
-  vec4 exactParams;  // x: bias (light depth units), y: map size, z: shadow alpha, w: 1 = opaque map
+  vec4 exactParams;  // x: bias (light depth units), y: map size, z: shadow alpha
 };
 layout(std430, binding = 9) readonly buffer ExactCounts { uint exactCounts[]; };
 layout(std430, binding = 10) readonly buffer ExactOffsets { uint exactOffsets[]; };
 layout(std430, binding = 12) readonly buffer ExactNodes { uvec2 exactNodes[]; };
-layout(binding = 14) uniform sampler2D exactOpaqueDepth;  // the mesh seen from the light
 
 float shadowVisibility(vec3 worldPos) {
   vec4 clip = exactViewProj * vec4(worldPos, 1.0);
@@ -18,7 +19,7 @@ float shadowVisibility(vec3 worldPos) {
   vec2 uv = ndc.xy * 0.5 + 0.5;
   if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || ndc.z > 1.0) return 1.0;
   float z = ndc.z - exactParams.x;
-  if (exactParams.w > 0.5 && z > texture(exactOpaqueDepth, uv).r) return 0.0;
+  if (opaqueVisibility(ndc, exactParams.x) == 0.0) return 0.0;
   uint size = uint(exactParams.y);
   uvec2 t = min(uvec2(uv * exactParams.y), uvec2(size - 1u));
   uint texel = t.y * size + t.x;

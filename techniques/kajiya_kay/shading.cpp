@@ -40,7 +40,7 @@ void KajiyaKayShading::setup(Device& dev, const GpuScene& scene, const RenderSet
 }
 
 ShaderDefines KajiyaKayShading::hairDefines() const {
-  ShaderDefines defs;
+  ShaderDefines defs = shadow_->lookupDefines();
   defs.aliases["shadow"] = shadow_->lookupShader();
   return defs;
 }

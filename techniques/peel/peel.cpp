@@ -15,7 +15,7 @@ void PeelOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
   state_ = dev.createBuffer({"peel.state", "oit", BufferUsage::Storage, pixels() * 16ull});
   peeled_ = dev.createBuffer({"peel.layers", "oit", BufferUsage::Storage, pixels() * 4ull});
   const glm::uvec4 size(pixels(), s.width, s.height, 0);
-  sizeUbo_ = dev.createBuffer({"peel.size", "oit", BufferUsage::Uniform, sizeof size}, &size);
+  sizeUbo_ = dev.createBuffer({"peel.size", "frame", BufferUsage::Uniform, sizeof size}, &size);
   const char* names[3] = {"peel.depth", "peel.id", "peel.shade"};
   for (int pass = 0; pass < 3; ++pass) {
     ShaderDefines defs;

@@ -16,10 +16,10 @@ void ShadowMap::setup(Device& dev, const GpuScene& scene, const RenderSettings& 
   settings_ = s;
   depth_ = dev.createTexture({"shadowmap.depth", "shadow", Format::Depth32F, size_, size_, false});
   const ViewUniforms view = lightView(s, size_, size_);
-  lightViewUbo_ = dev.createBuffer(
-      {"shadowmap.light_view", "shadow", BufferUsage::Uniform, sizeof view}, &view);
+  lightViewUbo_ =
+      dev.createBuffer({"shadowmap.light_view", "frame", BufferUsage::Uniform, sizeof view}, &view);
   const Params p{view.viewProj, glm::vec4(bias_, 0, 0, 0)};
-  paramsUbo_ = dev.createBuffer({"shadowmap.params", "shadow", BufferUsage::Uniform, sizeof p}, &p);
+  paramsUbo_ = dev.createBuffer({"shadowmap.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
 
   const ShaderCode frag = loadShader("techniques/common/depth_only.frag");
   PipelineDesc d;

@@ -1,0 +1,58 @@
+#include "techniques/common/opaque_shadow.h"
+
+namespace sb {
+
+void OpaqueShadow::setup(Device& dev, const GpuScene& scene, uint32_t size, Buffer lightViewUbo,
+                         const std::string& technique) {
+  scene_ = &scene;
+  technique_ = technique;
+  lightView_ = lightViewUbo;
+  if (!scene.hasMesh()) return;
+  depth_ = dev.createTexture(
+      {technique + ".opaque_depth", "shadow", Format::Depth32F, size, size, false});
+  const ShaderCode vert = Geometry::meshVertexShader();
+  const ShaderCode frag = loadShader("techniques/common/depth_only.frag");
+  PipelineDesc d;
+  d.name = technique + ".opaque";
+  d.technique = technique;
+  d.vertex = &vert;
+  d.fragment = &frag;
+  d.hasDepth = d.depthTest = d.depthWrite = true;
+  d.bindings = Geometry::slots();
+  pipeline_ = dev.createPipeline(d);
+}
+
+void OpaqueShadow::addPass(FrameGraph& graph, Device& dev) {
+  if (!active()) return;
+  graph.add({technique_ + ".opaque", {}, {"shadow.opaque"}, [this, &dev] {
+               PassDesc pass;
+               pass.name = technique_ + ".opaque";
+               pass.depth = {depth_, LoadOp::Clear, 1.0f};
+               dev.beginPass(pass);
+               dev.draw(pipeline_, Geometry::bindings(*scene_, lightView_),
+                        scene_->meshTriangles * 3);
+               dev.endPass();
+             }});
+}
+
+void OpaqueShadow::addDefines(ShaderDefines& defs) const {
+  defs.defines.push_back({"SB_OPAQUE_SHADOW", active() ? "1" : "0"});
+}
+
+void OpaqueShadow::addReads(std::vector<std::string>& reads) const {
+  if (active()) reads.push_back("shadow.opaque");
+}
+
+void OpaqueShadow::addSlots(std::vector<BindingSlot>& slots) const {
+  if (active()) slots.push_back({kBinding, BindingKind::SampledTexture});
+}
+
+void OpaqueShadow::addBindings(std::vector<Binding>& bindings) const {
+  if (active()) bindings.push_back(Binding::tex(kBinding, depth_));
+}
+
+void OpaqueShadow::addTextures(std::vector<Texture>& textures) const {
+  if (active()) textures.push_back(depth_);
+}
+
+}  // namespace sb

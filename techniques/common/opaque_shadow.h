@@ -1,0 +1,35 @@
+// The opaque mesh seen from the light, for every shadow technique: pass
+// "<technique>.opaque" draws the mesh into a depth map (graph resource
+// "shadow.opaque"); lookups call opaqueVisibility() (opaque_shadow.glsl).
+// Without a mesh it creates nothing and adds no pass.
+#pragma once
+
+#include "techniques/common/shader_library.h"
+#include "techniques/common/technique.h"
+
+namespace sb {
+
+class OpaqueShadow {
+ public:
+  static constexpr uint32_t kBinding = 15;
+  // lightViewUbo: the light's ViewUniforms for the same size.
+  void setup(Device& dev, const GpuScene& scene, uint32_t size, Buffer lightViewUbo,
+             const std::string& technique);
+  void addPass(FrameGraph& graph, Device& dev);
+  bool active() const { return bool(depth_); }
+  // For the technique's lookup: the define, reads, slots, bindings and textures.
+  void addDefines(ShaderDefines& defs) const;
+  void addReads(std::vector<std::string>& reads) const;
+  void addSlots(std::vector<BindingSlot>& slots) const;
+  void addBindings(std::vector<Binding>& bindings) const;
+  void addTextures(std::vector<Texture>& textures) const;
+
+ private:
+  const GpuScene* scene_ = nullptr;
+  std::string technique_;
+  Buffer lightView_;
+  Texture depth_;
+  Pipeline pipeline_;
+};
+
+}  // namespace sb
