@@ -233,6 +233,7 @@ void registerCommands(CLI::App& app) {
   registerRender(app);
   registerCompare(app);
   registerCheckCommands(app);
+  registerProbeCommand(app);
 }
 
 int lastCommandStatus() { return gStatus; }

@@ -8,6 +8,8 @@ namespace sb {
 void registerCommands(CLI::App& app);
 // `check` and `bless` (harness/check_command.cpp).
 void registerCheckCommands(CLI::App& app);
+// `probe` (harness/probe_command.cpp).
+void registerProbeCommand(CLI::App& app);
 int lastCommandStatus();
 // Runs a command's body and records its exit status; bad input (InputError) and
 // unavailable backends (DeviceError) print "strandbench <command>: <message>"

@@ -37,9 +37,7 @@ glm::vec3 parseVec3(const std::string& text, const std::string& option) {
   return v;
 }
 
-namespace {
-
-RenderSettings makeSettings(const RenderRequest& req, const Scene& scene) {
+RenderSettings makeRenderSettings(const RenderRequest& req, const Scene& scene) {
   RenderSettings s;
   s.width = req.width;
   s.height = req.height;
@@ -95,13 +93,11 @@ RenderSettings makeSettings(const RenderRequest& req, const Scene& scene) {
   return s;
 }
 
+namespace {
+
 nlohmann::json boundsJson(const Bounds& b) {
   return {{"min", {b.min.x, b.min.y, b.min.z}}, {"max", {b.max.x, b.max.y, b.max.z}}};
 }
-
-}  // namespace
-
-namespace {
 
 // Visibility error over the pixels where both images see a surface (>= 0).
 nlohmann::json visibilityError(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
@@ -151,16 +147,7 @@ Spec referenceShadowSpec(const Spec& shadow) {
 
 }  // namespace
 
-RenderOutcome runRender(const RenderRequest& req) {
-  if (req.repeat < 1) throw InputError("--repeat must be at least 1");
-  if (req.warmup < 0) throw InputError("--warmup must be at least 0");
-  const Scene scene = makeScene(Spec::parse(req.scene));
-  const Spec shadowSpec = Spec::parse(req.shadow);
-  const Spec oitSpec = Spec::parse(req.oit);
-  auto shadow = makeShadowTechnique(shadowSpec);
-  auto oit = makeOitTechnique(oitSpec);
-  const RenderSettings settings = makeSettings(req, scene);
-
+std::unique_ptr<Device> makeRequestDevice(const RenderRequest& req) {
   DeviceOptions dopts;
   dopts.backend = req.backend;
   dopts.platform =
@@ -169,7 +156,20 @@ RenderOutcome runRender(const RenderRequest& req) {
   if (req.backend == "vulkan" && dopts.platform != "headless")
     throw InputError("--platform " + dopts.platform +
                      " is not a Vulkan platform (valid: headless)");
-  auto dev = createDevice(dopts);
+  return createDevice(dopts);
+}
+
+RenderOutcome runRender(const RenderRequest& req) {
+  if (req.repeat < 1) throw InputError("--repeat must be at least 1");
+  if (req.warmup < 0) throw InputError("--warmup must be at least 0");
+  const Scene scene = makeScene(Spec::parse(req.scene));
+  const Spec shadowSpec = Spec::parse(req.shadow);
+  const Spec oitSpec = Spec::parse(req.oit);
+  auto shadow = makeShadowTechnique(shadowSpec);
+  auto oit = makeOitTechnique(oitSpec);
+  const RenderSettings settings = makeRenderSettings(req, scene);
+
+  auto dev = makeRequestDevice(req);
 
   std::set<std::string> outputs = {"color"};
   if (req.reference) outputs.insert("visibility");

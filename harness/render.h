@@ -8,6 +8,7 @@
 
 #include "harness/image.h"
 #include "scenes/view.h"
+#include "techniques/common/technique.h"
 
 namespace sb {
 
@@ -44,6 +45,11 @@ struct RenderOutcome {
 
 // Throws InputError (bad scene/technique/options) or DeviceError (backend).
 RenderOutcome runRender(const RenderRequest& req);
+
+// Image size, primitive, camera and light (fitted, then overridden) of a request.
+RenderSettings makeRenderSettings(const RenderRequest& req, const Scene& scene);
+// The device a request names (backend, platform, validation).
+std::unique_ptr<Device> makeRequestDevice(const RenderRequest& req);
 
 // "WxH" -> width, height (1..16384 each); throws InputError.
 std::pair<uint32_t, uint32_t> parseSize(const std::string& text);

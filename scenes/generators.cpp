@@ -72,6 +72,17 @@ std::vector<SceneInfo> buildCatalog() {
     o.push_back({"density", "", "strands per unit of mesh area (replaces strands=)"});
     c.push_back({"fur", "fur grown along a mesh's normals", std::move(o)});
   }
+  {
+    std::vector<OptionInfo> o =
+        commonOptions("3000", "16", "1", "length of the clump's strands (world units)");
+    o.push_back({"radius", "0.15", "radius of the dense clump"});
+    o.push_back({"offset", "0.45",
+                 "distance of the stray strand from the clump's axis, towards "
+                 "the default light"});
+    c.push_back({"stray",
+                 "one strand between the light and a dense clump (occupancy paper, Fig. 5a)",
+                 std::move(o)});
+  }
   c.push_back({"file",
                "strands from a file (.hair, .tfx, .ply), optionally with an OBJ mesh",
                {{"path", "", "strand file (required): .hair, .tfx or .ply"},
@@ -394,6 +405,34 @@ Scene makeClustered(const Options& o) {
   return scene;
 }
 
+// Occupancy maps paper, Fig. 5a: a dense clump of vertical strands and, in
+// front of it as seen from the default light (fitLight's direction), a single
+// stray strand whose shadow falls across the clump: a thin occluder far from
+// the others, which layer-based techniques place badly.
+Scene makeStray(const Options& o) {
+  Scene scene;
+  const Common c = readCommon(o, scene);
+  const float radius = o.real("radius", 0.0, 100.0, true);
+  const float offset = o.real("offset", 0.0, 100.0);
+  if (!o.text("mesh").empty()) scene.mesh = loadObj(o.text("mesh"));
+  Rng rng(c.seed);
+  reserve(scene.strands, std::size_t(c.strands) + 1, std::size_t(c.points));
+  auto vertical = [&](glm::vec2 xz, const glm::vec3& color) {
+    const std::vector<glm::vec3> line = {{xz.x, 0.5f * c.length, xz.y},
+                                         {xz.x, -0.5f * c.length, xz.y}};
+    appendStrand(scene.strands, line, c.points, color, c.thickness);
+  };
+  for (int64_t k = 0; k < c.strands; ++k) {
+    const float r = radius * std::sqrt(rng.u());
+    const float phi = rng.range(0.0f, 2.0f * kPi);
+    vertical({r * std::cos(phi), r * std::sin(phi)}, strandColor(rng, scene.hairColor));
+  }
+  // Towards the light: against fitLight()'s direction, in the horizontal plane.
+  const glm::vec2 towardLight = glm::normalize(glm::vec2(1.0f, 0.8f));
+  vertical(offset * towardLight, scene.hairColor);
+  return scene;
+}
+
 Scene makeFur(const Options& o) {
   Scene scene;
   Common c = readCommon(o, scene, false);
@@ -550,6 +589,8 @@ Scene makeScene(const Spec& spec) {
     scene = makeClustered(o);
   } else if (spec.name == "fur") {
     scene = makeFur(o);
+  } else if (spec.name == "stray") {
+    scene = makeStray(o);
   } else {
     scene = makeFile(o);
   }

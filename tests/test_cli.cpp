@@ -100,6 +100,41 @@ TEST(Cli, ReferenceReportsErrorsAndDepthComplexity) {
   }
 }
 
+// probe: the exact visibility along a light ray is in [0,1] and never rises;
+// each technique's curve sits beside it.
+TEST(Cli, ProbeWritesVisibilityAlongALightRay) {
+  const auto dir = tempDir("probe");
+  const auto csv = dir / "p.csv";
+  auto r = runCli(
+      "probe --scene stray:strands=800 --shadow shadowmap --shadow none --texel 256,256 "
+      "--samples 64 --out " +
+      csv.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::istringstream in(readFile(csv));
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "light_depth,x,y,z,\"exact:size=512\",\"shadowmap\",\"none\"");
+  int rows = 0;
+  double previous = 1.0, last = 1.0;
+  while (std::getline(in, line)) {
+    std::vector<double> v;
+    std::istringstream cells(line);
+    for (std::string c; std::getline(cells, c, ',');) v.push_back(std::stod(c));
+    ASSERT_EQ(v.size(), 7u);
+    EXPECT_GE(v[4], 0.0);
+    EXPECT_LE(v[4], previous + 1e-7);
+    EXPECT_EQ(v[6], 1.0);  // no shadows
+    previous = last = v[4];
+    ++rows;
+  }
+  EXPECT_EQ(rows, 64);
+  EXPECT_LT(last, 0.5);  // the ray crosses the clump
+  auto bad = runCli("probe --texel 600,1 --out " + (dir / "q.csv").string());
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_FALSE(std::filesystem::exists(dir / "q.csv"));
+  std::filesystem::remove_all(dir);
+}
+
 TEST(Cli, SameCommandTwiceGivesIdenticalBytes) {
   const auto dir = tempDir("det");
   for (const std::string backend : {"gl", "vulkan"}) {

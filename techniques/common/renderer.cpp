@@ -28,6 +28,11 @@ Renderer::Renderer(Device& dev, const Scene& scene, const RenderSettings& settin
   oit_->setup(dev, gpu_, settings_, shading_, {color_, depth_, shading_.drawsMesh()});
   wantVisibility_ = outputs.count("visibility") > 0;
   if (wantVisibility_) visibility_.setup(dev, gpu_, settings_, shading_);
+  wantProbe_ = outputs.count("probe") > 0;
+  if (wantProbe_) {
+    if (settings_.probePoints.empty()) throw InputError("probe output without probe points");
+    probe_.setup(dev, settings_.probePoints, shading_);
+  }
 
   shadow_->prepare(dev);
   shadow_->addPasses(graph_, dev);
@@ -44,6 +49,7 @@ Renderer::Renderer(Device& dev, const Scene& scene, const RenderSettings& settin
   }
   oit_->addPasses(graph_, dev);
   if (wantVisibility_) visibility_.addPasses(graph_, dev);
+  if (wantProbe_) probe_.addPasses(graph_, dev);
   passes_ = graph_.compile(outputs);
 }
 
@@ -112,6 +118,11 @@ std::vector<uint8_t> Renderer::readColor() { return dev_.readTexture(color_); }
 std::vector<uint8_t> Renderer::readVisibility() {
   if (!wantVisibility_) throw DeviceError("visibility output was not requested");
   return dev_.readTexture(visibility_.image());
+}
+
+std::vector<float> Renderer::readProbe() {
+  if (!wantProbe_) throw DeviceError("probe output was not requested");
+  return probe_.read(dev_);
 }
 
 std::vector<std::string> Renderer::warnings() {

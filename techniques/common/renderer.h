@@ -1,7 +1,7 @@
 // Puts a frame together: the scene on the device, the shadow technique's
 // passes, the opaque mesh, the transparency technique and the optional
-// visibility output, as a frame graph culled to the requested outputs
-// ("color", "visibility"). Runs frames and reads back the images.
+// visibility and probe outputs, as a frame graph culled to the requested
+// outputs ("color", "visibility", "probe"). Runs frames and reads back the images.
 #pragma once
 
 #include <memory>
@@ -11,6 +11,7 @@
 
 #include "techniques/common/technique.h"
 #include "techniques/kajiya_kay/shading.h"
+#include "techniques/probe/probe.h"
 #include "techniques/visibility/visibility.h"
 
 namespace sb {
@@ -34,6 +35,8 @@ class Renderer {
   std::vector<uint8_t> readColor();
   // R32F, rows bottom-up; -1 where no surface.
   std::vector<uint8_t> readVisibility();
+  // The shadow technique's visibility at settings.probePoints ("probe" output).
+  std::vector<float> readProbe();
   const GpuScene& gpuScene() const { return gpu_; }
   ShadowTechnique& shadow() { return *shadow_; }
   OitTechnique& oit() { return *oit_; }
@@ -49,7 +52,8 @@ class Renderer {
   std::unique_ptr<OitTechnique> oit_;
   KajiyaKayShading shading_;
   VisibilityOutput visibility_;
-  bool wantVisibility_ = false;
+  ProbeOutput probe_;
+  bool wantVisibility_ = false, wantProbe_ = false;
   Texture color_, depth_;
   FrameGraph graph_;
   std::vector<const PassNode*> passes_;

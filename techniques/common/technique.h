@@ -26,6 +26,7 @@ struct RenderSettings {
   Camera camera;
   Light light;
   glm::vec3 background{0.0f, 0.0f, 0.0f};
+  std::vector<glm::vec3> probePoints;  // world points for the "probe" output
 };
 
 // The scene's data on the device (owner "scene").

@@ -12,6 +12,6 @@ float shadowVisibility(vec3 worldPos) {
   vec2 uv = ndc.xy * 0.5 + 0.5;
   // Outside the light's frustum: nothing the map saw can occlude it.
   if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || ndc.z > 1.0) return 1.0;
-  float occluder = texture(shadowDepth, uv).r;
+  float occluder = textureLod(shadowDepth, uv, 0.0).r;
   return ndc.z - shadowParams.x > occluder ? 0.0 : 1.0;
 }

@@ -1,0 +1,114 @@
+// `strandbench probe`: the exact visibility along one light ray and each shadow
+// technique's reconstruction of it, as CSV (the occupancy paper's Fig. 5).
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "harness/commands.h"
+#include "harness/render.h"
+#include "techniques/common/renderer.h"
+
+namespace sb {
+
+namespace {
+
+struct ProbeRequest {
+  RenderRequest render;
+  std::vector<std::string> shadows = {"shadowmap"};
+  std::string texel = "256,256";
+  uint32_t mapSize = 512;
+  int samples = 256;
+  std::string out;
+};
+
+// World points along the light ray through the centre of texel (x, y) of a
+// map `size` texels wide, from the light's near to far plane.
+std::vector<glm::vec3> lightRay(const Light& light, uint32_t size, glm::uvec2 texel, int samples,
+                                std::vector<float>& depths) {
+  const glm::mat4 inv = glm::inverse(light.projection() * light.view());
+  const glm::vec2 ndc = (glm::vec2(texel) + 0.5f) / float(size) * 2.0f - 1.0f;
+  std::vector<glm::vec3> points;
+  for (int i = 0; i < samples; ++i) {
+    const float z = (float(i) + 0.5f) / float(samples);
+    const glm::vec4 w = inv * glm::vec4(ndc, z, 1.0f);
+    points.push_back(glm::vec3(w) / w.w);
+    depths.push_back(z);
+  }
+  return points;
+}
+
+int runProbe(const ProbeRequest& p) {
+  if (p.out.empty()) throw InputError("--out FILE.csv is required");
+  if (std::filesystem::path(p.out).extension() != ".csv")
+    throw InputError("--out " + p.out + ": the file must end in .csv");
+  if (p.samples < 2 || p.samples > 1000000) throw InputError("--samples must be in 2..1000000");
+  unsigned x = 0, y = 0;
+  char comma = 0;
+  std::istringstream in(p.texel);
+  if (!(in >> x >> comma >> y) || comma != ',' || !in.eof() || x >= p.mapSize || y >= p.mapSize)
+    throw InputError("--texel " + p.texel + ": expected X,Y inside the " +
+                     std::to_string(p.mapSize) + "x" + std::to_string(p.mapSize) + " map");
+
+  const Scene scene = makeScene(Spec::parse(p.render.scene));
+  RenderSettings settings = makeRenderSettings(p.render, scene);
+  std::vector<float> depths;
+  settings.probePoints = lightRay(settings.light, p.mapSize, {x, y}, p.samples, depths);
+  // The exact curve first, at the probe's map size, then each technique.
+  std::vector<std::string> specs = {"exact:size=" + std::to_string(p.mapSize)};
+  specs.insert(specs.end(), p.shadows.begin(), p.shadows.end());
+  std::vector<std::unique_ptr<ShadowTechnique>> techniques;
+  for (const auto& spec : specs) techniques.push_back(makeShadowTechnique(Spec::parse(spec)));
+
+  auto dev = makeRequestDevice(p.render);
+  std::vector<std::vector<float>> curves;
+  for (auto& t : techniques) {
+    Renderer r(*dev, scene, settings, std::move(t), makeOitTechnique(Spec::parse("none")),
+               {"probe"});
+    r.renderFrame();
+    curves.push_back(r.readProbe());
+  }
+
+  // Written beside the target and renamed: a failed run leaves no half file.
+  const std::string tmp = p.out + ".tmp";
+  {
+    std::ofstream f(tmp);
+    if (!f) throw InputError("--out " + p.out + ": cannot write (folder missing or not writable)");
+    f << "light_depth,x,y,z";
+    for (const auto& s : specs) f << ",\"" << s << "\"";
+    f << "\n";
+    for (std::size_t i = 0; i < depths.size(); ++i) {
+      const glm::vec3& w = settings.probePoints[i];
+      f << depths[i] << "," << w.x << "," << w.y << "," << w.z;
+      for (const auto& c : curves) f << "," << c[i];
+      f << "\n";
+    }
+    if (!f) throw InputError("--out " + p.out + ": write failed");
+  }
+  std::filesystem::rename(tmp, p.out);
+  std::cout << "wrote " << p.out << ": " << depths.size() << " samples along light texel " << x
+            << "," << y << " for " << specs.size() << " curves\n";
+  return 0;
+}
+
+}  // namespace
+
+void registerProbeCommand(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "probe", "exact visibility along one light ray and each technique's reconstruction (CSV)");
+  auto p = std::make_shared<ProbeRequest>();
+  cmd->add_option("--scene", p->render.scene, "scene spec")->capture_default_str();
+  cmd->add_option("--shadow", p->shadows, "shadow technique spec (repeatable)")
+      ->capture_default_str();
+  cmd->add_option("--texel", p->texel, "light texel X,Y")->capture_default_str();
+  cmd->add_option("--map-size", p->mapSize, "light map size the texel refers to")
+      ->capture_default_str();
+  cmd->add_option("--samples", p->samples, "points along the ray")->capture_default_str();
+  cmd->add_option("--backend", p->render.backend, "gl | vulkan")->capture_default_str();
+  cmd->add_option("--primitive", p->render.primitive, "lines | ribbons")->capture_default_str();
+  cmd->add_option("--out", p->out, "CSV file")->required();
+  cmd->callback([p] { runGuarded("probe", [&] { return runProbe(*p); }); });
+}
+
+}  // namespace sb

@@ -1,0 +1,24 @@
+#pragma once
+
+#include "techniques/common/technique.h"
+
+namespace sb {
+
+class KajiyaKayShading;
+
+// Output "probe": the shadow technique's visibility at a list of world points
+// (a compute pass including the technique's lookup), read back as floats.
+class ProbeOutput {
+ public:
+  void setup(Device& dev, const std::vector<glm::vec3>& points, const KajiyaKayShading& shading);
+  void addPasses(FrameGraph& graph, Device& dev);
+  std::vector<float> read(Device& dev) const;
+
+ private:
+  const KajiyaKayShading* shading_ = nullptr;
+  uint32_t count_ = 0;
+  Buffer points_, values_;
+  Pipeline pipeline_;
+};
+
+}  // namespace sb
