@@ -234,6 +234,7 @@ void registerCommands(CLI::App& app) {
   registerCompare(app);
   registerCheckCommands(app);
   registerProbeCommand(app);
+  registerBenchCommand(app);
 }
 
 int lastCommandStatus() { return gStatus; }

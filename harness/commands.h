@@ -10,6 +10,8 @@ void registerCommands(CLI::App& app);
 void registerCheckCommands(CLI::App& app);
 // `probe` (harness/probe_command.cpp).
 void registerProbeCommand(CLI::App& app);
+// `bench-shadows` (harness/bench_command.cpp).
+void registerBenchCommand(CLI::App& app);
 int lastCommandStatus();
 // Runs a command's body and records its exit status; bad input (InputError) and
 // unavailable backends (DeviceError) print "strandbench <command>: <message>"

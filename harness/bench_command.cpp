@@ -1,0 +1,134 @@
+// `strandbench bench-shadows`: the self-shadowing papers' timing and memory
+// figures as ratios measured on one backend in one run (not a test: these
+// machines are shared and noisy, so only ratios within a run are compared).
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <memory>
+
+#include "harness/commands.h"
+#include "harness/render.h"
+
+namespace sb {
+
+namespace {
+
+struct BenchOptions {
+  RenderRequest base;
+  std::vector<int> osmMaps = {1, 2, 4, 8, 16, 32};
+};
+
+struct Measured {
+  double shadowMs = 0;  // sum of the shadow technique's pass medians
+  double frameMs = 0;
+  std::size_t shadowBytes = 0;
+};
+
+Measured measure(const RenderRequest& base, const std::string& shadow) {
+  RenderRequest r = base;
+  r.shadow = shadow;
+  const RenderOutcome out = runRender(r);
+  Measured m;
+  const std::string prefix = Spec::parse(shadow).name + ".";
+  for (const auto& p : out.report["passes"])
+    if (p["name"].get<std::string>().rfind(prefix, 0) == 0)
+      m.shadowMs += p["ms"]["median"].get<double>();
+  m.frameMs = out.report["frame_ms"]["median"].get<double>();
+  m.shadowBytes = out.report["memory"]["shadow_bytes"].get<std::size_t>();
+  return m;
+}
+
+// Least-squares line through (x, y): slope, intercept and R^2.
+void fitLine(const std::vector<double>& x, const std::vector<double>& y, double& slope,
+             double& intercept, double& r2) {
+  const double n = double(x.size());
+  double sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    sx += x[i];
+    sy += y[i];
+    sxx += x[i] * x[i];
+    sxy += x[i] * y[i];
+    syy += y[i] * y[i];
+  }
+  slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+  intercept = (sy - slope * sx) / n;
+  const double num = n * sxy - sx * sy;
+  r2 = num * num / ((n * sxx - sx * sx) * (n * syy - sy * sy));
+}
+
+int runBench(const BenchOptions& o) {
+  std::cout << std::fixed << std::setprecision(2);
+  std::cout << "scene " << o.base.scene << ", " << o.base.width << "x" << o.base.height << ", "
+            << o.base.backend << ", median of " << o.base.repeat << " after " << o.base.warmup
+            << " warm-up\n\n";
+
+  std::cout << "Deep opacity maps paper, Fig. 1 (GeForce 8800, fps) beside ours (shadow ms, "
+               "frame ms):\n";
+  const std::vector<std::pair<std::string, std::string>> fig1 = {
+      {"none", "154 fps"},
+      {"osm:maps=16", "81 fps"},
+      {"osm:maps=128", "2.3 fps"},
+      {"dc:clusters=4", "73-79 fps"},
+      {"dom:layers=3", "114 fps"},
+      {"dom:layers=4", "-"},
+      {"occupancy", "(occupancy paper: 41 ms vs DOM4 33.5 ms)"}};
+  std::map<std::string, Measured> m;
+  for (const auto& [spec, paper] : fig1) {
+    m[spec] = measure(o.base, spec);
+    std::cout << "  " << std::left << std::setw(16) << spec << std::right << " shadow "
+              << std::setw(9) << m[spec].shadowMs << " ms  frame " << std::setw(9)
+              << m[spec].frameMs << " ms  paper " << paper << "\n";
+  }
+  std::cout << "\nratios (one backend, one run):\n"
+            << "  DOM(3) / OSM(16) shadow time: "
+            << m["dom:layers=3"].shadowMs / m["osm:maps=16"].shadowMs
+            << "  (paper, from fps: frames 8.8 / 12.3 ms = 0.71; shadow part over 'no shadows' "
+               "2.3 / 5.9 ms = 0.39)\n"
+            << "  occupancy / DOM(4) shadow time: "
+            << m["occupancy"].shadowMs / m["dom:layers=4"].shadowMs
+            << "  (occupancy paper: 41 / 33.5 = 1.22)\n";
+
+  std::cout << "\nOpacity shadow maps paper, Fig. 4: time against the number of maps "
+               "(passes=single, one geometry pass per map):\n";
+  std::vector<double> xs, ys;
+  for (int maps : o.osmMaps) {
+    const Measured r = measure(o.base, "osm:passes=single,maps=" + std::to_string(maps));
+    xs.push_back(maps);
+    ys.push_back(r.shadowMs);
+    std::cout << "  maps " << std::setw(4) << maps << ": " << std::setw(9) << r.shadowMs << " ms\n";
+  }
+  double slope = 0, intercept = 0, r2 = 0;
+  fitLine(xs, ys, slope, intercept, r2);
+  std::cout << "  fit: " << slope << " ms per map + " << intercept
+            << " ms, R^2 = " << std::setprecision(4) << r2 << std::setprecision(2)
+            << "  (paper: linear)\n";
+  return 0;
+}
+
+}  // namespace
+
+void registerBenchCommand(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "bench-shadows",
+      "papers' shadow timing figures as ratios in one run (a benchmark, not a test)");
+  auto o = std::make_shared<BenchOptions>();
+  o->base.scene = "straight:strands=20000,points=16,head=0";  // 300k segments
+  o->base.repeat = 3;
+  auto size = std::make_shared<std::string>("512x512");
+  cmd->add_option("--scene", o->base.scene, "scene spec")->capture_default_str();
+  cmd->add_option("--backend", o->base.backend, "gl | vulkan")->capture_default_str();
+  cmd->add_option("--size", *size, "image size")->capture_default_str();
+  cmd->add_option("--repeat", o->base.repeat, "timed frames per case")->capture_default_str();
+  cmd->add_option("--osm-maps", o->osmMaps, "map counts for the OSM time-vs-maps fit");
+  cmd->callback([o, size] {
+    runGuarded("bench-shadows", [&] {
+      auto [w, h] = parseSize(*size);
+      o->base.width = w;
+      o->base.height = h;
+      return runBench(*o);
+    });
+  });
+}
+
+}  // namespace sb
