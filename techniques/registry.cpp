@@ -2,9 +2,13 @@
 #include "scenes/options.h"
 #include "techniques/abuffer/abuffer.h"
 #include "techniques/common/technique.h"
+#include "techniques/dc/dc.h"
+#include "techniques/dom/dom.h"
 #include "techniques/exact/exact.h"
 #include "techniques/none/none.h"
+#include "techniques/occupancy/occupancy.h"
 #include "techniques/opaque_hair/opaque_hair.h"
+#include "techniques/osm/osm.h"
 #include "techniques/peel/peel.h"
 #include "techniques/shadowmap/shadowmap.h"
 
@@ -43,6 +47,44 @@ const std::vector<TechniqueInfo>& shadowCatalog() {
         {"size", "512", "light map resolution (size x size), 1..16384"},
         {"bias", "0.002", "depth bias in light depth units [0,1], 0..1"},
         {"layers", "65536", "most layers peeled (a cap that is reported), 1..1000000"}}},
+      {"occupancy",
+       "occupancy maps (Sintorn & Assarsson 2009): depth range, 1 bit per slice, slab counts",
+       {{"size", "512", "map resolution (size x size), 1..16384"},
+        {"bias", "0.002", "depth bias in light depth units [0,1], 0..1"},
+        {"slices", "128", "occupancy bits per texel, multiple of 32 (128 per RGBA32UI), 32..512"},
+        {"slabs", "4", "fragment counts per texel (4 per RGBA32F), dividing slices, 1..16"},
+        {"slab_map", "on", "on | off (occupancy only: every set bit counts as one fragment)"},
+        {"jitter", "off", "on | off: lookup jittered by up to half a texel (anti-aliasing)"}}},
+      {"dc",
+       "density clustering (Mertens et al. 2004): per-texel k-means of fragment depths",
+       {{"size", "512", "map resolution (size x size), 1..16384"},
+        {"bias", "0.002", "depth bias in light depth units [0,1], 0..1"},
+        {"clusters", "4", "depth clusters per texel (one channel each), 1..4"},
+        {"iterations", "2", "k-means iterations (passes over the hair), 1..64"}}},
+      {"osm",
+       "opacity shadow maps (Kim & Neumann 2001): planar opacity maps, linear interpolation",
+       {{"maps", "16", "number of opacity maps, 1..256"},
+        {"slicing", "uniform",
+         "uniform | density (equal hair points per slice) | gamma (tighter near the light)"},
+        {"gamma", "2", "slicing=gamma exponent: D_i = near + (far-near)(i/n)^gamma, 0.1..10"},
+        {"passes", "multi",
+         "single (one hair pass per map, the original) | multi (up to 6 targets x 4 maps a pass)"},
+        {"bits", "32", "8 (RGBA8 unorm, kappa-scaled) | 16 (RGBA16F) | 32 (RGBA32F)"},
+        {"kappa", "0", "bits=8: e^-kappa at opacity 1; 0 derives 8 ln 2 (the paper), 0..100"},
+        {"size", "512", "map resolution (size x size), 1..16384"},
+        {"bias", "0.002", "depth bias in light depth units [0,1], 0..1"}}},
+      {"dom",
+       "deep opacity maps (Yuksel & Keyser 2008): layers that follow the hair from its first depth",
+       {{"layers", "3", "opacity layers K, 1..23 (K = 4n-1 fills n RGBA targets)"},
+        {"spacing", "linear", "constant | linear | pow2 | fibonacci | list (layer sizes)"},
+        {"list", "1;2;3",
+         "spacing=list: layer sizes as multiples of the layer size, ';'-separated"},
+        {"size_abs", "0", "layer size in light depth units (0: use size_frac), 0..1"},
+        {"size_frac", "0.1", "layer size as a fraction of the hair's depth range from the light"},
+        {"beyond", "last", "fragments beyond the last layer: ignore | last | extend"},
+        {"depth_bits", "32", "precision of the depth map z0: 8 | 16 | 32"},
+        {"size", "512", "map resolution (size x size), 1..16384"},
+        {"bias", "0.002", "depth bias in light depth units [0,1], 0..1"}}},
   };
   return catalog;
 }
@@ -52,6 +94,13 @@ std::unique_ptr<ShadowTechnique> makeShadowTechnique(const Spec& spec) {
   const OptionReader o(spec, info.options, "shadow technique '" + spec.name + "'");
   const auto bias = [&] { return static_cast<float>(o.number("bias", 0.0, 1.0)); };
   if (spec.name == "shadowmap") return std::make_unique<ShadowMap>(mapSize(o), bias());
+  if (spec.name == "occupancy")
+    return std::make_unique<OccupancyShadow>(OccupancyShadow::readOptions(o));
+  if (spec.name == "dc")
+    return std::make_unique<DensityClusteringShadow>(DensityClusteringShadow::readOptions(o));
+  if (spec.name == "osm")
+    return std::make_unique<OpacityShadowMaps>(OpacityShadowMaps::readOptions(o));
+  if (spec.name == "dom") return std::make_unique<DeepOpacityMaps>(DeepOpacityMaps::readOptions(o));
   if (spec.name == "exact")
     return std::make_unique<ExactShadow>(
         o.choice("method", {"peel", "abuffer"}) == "peel" ? ExactShadow::Method::Peel

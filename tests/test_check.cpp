@@ -153,7 +153,8 @@ TEST(Baselines, ManifestCoversScenesTechniquesAndPrimitives) {
   for (const auto& [g, p] : primitives) both += p.size() == 2 ? 1 : 0;
   EXPECT_GE(both, 2);
   // Every technique so far, the ground truths included.
-  EXPECT_EQ(shadows, (std::set<std::string>{"none", "shadowmap", "exact"}));
+  EXPECT_EQ(shadows,
+            (std::set<std::string>{"none", "shadowmap", "exact", "osm", "dom", "dc", "occupancy"}));
   EXPECT_EQ(oits, (std::set<std::string>{"none", "peel", "abuffer"}));
 }
 

@@ -1,0 +1,179 @@
+#include "techniques/dc/dc.h"
+
+#include "scenes/options.h"
+#include "techniques/common/shader_library.h"
+
+namespace sb {
+
+namespace {
+// Binding numbers, as in techniques/dc/*.frag and lookup.glsl (15: OpaqueShadow).
+constexpr uint32_t kParams = 8, kRange = 9, kCounts = 10, kSums = 11, kSquares = 12, kCentres = 13;
+
+struct Params {
+  glm::mat4 viewProj;
+  glm::vec4 params;  // bias, size, shadow alpha, 0
+};
+}  // namespace
+
+DensityClusteringShadow::Options DensityClusteringShadow::readOptions(const OptionReader& o) {
+  Options opts;
+  opts.size = static_cast<uint32_t>(o.integer("size", 1, 16384));
+  opts.bias = static_cast<float>(o.number("bias", 0.0, 1.0));
+  opts.clusters = static_cast<uint32_t>(o.integer("clusters", 1, 4));
+  opts.iterations = static_cast<uint32_t>(o.integer("iterations", 1, 64));
+  return opts;
+}
+
+ShaderDefines DensityClusteringShadow::lookupDefines() const {
+  ShaderDefines d;
+  d.defines.push_back({"SB_DC_CLUSTERS", std::to_string(opts_.clusters)});
+  opaque_.addDefines(d);
+  return d;
+}
+
+void DensityClusteringShadow::setup(Device& dev, const GpuScene& scene, const RenderSettings& s) {
+  scene_ = &scene;
+  settings_ = s;
+  const uint32_t size = opts_.size;
+  const ViewUniforms view = lightView(s, size, size);
+  lightView_ =
+      dev.createBuffer({"dc.light_view", "frame", BufferUsage::Uniform, sizeof view}, &view);
+  const Params p{view.viewProj, glm::vec4(opts_.bias, float(size), scene.shadowAlpha, 0.0f)};
+  params_ = dev.createBuffer({"dc.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
+  auto map = [&](const std::string& what, Format f) {
+    return dev.createTexture({"dc." + what, "shadow", f, size, size, false});
+  };
+  range_ = map("depth_range", Format::RG32F);
+  centres_ = map("centres", Format::RGBA32F);
+  counts_ = map("counts", Format::RGBA32F);
+  sums_ = map("sums", Format::RGBA32F);
+  squares_ = map("square_sums", Format::RGBA32F);
+  opaque_.setup(dev, scene, size, lightView_, "dc");
+
+  const ShaderDefines defs = lookupDefines();
+  {  // The centres: a full-map triangle (also needed without hair: it clears).
+    const ShaderCode vert = loadShader("techniques/common/composite.vert");
+    PipelineDesc d;
+    d.technique = "dc";
+    d.vertex = &vert;
+    d.colorFormats = {Format::RGBA32F};
+    d.bindings = {{kRange, BindingKind::SampledTexture}};
+    for (int first = 1; first >= 0; --first) {
+      ShaderDefines md = defs;
+      md.defines.push_back({"SB_DC_FIRST", std::to_string(first)});
+      const ShaderCode frag = loadShader("techniques/dc/means.frag", md);
+      d.name = first ? "dc.means.first" : "dc.means";
+      d.fragment = &frag;
+      if (!first) {
+        d.bindings.push_back({kCounts, BindingKind::SampledTexture});
+        d.bindings.push_back({kSums, BindingKind::SampledTexture});
+      }
+      (first ? firstMeansPipeline_ : meansPipeline_) = dev.createPipeline(d);
+    }
+  }
+  if (!scene.hasHair()) return;
+
+  const ShaderCode vert = Geometry::strandVertexShader(s);
+  PipelineDesc d;
+  d.technique = "dc";
+  d.vertex = &vert;
+  d.topology = Geometry::strandTopology(s);
+  d.bindings = Geometry::slots();
+  const ShaderCode rangeFrag = loadShader("techniques/dc/depth_range.frag", defs);
+  d.name = "dc.init";
+  d.fragment = &rangeFrag;
+  d.colorFormats = {Format::RG32F};
+  d.blend = {BlendState::min()};
+  rangePipeline_ = dev.createPipeline(d);
+
+  const ShaderCode iterateFrag = loadShader("techniques/dc/iterate.frag", defs);
+  d.name = "dc.iterate";
+  d.fragment = &iterateFrag;
+  d.bindings.push_back({kRange, BindingKind::SampledTexture});
+  d.bindings.push_back({kCentres, BindingKind::SampledTexture});
+  d.colorFormats.assign(3, Format::RGBA32F);
+  d.blend.assign(3, BlendState::additive());
+  iteratePipeline_ = dev.createPipeline(d);
+}
+
+void DensityClusteringShadow::addPasses(FrameGraph& graph, Device& dev) {
+  opaque_.addPass(graph, dev);
+  graph.add({"dc.init", {}, {"shadow.dc_range"}, [this, &dev] {
+               PassDesc pass;
+               pass.name = "dc.init";
+               ColorAttachment a;
+               a.texture = range_;
+               a.clear = {2.0f, 2.0f, 0.0f, 0.0f};  // nearest 2, furthest -2: empty
+               pass.color = {a};
+               dev.beginPass(pass);
+               if (rangePipeline_)
+                 dev.draw(rangePipeline_, Geometry::bindings(*scene_, lightView_),
+                          Geometry::strandVertexCount(*scene_, settings_));
+               dev.endPass();
+             }});
+  // k-means: centres, then every fragment joins its nearest centre's sums.
+  graph.add({"dc.iterate", {"shadow.dc_range"}, {"shadow.dc_clusters"}, [this, &dev] {
+               for (uint32_t i = 0; i < opts_.iterations; ++i) {
+                 PassDesc means;
+                 means.name = "dc.means";
+                 means.color = {{centres_, LoadOp::Clear, {}, {}}};
+                 means.sampledTextures = {range_};
+                 std::vector<Binding> mb = {Binding::tex(kRange, range_)};
+                 if (i > 0) {
+                   means.sampledTextures.push_back(counts_);
+                   means.sampledTextures.push_back(sums_);
+                   mb.push_back(Binding::tex(kCounts, counts_));
+                   mb.push_back(Binding::tex(kSums, sums_));
+                 }
+                 dev.beginPass(means);
+                 dev.draw(i == 0 ? firstMeansPipeline_ : meansPipeline_, mb, 3);
+                 dev.endPass();
+
+                 PassDesc iterate;
+                 iterate.name = "dc.iterate";
+                 for (Texture t : {counts_, sums_, squares_})
+                   iterate.color.push_back({t, LoadOp::Clear, {}, {}});
+                 iterate.sampledTextures = {range_, centres_};
+                 dev.beginPass(iterate);
+                 if (iteratePipeline_) {
+                   auto b = Geometry::bindings(*scene_, lightView_);
+                   b.push_back(Binding::tex(kRange, range_));
+                   b.push_back(Binding::tex(kCentres, centres_));
+                   dev.draw(iteratePipeline_, b, Geometry::strandVertexCount(*scene_, settings_));
+                 }
+                 dev.endPass();
+               }
+             }});
+}
+
+std::vector<std::string> DensityClusteringShadow::lookupReads() const {
+  std::vector<std::string> r = {"shadow.dc_range", "shadow.dc_clusters"};
+  opaque_.addReads(r);
+  return r;
+}
+
+std::vector<BindingSlot> DensityClusteringShadow::lookupSlots() const {
+  std::vector<BindingSlot> s = {{kParams, BindingKind::UniformBuffer},
+                                {kRange, BindingKind::SampledTexture},
+                                {kCounts, BindingKind::SampledTexture},
+                                {kSums, BindingKind::SampledTexture},
+                                {kSquares, BindingKind::SampledTexture}};
+  opaque_.addSlots(s);
+  return s;
+}
+
+std::vector<Binding> DensityClusteringShadow::lookupBindings() const {
+  std::vector<Binding> b = {Binding::buf(kParams, params_), Binding::tex(kRange, range_),
+                            Binding::tex(kCounts, counts_), Binding::tex(kSums, sums_),
+                            Binding::tex(kSquares, squares_)};
+  opaque_.addBindings(b);
+  return b;
+}
+
+std::vector<Texture> DensityClusteringShadow::lookupTextures() const {
+  std::vector<Texture> t = {range_, counts_, sums_, squares_};
+  opaque_.addTextures(t);
+  return t;
+}
+
+}  // namespace sb

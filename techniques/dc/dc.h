@@ -1,0 +1,57 @@
+#pragma once
+
+#include "techniques/common/opaque_shadow.h"
+#include "techniques/common/technique.h"
+
+namespace sb {
+
+class OptionReader;
+
+// Density clustering (Mertens et al. 2004): per light texel, k-means on the
+// hair fragments' depths. "dc.init" finds each texel's depth range (RG32F, min
+// blending); then, per iteration, "dc.means" writes the cluster centres (at
+// first spread evenly over the range, later the clusters' mean depths) and
+// "dc.iterate" draws the hair, each fragment adding (1, z, z^2) (relative to
+// the texel's nearest depth) to its nearest cluster's channel of three RGBA32F
+// targets (additive). The lookup spreads each cluster's count uniformly over
+// mean +- sqrt(3) sd (dc_math.glsl).
+class DensityClusteringShadow : public ShadowTechnique {
+ public:
+  struct Options {
+    uint32_t size = 512;
+    float bias = 0.002f;
+    uint32_t clusters = 4;  // 1..4: one channel of each RGBA32F target per cluster
+    uint32_t iterations = 2;
+  };
+  // Reads and validates size, bias, clusters, iterations (InputError).
+  static Options readOptions(const OptionReader& o);
+  explicit DensityClusteringShadow(const Options& opts) : opts_(opts) {}
+
+  std::string name() const override { return "dc"; }
+  void setup(Device& dev, const GpuScene& scene, const RenderSettings& s) override;
+  void addPasses(FrameGraph& graph, Device& dev) override;
+  std::string lookupShader() const override { return "techniques/dc/lookup.glsl"; }
+  ShaderDefines lookupDefines() const override;
+  std::vector<std::string> lookupReads() const override;
+  std::vector<BindingSlot> lookupSlots() const override;
+  std::vector<Binding> lookupBindings() const override;
+  std::vector<Texture> lookupTextures() const override;
+
+  // The maps, for tests: range (RG32F), centres, counts, sums, square sums (RGBA32F).
+  Texture rangeMap() const { return range_; }
+  Texture centreMap() const { return centres_; }
+  Texture countMap() const { return counts_; }
+  Texture sumMap() const { return sums_; }
+  Texture squareMap() const { return squares_; }
+
+ private:
+  Options opts_;
+  const GpuScene* scene_ = nullptr;
+  RenderSettings settings_;
+  Buffer lightView_, params_;
+  Texture range_, centres_, counts_, sums_, squares_;
+  OpaqueShadow opaque_;
+  Pipeline rangePipeline_, firstMeansPipeline_, meansPipeline_, iteratePipeline_;
+};
+
+}  // namespace sb

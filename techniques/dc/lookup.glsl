@@ -1,0 +1,31 @@
+// Density clustering (Mertens et al. 2004): the hair fragments in front of a
+// point are the sum over its light texel's clusters of each cluster's count
+// times the part of its extent [mean - sqrt(3) sd, mean + sqrt(3) sd] in front
+// (dc_math.glsl); visibility (1 - alpha_s)^n, times the opaque mesh's hard
+// shadow. Textures only, fetched without derivatives.
+#include "../common/opaque_shadow.glsl"
+#include "dc_math.glsl"
+
+layout(std140, binding = 8) uniform DcParams {
+  mat4 dcViewProj;
+  vec4 dcParams;  // x: bias (light depth units), y: map size, z: shadow alpha
+};
+layout(binding = 9) uniform sampler2D dcRange;    // x: nearest depth, y: -furthest depth
+layout(binding = 10) uniform sampler2D dcCounts;  // fragments per cluster
+layout(binding = 11) uniform sampler2D dcSums;    // sum of (z - nearest) per cluster
+layout(binding = 12) uniform sampler2D dcSquares;  // sum of (z - nearest)^2 per cluster
+
+float shadowVisibility(vec3 worldPos) {
+  vec4 clip = dcViewProj * vec4(worldPos, 1.0);
+  vec3 ndc = clip.xyz / clip.w;
+  vec2 uv = ndc.xy * 0.5 + 0.5;
+  if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || ndc.z > 1.0) return 1.0;
+  float bias = dcParams.x;
+  if (opaqueVisibility(ndc, bias) == 0.0) return 0.0;
+  int size = int(dcParams.y);
+  ivec2 t = clamp(ivec2(floor(uv * dcParams.y)), ivec2(0), ivec2(size - 1));
+  vec2 r = texelFetch(dcRange, t, 0).rg;
+  float n = dcCount(ndc.z - bias, r.x, -r.y, texelFetch(dcCounts, t, 0),
+                    texelFetch(dcSums, t, 0), texelFetch(dcSquares, t, 0), SB_DC_CLUSTERS);
+  return dcVisibility(n, dcParams.z);
+}

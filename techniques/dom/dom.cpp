@@ -1,0 +1,188 @@
+#include "techniques/dom/dom.h"
+
+#include <cmath>
+#include <cstdlib>
+
+#include "techniques/common/opacity.h"
+#include "techniques/common/shader_library.h"
+
+namespace sb {
+
+namespace {
+constexpr uint32_t kParams = 8, kDepth = 9, kMapFirst = 9;
+
+struct Params {
+  glm::mat4 viewProj;
+  glm::vec4 params;   // bias, size, shadow alpha, depth bits
+  glm::ivec4 layout;  // K, targets, beyond, 0
+  glm::vec4 d[6];
+};
+}  // namespace
+
+DeepOpacityMaps::Options DeepOpacityMaps::readOptions(const OptionReader& o) {
+  Options opt;
+  opt.layers = static_cast<uint32_t>(o.integer("layers", 1, kMaxLayers));
+  const std::string spacing =
+      o.choice("spacing", {"constant", "linear", "pow2", "fibonacci", "list"});
+  opt.spacing = spacing == "constant"    ? glsl::kDomConstant
+                : spacing == "pow2"      ? glsl::kDomPow2
+                : spacing == "fibonacci" ? glsl::kDomFibonacci
+                                         : glsl::kDomLinear;
+  if (spacing == "list") {
+    const std::string text = o.text("list");
+    std::size_t begin = 0;
+    while (begin <= text.size()) {
+      const std::size_t end = std::min(text.find(';', begin), text.size());
+      const std::string item = text.substr(begin, end - begin);
+      char* rest = nullptr;
+      const float v = std::strtof(item.c_str(), &rest);
+      if (item.empty() || *rest != '\0' || !(v > 0.0f) || !std::isfinite(v))
+        throw InputError(
+            "shadow technique 'dom': list= wants positive numbers separated by ';', "
+            "got '" +
+            text + "'");
+      opt.list.push_back(v);
+      begin = end + 1;
+    }
+    if (opt.list.size() != opt.layers)
+      throw InputError("shadow technique 'dom': list= has " + std::to_string(opt.list.size()) +
+                       " sizes for " + std::to_string(opt.layers) + " layers");
+  }
+  opt.sizeAbs = static_cast<float>(o.number("size_abs", 0.0, 1.0));
+  opt.sizeFrac = static_cast<float>(o.number("size_frac", 1e-6, 100.0));
+  const std::string beyond = o.choice("beyond", {"ignore", "last", "extend"});
+  opt.beyond = beyond == "ignore"   ? glsl::kDomIgnore
+               : beyond == "extend" ? glsl::kDomExtend
+                                    : glsl::kDomLast;
+  opt.depthBits = static_cast<uint32_t>(std::stoi(o.choice("depth_bits", {"8", "16", "32"})));
+  opt.size = static_cast<uint32_t>(o.integer("size", 1, 16384));
+  opt.bias = static_cast<float>(o.number("bias", 0.0, 1.0));
+  return opt;
+}
+
+void DeepOpacityMaps::setup(Device& dev, const GpuScene& scene, const RenderSettings& s) {
+  scene_ = &scene;
+  settings_ = s;
+  const ViewUniforms view = lightView(s, opt_.size, opt_.size);
+  lightView_ =
+      dev.createBuffer({"dom.light_view", "frame", BufferUsage::Uniform, sizeof view}, &view);
+  opaque_.setup(dev, scene, opt_.size, lightView_, "dom");
+
+  // The layer size s: absolute, or a fraction of the hair's depth range from
+  // the light (from the hair points projected on the CPU).
+  const DepthRange range = depthRange(hairLightDepths(dev, scene, view.viewProj));
+  const float extent = range.farZ - range.nearZ;
+  const float size = opt_.sizeAbs > 0.0f ? opt_.sizeAbs : opt_.sizeFrac * extent;
+  const int K = static_cast<int>(opt_.layers);
+  // extend: past the range plus one step of z0's quantization (z0 rounds down).
+  const float quantum =
+      opt_.depthBits < 32 ? 1.0f / (std::exp2(float(opt_.depthBits)) - 1.0f) : 0.0f;
+  d_ = domBoundaries(K, opt_.spacing, size, opt_.list, opt_.beyond, extent + quantum);
+
+  Params p{};
+  p.viewProj = view.viewProj;
+  p.params = glm::vec4(opt_.bias, float(opt_.size), scene.shadowAlpha, float(opt_.depthBits));
+  p.layout = glm::ivec4(K, int(targets()), opt_.beyond, 0);
+  for (int k = 0; k <= K; ++k) p.d[k / 4][k % 4] = d_[std::size_t(k)];
+  params_ = dev.createBuffer({"dom.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
+
+  depth_ = dev.createTexture({"dom.depth", "shadow", Format::R32F, opt_.size, opt_.size, false});
+  for (uint32_t t = 0; t < targets(); ++t)
+    maps_.push_back(dev.createTexture({"dom.opacity" + std::to_string(t), "shadow", Format::RGBA32F,
+                                       opt_.size, opt_.size, false}));
+  if (!scene.hasHair()) return;
+
+  const ShaderCode vert = Geometry::strandVertexShader(s);
+  PipelineDesc d;
+  d.technique = "dom";
+  d.vertex = &vert;
+  d.topology = Geometry::strandTopology(s);
+  d.bindings = Geometry::slots();
+  d.bindings.push_back({kParams, BindingKind::UniformBuffer});
+  {
+    const ShaderCode frag = loadShader("techniques/dom/depth.frag");
+    d.name = "dom.depth";
+    d.fragment = &frag;
+    d.colorFormats = {Format::R32F, Format::RGBA32F};
+    d.blend = {BlendState::min(), BlendState::min()};
+    depthPipeline_ = dev.createPipeline(d);
+  }
+  ShaderDefines defs;
+  defs.defines.push_back({"SB_DOM_TARGETS", std::to_string(targets())});
+  const ShaderCode frag = loadShader("techniques/dom/opacity.frag", defs);
+  d.name = "dom.opacity";
+  d.fragment = &frag;
+  d.colorFormats.assign(targets(), Format::RGBA32F);
+  d.blend.assign(targets(), BlendState::additive());
+  d.bindings.push_back({kDepth, BindingKind::SampledTexture});
+  opacityPipeline_ = dev.createPipeline(d);
+}
+
+void DeepOpacityMaps::addPasses(FrameGraph& graph, Device& dev) {
+  opaque_.addPass(graph, dev);
+  graph.add({"dom.depth", {}, {"shadow.dom_depth"}, [this, &dev] {
+               PassDesc pass;
+               pass.name = "dom.depth";
+               pass.color.push_back({depth_, LoadOp::Clear, {1, 0, 0, 0}, {}});
+               pass.color.push_back({maps_[0], LoadOp::Clear, {1, 0, 0, 0}, {}});
+               dev.beginPass(pass);
+               if (depthPipeline_) {
+                 auto b = Geometry::bindings(*scene_, lightView_);
+                 b.push_back(Binding::buf(kParams, params_));
+                 dev.draw(depthPipeline_, b, Geometry::strandVertexCount(*scene_, settings_));
+               }
+               dev.endPass();
+             }});
+  graph.add({"dom.opacity", {"shadow.dom_depth"}, {"shadow.dom_opacity"}, [this, &dev] {
+               PassDesc pass;
+               pass.name = "dom.opacity";
+               for (uint32_t t = 0; t < targets(); ++t)
+                 pass.color.push_back(
+                     {maps_[t], t == 0 ? LoadOp::Load : LoadOp::Clear, {0, 0, 0, 0}, {}});
+               pass.sampledTextures = {depth_};
+               dev.beginPass(pass);
+               if (opacityPipeline_) {
+                 auto b = Geometry::bindings(*scene_, lightView_);
+                 b.push_back(Binding::buf(kParams, params_));
+                 b.push_back(Binding::tex(kDepth, depth_));
+                 dev.draw(opacityPipeline_, b, Geometry::strandVertexCount(*scene_, settings_));
+               }
+               dev.endPass();
+             }});
+}
+
+ShaderDefines DeepOpacityMaps::lookupDefines() const {
+  ShaderDefines d;
+  d.defines.push_back({"SB_DOM_TARGETS", std::to_string(targets())});
+  opaque_.addDefines(d);
+  return d;
+}
+
+std::vector<std::string> DeepOpacityMaps::lookupReads() const {
+  std::vector<std::string> r = {"shadow.dom_opacity"};
+  opaque_.addReads(r);
+  return r;
+}
+
+std::vector<BindingSlot> DeepOpacityMaps::lookupSlots() const {
+  std::vector<BindingSlot> s = {{kParams, BindingKind::UniformBuffer}};
+  for (uint32_t t = 0; t < targets(); ++t)
+    s.push_back({kMapFirst + t, BindingKind::SampledTexture});
+  opaque_.addSlots(s);
+  return s;
+}
+
+std::vector<Binding> DeepOpacityMaps::lookupBindings() const {
+  std::vector<Binding> b = {Binding::buf(kParams, params_)};
+  for (uint32_t t = 0; t < targets(); ++t) b.push_back(Binding::tex(kMapFirst + t, maps_[t]));
+  opaque_.addBindings(b);
+  return b;
+}
+
+std::vector<Texture> DeepOpacityMaps::lookupTextures() const {
+  std::vector<Texture> t = maps_;
+  opaque_.addTextures(t);
+  return t;
+}
+
+}  // namespace sb

@@ -1,0 +1,58 @@
+#pragma once
+
+#include "scenes/options.h"
+#include "techniques/common/opaque_shadow.h"
+#include "techniques/common/technique.h"
+
+namespace sb {
+
+// Deep opacity maps (Yuksel & Keyser 2008): a depth map of the hair from the
+// light gives each texel the depth z0 where its hair begins; K opacity layers
+// [z0 + d_(k-1), z0 + d_k) follow the hair's shape. One hair pass accumulates
+// every fragment into its layer and all layers behind it (additive blending);
+// K = 4n - 1 layers are packed in n RGBA targets with z0 in the first channel
+// (the slides' layout). The lookup interpolates within the point's layer and
+// returns (1 - alpha_s)^opacity.
+class DeepOpacityMaps : public ShadowTechnique {
+ public:
+  struct Options {
+    uint32_t layers = 3;
+    int spacing = 1;          // kDomConstant | kDomLinear | kDomPow2 | kDomFibonacci
+    std::vector<float> list;  // spacing=list: layer sizes as multiples of s
+    float sizeAbs = 0.0f;     // layer size s in light depth units (0: use sizeFrac)
+    float sizeFrac = 0.1f;    // s as a fraction of the hair's depth range from the light
+    int beyond = 1;           // kDomIgnore | kDomLast | kDomExtend
+    uint32_t depthBits = 32;  // z0 quantized to 8, 16 or 32 bits
+    uint32_t size = 512;
+    float bias = 0.002f;
+  };
+  static constexpr uint32_t kMaxLayers = 23;  // 6 targets (bindings 9..14)
+
+  static Options readOptions(const OptionReader& o);  // the registry's options
+  explicit DeepOpacityMaps(const Options& o) : opt_(o) {}
+  std::string name() const override { return "dom"; }
+  void setup(Device& dev, const GpuScene& scene, const RenderSettings& s) override;
+  void addPasses(FrameGraph& graph, Device& dev) override;
+  std::string lookupShader() const override { return "techniques/dom/lookup.glsl"; }
+  ShaderDefines lookupDefines() const override;
+  std::vector<std::string> lookupReads() const override;
+  std::vector<BindingSlot> lookupSlots() const override;
+  std::vector<Binding> lookupBindings() const override;
+  std::vector<Texture> lookupTextures() const override;
+
+  const std::vector<float>& boundaries() const { return d_; }
+  uint32_t targets() const { return (opt_.layers + 4) / 4; }
+
+ private:
+  Options opt_;
+  const GpuScene* scene_ = nullptr;
+  RenderSettings settings_;
+  std::vector<float> d_;
+  Texture depth_;
+  std::vector<Texture> maps_;
+  Buffer params_, lightView_;
+  Pipeline depthPipeline_, opacityPipeline_;
+  OpaqueShadow opaque_;
+};
+
+}  // namespace sb

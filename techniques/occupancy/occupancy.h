@@ -1,0 +1,60 @@
+#pragma once
+
+#include "techniques/common/opaque_shadow.h"
+#include "techniques/common/technique.h"
+
+namespace sb {
+
+class OptionReader;
+
+// Occupancy maps (Sintorn & Assarsson 2009). Three passes over the hair from
+// the light: a depth-range map (nearest and furthest fragment per texel, RG32F,
+// min blending), an occupancy map (one bit per slice of that range, RGBA32UI,
+// logic-op OR) and a slab map (fragment count per group of slices, RGBA32F,
+// additive). The lookup spreads slab i's F_i fragments over its S_i set bits
+// and interpolates linearly within a slice (occupancy_math.glsl).
+class OccupancyShadow : public ShadowTechnique {
+ public:
+  struct Options {
+    uint32_t size = 512;
+    float bias = 0.002f;
+    uint32_t slices = 128;  // multiple of 32, at most 512
+    uint32_t slabs = 4;     // divides slices; 4 per RGBA32F target
+    bool slabMap = true;    // false: every set bit counts as one fragment
+    bool jitter = false;    // half-texel jitter of the lookup (the paper's anti-aliasing)
+  };
+  // Reads and validates size, bias, slices, slabs, slab_map, jitter (InputError).
+  static Options readOptions(const OptionReader& o);
+  explicit OccupancyShadow(const Options& opts) : opts_(opts) {}
+
+  std::string name() const override { return "occupancy"; }
+  void setup(Device& dev, const GpuScene& scene, const RenderSettings& s) override;
+  void addPasses(FrameGraph& graph, Device& dev) override;
+  std::string lookupShader() const override { return "techniques/occupancy/lookup.glsl"; }
+  ShaderDefines lookupDefines() const override;
+  std::vector<std::string> lookupReads() const override;
+  std::vector<BindingSlot> lookupSlots() const override;
+  std::vector<Binding> lookupBindings() const override;
+  std::vector<Texture> lookupTextures() const override;
+
+  // The maps, for tests: depth range (RG32F), occupancy bits (RGBA32UI each),
+  // slab counts (RGBA32F each; none with slab_map=off).
+  Texture rangeMap() const { return range_; }
+  const std::vector<Texture>& bitMaps() const { return bits_; }
+  const std::vector<Texture>& slabMaps() const { return slabs_; }
+
+ private:
+  uint32_t wordTargets() const { return (opts_.slices + 127) / 128; }
+  uint32_t slabTargets() const { return opts_.slabMap ? (opts_.slabs + 3) / 4 : 0; }
+
+  Options opts_;
+  const GpuScene* scene_ = nullptr;
+  RenderSettings settings_;
+  Buffer lightView_, params_;
+  Texture range_;
+  std::vector<Texture> bits_, slabs_;
+  OpaqueShadow opaque_;
+  Pipeline rangePipeline_, bitsPipeline_, slabsPipeline_;
+};
+
+}  // namespace sb

@@ -1,0 +1,8 @@
+// Parameters of opacity shadow maps (binding 8), for the map passes and the lookup.
+layout(std140, binding = 8) uniform OsmParams {
+  mat4 osmViewProj;
+  vec4 osmParams;   // bias (light depth units), map size, shadow alpha, weight per fragment
+  ivec4 osmLayout;  // tile columns, maps, atlases, 0
+  vec4 osmSlices[65];  // D_0..D_n (n <= 256), 4 per vec4
+};
+#define SB_OSM_SLICE(i) osmSlices[(i) / 4][(i) % 4]
