@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Shadow memory at 512x512 with fp32 maps (memory.shadow_bytes, the device's own
+# accounting) beside Sintorn & Assarsson's table. Hair only (no mesh), so only
+# the techniques' maps count.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scene=${1:-straight:strands=200,points=8,head=0}
+bytes() {
+  build/strandbench render --scene "$scene" --shadow "$1" --size 64x64 --json |
+    sed -n 's/.*"shadow_bytes": \([0-9]*\).*/\1/p'
+}
+printf '%-34s %14s %10s %s\n' technique bytes MiB "paper (MB)"
+row() {
+  local b
+  b=$(bytes "$1")
+  printf '%-34s %14s %10.2f %s\n' "$1" "$b" "$(awk -v b="$b" 'BEGIN{print b/1048576}')" "$2"
+}
+row "occupancy:slices=128,slabs=4,size=512" "10"
+row "dom:layers=15,size=512" "18 (DOM 16 slices)"
+row "dom:layers=23,size=512" "34 (DOM 32 slices; ours caps at 23 layers)"
+row "osm:maps=128,size=512,bits=32" "130"
+row "osm:maps=256,size=512,bits=32" "258"
+row "dc:clusters=4,size=512" "-"
+row "shadowmap:size=512" "-"
+occ=$(bytes "occupancy:slices=128,slabs=4,size=512")
+osm=$(bytes "osm:maps=128,size=512,bits=32")
+echo "OSM(128) / occupancy = $(awk -v a="$osm" -v b="$occ" 'BEGIN{printf "%.1f", a/b}') (paper: 13)"
