@@ -1,6 +1,7 @@
 // The opaque mesh's hard shadow, shared by every shadow technique: a depth
 // map of the mesh from the light (binding 15). Compiled out (SB_OPAQUE_SHADOW 0)
 // when the scene has no mesh, so such a scene allocates and runs nothing for it.
+#include "light_space.glsl"
 #if SB_OPAQUE_SHADOW
 layout(binding = 15) uniform sampler2D opaqueShadowDepth;
 #endif

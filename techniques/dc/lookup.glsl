@@ -16,10 +16,9 @@ layout(binding = 11) uniform sampler2D dcSums;    // sum of (z - nearest) per cl
 layout(binding = 12) uniform sampler2D dcSquares;  // sum of (z - nearest)^2 per cluster
 
 float shadowVisibility(vec3 worldPos) {
-  vec4 clip = dcViewProj * vec4(worldPos, 1.0);
-  vec3 ndc = clip.xyz / clip.w;
+  vec3 ndc;
+  if (!toLightNdc(dcViewProj, worldPos, ndc)) return 1.0;
   vec2 uv = ndc.xy * 0.5 + 0.5;
-  if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || ndc.z > 1.0) return 1.0;
   float bias = dcParams.x;
   if (opaqueVisibility(ndc, bias) == 0.0) return 0.0;
   int size = int(dcParams.y);

@@ -14,10 +14,9 @@ layout(std430, binding = 10) readonly buffer ExactOffsets { uint exactOffsets[];
 layout(std430, binding = 12) readonly buffer ExactNodes { uvec2 exactNodes[]; };
 
 float shadowVisibility(vec3 worldPos) {
-  vec4 clip = exactViewProj * vec4(worldPos, 1.0);
-  vec3 ndc = clip.xyz / clip.w;
+  vec3 ndc;
+  if (!toLightNdc(exactViewProj, worldPos, ndc)) return 1.0;
   vec2 uv = ndc.xy * 0.5 + 0.5;
-  if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || ndc.z > 1.0) return 1.0;
   float z = ndc.z - exactParams.x;
   if (opaqueVisibility(ndc, exactParams.x) == 0.0) return 0.0;
   uint size = uint(exactParams.y);

@@ -45,10 +45,9 @@ vec2 occupancyJitter(vec3 texelSpace) {
 }
 
 float shadowVisibility(vec3 worldPos) {
-  vec4 clip = occViewProj * vec4(worldPos, 1.0);
-  vec3 ndc = clip.xyz / clip.w;
+  vec3 ndc;
+  if (!toLightNdc(occViewProj, worldPos, ndc)) return 1.0;
   vec2 uv = ndc.xy * 0.5 + 0.5;
-  if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) || ndc.z > 1.0) return 1.0;
   float bias = occParams.x;
   if (opaqueVisibility(ndc, bias) == 0.0) return 0.0;
   vec2 texelPos = uv * occParams.y;
