@@ -298,4 +298,18 @@ int runCompareCommand(const std::string& a, const std::string& b, std::ostream& 
   }
 }
 
+VisibilityError compareVisibility(const std::vector<float>& a, const std::vector<float>& b) {
+  VisibilityError e;
+  double sq = 0;
+  for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
+    if (!(a[i] >= 0.0f) || !(b[i] >= 0.0f)) continue;
+    const double d = std::abs(double(a[i]) - double(b[i]));
+    sq += d * d;
+    e.max = std::max(e.max, d);
+    ++e.pixels;
+  }
+  e.rmse = e.pixels ? std::sqrt(sq / double(e.pixels)) : 0.0;
+  return e;
+}
+
 }  // namespace sb

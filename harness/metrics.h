@@ -85,4 +85,12 @@ Image diffHeatmap(const Image& a, const Image& b, double scale, int channels = 3
 int runCompareCommand(const std::string& a, const std::string& b, std::ostream& out,
                       std::ostream& err, double threshold = 1.0 / 255.0);
 
+// Visibility error: technique against exact light visibility, per pixel, over
+// the pixels where both images see a surface (values >= 0; -1 marks none).
+struct VisibilityError {
+  double rmse = 0, max = 0;
+  std::size_t pixels = 0;
+};
+VisibilityError compareVisibility(const std::vector<float>& a, const std::vector<float>& b);
+
 }  // namespace sb

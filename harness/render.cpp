@@ -99,23 +99,14 @@ nlohmann::json boundsJson(const Bounds& b) {
   return {{"min", {b.min.x, b.min.y, b.min.z}}, {"max", {b.max.x, b.max.y, b.max.z}}};
 }
 
-// Visibility error over the pixels where both images see a surface (>= 0).
 nlohmann::json visibilityError(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
-  const std::size_t n = std::min(a.size(), b.size()) / sizeof(float);
-  double sq = 0, maxAbs = 0;
-  std::size_t count = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    float x = 0, y = 0;
-    std::memcpy(&x, a.data() + i * sizeof(float), sizeof x);
-    std::memcpy(&y, b.data() + i * sizeof(float), sizeof y);
-    if (!(x >= 0.0f) || !(y >= 0.0f)) continue;
-    const double d = std::abs(double(x) - double(y));
-    sq += d * d;
-    maxAbs = std::max(maxAbs, d);
-    ++count;
-  }
-  return {
-      {"rmse", count ? std::sqrt(sq / double(count)) : 0.0}, {"max", maxAbs}, {"pixels", count}};
+  auto floats = [](const std::vector<uint8_t>& bytes) {
+    std::vector<float> v(bytes.size() / sizeof(float));
+    std::memcpy(v.data(), bytes.data(), v.size() * sizeof(float));
+    return v;
+  };
+  const VisibilityError e = compareVisibility(floats(a), floats(b));
+  return {{"rmse", e.rmse}, {"max", e.max}, {"pixels", e.pixels}};
 }
 
 nlohmann::json complexityJson(const std::optional<DepthComplexity>& c) {

@@ -13,6 +13,8 @@
 #include <iostream>
 #include <random>
 
+#include "gpu_test_util.h"
+#include "harness/metrics.h"
 #include "scenes/options.h"
 #include "scenes/view.h"
 #include "techniques/common/renderer.h"
@@ -21,6 +23,9 @@
 
 namespace sb {
 namespace {
+
+using sbtest::floats;
+using sbtest::makeDevice;
 
 // ---------------------------------------------------------------- CPU: occupancy
 
@@ -292,34 +297,17 @@ TEST(DensityClusteringMath, NearestAndCentres) {
 
 // ---------------------------------------------------------------- GPU, both backends
 
-std::unique_ptr<Device> makeDevice(const std::string& backend) {
-  DeviceOptions o;
-  o.backend = backend;
-  o.platform = backend == "gl" ? "egl" : "headless";
-  o.validation = true;
-  return createDevice(o);
-}
-
 struct Frame {
   std::vector<float> color, visibility;
   std::vector<std::string> warnings;
   std::size_t shadowBytes = 0;
 };
 
-std::vector<float> floats(const std::vector<uint8_t>& bytes) {
-  std::vector<float> v(bytes.size() / sizeof(float));
-  std::memcpy(v.data(), bytes.data(), v.size() * sizeof(float));
-  return v;
-}
-
 Frame render(Device& dev, const std::string& sceneSpec, const std::string& shadowSpec,
              uint32_t size = 64, Primitive primitive = Primitive::Lines) {
   const Scene scene = makeScene(Spec::parse(sceneSpec));
-  RenderSettings s;
-  s.width = s.height = size;
+  RenderSettings s = sbtest::fittedSettings(scene, size);
   s.primitive = primitive;
-  s.camera = fitCamera(scene.bounds(), 1.0f);
-  s.light = fitLight(scene.bounds(), LightType::Directional);
   std::size_t before = 0;  // the device keeps earlier renderers' resources
   for (const auto& a : dev.allocations())
     if (a.owner == "shadow") before += a.bytes;
@@ -334,18 +322,6 @@ Frame render(Device& dev, const std::string& sceneSpec, const std::string& shado
     if (a.owner == "shadow") f.shadowBytes += a.bytes;
   f.shadowBytes -= before;
   return f;
-}
-
-// RMSE of the visibility against a reference, over pixels with a surface in both.
-double visibilityRmse(const std::vector<float>& a, const std::vector<float>& b) {
-  double sq = 0;
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
-    if (!(a[i] >= 0.0f) || !(b[i] >= 0.0f)) continue;
-    sq += double(a[i] - b[i]) * double(a[i] - b[i]);
-    ++n;
-  }
-  return n ? std::sqrt(sq / double(n)) : 0.0;
 }
 
 const char* kHair = "straight:strands=600,points=10,alpha=0.5,shadow_alpha=0.3";
@@ -369,24 +345,7 @@ const std::vector<std::string>& allOptions() {
   return specs;
 }
 
-class DcOccupancyGpu : public ::testing::TestWithParam<std::string> {
- protected:
-  void SetUp() override {
-    try {
-      dev_ = makeDevice(GetParam());
-    } catch (const DeviceError& e) {
-      GTEST_SKIP() << "backend unavailable: " << e.what();
-    }
-    messages_ = validationMessageCount();
-  }
-  void TearDown() override {
-    if (dev_) {
-      EXPECT_EQ(validationMessageCount(), messages_) << "Vulkan validation messages";
-    }
-  }
-  std::unique_ptr<Device> dev_;
-  std::size_t messages_ = 0;
-};
+class DcOccupancyGpu : public sbtest::BackendTest {};
 
 void expectFinite(const Frame& f, const std::string& what) {
   std::size_t lit = 0, surfaces = 0;
@@ -432,13 +391,17 @@ TEST_P(DcOccupancyGpu, CloserToExactThanAShadowMap) {
     SCOPED_TRACE(scene);
     const Frame exact = render(*dev_, scene, "exact:size=64,method=abuffer");
     const double hard =
-        visibilityRmse(render(*dev_, scene, "shadowmap:size=64").visibility, exact.visibility);
+        compareVisibility(render(*dev_, scene, "shadowmap:size=64").visibility, exact.visibility)
+            .rmse;
     const double occ =
-        visibilityRmse(render(*dev_, scene, "occupancy:size=64").visibility, exact.visibility);
-    const double occBits = visibilityRmse(
-        render(*dev_, scene, "occupancy:size=64,slab_map=off").visibility, exact.visibility);
+        compareVisibility(render(*dev_, scene, "occupancy:size=64").visibility, exact.visibility)
+            .rmse;
+    const double occBits =
+        compareVisibility(render(*dev_, scene, "occupancy:size=64,slab_map=off").visibility,
+                          exact.visibility)
+            .rmse;
     const double dc =
-        visibilityRmse(render(*dev_, scene, "dc:size=64").visibility, exact.visibility);
+        compareVisibility(render(*dev_, scene, "dc:size=64").visibility, exact.visibility).rmse;
     std::cout << "[ measured ] " << GetParam() << " " << scene << " visibility rmse: shadowmap "
               << hard << ", occupancy " << occ << ", occupancy slab_map=off " << occBits << ", dc "
               << dc << "\n";

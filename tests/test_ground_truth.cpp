@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "gpu_test_util.h"
 #include "harness/image.h"
 #include "harness/metrics.h"
 #include "scenes/view.h"
@@ -16,6 +17,9 @@
 
 namespace sb {
 namespace {
+
+using sbtest::floats;
+using sbtest::makeDevice;
 
 struct Case {
   std::string scene;
@@ -30,23 +34,12 @@ struct GroundTruth {
   std::vector<std::string> warnings;
 };
 
-std::unique_ptr<Device> makeDevice(const std::string& backend) {
-  DeviceOptions o;
-  o.backend = backend;
-  o.platform = backend == "gl" ? "egl" : "headless";
-  o.validation = true;
-  return createDevice(o);
-}
-
 // method: peel | abuffer, for both the shadows and the transparency;
 // layerCap: ",layers=N" to cap peeling, or "".
 GroundTruth render(Device& dev, const Case& c, const std::string& method,
                    const std::string& layerCap = "") {
   const Scene scene = makeScene(Spec::parse(c.scene));
-  RenderSettings s;
-  s.width = s.height = c.size;
-  s.camera = fitCamera(scene.bounds(), 1.0f);
-  s.light = fitLight(scene.bounds(), LightType::Directional);
+  const RenderSettings s = sbtest::fittedSettings(scene, c.size);
   const std::string size = std::to_string(c.size);
   Renderer r(
       dev, scene, s,
@@ -62,24 +55,7 @@ GroundTruth render(Device& dev, const Case& c, const std::string& method,
   return g;
 }
 
-class GroundTruthTest : public ::testing::TestWithParam<std::string> {
- protected:
-  void SetUp() override {
-    try {
-      dev_ = makeDevice(GetParam());
-    } catch (const DeviceError& e) {
-      GTEST_SKIP() << "backend unavailable: " << e.what();
-    }
-    messages_ = validationMessageCount();
-  }
-  void TearDown() override {
-    if (dev_) {
-      EXPECT_EQ(validationMessageCount(), messages_) << "Vulkan validation messages";
-    }
-  }
-  std::unique_ptr<Device> dev_;
-  std::size_t messages_ = 0;
-};
+class GroundTruthTest : public sbtest::BackendTest {};
 
 TEST_P(GroundTruthTest, PeelingAndFragmentListsAgree) {
   const std::vector<Case> cases = {

@@ -10,12 +10,17 @@
 #include <iostream>
 #include <numeric>
 
+#include "gpu_test_util.h"
+#include "harness/metrics.h"
 #include "scenes/view.h"
 #include "techniques/common/opacity.h"
 #include "techniques/common/renderer.h"
 
 namespace sb {
 namespace {
+
+using sbtest::floats;
+using sbtest::makeDevice;
 
 // ---- CPU: the maps a technique would build from one texel's fragments ----
 
@@ -170,34 +175,12 @@ TEST(OpacityMath, DomOnFragmentLists) {
 
 // ---- GPU: both techniques through the Renderer on GL and Vulkan ----
 
-std::unique_ptr<Device> makeDevice(const std::string& backend) {
-  DeviceOptions o;
-  o.backend = backend;
-  o.platform = backend == "gl" ? "egl" : "headless";
-  o.validation = true;
-  return createDevice(o);
-}
-
 const char* kScene = "curly:strands=300,points=16,alpha=0.5,shadow_alpha=0.3";
-
-RenderSettings settingsFor(const Scene& scene, uint32_t size) {
-  RenderSettings s;
-  s.width = s.height = size;
-  s.camera = fitCamera(scene.bounds(), 1.0f);
-  s.light = fitLight(scene.bounds(), LightType::Directional);
-  return s;
-}
 
 struct Result {
   std::vector<float> color, visibility;
   std::size_t shadowBytes = 0;
 };
-
-std::vector<float> floats(const std::vector<uint8_t>& b) {
-  std::vector<float> f(b.size() / 4);
-  std::memcpy(f.data(), b.data(), f.size() * 4);
-  return f;
-}
 
 std::size_t shadowBytes(Device& dev) {
   std::size_t n = 0;
@@ -212,25 +195,15 @@ Result render(Device& dev, const std::string& sceneSpec, const std::string& shad
               uint32_t size = 64) {
   const Scene scene = makeScene(Spec::parse(sceneSpec));
   const std::size_t before = shadowBytes(dev);
-  Renderer r(dev, scene, settingsFor(scene, size), makeShadowTechnique(Spec::parse(shadow)),
-             makeOitTechnique(Spec::parse("none")), {"color", "visibility"});
+  Renderer r(dev, scene, sbtest::fittedSettings(scene, size),
+             makeShadowTechnique(Spec::parse(shadow)), makeOitTechnique(Spec::parse("none")),
+             {"color", "visibility"});
   r.renderFrame();
   Result out;
   out.shadowBytes = shadowBytes(dev) - before;
   out.color = floats(r.readColor());
   out.visibility = floats(r.readVisibility());
   return out;
-}
-
-double visibilityRmse(const std::vector<float>& a, const std::vector<float>& b) {
-  double sq = 0;
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
-    if (!(a[i] >= 0.0f) || !(b[i] >= 0.0f)) continue;
-    sq += double(a[i] - b[i]) * double(a[i] - b[i]);
-    ++n;
-  }
-  return n ? std::sqrt(sq / double(n)) : 0.0;
 }
 
 const std::vector<std::string>& allOptionSpecs() {
@@ -332,15 +305,17 @@ TEST_F(OsmDomTest, ErrorFallsAsMapsAndLayersGrow) {
     const Result exact = render(*dev, scene, "exact:size=64");
     std::vector<double> osm, dom;
     for (int maps : {2, 8, 64})
-      osm.push_back(
-          visibilityRmse(render(*dev, scene, "osm:size=64,maps=" + std::to_string(maps)).visibility,
-                         exact.visibility));
+      osm.push_back(compareVisibility(
+                        render(*dev, scene, "osm:size=64,maps=" + std::to_string(maps)).visibility,
+                        exact.visibility)
+                        .rmse);
     for (int layers : {1, 3, 11})
-      dom.push_back(visibilityRmse(
-          render(*dev, scene,
-                 "dom:size=64,spacing=constant,size_frac=0.02,layers=" + std::to_string(layers))
-              .visibility,
-          exact.visibility));
+      dom.push_back(compareVisibility(render(*dev, scene,
+                                             "dom:size=64,spacing=constant,size_frac=0.02,layers=" +
+                                                 std::to_string(layers))
+                                          .visibility,
+                                      exact.visibility)
+                        .rmse);
     std::cout << "[ measured ] " << name << " visibility rmse vs exact: osm maps 2/8/64 " << osm[0]
               << " " << osm[1] << " " << osm[2] << "; dom layers 1/3/11 " << dom[0] << " " << dom[1]
               << " " << dom[2] << "\n";

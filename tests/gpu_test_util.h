@@ -1,0 +1,62 @@
+// Helpers for tests that render in-process on both backends.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "backends/device.h"
+#include "scenes/view.h"
+#include "techniques/common/technique.h"
+
+namespace sbtest {
+
+// A device with Vulkan validation on (GL: EGL surfaceless; Vulkan: headless).
+inline std::unique_ptr<sb::Device> makeDevice(const std::string& backend) {
+  sb::DeviceOptions o;
+  o.backend = backend;
+  o.platform = backend == "gl" ? "egl" : "headless";
+  o.validation = true;
+  return sb::createDevice(o);
+}
+
+// A test run once per backend name; a backend that cannot be created here is
+// skipped with the reason, and any Vulkan validation message fails the test.
+class BackendTest : public ::testing::TestWithParam<std::string> {
+ protected:
+  void SetUp() override {
+    try {
+      dev_ = makeDevice(GetParam());
+    } catch (const sb::DeviceError& e) {
+      GTEST_SKIP() << "backend unavailable: " << e.what();
+    }
+    messages_ = sb::validationMessageCount();
+  }
+  void TearDown() override {
+    if (dev_) {
+      EXPECT_EQ(sb::validationMessageCount(), messages_) << "Vulkan validation messages";
+    }
+  }
+  std::unique_ptr<sb::Device> dev_;
+  std::size_t messages_ = 0;
+};
+
+inline std::vector<float> floats(const std::vector<uint8_t>& bytes) {
+  std::vector<float> v(bytes.size() / sizeof(float));
+  std::memcpy(v.data(), bytes.data(), v.size() * sizeof(float));
+  return v;
+}
+
+// Square image, camera and directional light fitted to the scene.
+inline sb::RenderSettings fittedSettings(const sb::Scene& scene, uint32_t size) {
+  sb::RenderSettings s;
+  s.width = s.height = size;
+  s.camera = sb::fitCamera(scene.bounds(), 1.0f);
+  s.light = sb::fitLight(scene.bounds(), sb::LightType::Directional);
+  return s;
+}
+
+}  // namespace sbtest
