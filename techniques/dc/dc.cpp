@@ -79,7 +79,7 @@ void DensityClusteringShadow::setup(Device& dev, const GpuScene& scene, const Re
   d.vertex = &vert;
   d.topology = Geometry::strandTopology(s);
   d.bindings = Geometry::slots();
-  const ShaderCode rangeFrag = loadShader("techniques/dc/depth_range.frag", defs);
+  const ShaderCode rangeFrag = loadShader("techniques/common/depth_range.frag", defs);
   d.name = "dc.init";
   d.fragment = &rangeFrag;
   d.colorFormats = {Format::RG32F};

@@ -85,7 +85,7 @@ void OccupancyShadow::setup(Device& dev, const GpuScene& scene, const RenderSett
   d.topology = Geometry::strandTopology(s);
   d.bindings = Geometry::slots();
 
-  const ShaderCode rangeFrag = loadShader("techniques/occupancy/depth_range.frag", defs);
+  const ShaderCode rangeFrag = loadShader("techniques/common/depth_range.frag", defs);
   d.name = "occupancy.depth_range";
   d.fragment = &rangeFrag;
   d.colorFormats = {Format::RG32F};
