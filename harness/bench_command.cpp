@@ -106,9 +106,61 @@ int runBench(const BenchOptions& o) {
   return 0;
 }
 
+int runOitBench(const RenderRequest& base) {
+  std::cout << std::fixed << std::setprecision(2);
+  std::cout << "scene " << base.scene << ", " << base.width << "x" << base.height << ", "
+            << base.backend << ", shadow " << base.shadow << ", median of " << base.repeat
+            << " after " << base.warmup << " warm-up\n";
+  const std::vector<std::pair<std::string, double>> rows = {
+      {"peel", 4.01}, {"occupancy", 51}, {"wavg", 72}, {"wboit", 0}, {"none", 120}};
+  std::map<std::string, double> ms;
+  for (const auto& [oit, fps] : rows) {
+    RenderRequest r = base;
+    r.oit = oit;
+    const RenderOutcome out = runRender(r);
+    ms[oit] = out.report["frame_ms"]["median"].get<double>();
+    if (oit == "peel")
+      std::cout << "eye depth complexity: max "
+                << out.report["depth_complexity"]["eye"]["max"].get<int>() << ", mean "
+                << out.report["depth_complexity"]["eye"]["mean"].get<double>()
+                << "  (paper's Fig. 2 scene: 112)\n\n";
+    std::cout << "  " << std::left << std::setw(10) << oit << std::right << std::setw(10) << ms[oit]
+              << " ms";
+    if (fps > 0) std::cout << "   paper " << fps << " fps = " << 1000.0 / fps << " ms";
+    std::cout << "\n";
+  }
+  std::cout << "\ndepth peeling / occupancy-ordered time: " << ms["peel"] / ms["occupancy"]
+            << "  (paper: 51 / 4.01 fps = 12.7)\n"
+            << "weighted average / occupancy-ordered time: " << ms["wavg"] / ms["occupancy"]
+            << "  (paper: 51 / 72 fps = 0.71)\n";
+  return 0;
+}
+
 }  // namespace
 
 void registerBenchCommand(CLI::App& app) {
+  {
+    auto* cmd = app.add_subcommand(
+        "bench-oit", "the transparency paper's Fig. 2 timings as ratios in one run (a benchmark)");
+    auto base = std::make_shared<RenderRequest>();
+    base->scene = "clustered:strands=4000,points=8,head=0,alpha=0.2";
+    base->repeat = 3;
+    auto size = std::make_shared<std::string>("128x128");
+    cmd->add_option("--scene", base->scene, "scene spec (eye depth complexity >= 100)")
+        ->capture_default_str();
+    cmd->add_option("--shadow", base->shadow, "shadow technique")->capture_default_str();
+    cmd->add_option("--backend", base->backend, "gl | vulkan")->capture_default_str();
+    cmd->add_option("--size", *size, "image size")->capture_default_str();
+    cmd->add_option("--repeat", base->repeat, "timed frames per case")->capture_default_str();
+    cmd->callback([base, size] {
+      runGuarded("bench-oit", [&] {
+        auto [w, h] = parseSize(*size);
+        base->width = w;
+        base->height = h;
+        return runOitBench(*base);
+      });
+    });
+  }
   auto* cmd = app.add_subcommand(
       "bench-shadows",
       "papers' shadow timing figures as ratios in one run (a benchmark, not a test)");
