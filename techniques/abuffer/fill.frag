@@ -1,5 +1,8 @@
 // Eye-space A-buffer: every hair fragment in front of the opaque depth is
 // shaded and stored in its pixel's list.
+// Storage writes are side effects: without early tests they would happen even
+// for fragments the opaque depth test then rejects.
+layout(early_fragment_tests) in;
 #include "../common/view.glsl"
 #include "../common/shading.glsl"
 #include <shadow>

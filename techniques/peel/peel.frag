@@ -1,6 +1,9 @@
 // Depth peeling from the eye (Everitt 2001), exact: SB_PEEL_PASS 0 and 1 find
 // the next fragment after the previous layer's key (peel_step.glsl); pass 2
 // shades that one fragment and adds it under what is accumulated so far.
+// Storage writes are side effects: without early tests they would happen even
+// for fragments the opaque depth test then rejects.
+layout(early_fragment_tests) in;
 #include "../common/view.glsl"
 #include "../common/shading.glsl"
 #include <shadow>
