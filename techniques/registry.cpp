@@ -7,10 +7,13 @@
 #include "techniques/exact/exact.h"
 #include "techniques/none/none.h"
 #include "techniques/occupancy/occupancy.h"
+#include "techniques/occupancy_oit/occupancy_oit.h"
 #include "techniques/opaque_hair/opaque_hair.h"
 #include "techniques/osm/osm.h"
 #include "techniques/peel/peel.h"
 #include "techniques/shadowmap/shadowmap.h"
+#include "techniques/wboit/wboit.h"
+#include "techniques/weighted/weighted.h"
 
 namespace sb {
 
@@ -118,6 +121,23 @@ const std::vector<TechniqueInfo>& oitCatalog() {
       {"abuffer",
        "ground truth cross-check: per-pixel fragment lists, sorted and composited",
        {{"max_fragments", "50000000", "most fragments stored (32 bytes each), 1..1000000000"}}},
+      {"wsum",
+       "weighted sum (Meshkin 2007; Bavoil & Myers 2008): C = sum(a c) + (1 - sum a) C_dst, "
+       "saturated to [0,1]",
+       {}},
+      {"wavg",
+       "weighted average (Bavoil & Myers 2008): avg colour sum(a c)/sum(a), T = (1 - sum(a)/n)^n",
+       {}},
+      {"wboit",
+       "weighted blended OIT (McGuire & Bavoil 2013): depth-weighted average, exact coverage",
+       {{"weight", "eq10",
+         "const | eq7 | eq8 | eq9 | eq10: the paper's depth weight w(z, a) (eq10: window depth)"},
+        {"precision", "32", "accumulation target bits: 16 (RGBA16F) | 32 (RGBA32F)"}}},
+      {"occupancy",
+       "occupancy-ordered blending (Sintorn & Assarsson 2009): order from eye-space occupancy maps",
+       {{"slices", "128", "occupancy bits per pixel, multiple of 32 (128 per RGBA32UI), 32..512"},
+        {"slabs", "4", "fragment counts per pixel (4 per RGBA32F), dividing slices, 1..16"},
+        {"lambda", "on", "on | off: renormalise the hair weights to 1 - prod(1 - alpha)"}}},
   };
   return catalog;
 }
@@ -127,9 +147,18 @@ std::unique_ptr<OitTechnique> makeOitTechnique(const Spec& spec) {
   const OptionReader o(spec, info.options, "transparency technique '" + spec.name + "'");
   if (spec.name == "peel")
     return std::make_unique<PeelOit>(static_cast<uint32_t>(o.integer("layers", 1, 1000000)));
+  if (spec.name == "occupancy")
+    return std::make_unique<OccupancyOit>(OccupancyOit::readOptions(o));
   if (spec.name == "abuffer")
     return std::make_unique<ABufferOit>(
         static_cast<uint64_t>(o.integer("max_fragments", 1, 1000000000)));
+  if (spec.name == "wsum") return std::make_unique<WeightedOit>(WeightedOit::Mode::Sum);
+  if (spec.name == "wavg") return std::make_unique<WeightedOit>(WeightedOit::Mode::Average);
+  if (spec.name == "wboit")
+    return std::make_unique<WeightedBlendedOit>(
+        WeightedBlendedOit::weightFromName(
+            o.choice("weight", {"const", "eq7", "eq8", "eq9", "eq10"})),
+        o.choice("precision", {"16", "32"}) == "16" ? 16 : 32);
   return std::make_unique<OpaqueHair>();
 }
 

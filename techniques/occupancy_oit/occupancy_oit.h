@@ -1,0 +1,59 @@
+#pragma once
+
+#include "techniques/common/technique.h"
+
+namespace sb {
+
+class OptionReader;
+
+// Occupancy-ordered blending (--oit occupancy; Sintorn & Assarsson 2009,
+// section 3.4): the occupancy machinery of the shadow version
+// (techniques/occupancy) built from the eye, then one additive pass in which
+// every hair fragment weights its colour by (1 - a)^o for its estimated order
+// o, and a resolve with the paper's Lambda renormalisation. Passes, all hair
+// passes depth-tested against the opaque depth without writing it:
+//   occupancy_oit.depth_range  nearest/furthest fragment per pixel (RG32F, min)
+//   occupancy_oit.occupancy    one bit per slice (RGBA32UI per 128, logic-op OR)
+//   occupancy_oit.slabs        fragment count per slab (RGBA32F per 4, additive)
+//   occupancy_oit.accumulate   (1 - a)^o a (c, 1) into RGBA32F and log2(1 - a)
+//                              into R32F (additive, fp32)
+//   occupancy_oit.resolve      hair over the opaque colour
+class OccupancyOit : public OitTechnique {
+ public:
+  struct Options {
+    uint32_t slices = 128;  // multiple of 32, at most 512
+    uint32_t slabs = 4;     // divides slices, at most 16
+    bool lambda = true;     // the paper's renormalisation of the hair weights
+  };
+  // Reads and validates slices, slabs, lambda (InputError).
+  static Options readOptions(const OptionReader& o);
+  explicit OccupancyOit(const Options& opts) : opts_(opts) {}
+
+  std::string name() const override { return "occupancy"; }
+  void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
+             const KajiyaKayShading& shading, const OitTargets& targets) override;
+  void addPasses(FrameGraph& graph, Device& dev) override;
+
+  // The eye-space maps and accumulation targets, for tests.
+  Texture rangeMap() const { return range_; }
+  const std::vector<Texture>& bitMaps() const { return bits_; }
+  const std::vector<Texture>& slabMaps() const { return slabs_; }
+  Texture accumulation() const { return accum_; }
+  Texture log2Transmittance() const { return log2T_; }
+
+ private:
+  uint32_t wordTargets() const { return (opts_.slices + 127) / 128; }
+  uint32_t slabTargets() const { return (opts_.slabs + 3) / 4; }
+  PassDesc hairPass(const std::string& name, bool first) const;
+
+  Options opts_;
+  const GpuScene* scene_ = nullptr;
+  const KajiyaKayShading* shading_ = nullptr;
+  RenderSettings settings_;
+  OitTargets targets_;
+  Texture range_, accum_, log2T_;
+  std::vector<Texture> bits_, slabs_;
+  Pipeline rangePipeline_, bitsPipeline_, slabsPipeline_, accumPipeline_, resolvePipeline_;
+};
+
+}  // namespace sb

@@ -1,0 +1,19 @@
+// Weighted sum / weighted average resolve: a full-screen pass that writes
+// (hair, T) with blending One, SrcAlpha over the opaque colour (weighted_math.glsl).
+#include "weighted_math.glsl"
+
+layout(binding = 16) uniform sampler2D accumTex;
+#ifdef SB_WEIGHTED_COUNT
+layout(binding = 17) uniform sampler2D countTex;
+#endif
+layout(location = 0) out vec4 outColor;
+
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  vec4 accum = texelFetch(accumTex, p, 0);
+#ifdef SB_WEIGHTED_COUNT
+  outColor = weightedAverageResolve(accum, texelFetch(countTex, p, 0).x);
+#else
+  outColor = weightedSumResolve(accum);
+#endif
+}

@@ -1,0 +1,111 @@
+#include "techniques/weighted/weighted.h"
+
+#include "techniques/kajiya_kay/shading.h"
+
+namespace sb {
+
+namespace {
+constexpr uint32_t kFirstTarget = 16;  // resolve: sampler bindings 16, 17, ...
+}  // namespace
+
+void BlendedOitBase::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
+                           const KajiyaKayShading& shading, const OitTargets& targets) {
+  scene_ = &scene;
+  shading_ = &shading;
+  settings_ = s;
+  targets_ = targets;
+  const Config cfg = config();
+  targetDescs_ = cfg.targets;
+  textures_.clear();
+  for (const Target& t : cfg.targets)
+    textures_.push_back(
+        dev.createTexture({name() + "." + t.name, "oit", t.format, s.width, s.height, false}));
+
+  // Accumulation: the hair, shaded through the shadow lookup, depth-tested
+  // against the opaque depth without writing it.
+  ShaderDefines defs = cfg.defines;
+  const ShaderDefines hair = shading.hairDefines();
+  for (const auto& [alias, file] : hair.aliases) defs.aliases[alias] = file;
+  defs.defines.insert(defs.defines.end(), hair.defines.begin(), hair.defines.end());
+  const ShaderCode vert = Geometry::strandVertexShader(s);
+  const ShaderCode frag = loadShader(cfg.accumulateShader, defs);
+  PipelineDesc d;
+  d.name = name() + ".accumulate";
+  d.technique = name() + "+" + shading.shadow().name();
+  d.vertex = &vert;
+  d.fragment = &frag;
+  d.topology = Geometry::strandTopology(s);
+  for (const Target& t : cfg.targets) {
+    d.colorFormats.push_back(t.format);
+    d.blend.push_back(t.blend);
+  }
+  d.hasDepth = d.depthTest = true;
+  d.depthWrite = false;
+  d.depthCompare = CompareOp::Less;
+  d.bindings = shading.hairSlots();
+  accumulate_ = dev.createPipeline(d);
+
+  // Resolve: (hair, T) over the opaque colour, C = hair + T * C_dst; the
+  // destination alpha is kept.
+  const ShaderCode fullScreen = loadShader("techniques/common/composite.vert");
+  const ShaderCode resolve = loadShader(cfg.resolveShader, cfg.defines);
+  PipelineDesc r;
+  r.name = name() + ".resolve";
+  r.technique = name();
+  r.vertex = &fullScreen;
+  r.fragment = &resolve;
+  r.colorFormats = {Format::RGBA32F};
+  r.blend = {{true, BlendFactor::One, BlendFactor::SrcAlpha, BlendOp::Add, BlendFactor::Zero,
+              BlendFactor::One, BlendOp::Add}};
+  for (uint32_t i = 0; i < cfg.targets.size(); ++i)
+    r.bindings.push_back({kFirstTarget + i, BindingKind::SampledTexture});
+  resolve_ = dev.createPipeline(r);
+}
+
+void BlendedOitBase::addPasses(FrameGraph& graph, Device& dev) {
+  auto reads = shading_->shadowReads();
+  reads.push_back("depth");
+  if (targets_.opaqueDrawn) reads.push_back("color");
+  graph.add(
+      {name(), reads, {"color"}, [this, &dev] {
+         PassDesc acc;
+         acc.name = name() + ".accumulate";
+         for (std::size_t i = 0; i < textures_.size(); ++i)
+           acc.color.push_back({textures_[i], LoadOp::Clear, targetDescs_[i].clear});
+         // Nothing opaque drawn: this first pass clears the depth to 1.
+         acc.depth = {targets_.depth, targets_.opaqueDrawn ? LoadOp::Load : LoadOp::Clear, 1.0f};
+         acc.sampledTextures = shading_->sampledTextures();
+         dev.beginPass(acc);
+         dev.draw(accumulate_, shading_->hairBindings(),
+                  Geometry::strandVertexCount(*scene_, settings_));
+         dev.endPass();
+
+         PassDesc res;
+         res.name = name() + ".resolve";
+         const glm::vec3 bg = settings_.background;
+         res.color = {{targets_.color,
+                       targets_.opaqueDrawn ? LoadOp::Load : LoadOp::Clear,
+                       {bg.r, bg.g, bg.b, 1.0f}}};
+         res.sampledTextures = textures_;
+         std::vector<Binding> b;
+         for (uint32_t i = 0; i < textures_.size(); ++i)
+           b.push_back(Binding::tex(kFirstTarget + i, textures_[i]));
+         dev.beginPass(res);
+         dev.draw(resolve_, b, 3);
+         dev.endPass();
+       }});
+}
+
+BlendedOitBase::Config WeightedOit::config() const {
+  Config c;
+  c.accumulateShader = "techniques/weighted/accumulate.frag";
+  c.resolveShader = "techniques/weighted/resolve.frag";
+  c.targets.push_back({"accum", Format::RGBA32F, BlendState::additive(), {0, 0, 0, 0}});
+  if (mode_ == Mode::Average) {
+    c.targets.push_back({"count", Format::R32F, BlendState::additive(), {0, 0, 0, 0}});
+    c.defines.defines.push_back({"SB_WEIGHTED_COUNT", "1"});
+  }
+  return c;
+}
+
+}  // namespace sb

@@ -1,0 +1,16 @@
+// The GLSL math of weighted_math.glsl, compiled as C++ for tests.
+#pragma once
+
+#include <glm/glm.hpp>
+
+namespace sb::glsl {
+using glm::clamp;
+using glm::max;
+using glm::min;
+using glm::pow;
+using glm::vec3;
+using glm::vec4;
+#define SB_INLINE inline
+#include "techniques/weighted/weighted_math.glsl"
+#undef SB_INLINE
+}  // namespace sb::glsl
