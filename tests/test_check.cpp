@@ -155,7 +155,8 @@ TEST(Baselines, ManifestCoversScenesTechniquesAndPrimitives) {
   // Every technique so far, the ground truths included.
   EXPECT_EQ(shadows,
             (std::set<std::string>{"none", "shadowmap", "exact", "osm", "dom", "dc", "occupancy"}));
-  EXPECT_EQ(oits, (std::set<std::string>{"none", "peel", "abuffer"}));
+  EXPECT_EQ(oits, (std::set<std::string>{"none", "peel", "abuffer", "wsum", "wavg", "wboit",
+                                         "occupancy"}));
 }
 
 TEST(Check, CommittedBaselinesPassOnBothBackends) {
