@@ -143,7 +143,7 @@ void registerBenchCommand(CLI::App& app) {
     auto* cmd = app.add_subcommand(
         "bench-oit", "the transparency paper's Fig. 2 timings as ratios in one run (a benchmark)");
     auto base = std::make_shared<RenderRequest>();
-    base->scene = "clustered:strands=4000,points=8,head=0,alpha=0.2";
+    base->scene = "clustered:strands=2000,points=8,head=0,alpha=0.2";  // complexity 125
     base->repeat = 3;
     auto size = std::make_shared<std::string>("128x128");
     cmd->add_option("--scene", base->scene, "scene spec (eye depth complexity >= 100)")
