@@ -23,6 +23,23 @@ inline std::unique_ptr<sb::Device> makeDevice(const std::string& backend) {
   return sb::createDevice(o);
 }
 
+// GL and Vulkan devices together, for tests that compare the two; `unavailable`
+// says why not when either cannot be created here.
+struct BothBackends {
+  std::unique_ptr<sb::Device> gl, vk;
+  std::string unavailable;
+};
+inline BothBackends makeBothBackends() {
+  BothBackends b;
+  try {
+    b.gl = makeDevice("gl");
+    b.vk = makeDevice("vulkan");
+  } catch (const sb::DeviceError& e) {
+    b.unavailable = std::string("backend unavailable: ") + e.what();
+  }
+  return b;
+}
+
 // A test run once per backend name; a backend that cannot be created here is
 // skipped with the reason, and any Vulkan validation message fails the test.
 class BackendTest : public ::testing::TestWithParam<std::string> {

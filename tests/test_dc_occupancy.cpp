@@ -415,13 +415,8 @@ INSTANTIATE_TEST_SUITE_P(Backends, DcOccupancyGpu, ::testing::Values("gl", "vulk
                          [](const auto& param) { return param.param; });
 
 TEST(DcOccupancyApis, GlAndVulkanAgree) {
-  std::unique_ptr<Device> gl, vk;
-  try {
-    gl = makeDevice("gl");
-    vk = makeDevice("vulkan");
-  } catch (const DeviceError& e) {
-    GTEST_SKIP() << "backend unavailable: " << e.what();
-  }
+  auto [gl, vk, unavailable] = sbtest::makeBothBackends();
+  if (!unavailable.empty()) GTEST_SKIP() << unavailable;
   const std::size_t messages = validationMessageCount();
   for (const std::string& spec : allOptions()) {
     for (const char* scene : {kHair, kHairNoHead}) {

@@ -288,13 +288,8 @@ INSTANTIATE_TEST_SUITE_P(Backends, OccupancyOitTest, ::testing::Values("gl", "vu
 
 // Both backends draw the same image (within 2e-3), with no validation message.
 TEST(OccupancyOitBackends, GlAndVulkanAgree) {
-  std::unique_ptr<Device> gl, vk;
-  try {
-    gl = sbtest::makeDevice("gl");
-    vk = sbtest::makeDevice("vulkan");
-  } catch (const DeviceError& e) {
-    GTEST_SKIP() << "backend unavailable: " << e.what();
-  }
+  auto [gl, vk, unavailable] = sbtest::makeBothBackends();
+  if (!unavailable.empty()) GTEST_SKIP() << unavailable;
   const std::size_t messages = validationMessageCount();
   for (const std::string& scene :
        {std::string(kCurly), std::string("curly:strands=300,points=24,alpha=0.4")}) {

@@ -296,13 +296,8 @@ INSTANTIATE_TEST_SUITE_P(Backends, WeightedOitTest, ::testing::Values("gl", "vul
 
 // GL and Vulkan render the same images (max abs < 2e-3), with no validation messages.
 TEST(WeightedOitBackends, GlAndVulkanAgree) {
-  std::unique_ptr<Device> gl, vk;
-  try {
-    gl = sbtest::makeDevice("gl");
-    vk = sbtest::makeDevice("vulkan");
-  } catch (const DeviceError& e) {
-    GTEST_SKIP() << "backend unavailable: " << e.what();
-  }
+  auto [gl, vk, unavailable] = sbtest::makeBothBackends();
+  if (!unavailable.empty()) GTEST_SKIP() << unavailable;
   const std::size_t messages = validationMessageCount();
   for (const std::string& sceneSpec : kScenes) {
     for (const std::string& spec : kSpecs) {
