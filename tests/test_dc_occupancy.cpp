@@ -25,7 +25,6 @@ namespace sb {
 namespace {
 
 using sbtest::floats;
-using sbtest::makeDevice;
 
 // ---------------------------------------------------------------- CPU: occupancy
 

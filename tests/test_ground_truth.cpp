@@ -18,8 +18,6 @@
 namespace sb {
 namespace {
 
-using sbtest::floats;
-using sbtest::makeDevice;
 
 struct Case {
   std::string scene;
