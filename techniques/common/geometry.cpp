@@ -27,6 +27,17 @@ ViewUniforms lightView(const RenderSettings& s, uint32_t mapWidth, uint32_t mapH
   return v;
 }
 
+Buffer createLightViewBuffer(Device& dev, const ViewUniforms& view, const std::string& technique) {
+  return dev.createBuffer({technique + ".light_view", "frame", BufferUsage::Uniform, sizeof view},
+                          &view);
+}
+
+Buffer createLightLookupParams(Device& dev, const ViewUniforms& view, float bias, uint32_t size,
+                               float shadowAlpha, const std::string& technique) {
+  const LightLookupParams p{view.viewProj, glm::vec4(bias, float(size), shadowAlpha, 0.0f)};
+  return dev.createBuffer({technique + ".params", "frame", BufferUsage::Uniform, sizeof p}, &p);
+}
+
 ShaderCode Geometry::strandVertexShader(const RenderSettings& s) {
   ShaderDefines d;
   if (s.primitive == Primitive::Ribbons) d.defines.push_back({"SB_RIBBONS", "1"});

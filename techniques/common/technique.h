@@ -61,6 +61,18 @@ struct ViewUniforms {
 };
 ViewUniforms cameraView(const RenderSettings& s);
 ViewUniforms lightView(const RenderSettings& s, uint32_t mapWidth, uint32_t mapHeight);
+// A shadow technique's light view as the uniform buffer "<technique>.light_view"
+// (owner "frame"), bound at binding 0 of its light passes.
+Buffer createLightViewBuffer(Device& dev, const ViewUniforms& view, const std::string& technique);
+// The lookup parameters most shadow techniques share (std140), as the uniform
+// buffer "<technique>.params": the light's view-projection and (bias, map size,
+// shadow alpha, 0).
+struct LightLookupParams {
+  glm::mat4 viewProj;
+  glm::vec4 params;
+};
+Buffer createLightLookupParams(Device& dev, const ViewUniforms& view, float bias, uint32_t size,
+                               float shadowAlpha, const std::string& technique);
 
 // Binding numbers shared by every shader (see techniques/common/bindings.glsl).
 namespace bind {

@@ -9,10 +9,6 @@ namespace {
 // Binding numbers, as in techniques/dc/*.frag and lookup.glsl (15: OpaqueShadow).
 constexpr uint32_t kParams = 8, kRange = 9, kCounts = 10, kSums = 11, kSquares = 12, kCentres = 13;
 
-struct Params {
-  glm::mat4 viewProj;
-  glm::vec4 params;  // bias, size, shadow alpha, 0
-};
 }  // namespace
 
 DensityClusteringShadow::Options DensityClusteringShadow::readOptions(const OptionReader& o) {
@@ -36,10 +32,8 @@ void DensityClusteringShadow::setup(Device& dev, const GpuScene& scene, const Re
   settings_ = s;
   const uint32_t size = opts_.size;
   const ViewUniforms view = lightView(s, size, size);
-  lightView_ =
-      dev.createBuffer({"dc.light_view", "frame", BufferUsage::Uniform, sizeof view}, &view);
-  const Params p{view.viewProj, glm::vec4(opts_.bias, float(size), scene.shadowAlpha, 0.0f)};
-  params_ = dev.createBuffer({"dc.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
+  lightView_ = createLightViewBuffer(dev, view, "dc");
+  params_ = createLightLookupParams(dev, view, opts_.bias, size, scene.shadowAlpha, "dc");
   auto map = [&](const std::string& what, Format f) {
     return dev.createTexture({"dc." + what, "shadow", f, size, size, false});
   };

@@ -64,8 +64,7 @@ void DeepOpacityMaps::setup(Device& dev, const GpuScene& scene, const RenderSett
   scene_ = &scene;
   settings_ = s;
   const ViewUniforms view = lightView(s, opt_.size, opt_.size);
-  lightView_ =
-      dev.createBuffer({"dom.light_view", "frame", BufferUsage::Uniform, sizeof view}, &view);
+  lightView_ = createLightViewBuffer(dev, view, "dom");
   opaque_.setup(dev, scene, opt_.size, lightView_, "dom");
 
   // The layer size s: absolute, or a fraction of the hair's depth range from

@@ -12,11 +12,6 @@ namespace {
 constexpr uint32_t kParams = 8, kCounts = 9, kOffsets = 10, kCursor = 11, kNodes = 12, kState = 13,
                    kStatus = 14;
 
-struct Params {
-  glm::mat4 viewProj;
-  glm::vec4 params;  // bias, size, shadow alpha, 0
-};
-
 uint32_t groups(uint32_t n) { return (n + 63) / 64; }
 }  // namespace
 
@@ -28,10 +23,8 @@ void ExactShadow::setup(Device& dev, const GpuScene& scene, const RenderSettings
   settings_ = s;
   const std::size_t texels = std::size_t(size_) * size_;
   const ViewUniforms view = lightView(s, size_, size_);
-  lightView_ =
-      dev.createBuffer({"exact.light_view", "frame", BufferUsage::Uniform, sizeof view}, &view);
-  const Params p{view.viewProj, glm::vec4(bias_, float(size_), scene.shadowAlpha, 0.0f)};
-  params_ = dev.createBuffer({"exact.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
+  lightView_ = createLightViewBuffer(dev, view, "exact");
+  params_ = createLightLookupParams(dev, view, bias_, size_, scene.shadowAlpha, "exact");
   const glm::uvec4 sizeData(uint32_t(texels), size_, 0, 0);
   sizeUbo_ =
       dev.createBuffer({"exact.size", "frame", BufferUsage::Uniform, sizeof sizeData}, &sizeData);

@@ -10,11 +10,6 @@ namespace {
 constexpr uint32_t kParams = 8, kRange = 9, kBitsFirst = 10;
 constexpr uint32_t kMaxSlices = 512, kMaxSlabs = 16, kMaxTextures = 5;  // bindings 10..14
 
-struct Params {
-  glm::mat4 viewProj;
-  glm::vec4 params;  // bias, size, shadow alpha, 0
-};
-
 std::string indexed(const std::string& base, std::size_t i, std::size_t count) {
   return count > 1 ? base + std::to_string(i) : base;
 }
@@ -63,10 +58,8 @@ void OccupancyShadow::setup(Device& dev, const GpuScene& scene, const RenderSett
   settings_ = s;
   const uint32_t size = opts_.size;
   const ViewUniforms view = lightView(s, size, size);
-  lightView_ =
-      dev.createBuffer({"occupancy.light_view", "frame", BufferUsage::Uniform, sizeof view}, &view);
-  const Params p{view.viewProj, glm::vec4(opts_.bias, float(size), scene.shadowAlpha, 0.0f)};
-  params_ = dev.createBuffer({"occupancy.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
+  lightView_ = createLightViewBuffer(dev, view, "occupancy");
+  params_ = createLightLookupParams(dev, view, opts_.bias, size, scene.shadowAlpha, "occupancy");
   range_ = dev.createTexture({"occupancy.depth_range", "shadow", Format::RG32F, size, size, false});
   for (uint32_t k = 0; k < wordTargets(); ++k)
     bits_.push_back(dev.createTexture({indexed("occupancy.bits", k, wordTargets()), "shadow",

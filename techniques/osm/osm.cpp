@@ -88,8 +88,7 @@ void OpacityShadowMaps::setup(Device& dev, const GpuScene& scene, const RenderSe
   scene_ = &scene;
   settings_ = s;
   const ViewUniforms view = lightView(s, opt_.size, opt_.size);
-  lightView_ =
-      dev.createBuffer({"osm.light_view", "frame", BufferUsage::Uniform, sizeof view}, &view);
+  lightView_ = createLightViewBuffer(dev, view, "osm");
   opaque_.setup(dev, scene, opt_.size, lightView_, "osm");
 
   // Slices between the hair's near and far depth from the light, computed on

@@ -16,8 +16,7 @@ void ShadowMap::setup(Device& dev, const GpuScene& scene, const RenderSettings& 
   settings_ = s;
   depth_ = dev.createTexture({"shadowmap.depth", "shadow", Format::Depth32F, size_, size_, false});
   const ViewUniforms view = lightView(s, size_, size_);
-  lightViewUbo_ =
-      dev.createBuffer({"shadowmap.light_view", "frame", BufferUsage::Uniform, sizeof view}, &view);
+  lightViewUbo_ = createLightViewBuffer(dev, view, "shadowmap");
   const Params p{view.viewProj, glm::vec4(bias_, 0, 0, 0)};
   paramsUbo_ = dev.createBuffer({"shadowmap.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
 
