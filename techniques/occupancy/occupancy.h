@@ -2,6 +2,7 @@
 
 #include "techniques/common/opaque_shadow.h"
 #include "techniques/common/technique.h"
+#include "techniques/occupancy/occupancy_maps.h"
 
 namespace sb {
 
@@ -39,22 +40,15 @@ class OccupancyShadow : public ShadowTechnique {
 
   // The maps, for tests: depth range (RG32F), occupancy bits (RGBA32UI each),
   // slab counts (RGBA32F each; none with slab_map=off).
-  Texture rangeMap() const { return range_; }
-  const std::vector<Texture>& bitMaps() const { return bits_; }
-  const std::vector<Texture>& slabMaps() const { return slabs_; }
+  Texture rangeMap() const { return maps_.range(); }
+  const std::vector<Texture>& bitMaps() const { return maps_.bits(); }
+  const std::vector<Texture>& slabMaps() const { return maps_.slabs(); }
 
  private:
-  uint32_t wordTargets() const { return (opts_.slices + 127) / 128; }
-  uint32_t slabTargets() const { return opts_.slabMap ? (opts_.slabs + 3) / 4 : 0; }
-
   Options opts_;
-  const GpuScene* scene_ = nullptr;
-  RenderSettings settings_;
   Buffer lightView_, params_;
-  Texture range_;
-  std::vector<Texture> bits_, slabs_;
+  OccupancyMaps maps_;
   OpaqueShadow opaque_;
-  Pipeline rangePipeline_, bitsPipeline_, slabsPipeline_;
 };
 
 }  // namespace sb

@@ -7,16 +7,10 @@
 namespace sb {
 
 namespace {
-// The occupancy and slab shaders of the shadow version read the range at 9;
-// the accumulation pass (which also binds the shadow lookup, 8..15) reads the
+// The accumulation pass (which also binds the shadow lookup, 8..15) reads the
 // maps at 20.. (techniques/occupancy_oit/accumulate.frag).
-constexpr uint32_t kMapRange = 9;
 constexpr uint32_t kRange = 20, kBitsFirst = 21, kSlabsFirst = 25;
 constexpr uint32_t kMaxSlices = 512, kMaxSlabs = 16;
-
-std::string indexed(const std::string& base, std::size_t i, std::size_t count) {
-  return count > 1 ? base + std::to_string(i) : base;
-}
 }  // namespace
 
 OccupancyOit::Options OccupancyOit::readOptions(const OptionReader& o) {
@@ -34,14 +28,6 @@ OccupancyOit::Options OccupancyOit::readOptions(const OptionReader& o) {
   return opts;
 }
 
-PassDesc OccupancyOit::hairPass(const std::string& name, bool first) const {
-  PassDesc pass;
-  pass.name = name;
-  pass.depth = {targets_.depth, first && !targets_.opaqueDrawn ? LoadOp::Clear : LoadOp::Load,
-                1.0f};
-  return pass;
-}
-
 void OccupancyOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
                          const KajiyaKayShading& shading, const OitTargets& targets) {
   scene_ = &scene;
@@ -50,22 +36,22 @@ void OccupancyOit::setup(Device& dev, const GpuScene& scene, const RenderSetting
   targets_ = targets;
   const uint32_t w = s.width, h = s.height;
   // Every target of the technique (owner "oit"); no buffers, no uniforms.
-  range_ = dev.createTexture({"occupancy_oit.depth_range", "oit", Format::RG32F, w, h, false});
-  for (uint32_t k = 0; k < wordTargets(); ++k)
-    bits_.push_back(dev.createTexture(
-        {indexed("occupancy_oit.bits", k, wordTargets()), "oit", Format::RGBA32UI, w, h, false}));
-  for (uint32_t m = 0; m < slabTargets(); ++m)
-    slabs_.push_back(dev.createTexture(
-        {indexed("occupancy_oit.slabs", m, slabTargets()), "oit", Format::RGBA32F, w, h, false}));
+  OccupancyMaps::Config c;
+  c.prefix = "occupancy_oit";
+  c.owner = "oit";
+  c.graph = "oit.occ";
+  c.width = w;
+  c.height = h;
+  c.slices = opts_.slices;
+  c.slabs = opts_.slabs;
+  c.depth = targets.depth;
+  c.clearDepth = !targets.opaqueDrawn;
+  maps_.setup(dev, scene, s, shading.viewUbo(), c);
   accum_ = dev.createTexture({"occupancy_oit.accum", "oit", Format::RGBA32F, w, h, false});
   log2T_ =
       dev.createTexture({"occupancy_oit.log2_transmittance", "oit", Format::R32F, w, h, false});
 
-  ShaderDefines defs;
-  defs.defines.push_back({"SB_OCC_SLICES", std::to_string(opts_.slices)});
-  defs.defines.push_back({"SB_OCC_SLABS", std::to_string(opts_.slabs)});
-  defs.defines.push_back({"SB_OCC_WORD_TARGETS", std::to_string(wordTargets())});
-  defs.defines.push_back({"SB_OCC_SLAB_TARGETS", std::to_string(slabTargets())});
+  ShaderDefines defs = maps_.defines();
   defs.defines.push_back({"SB_OIT_LAMBDA", opts_.lambda ? "1" : "0"});
 
   // The resolve: a full-screen triangle, blend One, OneMinusSrcAlpha.
@@ -85,48 +71,21 @@ void OccupancyOit::setup(Device& dev, const GpuScene& scene, const RenderSetting
   }
   if (!scene.hasHair()) return;  // the hair passes only clear their targets
 
-  // The three map passes: the shadow version's shaders, from the eye.
+  // The accumulation pass draws the hair with the shading's pipeline state.
   const ShaderCode vert = Geometry::strandVertexShader(s);
   PipelineDesc d;
-  d.technique = "occupancy_oit";
   d.vertex = &vert;
   d.topology = Geometry::strandTopology(s);
   d.hasDepth = d.depthTest = true;  // hair behind the opaque mesh is left out
-  d.depthWrite = false;
   d.depthCompare = CompareOp::Less;
-  d.bindings = Geometry::slots();
-
-  const ShaderCode rangeFrag = loadShader("techniques/common/depth_range.frag", defs);
-  d.name = "occupancy_oit.depth_range";
-  d.fragment = &rangeFrag;
-  d.colorFormats = {Format::RG32F};
-  d.blend = {BlendState::min()};
-  rangePipeline_ = dev.createPipeline(d);
-
-  d.bindings.push_back({kMapRange, BindingKind::SampledTexture});
-  const ShaderCode bitsFrag = loadShader("techniques/occupancy/occupancy.frag", defs);
-  d.name = "occupancy_oit.occupancy";
-  d.fragment = &bitsFrag;
-  d.colorFormats.assign(wordTargets(), Format::RGBA32UI);
-  d.blend.clear();
-  d.logicOpOr = true;
-  bitsPipeline_ = dev.createPipeline(d);
-
-  const ShaderCode slabsFrag = loadShader("techniques/occupancy/slabs.frag", defs);
-  d.name = "occupancy_oit.slabs";
-  d.fragment = &slabsFrag;
-  d.colorFormats.assign(slabTargets(), Format::RGBA32F);
-  d.blend.assign(slabTargets(), BlendState::additive());
-  d.logicOpOr = false;
-  slabsPipeline_ = dev.createPipeline(d);
 
   // The accumulation: shaded hair (shading and shadow bindings) plus the maps.
   // Own define names: the occupancy shadow's lookup defines SB_OCC_* too.
   ShaderDefines accumDefs;
   accumDefs.defines = {{"SB_OOIT_SLICES", std::to_string(opts_.slices)},
                        {"SB_OOIT_SLABS", std::to_string(opts_.slabs)},
-                       {"SB_OOIT_WORD_TARGETS", std::to_string(wordTargets())},
-                       {"SB_OOIT_SLAB_TARGETS", std::to_string(slabTargets())}};
+                       {"SB_OOIT_WORD_TARGETS", std::to_string(maps_.wordTargets())},
+                       {"SB_OOIT_SLAB_TARGETS", std::to_string(maps_.slabTargets())}};
   const ShaderDefines hair = shading.hairDefines();
   for (const auto& [alias, file] : hair.aliases) accumDefs.aliases[alias] = file;
   accumDefs.defines.insert(accumDefs.defines.end(), hair.defines.begin(), hair.defines.end());
@@ -138,74 +97,37 @@ void OccupancyOit::setup(Device& dev, const GpuScene& scene, const RenderSetting
   d.blend.assign(2, BlendState::additive());
   d.bindings = shading.hairSlots();
   d.bindings.push_back({kRange, BindingKind::SampledTexture});
-  for (uint32_t k = 0; k < wordTargets(); ++k)
+  for (uint32_t k = 0; k < maps_.wordTargets(); ++k)
     d.bindings.push_back({kBitsFirst + k, BindingKind::SampledTexture});
-  for (uint32_t m = 0; m < slabTargets(); ++m)
+  for (uint32_t m = 0; m < maps_.slabTargets(); ++m)
     d.bindings.push_back({kSlabsFirst + m, BindingKind::SampledTexture});
   accumPipeline_ = dev.createPipeline(d);
 }
 
 void OccupancyOit::addPasses(FrameGraph& graph, Device& dev) {
   const uint32_t vertices = scene_->hasHair() ? Geometry::strandVertexCount(*scene_, settings_) : 0;
-  // The map passes draw the hair with the view and scene bindings only.
-  auto drawMap = [this, &dev, vertices](Pipeline p, bool readsRange) {
-    if (!p) return;
-    auto b = Geometry::bindings(*scene_, shading_->viewUbo());
-    if (readsRange) b.push_back(Binding::tex(kMapRange, range_));
-    dev.draw(p, b, vertices);
-  };
-  std::vector<std::string> depthReads;
-  if (targets_.opaqueDrawn) depthReads.push_back("depth");
-
-  graph.add(
-      {"occupancy_oit.depth_range", depthReads, {"oit.occ_range", "depth"}, [this, &dev, drawMap] {
-         PassDesc pass = hairPass("occupancy_oit.depth_range", true);
-         ColorAttachment a;
-         a.texture = range_;
-         a.clear = {2.0f, 2.0f, 0.0f, 0.0f};  // nearest 2, furthest -2: empty
-         pass.color = {a};
-         dev.beginPass(pass);
-         drawMap(rangePipeline_, false);
-         dev.endPass();
-       }});
-  graph.add({"occupancy_oit.occupancy",
-             {"oit.occ_range", "depth"},
-             {"oit.occ_bits"},
-             [this, &dev, drawMap] {
-               PassDesc pass = hairPass("occupancy_oit.occupancy", false);
-               for (Texture t : bits_) pass.color.push_back({t, LoadOp::Clear, {}, {}});
-               pass.sampledTextures = {range_};
-               dev.beginPass(pass);
-               drawMap(bitsPipeline_, true);
-               dev.endPass();
-             }});
-  graph.add(
-      {"occupancy_oit.slabs", {"oit.occ_range", "depth"}, {"oit.occ_slabs"}, [this, &dev, drawMap] {
-         PassDesc pass = hairPass("occupancy_oit.slabs", false);
-         for (Texture t : slabs_) pass.color.push_back({t, LoadOp::Clear, {}, {}});
-         pass.sampledTextures = {range_};
-         dev.beginPass(pass);
-         drawMap(slabsPipeline_, true);
-         dev.endPass();
-       }});
+  maps_.addPasses(graph, dev);
   auto accumReads = shading_->shadowReads();
-  accumReads.insert(accumReads.end(), {"oit.occ_range", "oit.occ_bits", "oit.occ_slabs", "depth"});
+  for (const auto& r : maps_.reads()) accumReads.push_back(r);
+  accumReads.push_back("depth");
   graph.add({"occupancy_oit.accumulate", accumReads, {"oit.occ_accum"}, [this, &dev, vertices] {
-               PassDesc pass = hairPass("occupancy_oit.accumulate", false);
+               PassDesc pass;
+               pass.name = "occupancy_oit.accumulate";
+               // The depth range pass has cleared the depth when nothing opaque was drawn.
+               pass.depth = {targets_.depth, LoadOp::Load, 1.0f};
                pass.color = {{accum_, LoadOp::Clear, {}, {}}, {log2T_, LoadOp::Clear, {}, {}}};
                pass.sampledTextures = shading_->sampledTextures();
-               pass.sampledTextures.push_back(range_);
-               pass.sampledTextures.insert(pass.sampledTextures.end(), bits_.begin(), bits_.end());
-               pass.sampledTextures.insert(pass.sampledTextures.end(), slabs_.begin(),
-                                           slabs_.end());
+               pass.sampledTextures.push_back(maps_.range());
+               for (Texture t : maps_.bits()) pass.sampledTextures.push_back(t);
+               for (Texture t : maps_.slabs()) pass.sampledTextures.push_back(t);
                dev.beginPass(pass);
                if (accumPipeline_) {
                  auto b = shading_->hairBindings();
-                 b.push_back(Binding::tex(kRange, range_));
-                 for (uint32_t k = 0; k < bits_.size(); ++k)
-                   b.push_back(Binding::tex(kBitsFirst + k, bits_[k]));
-                 for (uint32_t m = 0; m < slabs_.size(); ++m)
-                   b.push_back(Binding::tex(kSlabsFirst + m, slabs_[m]));
+                 b.push_back(Binding::tex(kRange, maps_.range()));
+                 for (uint32_t k = 0; k < maps_.bits().size(); ++k)
+                   b.push_back(Binding::tex(kBitsFirst + k, maps_.bits()[k]));
+                 for (uint32_t m = 0; m < maps_.slabs().size(); ++m)
+                   b.push_back(Binding::tex(kSlabsFirst + m, maps_.slabs()[m]));
                  dev.draw(accumPipeline_, b, vertices);
                }
                dev.endPass();

@@ -1,6 +1,7 @@
 #pragma once
 
 #include "techniques/common/technique.h"
+#include "techniques/occupancy/occupancy_maps.h"
 
 namespace sb {
 
@@ -35,25 +36,22 @@ class OccupancyOit : public OitTechnique {
   void addPasses(FrameGraph& graph, Device& dev) override;
 
   // The eye-space maps and accumulation targets, for tests.
-  Texture rangeMap() const { return range_; }
-  const std::vector<Texture>& bitMaps() const { return bits_; }
-  const std::vector<Texture>& slabMaps() const { return slabs_; }
+  Texture rangeMap() const { return maps_.range(); }
+  const std::vector<Texture>& bitMaps() const { return maps_.bits(); }
+  const std::vector<Texture>& slabMaps() const { return maps_.slabs(); }
   Texture accumulation() const { return accum_; }
   Texture log2Transmittance() const { return log2T_; }
 
  private:
-  uint32_t wordTargets() const { return (opts_.slices + 127) / 128; }
-  uint32_t slabTargets() const { return (opts_.slabs + 3) / 4; }
-  PassDesc hairPass(const std::string& name, bool first) const;
 
   Options opts_;
   const GpuScene* scene_ = nullptr;
   const KajiyaKayShading* shading_ = nullptr;
   RenderSettings settings_;
   OitTargets targets_;
-  Texture range_, accum_, log2T_;
-  std::vector<Texture> bits_, slabs_;
-  Pipeline rangePipeline_, bitsPipeline_, slabsPipeline_, accumPipeline_, resolvePipeline_;
+  OccupancyMaps maps_;
+  Texture accum_, log2T_;
+  Pipeline accumPipeline_, resolvePipeline_;
 };
 
 }  // namespace sb

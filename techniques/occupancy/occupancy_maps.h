@@ -1,0 +1,55 @@
+// The occupancy machinery of Sintorn & Assarsson (2009), built once for two
+// uses: occupancy maps (from the light, techniques/occupancy) and
+// occupancy-ordered blending (from the eye, techniques/occupancy_oit). Three
+// passes over the hair:
+//   <prefix>.depth_range  nearest/furthest fragment per pixel (RG32F, min of (z, -z))
+//   <prefix>.occupancy    one bit per slice of that range (RGBA32UI per 128, logic-op OR)
+//   <prefix>.slabs        fragment count per slab (RGBA32F per 4, additive); optional
+#pragma once
+
+#include "techniques/common/technique.h"
+
+namespace sb {
+
+class OccupancyMaps {
+ public:
+  struct Config {
+    std::string prefix;  // names of passes and textures
+    std::string owner;   // memory owner of the textures
+    std::string graph;   // graph resource names: <graph>_range, _bits, _slabs
+    uint32_t width = 0, height = 0;
+    uint32_t slices = 128, slabs = 4;
+    bool slabMap = true;
+    // From the eye: the opaque depth the hair is tested against (none from
+    // the light), cleared by the first pass when nothing opaque was drawn.
+    Texture depth;
+    bool clearDepth = false;
+  };
+  static constexpr uint32_t kRangeBinding = 9;  // where occupancy.frag/slabs.frag read the range
+
+  // defs: SB_OCC_* for the shaders (see occupancyDefines()).
+  void setup(Device& dev, const GpuScene& scene, const RenderSettings& s, Buffer viewUbo,
+             const Config& config);
+  void addPasses(FrameGraph& graph, Device& dev);
+
+  uint32_t wordTargets() const { return (config_.slices + 127) / 128; }
+  uint32_t slabTargets() const { return config_.slabMap ? (config_.slabs + 3) / 4 : 0; }
+  ShaderDefines defines() const;  // SB_OCC_SLICES, _SLABS, _WORD_TARGETS, _SLAB_TARGETS
+  Texture range() const { return range_; }
+  const std::vector<Texture>& bits() const { return bits_; }
+  const std::vector<Texture>& slabs() const { return slabs_; }
+  std::vector<std::string> reads() const;  // the graph resources the maps are
+
+ private:
+  PassDesc pass(const std::string& step, bool first) const;
+
+  Config config_;
+  const GpuScene* scene_ = nullptr;
+  RenderSettings settings_;
+  Buffer viewUbo_;
+  Texture range_;
+  std::vector<Texture> bits_, slabs_;
+  Pipeline rangePipeline_, bitsPipeline_, slabsPipeline_;
+};
+
+}  // namespace sb
