@@ -235,6 +235,8 @@ void registerCommands(CLI::App& app) {
   registerCheckCommands(app);
   registerProbeCommand(app);
   registerBenchCommand(app);
+  registerSweepCommands(app);
+  registerCompareRunsCommand(app);
 }
 
 int lastCommandStatus() { return gStatus; }

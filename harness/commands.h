@@ -12,6 +12,10 @@ void registerCheckCommands(CLI::App& app);
 void registerProbeCommand(CLI::App& app);
 // `bench-shadows` (harness/bench_command.cpp).
 void registerBenchCommand(CLI::App& app);
+// `sweep`, `merge` and `report` (harness/sweep_command.cpp).
+void registerSweepCommands(CLI::App& app);
+// `compare-runs` (harness/compare_runs.cpp).
+void registerCompareRunsCommand(CLI::App& app);
 int lastCommandStatus();
 // Runs a command's body and records its exit status; bad input (InputError) and
 // unavailable backends (DeviceError) print "strandbench <command>: <message>"
