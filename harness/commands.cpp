@@ -106,6 +106,9 @@ void registerRender(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--reference", req->reference,
                 "also render the reference (exact shadows + depth peeling) and report the error");
+  cmd->add_flag(
+      "--no-image", [req](std::int64_t) { req->image = false; },
+      "with --reference: measure only the visibility error (no final shading pass)");
   cmd->add_option("--reference-out", *referenceOut, "with --reference: write the reference image");
   cmd->add_option("--heatmap", *heatmap,
                   "with --reference: write a heatmap of |image - reference| (full scale 0.25)");
@@ -131,6 +134,8 @@ void registerRender(CLI::App& app) {
       req->width = w;
       req->height = h;
       if (!out->empty()) checkOutputPath(*out);
+      if (!req->image && (!out->empty() || !referenceOut->empty() || !heatmap->empty()))
+        throw InputError("--no-image writes no images: drop --out, --reference-out and --heatmap");
       for (const auto* extra : {referenceOut.get(), heatmap.get()}) {
         if (extra->empty()) continue;
         if (!req->reference) throw InputError("--reference-out and --heatmap need --reference");

@@ -23,22 +23,6 @@ struct ProbeRequest {
   std::string out;
 };
 
-// World points along the light ray through the centre of texel (x, y) of a
-// map `size` texels wide, from the light's near to far plane.
-std::vector<glm::vec3> lightRay(const Light& light, uint32_t size, glm::uvec2 texel, int samples,
-                                std::vector<float>& depths) {
-  const glm::mat4 inv = glm::inverse(light.projection() * light.view());
-  const glm::vec2 ndc = (glm::vec2(texel) + 0.5f) / float(size) * 2.0f - 1.0f;
-  std::vector<glm::vec3> points;
-  for (int i = 0; i < samples; ++i) {
-    const float z = (float(i) + 0.5f) / float(samples);
-    const glm::vec4 w = inv * glm::vec4(ndc, z, 1.0f);
-    points.push_back(glm::vec3(w) / w.w);
-    depths.push_back(z);
-  }
-  return points;
-}
-
 int runProbe(const ProbeRequest& p) {
   if (p.out.empty()) throw InputError("--out FILE.csv is required");
   if (std::filesystem::path(p.out).extension() != ".csv")
@@ -54,7 +38,7 @@ int runProbe(const ProbeRequest& p) {
   const Scene scene = makeScene(Spec::parse(p.render.scene));
   RenderSettings settings = makeRenderSettings(p.render, scene);
   std::vector<float> depths;
-  settings.probePoints = lightRay(settings.light, p.mapSize, {x, y}, p.samples, depths);
+  settings.probePoints = probeRay(settings.light, {{x, y}, p.mapSize, p.samples}, depths);
   // The exact curve first, at the probe's map size, then each technique.
   std::vector<std::string> specs = {"exact:size=" + std::to_string(p.mapSize)};
   specs.insert(specs.end(), p.shadows.begin(), p.shadows.end());

@@ -150,29 +150,123 @@ std::unique_ptr<Device> makeRequestDevice(const RenderRequest& req) {
   return createDevice(dopts);
 }
 
-RenderOutcome runRender(const RenderRequest& req) {
+std::vector<glm::vec3> probeRay(const Light& light, const ProbeSpec& probe,
+                                std::vector<float>& depths) {
+  const glm::mat4 inv = glm::inverse(light.projection() * light.view());
+  const glm::vec2 ndc = (glm::vec2(probe.texel) + 0.5f) / float(probe.mapSize) * 2.0f - 1.0f;
+  std::vector<glm::vec3> points;
+  for (int i = 0; i < probe.samples; ++i) {
+    const float z = (float(i) + 0.5f) / float(probe.samples);
+    const glm::vec4 w = inv * glm::vec4(ndc, z, 1.0f);
+    points.push_back(glm::vec3(w) / w.w);
+    depths.push_back(z);
+  }
+  return points;
+}
+
+namespace {
+
+void checkProbe(const ProbeSpec& p) {
+  if (p.samples < 2 || p.samples > 1000000) throw InputError("probe samples must be in 2..1000000");
+  if (p.mapSize < 1 || p.texel.x >= p.mapSize || p.texel.y >= p.mapSize)
+    throw InputError("probe texel " + std::to_string(p.texel.x) + "," + std::to_string(p.texel.y) +
+                     " is outside the " + std::to_string(p.mapSize) + "x" +
+                     std::to_string(p.mapSize) + " map");
+}
+
+std::shared_ptr<const Scene> sceneFor(const std::string& spec, RenderCache* cache) {
+  if (cache) {
+    auto it = cache->scenes.find(spec);
+    if (it != cache->scenes.end()) return it->second;
+  }
+  auto scene = std::make_shared<const Scene>(makeScene(Spec::parse(spec)));
+  if (cache) cache->scenes[spec] = scene;
+  return scene;
+}
+
+// Everything the reference's pixels depend on.
+std::string referenceKey(const RenderRequest& req, const RenderSettings& s, const Spec& refShadow) {
+  std::ostringstream k;
+  k.precision(9);
+  auto v3 = [&](const glm::vec3& v) { k << v.x << "," << v.y << "," << v.z << ";"; };
+  k << req.backend << "|" << req.platform << "|" << req.scene << "|" << s.width << "x" << s.height
+    << "|" << req.primitive << "|" << req.ribbonWidth << "|" << refShadow.str() << "|";
+  v3(s.camera.eye);
+  v3(s.camera.target);
+  v3(s.camera.up);
+  k << s.camera.fovYDegrees << "," << s.camera.nearPlane << "," << s.camera.farPlane << "|"
+    << int(s.light.type) << ";";
+  v3(s.light.position);
+  v3(s.light.direction);
+  v3(s.light.color);
+  k << s.light.intensity << "|" << req.image;
+  if (req.probe)
+    k << "|probe " << req.probe->texel.x << "," << req.probe->texel.y << "," << req.probe->mapSize
+      << "," << req.probe->samples;
+  return k.str();
+}
+
+RenderCache::Reference renderReference(Device& dev, const Scene& scene,
+                                       const RenderSettings& settings, const Spec& refShadow,
+                                       const RenderRequest& req) {
+  std::set<std::string> outputs = {"visibility"};
+  if (req.image) outputs.insert("color");
+  if (req.probe) outputs.insert("probe");
+  Renderer ref(dev, scene, settings, makeShadowTechnique(refShadow),
+               makeOitTechnique(Spec::parse(kReferenceOit)), outputs);
+  ref.renderFrame();
+  RenderCache::Reference r;
+  if (req.image) r.image = colorImage(ref, settings);
+  r.visibility = ref.readVisibility();
+  if (req.probe) r.probe = ref.readProbe();
+  r.eye = ref.oit().depthComplexity();
+  r.light = ref.shadow().depthComplexity();
+  for (auto& w : ref.warnings()) r.warnings.push_back("reference: " + w);
+  return r;
+}
+
+nlohmann::json statsJson(const std::vector<double>& samples) {
+  const Stats s = summarize(samples);
+  return {{"median", s.median}, {"min", s.min},       {"max", s.max},
+          {"mean", s.mean},     {"stddev", s.stddev}, {"samples", samples}};
+}
+
+}  // namespace
+
+RenderOutcome runRender(const RenderRequest& req, RenderCache* cache) {
   if (req.repeat < 1) throw InputError("--repeat must be at least 1");
   if (req.warmup < 0) throw InputError("--warmup must be at least 0");
-  const Scene scene = makeScene(Spec::parse(req.scene));
+  if (!req.image && !req.reference)
+    throw InputError("--no-image measures the visibility error only: it needs --reference");
+  if (req.probe) checkProbe(*req.probe);
+  const std::shared_ptr<const Scene> scenePtr = sceneFor(req.scene, cache);
+  const Scene& scene = *scenePtr;
   const Spec shadowSpec = Spec::parse(req.shadow);
   const Spec oitSpec = Spec::parse(req.oit);
   auto shadow = makeShadowTechnique(shadowSpec);
   auto oit = makeOitTechnique(oitSpec);
-  const RenderSettings settings = makeRenderSettings(req, scene);
+  RenderSettings settings = makeRenderSettings(req, scene);
+  std::vector<float> probeDepths;
+  if (req.probe) settings.probePoints = probeRay(settings.light, *req.probe, probeDepths);
 
   auto dev = makeRequestDevice(req);
 
-  std::set<std::string> outputs = {"color"};
+  // The timed frames produce what the run is for: the shaded image, or (for a
+  // visibility-only run) the visibility image. Error measurements run after
+  // them in untimed frames.
+  const std::set<std::string> timed = {req.image ? "color" : "visibility"};
+  std::set<std::string> outputs = timed;
   if (req.reference) outputs.insert("visibility");
+  if (req.probe) outputs.insert("probe");
   Renderer renderer(*dev, scene, settings, std::move(shadow), std::move(oit), outputs);
-  for (int i = 0; i < req.warmup; ++i) renderer.renderFrame();
+  for (int i = 0; i < req.warmup; ++i) renderer.renderFrame(timed);
   std::vector<std::string> order;
   std::map<std::string, std::vector<double>> times;
   std::map<std::string, int> executions;
   std::vector<double> totals;
   for (int i = 0; i < req.repeat; ++i) {
     double total = 0;
-    for (const auto& t : renderer.renderFrame()) {
+    for (const auto& t : renderer.renderFrame(timed)) {
       if (!times.count(t.name)) order.push_back(t.name);
       times[t.name].push_back(t.ms);
       executions[t.name] = t.executions;
@@ -182,7 +276,7 @@ RenderOutcome runRender(const RenderRequest& req) {
   }
 
   RenderOutcome out;
-  out.image = colorImage(renderer, settings);
+  if (req.image) out.image = colorImage(renderer, settings);
   // Memory of this run's techniques only (before any reference is built).
   auto allocations = dev->allocations();
   std::vector<std::string> warnings = renderer.warnings();
@@ -207,20 +301,12 @@ RenderOutcome runRender(const RenderRequest& req) {
   j["size"] = {settings.width, settings.height};
   j["repeat"] = req.repeat;
   j["warmup"] = req.warmup;
-  auto statsJson = [](const Stats& s) {
-    return nlohmann::json{{"median", s.median},
-                          {"min", s.min},
-                          {"max", s.max},
-                          {"mean", s.mean},
-                          {"stddev", s.stddev}};
-  };
-  j["graph"] = renderer.graphPasses();
+  j["graph"] = renderer.graphPasses(timed);
   j["passes"] = nlohmann::json::array();
   for (const auto& name : order)
-    j["passes"].push_back({{"name", name},
-                           {"executions", executions[name]},
-                           {"ms", statsJson(summarize(times[name]))}});
-  j["frame_ms"] = statsJson(summarize(totals));
+    j["passes"].push_back(
+        {{"name", name}, {"executions", executions[name]}, {"ms", statsJson(times[name])}});
+  j["frame_ms"] = statsJson(totals);
 
   std::map<std::string, std::size_t> byOwner;
   std::size_t total = 0;
@@ -241,19 +327,50 @@ RenderOutcome runRender(const RenderRequest& req) {
 
   std::optional<DepthComplexity> eye = renderer.oit().depthComplexity();
   std::optional<DepthComplexity> light = renderer.shadow().depthComplexity();
-  if (req.reference) {
+  std::set<std::string> measured;
+  if (req.reference && req.image) measured.insert("visibility");  // else the timed frames made it
+  if (req.probe) measured.insert("probe");
+  if (!measured.empty()) {
+    j["measurement_graph"] = renderer.graphPasses(measured);
+    renderer.renderFrame(measured);
+  }
+  if (req.reference || req.probe) {
     const Spec refShadow = referenceShadowSpec(shadowSpec);
-    Renderer ref(*dev, scene, settings, makeShadowTechnique(refShadow),
-                 makeOitTechnique(Spec::parse(kReferenceOit)), {"color", "visibility"});
-    ref.renderFrame();
-    out.reference = colorImage(ref, settings);
-    for (auto& w : ref.warnings()) warnings.push_back("reference: " + w);
-    const ImageError e = compareImages(out.image, out.reference);
+    const std::string key = referenceKey(req, settings, refShadow);
+    RenderCache::Reference fresh;
+    const RenderCache::Reference* ref = nullptr;
+    if (cache && cache->references.count(key)) {
+      ref = &cache->references.at(key);
+    } else {
+      fresh = renderReference(*dev, scene, settings, refShadow, req);
+      if (cache) {
+        ++cache->referenceRenders;
+        ref = &(cache->references[key] = std::move(fresh));
+      } else {
+        ref = &fresh;
+      }
+    }
+    for (const auto& w : ref->warnings) warnings.push_back(w);
+    if (!eye) eye = ref->eye;
+    if (!light) light = ref->light;
     j["reference"] = {{"shadow", refShadow.str()}, {"oit", kReferenceOit}};
-    j["error"] = {{"image", toJson(e)},
-                  {"visibility", visibilityError(renderer.readVisibility(), ref.readVisibility())}};
-    if (!eye) eye = ref.oit().depthComplexity();
-    if (!light) light = ref.shadow().depthComplexity();
+    if (req.reference) {
+      nlohmann::json error;
+      if (req.image) {
+        out.reference = ref->image;
+        error["image"] = toJson(compareImages(out.image, out.reference));
+      }
+      error["visibility"] = visibilityError(renderer.readVisibility(), ref->visibility);
+      j["error"] = error;
+    }
+    if (req.probe) {
+      std::vector<float> curve = renderer.readProbe();
+      j["probe"] = {{"texel", {req.probe->texel.x, req.probe->texel.y}},
+                    {"map_size", req.probe->mapSize},
+                    {"light_depth", probeDepths},
+                    {"exact", ref->probe},
+                    {"visibility", curve}};
+    }
   }
   if (eye || light)
     j["depth_complexity"] = {{"eye", complexityJson(eye)}, {"light", complexityJson(light)}};

@@ -98,9 +98,23 @@ std::vector<std::string> Renderer::graphPasses() const {
   return names;
 }
 
-std::vector<PassTime> Renderer::renderFrame() {
+std::vector<std::string> Renderer::graphPasses(const std::set<std::string>& outputs) const {
+  std::vector<std::string> names;
+  for (const auto* p : graph_.compile(outputs)) names.push_back(p->name);
+  return names;
+}
+
+std::vector<PassTime> Renderer::renderFrame() { return run(passes_); }
+
+std::vector<PassTime> Renderer::renderFrame(const std::set<std::string>& outputs) {
+  if ((outputs.count("visibility") && !wantVisibility_) || (outputs.count("probe") && !wantProbe_))
+    throw DeviceError("renderFrame: an output the renderer was not set up for");
+  return run(graph_.compile(outputs));
+}
+
+std::vector<PassTime> Renderer::run(const std::vector<const PassNode*>& passes) {
   dev_.beginFrame();
-  for (const auto* p : passes_) p->execute();
+  for (const auto* p : passes) p->execute();
   dev_.endFrame();
   std::vector<PassTime> out;
   for (const auto& t : dev_.lastFrameTimings()) {

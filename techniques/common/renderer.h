@@ -31,6 +31,10 @@ class Renderer {
   std::vector<std::string> graphPasses() const;
   // Records and runs one frame; device passes with the same name are summed.
   std::vector<PassTime> renderFrame();
+  // One frame for a subset of the constructor's outputs (e.g. only "visibility",
+  // to measure an error without shading or timing the measurement).
+  std::vector<PassTime> renderFrame(const std::set<std::string>& outputs);
+  std::vector<std::string> graphPasses(const std::set<std::string>& outputs) const;
   // RGBA32F, rows bottom-up (row 0 = NDC y=-1).
   std::vector<uint8_t> readColor();
   // R32F, rows bottom-up; -1 where no surface.
@@ -44,6 +48,7 @@ class Renderer {
 
  private:
   void upload(const Scene& scene);
+  std::vector<PassTime> run(const std::vector<const PassNode*>& passes);
 
   Device& dev_;
   RenderSettings settings_;
