@@ -1,6 +1,62 @@
-// `strandbench sweep`, `merge` and `report` (placeholder until implemented).
+// `strandbench sweep`, `merge` and `report` (harness/sweep.h does the work).
+#include <unistd.h>
+
+#include <memory>
+
 #include "harness/commands.h"
+#include "harness/sweep.h"
 
 namespace sb {
-void registerSweepCommands(CLI::App&) {}
+
+void registerSweepCommands(CLI::App& app) {
+  {
+    auto* cmd = app.add_subcommand(
+        "sweep", "run a suite (suites/*.json) into a folder, then write its reports");
+    auto o = std::make_shared<SweepOptions>();
+    auto shard = std::make_shared<std::string>();
+    cmd->add_option("suite", o->suitePath, "suite file, e.g. suites/quick.json")->required();
+    cmd->add_option("--out", o->out, "output folder")->required();
+    cmd->add_option("--filter", o->filter, "run only cases whose id matches this regex");
+    cmd->add_flag("--resume", o->resume, "continue a stopped sweep: skip the cases already done");
+    cmd->add_option("--shard", *shard, "run shard I of N (I in 1..N); join them with `merge`");
+    cmd->callback([o, shard] {
+      runGuarded("sweep", [&] {
+        if (!shard->empty()) std::tie(o->shardIndex, o->shardCount) = parseShard(*shard);
+        o->progressBar = ::isatty(STDOUT_FILENO) != 0;
+        return runSweep(*o);
+      });
+    });
+  }
+  {
+    auto* cmd = app.add_subcommand(
+        "report", "write results.json, results.csv, report.md and report.html of a sweep folder");
+    auto dir = std::make_shared<std::string>();
+    cmd->add_option("dir", *dir, "sweep folder")->required();
+    cmd->callback([dir] {
+      runGuarded("report", [&] {
+        const int n = writeSweepReport(*dir);
+        std::cout << "wrote " << *dir << "/results.json (" << n
+                  << " results), results.csv, report.md, report.html\n";
+        return 0;
+      });
+    });
+  }
+  {
+    auto* cmd =
+        app.add_subcommand("merge", "join the folders of a sharded sweep into a new folder");
+    auto out = std::make_shared<std::string>();
+    auto inputs = std::make_shared<std::vector<std::string>>();
+    cmd->add_option("--out", *out, "new folder for the joined sweep")->required();
+    cmd->add_option("dirs", *inputs, "shard folders")->required();
+    cmd->callback([out, inputs] {
+      runGuarded("merge", [&] {
+        const int n = mergeSweeps(*out, *inputs);
+        std::cout << "merged " << inputs->size() << " folders into " << *out << " (" << n
+                  << " results)\n";
+        return 0;
+      });
+    });
+  }
+}
+
 }  // namespace sb

@@ -1,0 +1,398 @@
+#include "harness/report_data.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <set>
+
+#include "scenes/scene.h"
+
+namespace sb::report {
+
+namespace {
+
+constexpr double kMiB = 1024.0 * 1024.0;
+
+std::string orDefault(std::string s, const char* fallback) { return s.empty() ? fallback : s; }
+
+Cell num(std::optional<double> v, int digits = 3) {
+  if (!v) return {kNone, true};
+  return {formatSig(*v, digits), true};
+}
+
+// Values in case.params and in a row's `match` compare equal when they are equal
+// JSON or read the same (4 and "4", so a hand-written suite need not match types).
+bool sameValue(const json& a, const json& b) { return a == b || text(&a) == text(&b); }
+
+bool matches(const json& r, const std::string& group, const json* match) {
+  if (groupOf(r) != group) return false;
+  if (!match || !match->is_object()) return true;
+  const json* params = find(r, {"case", "params"});
+  for (const auto& [key, want] : match->items()) {
+    const json* have = params ? find(*params, {key}) : nullptr;
+    if (!have || !sameValue(*have, want)) return false;
+  }
+  return true;
+}
+
+// The unit a metric is shown in: "ms", "MiB", or "" for an unknown metric.
+std::string metricUnit(const std::string& metric) {
+  if (metric == "frame_ms" || metric.starts_with("pass:") || metric.starts_with("passes:"))
+    return "ms";
+  if (metric.starts_with("memory:")) return "MiB";
+  return "";
+}
+
+// A result's value of a table metric (see "Paper tables" in docs/suites-and-results.md).
+std::optional<double> metricValue(const json& r, const std::string& metric) {
+  if (metric == "frame_ms") return frameMs(r);
+  if (metric.starts_with("memory:")) {
+    const std::optional<double> bytes = number(find(r, {"memory", metric.substr(7)}));
+    if (!bytes) return std::nullopt;
+    return *bytes / kMiB;
+  }
+  const json* passes = find(r, {"passes"});
+  if (!passes || !passes->is_array()) return std::nullopt;
+  const bool prefix = metric.starts_with("passes:");
+  if (!prefix && !metric.starts_with("pass:")) return std::nullopt;
+  const std::string name = metric.substr(prefix ? 7 : 5);
+  std::optional<double> sum;
+  for (const json& p : *passes) {
+    const std::string pname = text(find(p, {"name"}));
+    if (prefix ? !pname.starts_with(name) : pname != name) continue;
+    const std::optional<double> ms = number(find(p, {"ms", "median"}));
+    if (!ms) return std::nullopt;  // a pass without a time: no honest sum
+    sum = sum.value_or(0.0) + *ms;
+    if (!prefix) break;
+  }
+  return sum;
+}
+
+PaperTable buildPaperTable(const json& t, const std::vector<const json*>& results) {
+  PaperTable pt;
+  pt.title = orDefault(text(find(t, {"title"})), "Paper table");
+  const std::string tableGroup = text(find(t, {"group"}));
+  const std::string tableMetric = orDefault(text(find(t, {"metric"})), "frame_ms");
+  const std::string tableUnit = metricUnit(tableMetric);
+
+  struct Row {
+    std::string label, metric, unit, paperUnit;
+    std::optional<double> paper, paperComparable;  // as written; in ms (fps converted) or MiB
+    std::map<std::string, std::vector<const json*>> byBackend;
+  };
+  std::vector<Row> rows;
+  std::vector<std::string> backends;
+  int baseline = -1;
+  bool rowMetrics = false;
+  const json* jrows = find(t, {"rows"});
+  if (jrows && jrows->is_array()) {
+    for (const json& jr : *jrows) {
+      Row row;
+      row.label = text(find(jr, {"label"}));
+      row.metric = orDefault(text(find(jr, {"metric"})), tableMetric.c_str());
+      row.unit = metricUnit(row.metric);
+      rowMetrics |= row.metric != tableMetric;
+      row.paperUnit = text(find(jr, {"paper_unit"}));
+      if (row.paperUnit.empty()) row.paperUnit = orDefault(text(find(t, {"paper_unit"})), "ms");
+      row.paper = number(find(jr, {"paper"}));
+      if (row.paper && row.paperUnit == "fps") {
+        if (*row.paper > 0) row.paperComparable = 1000.0 / *row.paper;
+      } else if (row.paperUnit == "ms" || row.paperUnit == "MiB") {
+        row.paperComparable = row.paper;
+      }
+      if (baseline < 0 && find(jr, {"baseline"}) && *find(jr, {"baseline"}) == true)
+        baseline = static_cast<int>(rows.size());
+      std::string group = text(find(jr, {"group"}));
+      if (group.empty()) group = tableGroup;
+      for (const json* r : results) {
+        if (!matches(*r, group, find(jr, {"match"}))) continue;
+        const std::string b = backendOf(*r);
+        if (std::find(backends.begin(), backends.end(), b) == backends.end()) backends.push_back(b);
+        row.byBackend[b].push_back(r);
+      }
+      if (row.byBackend.empty())
+        pt.notes.push_back("row \"" + row.label + "\": no result of group \"" + group +
+                           "\" matches " +
+                           (find(jr, {"match"}) ? find(jr, {"match"})->dump() : "{}"));
+      for (const auto& [b, rs] : row.byBackend)
+        if (rs.size() > 1)
+          pt.notes.push_back("row \"" + row.label + "\" matches " + std::to_string(rs.size()) +
+                             " results on " + b + "; the first (" + caseId(*rs[0]) + ") is shown");
+      if (row.unit.empty())
+        pt.notes.push_back("row \"" + row.label + "\": unknown metric " + row.metric);
+      rows.push_back(std::move(row));
+    }
+  }
+
+  auto ours = [&](const Row& row, const std::string& b) -> std::optional<double> {
+    auto it = row.byBackend.find(b);
+    if (it == row.byBackend.end()) return std::nullopt;
+    return metricValue(*it->second[0], row.metric);
+  };
+  auto ratio = [](std::optional<double> a, std::optional<double> b) -> std::optional<double> {
+    if (!a || !b || *b == 0) return std::nullopt;
+    return *a / *b;
+  };
+
+  const std::string source = text(find(t, {"source"}));
+  pt.about = (source.empty() ? "" : "Source: " + source + ". ") + "Group " +
+             orDefault(tableGroup, "(per row)") + ", metric " + tableMetric + " (" +
+             orDefault(tableUnit, "?") + ")" + ", paper values in " +
+             orDefault(text(find(t, {"paper_unit"})), "ms") + ". ";
+  if (baseline >= 0)
+    pt.about += "Ratios: ours / our baseline (\"" + rows[baseline].label +
+                "\") beside paper / paper's baseline, both in time for fps tables.";
+  else
+    pt.about += "Ratios: ours / paper.";
+
+  Table& tab = pt.table;
+  tab.header = {"Row"};
+  if (rowMetrics) tab.header.push_back("Metric");
+  tab.header.push_back("Paper");
+  if (baseline >= 0) tab.header.push_back("Paper ratio");
+  for (const std::string& b : backends) {
+    tab.header.push_back(b + " (" + orDefault(tableUnit, "?") + ")");
+    tab.header.push_back(b + (baseline >= 0 ? " ratio" : " / paper"));
+  }
+  for (const Row& row : rows) {
+    std::vector<Cell> cells = {{row.label}};
+    if (rowMetrics) cells.push_back({row.metric});
+    Cell paper{kNone, true};
+    if (row.paper) {
+      paper.text = shortest(*row.paper) + " " + row.paperUnit;  // as the paper gives it
+      if (row.paperUnit == "fps" && row.paperComparable)
+        paper.text += " (" + formatSig(*row.paperComparable) + " ms)";
+    }
+    cells.push_back(paper);
+    if (baseline >= 0)
+      cells.push_back(num(ratio(row.paperComparable, rows[baseline].paperComparable)));
+    for (const std::string& b : backends) {
+      const std::optional<double> v = ours(row, b);
+      Cell c = num(v);
+      if (v && row.unit != tableUnit) c.text += " " + row.unit;
+      cells.push_back(c);
+      if (baseline >= 0) {
+        cells.push_back(num(ratio(v, ours(rows[baseline], b))));
+      } else {
+        // ours / paper only where both are in the same unit
+        const bool comparable = (row.unit == "ms" && row.paperUnit != "MiB") ||
+                                (row.unit == "MiB" && row.paperUnit == "MiB");
+        cells.push_back(num(comparable ? ratio(v, row.paperComparable) : std::nullopt));
+      }
+    }
+    tab.rows.push_back(std::move(cells));
+  }
+  if (backends.empty()) pt.notes.push_back("no results match any row");
+  return pt;
+}
+
+Group buildGroup(const std::string& name, const json* jgroup,
+                 const std::vector<const json*>& results) {
+  Group g;
+  g.name = name;
+  if (jgroup) g.description = text(find(*jgroup, {"description"}));
+  std::set<std::string> keys;
+  if (jgroup) {
+    if (const json* axes = find(*jgroup, {"axes"}); axes && axes->is_object())
+      for (const auto& item : axes->items()) keys.insert(item.key());
+  }
+  for (const json* r : results) {
+    if (groupOf(*r) != name) continue;
+    g.results.push_back(r);
+    if (const json* p = find(*r, {"case", "params"}); p && p->is_object())
+      for (const auto& item : p->items()) keys.insert(item.key());
+  }
+  // Alphabetical (JSON objects do not keep the suite's axis order), backend last
+  // as it is the innermost axis of every group.
+  for (const std::string& k : keys)
+    if (k != "backend") g.params.push_back(k);
+  if (keys.count("backend")) g.params.push_back("backend");
+
+  g.table.header = g.params;
+  for (const char* h :
+       {"Frame ms (median ± sd)", "Memory MiB", "Image RMSE", "PSNR dB", "Visibility RMSE"})
+    g.table.header.push_back(h);
+  for (const json* r : g.results) {
+    std::vector<Cell> cells;
+    for (const std::string& k : g.params) {
+      const json* p = find(*r, {"case", "params", k});
+      cells.push_back({p ? text(p) : kNone});
+    }
+    Cell frame = num(frameMs(*r));
+    if (const auto sd = number(find(*r, {"frame_ms", "stddev"})); sd && frameMs(*r))
+      frame.text += " ± " + formatSig(*sd, 2);
+    cells.push_back(frame);
+    cells.push_back(num(memoryMiB(*r)));
+    cells.push_back(num(number(find(*r, {"error", "image", "rmse"}))));
+    cells.push_back(num(number(find(*r, {"error", "image", "psnr"}))));
+    cells.push_back(num(number(find(*r, {"error", "visibility", "rmse"}))));
+    g.table.rows.push_back(std::move(cells));
+  }
+  return g;
+}
+
+}  // namespace
+
+const json* find(const json& j, std::initializer_list<std::string_view> path) {
+  const json* cur = &j;
+  for (std::string_view key : path) {
+    if (!cur->is_object()) return nullptr;
+    auto it = cur->find(std::string(key));
+    if (it == cur->end()) return nullptr;
+    cur = &*it;
+  }
+  return cur;
+}
+
+std::optional<double> number(const json* j) {
+  if (!j) return std::nullopt;
+  double v = 0;
+  if (j->is_number()) {
+    v = j->get<double>();
+  } else if (j->is_string()) {
+    const std::string& s = j->get_ref<const std::string&>();
+    char* end = nullptr;
+    v = std::strtod(s.c_str(), &end);
+    if (s.empty() || end != s.c_str() + s.size()) return std::nullopt;
+  } else {
+    return std::nullopt;
+  }
+  if (!std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
+std::string text(const json* j) {
+  if (!j || j->is_null()) return "";
+  if (j->is_string()) return j->get<std::string>();
+  if (j->is_number_integer()) return j->dump();
+  if (j->is_number_float()) {
+    const double v = j->get<double>();
+    return std::isfinite(v) ? shortest(v) : "";
+  }
+  return j->dump();
+}
+
+std::string shortest(double v) {
+  char buf[64];
+  const auto res = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, res.ptr);
+}
+
+std::string formatSig(double v, int digits) {
+  if (!std::isfinite(v)) return kNone;
+  if (v == 0) return "0";
+  const int magnitude = static_cast<int>(std::floor(std::log10(std::abs(v))));
+  const int decimals = std::clamp(digits - 1 - magnitude, 0, 9);
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+
+std::string caseId(const json& r) { return orDefault(text(find(r, {"case", "id"})), "(no id)"); }
+
+std::string groupOf(const json& r) { return text(find(r, {"case", "group"})); }
+
+std::string backendOf(const json& r) {
+  std::string b = text(find(r, {"backend"}));
+  return b.empty() ? text(find(r, {"case", "params", "backend"})) : b;
+}
+
+std::string sizeOf(const json& r) {
+  const json* s = find(r, {"size"});
+  if (!s || !s->is_array() || s->size() != 2) return text(s);
+  return text(&(*s)[0]) + "x" + text(&(*s)[1]);
+}
+
+std::string techniqueOf(const json& r) {
+  return "shadow " + orDefault(text(find(r, {"shadow"})), "?") + ", oit " +
+         orDefault(text(find(r, {"oit"})), "?");
+}
+
+std::optional<double> frameMs(const json& r) { return number(find(r, {"frame_ms", "median"})); }
+
+std::optional<double> memoryMiB(const json& r, const char* key) {
+  const std::optional<double> bytes = number(find(r, {"memory", key}));
+  if (!bytes) return std::nullopt;
+  return *bytes / kMiB;
+}
+
+ReportData buildReport(const json& doc) {
+  if (!doc.is_object()) throw InputError("results document: expected a JSON object");
+  ReportData d;
+  const std::string suite = text(find(doc, {"suite", "name"}));
+  d.title = "strandbench report" + (suite.empty() ? "" : ": " + suite);
+  d.description = text(find(doc, {"suite", "description"}));
+
+  if (const json* rs = find(doc, {"results"}); rs && rs->is_array())
+    for (const json& r : *rs)
+      if (r.is_object()) d.results.push_back(&r);
+
+  // Context: the known keys with readable labels first, then any others.
+  auto add = [&](const std::string& label, std::string value) {
+    if (!value.empty()) d.context.emplace_back(label, std::move(value));
+  };
+  add("Suite file", text(find(doc, {"suite", "file"})));
+  add("Results", std::to_string(d.results.size()));
+  const json empty = json::object();
+  const json* ctx = find(doc, {"context"});
+  if (!ctx || !ctx->is_object()) ctx = &empty;
+  const std::vector<std::pair<const char*, const char*>> known = {
+      {"date", "Date"},         {"commit", "Commit"}, {"build_type", "Build type"},
+      {"compiler", "Compiler"}, {"cpu", "CPU"},       {"os", "OS"},
+      {"mesa", "Mesa"}};
+  for (const auto& [key, label] : known) {
+    std::string v = text(find(*ctx, {key}));
+    if (std::string_view(key) == "commit" && find(*ctx, {"commit_dirty"}) &&
+        *find(*ctx, {"commit_dirty"}) == true)
+      v += " (with uncommitted changes)";
+    add(label, v);
+  }
+  for (const auto& [key, value] : ctx->items()) {
+    const bool isKnown =
+        std::any_of(known.begin(), known.end(), [&](const auto& k) { return key == k.first; });
+    if (!isKnown && key != "devices" && key != "commit_dirty") add(key, text(&value));
+  }
+  d.devices.header = {"Backend", "Platform", "Device", "Driver", "Timing"};
+  if (const json* devs = find(*ctx, {"devices"}); devs && devs->is_array()) {
+    for (const json& dev : *devs) {
+      std::vector<Cell> row;
+      for (const char* k : {"backend", "platform", "device", "driver", "timing"})
+        row.push_back({orDefault(text(find(dev, {k})), kNone)});
+      d.devices.rows.push_back(std::move(row));
+    }
+  }
+
+  if (const json* ts = find(doc, {"tables"}); ts && ts->is_array())
+    for (const json& t : *ts) d.paperTables.push_back(buildPaperTable(t, d.results));
+
+  // Groups in suite order, then any group that only the results name.
+  std::vector<std::string> names;
+  std::map<std::string, const json*> described;
+  if (const json* gs = find(doc, {"groups"}); gs && gs->is_array()) {
+    for (const json& g : *gs) {
+      const std::string name = text(find(g, {"name"}));
+      if (described.count(name)) continue;
+      names.push_back(name);
+      described[name] = &g;
+    }
+  }
+  for (const json* r : d.results) {
+    const std::string g = groupOf(*r);
+    if (std::find(names.begin(), names.end(), g) == names.end()) names.push_back(g);
+  }
+  for (const std::string& name : names) {
+    auto it = described.find(name);
+    d.groups.push_back(buildGroup(name, it == described.end() ? nullptr : it->second, d.results));
+  }
+
+  for (const json* r : d.results) {
+    if (const json* ws = find(*r, {"warnings"}); ws && ws->is_array())
+      for (const json& w : *ws) d.warnings.push_back({caseId(*r), text(&w)});
+  }
+  return d;
+}
+
+}  // namespace sb::report

@@ -1,0 +1,98 @@
+// Internals of the report writer: tolerant access to a results document and the
+// tables that report.md and report.html both show (harness/report_writer.h).
+#pragma once
+
+#include <filesystem>
+#include <initializer_list>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace sb::report {
+
+using nlohmann::json;
+
+// --- JSON access that tolerates missing keys, wrong types and null (NaN, Inf) ---
+
+// The value at `path` (object keys), or nullptr where a key is missing or a
+// step is not an object.
+const json* find(const json& j, std::initializer_list<std::string_view> path);
+// A finite number (a JSON number or a string holding one), else nullopt.
+std::optional<double> number(const json* j);
+// Strings as they are, numbers in shortest round-trip form, booleans as
+// true/false, "" for null or missing, anything else as compact JSON.
+std::string text(const json* j);
+
+// v with `digits` significant digits in fixed notation (1.90, 154, 0.00123).
+std::string formatSig(double v, int digits = 3);
+// Shortest text that reads back as v.
+std::string shortest(double v);
+// The text of a cell with no value.
+inline constexpr const char* kNone = "–";
+
+// --- one result ---
+
+std::string caseId(const json& r);
+std::string groupOf(const json& r);
+std::string backendOf(const json& r);  // `backend`, else case.params.backend
+// "WxH" from `size` [w, h], "" when absent.
+std::string sizeOf(const json& r);
+// Technique label: "shadow SPEC, oit SPEC".
+std::string techniqueOf(const json& r);
+// Median frame time in ms / total memory in MiB, when present and finite.
+std::optional<double> frameMs(const json& r);
+std::optional<double> memoryMiB(const json& r, const char* key = "total_bytes");
+
+// --- tables ---
+
+struct Cell {
+  std::string text;
+  bool number = false;  // right-aligned
+};
+
+struct Table {
+  std::vector<std::string> header;
+  std::vector<std::vector<Cell>> rows;
+};
+
+struct PaperTable {
+  std::string title;
+  std::string about;  // source, group, metric, how ratios are formed
+  Table table;
+  std::vector<std::string> notes;  // rows without results, ambiguous matches
+};
+
+struct Group {
+  std::string name, description;
+  std::vector<std::string> params;  // case.params keys: sorted, backend last
+  std::vector<const json*> results;
+  Table table;
+};
+
+struct Warning {
+  std::string caseId, message;
+};
+
+struct ReportData {
+  std::string title, description;
+  std::vector<std::pair<std::string, std::string>> context;  // label, value
+  Table devices;
+  std::vector<PaperTable> paperTables;
+  std::vector<Group> groups;
+  std::vector<Warning> warnings;
+  std::vector<const json*> results;  // in document order
+};
+
+// Throws InputError when `doc` is not a JSON object; anything missing inside it
+// is shown as absent.
+ReportData buildReport(const json& doc);
+
+std::string renderCsv(const ReportData& data);
+std::string renderMarkdown(const ReportData& data);
+// Images named by results' `images` are read relative to `dir` and embedded.
+std::string renderHtml(const ReportData& data, const std::filesystem::path& dir);
+
+}  // namespace sb::report

@@ -1,0 +1,183 @@
+// results.csv and report.md, and writeReports (report.html: harness/report_html.cpp).
+#include "harness/report_writer.h"
+
+#include <fstream>
+#include <sstream>
+
+#include "harness/report_data.h"
+#include "scenes/scene.h"
+
+namespace sb {
+
+namespace report {
+
+namespace {
+
+// RFC 4180: quote a field holding a comma, quote or line break (specs hold commas).
+std::string csvField(const std::string& s) {
+  if (s.find_first_of(",\"\r\n") == std::string::npos && (s.empty() || s.front() != ' ')) return s;
+  std::string out = "\"";
+  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+// Markdown inline text: characters that would start markup, or end a table
+// cell, are backslash-escaped; line breaks become spaces.
+std::string md(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '\n' || c == '\r') {
+      out += ' ';
+      continue;
+    }
+    if (std::string_view("\\`*_[]<>|#").find(c) != std::string_view::npos) out += '\\';
+    out += c;
+  }
+  return out;
+}
+
+void mdTable(std::ostream& o, const Table& t) {
+  if (t.header.empty()) return;
+  o << "|";
+  for (const std::string& h : t.header) o << " " << md(h) << " |";
+  o << "\n|";
+  for (std::size_t c = 0; c < t.header.size(); ++c) {
+    bool number = false;
+    for (const auto& row : t.rows) number |= c < row.size() && row[c].number;
+    o << (number ? " ---: |" : " --- |");
+  }
+  o << "\n";
+  for (const auto& row : t.rows) {
+    o << "|";
+    for (const Cell& cell : row) o << " " << md(cell.text) << " |";
+    o << "\n";
+  }
+  o << "\n";
+}
+
+}  // namespace
+
+std::string renderCsv(const ReportData& d) {
+  std::ostringstream o;
+  o << "case_id,group,backend,scene,segments,shadow,oit,size,frame_ms_median,frame_ms_min,"
+       "frame_ms_max,frame_ms_stddev,memory_total_bytes,memory_shadow_bytes,memory_oit_bytes,"
+       "image_rmse,image_psnr,image_ssim,visibility_rmse,visibility_max,"
+       "depth_complexity_eye_max,depth_complexity_light_max\n";
+  for (const json* r : d.results) {
+    // Numbers in full precision; null (NaN, Inf) and missing values as empty cells.
+    auto n = [&](std::initializer_list<std::string_view> path) {
+      const json* v = find(*r, path);
+      return v && v->is_number() ? text(v) : std::string();
+    };
+    const std::vector<std::string> fields = {
+        text(find(*r, {"case", "id"})),
+        groupOf(*r),
+        backendOf(*r),
+        text(find(*r, {"scene", "spec"})),
+        n({"scene", "segments"}),
+        text(find(*r, {"shadow"})),
+        text(find(*r, {"oit"})),
+        sizeOf(*r),
+        n({"frame_ms", "median"}),
+        n({"frame_ms", "min"}),
+        n({"frame_ms", "max"}),
+        n({"frame_ms", "stddev"}),
+        n({"memory", "total_bytes"}),
+        n({"memory", "shadow_bytes"}),
+        n({"memory", "oit_bytes"}),
+        n({"error", "image", "rmse"}),
+        n({"error", "image", "psnr"}),
+        n({"error", "image", "ssim"}),
+        n({"error", "visibility", "rmse"}),
+        n({"error", "visibility", "max"}),
+        n({"depth_complexity", "eye", "max"}),
+        n({"depth_complexity", "light", "max"}),
+    };
+    for (std::size_t i = 0; i < fields.size(); ++i) o << (i ? "," : "") << csvField(fields[i]);
+    o << "\n";
+  }
+  return o.str();
+}
+
+std::string renderMarkdown(const ReportData& d) {
+  std::ostringstream o;
+  o << "# " << md(d.title) << "\n\n";
+  if (!d.description.empty()) o << md(d.description) << "\n\n";
+
+  o << "## Context\n\n";
+  for (const auto& [label, value] : d.context) o << "- " << md(label) << ": " << md(value) << "\n";
+  o << "\n";
+  if (!d.devices.rows.empty()) mdTable(o, d.devices);
+
+  if (!d.paperTables.empty()) {
+    o << "## Paper tables\n\n";
+    for (const PaperTable& t : d.paperTables) {
+      o << "### " << md(t.title) << "\n\n" << md(t.about) << "\n\n";
+      mdTable(o, t.table);
+      for (const std::string& n : t.notes) o << "- Note: " << md(n) << "\n";
+      if (!t.notes.empty()) o << "\n";
+    }
+  }
+
+  o << "## Groups\n\n";
+  if (d.groups.empty()) o << "No results.\n\n";
+  for (const Group& g : d.groups) {
+    o << "### " << md(g.name.empty() ? "(no group)" : g.name) << "\n\n";
+    if (!g.description.empty()) o << md(g.description) << "\n\n";
+    if (g.results.empty())
+      o << "No results.\n\n";
+    else
+      mdTable(o, g.table);
+  }
+
+  o << "## Warnings\n\n";
+  if (d.warnings.empty()) o << "None.\n";
+  for (const Warning& w : d.warnings) o << "- " << md(w.caseId) << ": " << md(w.message) << "\n";
+  return o.str();
+}
+
+}  // namespace report
+
+namespace {
+
+// NAME.tmp then a rename: a reader sees the old file or the whole new one.
+void writeAtomically(const std::filesystem::path& path, const std::string& content) {
+  std::filesystem::path tmp = path;
+  tmp += ".tmp";
+  {
+    std::ofstream f(tmp, std::ios::binary);
+    if (!f) throw InputError("cannot write " + tmp.string() + ": folder not writable");
+    f << content;
+    f.close();
+    if (!f) {
+      std::error_code ec;
+      std::filesystem::remove(tmp, ec);
+      throw InputError("writing " + tmp.string() + " failed (disk full?)");
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::filesystem::remove(tmp, ec);
+    throw InputError("cannot rename " + tmp.string() + " to " + path.filename().string() + ": " +
+                     ec.message());
+  }
+}
+
+}  // namespace
+
+void writeReports(const nlohmann::json& results, const std::filesystem::path& dir) {
+  if (!std::filesystem::is_directory(dir))
+    throw InputError("report folder " + dir.string() + " does not exist or is not a folder");
+  // Everything is rendered before the first file is written, so a document that
+  // cannot be rendered leaves the folder as it was.
+  const report::ReportData data = report::buildReport(results);
+  const std::string csv = report::renderCsv(data);
+  const std::string markdown = report::renderMarkdown(data);
+  const std::string html = report::renderHtml(data, dir);
+  writeAtomically(dir / "results.csv", csv);
+  writeAtomically(dir / "report.md", markdown);
+  writeAtomically(dir / "report.html", html);
+}
+
+}  // namespace sb

@@ -1,0 +1,227 @@
+#include "harness/svg_chart.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+
+namespace sb {
+
+namespace {
+
+// Tableau 10: distinct in colour and in lightness.
+const char* const kPalette[] = {"#4e79a7", "#f28e2b", "#e15759", "#76b7b2", "#59a14f",
+                                "#edc948", "#b07aa1", "#ff9da7", "#9c755f", "#bab0ac"};
+constexpr int kPaletteSize = sizeof(kPalette) / sizeof(kPalette[0]);
+
+// Margins around the plot area, in pixels.
+constexpr int kLeft = 72, kRight = 16, kTop = 30, kBottom = 46, kLegendRow = 16, kInset = 6;
+
+struct Axis {
+  double lo = 0, hi = 1;
+  bool log = false;
+  double step = 1;  // linear tick spacing (for the label precision)
+  std::vector<double> ticks;
+
+  // Position of v along the axis, 0 at lo and 1 at hi.
+  double frac(double v) const {
+    if (log) return (std::log10(v) - std::log10(lo)) / (std::log10(hi) - std::log10(lo));
+    return (v - lo) / (hi - lo);
+  }
+
+  std::string label(double v) const {
+    char buf[32];
+    if (log) {
+      const int e = static_cast<int>(std::lround(std::log10(v)));
+      if (e >= -3 && e <= 5)
+        std::snprintf(buf, sizeof buf, "%.*f", std::max(0, -e), v);
+      else
+        std::snprintf(buf, sizeof buf, "1e%d", e);
+    } else if (step >= 1e6 || step < 1e-6) {
+      std::snprintf(buf, sizeof buf, "%g", v);
+    } else {
+      const int decimals = std::max(0, -static_cast<int>(std::floor(std::log10(step) + 1e-9)));
+      std::snprintf(buf, sizeof buf, "%.*f", decimals, std::abs(v) < step * 1e-9 ? 0.0 : v);
+    }
+    return buf;
+  }
+};
+
+double niceStep(double raw) {
+  const double p = std::pow(10.0, std::floor(std::log10(raw)));
+  const double f = raw / p;
+  return (f <= 1 ? 1 : f <= 2 ? 2 : f <= 5 ? 5 : 10) * p;
+}
+
+Axis makeAxis(double min, double max) {
+  Axis a;
+  if (min > 0 && max / min > 100) {
+    a.log = true;
+    const int e0 = static_cast<int>(std::floor(std::log10(min)));
+    const int e1 = static_cast<int>(std::ceil(std::log10(max)));
+    a.lo = std::pow(10.0, e0);
+    a.hi = std::pow(10.0, e1);
+    for (int e = e0; e <= e1; ++e) a.ticks.push_back(std::pow(10.0, e));
+    return a;
+  }
+  if (max == min) {  // one value: centre it in a small range
+    const double pad = min == 0 ? 1 : std::abs(min) * 0.1;
+    min -= pad;
+    max += pad;
+  }
+  a.step = niceStep((max - min) / 5);
+  a.lo = std::floor(min / a.step) * a.step;
+  a.hi = std::ceil(max / a.step) * a.step;
+  const int n = static_cast<int>(std::lround((a.hi - a.lo) / a.step));
+  for (int i = 0; i <= n; ++i) a.ticks.push_back(a.lo + a.step * i);
+  return a;
+}
+
+std::string fmt(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f", v);
+  return buf;
+}
+
+bool finite(const ChartPoint& p) { return std::isfinite(p.x) && std::isfinite(p.y); }
+
+}  // namespace
+
+std::string htmlEscape(const std::string& s) {
+  std::string out;
+  out.reserve(s.size());
+  for (char c : s) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&#39;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
+std::vector<ChartPoint> paretoFrontier(std::vector<ChartPoint> points) {
+  std::erase_if(points, [](const ChartPoint& p) { return !finite(p); });
+  std::stable_sort(points.begin(), points.end(), [](const ChartPoint& a, const ChartPoint& b) {
+    return a.x != b.x ? a.x < b.x : a.y < b.y;
+  });
+  std::vector<ChartPoint> front;
+  double best = std::numeric_limits<double>::infinity();
+  for (const ChartPoint& p : points) {
+    if (p.y < best) {
+      front.push_back(p);
+      best = p.y;
+    }
+  }
+  return front;
+}
+
+std::string svgChart(const Chart& chart) {
+  double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, y0 = x0, y1 = -x0;
+  for (const ChartSeries& s : chart.series) {
+    for (const ChartPoint& p : s.points) {
+      if (!finite(p)) continue;
+      x0 = std::min(x0, p.x), x1 = std::max(x1, p.x);
+      y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+    }
+  }
+  const bool empty = !(x0 <= x1);
+  const Axis ax = empty ? Axis{} : makeAxis(x0, x1);
+  const Axis ay = empty ? Axis{} : makeAxis(y0, y1);
+
+  const int plotW = chart.width - kLeft - kRight, plotH = chart.plotHeight;
+  const int height =
+      kTop + plotH + kBottom + kLegendRow * static_cast<int>(chart.series.size()) + 4;
+  // Data are mapped inset from the frame so that points on the range ends stay visible.
+  auto px = [&](double x) { return kLeft + kInset + ax.frac(x) * (plotW - 2 * kInset); };
+  auto py = [&](double y) { return kTop + kInset + (1 - ay.frac(y)) * (plotH - 2 * kInset); };
+
+  std::ostringstream o;
+  o << "<svg class=\"" << htmlEscape(chart.cssClass.empty() ? "chart" : chart.cssClass)
+    << "\" width=\"" << chart.width << "\" height=\"" << height << "\" viewBox=\"0 0 "
+    << chart.width << " " << height << "\" role=\"img\" aria-label=\"" << htmlEscape(chart.title)
+    << "\" font-family=\"sans-serif\" font-size=\"11\">\n";
+  o << "<text x=\"" << chart.width / 2 << "\" y=\"16\" text-anchor=\"middle\" font-size=\"13\">"
+    << htmlEscape(chart.title) << "</text>\n";
+  o << "<rect x=\"" << kLeft << "\" y=\"" << kTop << "\" width=\"" << plotW << "\" height=\""
+    << plotH << "\" fill=\"#fff\" stroke=\"#888\"/>\n";
+  if (empty) {
+    o << "<text x=\"" << kLeft + plotW / 2 << "\" y=\"" << kTop + plotH / 2
+      << "\" text-anchor=\"middle\" fill=\"#888\">no data</text>\n</svg>\n";
+    return o.str();
+  }
+
+  // Grid lines and tick labels.
+  for (double t : ax.ticks) {
+    const std::string x = fmt(px(t));
+    o << "<line x1=\"" << x << "\" x2=\"" << x << "\" y1=\"" << kTop << "\" y2=\"" << kTop + plotH
+      << "\" stroke=\"#e4e4e4\"/><text x=\"" << x << "\" y=\"" << kTop + plotH + 14
+      << "\" text-anchor=\"middle\">" << ax.label(t) << "</text>\n";
+  }
+  for (double t : ay.ticks) {
+    const std::string y = fmt(py(t));
+    o << "<line x1=\"" << kLeft << "\" x2=\"" << kLeft + plotW << "\" y1=\"" << y << "\" y2=\"" << y
+      << "\" stroke=\"#e4e4e4\"/><text x=\"" << kLeft - 4 << "\" y=\"" << y
+      << "\" text-anchor=\"end\" dominant-baseline=\"middle\">" << ay.label(t) << "</text>\n";
+  }
+  o << "<text x=\"" << kLeft + plotW / 2 << "\" y=\"" << kTop + plotH + 32
+    << "\" text-anchor=\"middle\">" << htmlEscape(chart.xLabel) << (ax.log ? " (log)" : "")
+    << "</text>\n";
+  o << "<text transform=\"translate(14," << kTop + plotH / 2
+    << ") rotate(-90)\" text-anchor=\"middle\">" << htmlEscape(chart.yLabel)
+    << (ay.log ? " (log)" : "") << "</text>\n";
+
+  // Series, then the legend below the plot.
+  for (std::size_t i = 0; i < chart.series.size(); ++i) {
+    const ChartSeries& s = chart.series[i];
+    const char* color = kPalette[(s.color >= 0 ? s.color : static_cast<int>(i)) % kPaletteSize];
+    const std::string dash = s.dashed ? " stroke-dasharray=\"6,3\"" : "";
+    std::vector<const ChartPoint*> pts;
+    for (const ChartPoint& p : s.points)
+      if (finite(p)) pts.push_back(&p);
+    if (s.line && pts.size() >= 2) {
+      o << "<polyline";
+      if (!s.cssClass.empty()) o << " class=\"" << htmlEscape(s.cssClass) << "\"";
+      o << " fill=\"none\" stroke=\"" << color << "\" stroke-width=\"1.5\"" << dash << " points=\"";
+      for (const ChartPoint* p : pts) o << fmt(px(p->x)) << "," << fmt(py(p->y)) << " ";
+      o << "\"/>\n";
+    }
+    if (s.markers) {
+      o << "<g fill=\"" << color << "\">";
+      for (const ChartPoint* p : pts) {
+        o << "<circle cx=\"" << fmt(px(p->x)) << "\" cy=\"" << fmt(py(p->y)) << "\" r=\"3.5\">";
+        if (!p->tip.empty()) o << "<title>" << htmlEscape(p->tip) << "</title>";
+        o << "</circle>";
+      }
+      o << "</g>\n";
+    }
+    const int ly = kTop + plotH + kBottom + kLegendRow * static_cast<int>(i) + 8;
+    o << "<line x1=\"" << kLeft << "\" x2=\"" << kLeft + 20 << "\" y1=\"" << ly << "\" y2=\"" << ly
+      << "\" stroke=\"" << color << "\" stroke-width=\"" << (s.line ? "1.5" : "0") << "\"" << dash
+      << "/>";
+    if (s.markers)
+      o << "<circle cx=\"" << kLeft + 10 << "\" cy=\"" << ly << "\" r=\"3.5\" fill=\"" << color
+        << "\"/>";
+    o << "<text x=\"" << kLeft + 26 << "\" y=\"" << ly << "\" dominant-baseline=\"middle\">"
+      << htmlEscape(s.name) << "</text>\n";
+  }
+  o << "</svg>\n";
+  return o.str();
+}
+
+}  // namespace sb

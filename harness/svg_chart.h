@@ -1,0 +1,43 @@
+// Small inline-SVG line and scatter charts for report.html: axes with ticks and
+// labels, a legend, tooltips (<title>) on points; no scripts, no external resources.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace sb {
+
+struct ChartPoint {
+  double x = 0, y = 0;
+  std::string tip;  // tooltip text (plain text; escaped when drawn)
+};
+
+struct ChartSeries {
+  std::string name;
+  std::vector<ChartPoint> points;  // non-finite points are skipped
+  bool line = true;                // join the points in the given order
+  bool markers = true;
+  bool dashed = false;
+  int color = -1;        // palette index; -1: the series' position in the chart
+  std::string cssClass;  // class of the series' polyline (e.g. "pareto-frontier")
+};
+
+struct Chart {
+  std::string title, xLabel, yLabel;
+  std::string cssClass;  // class of the <svg> element
+  std::vector<ChartSeries> series;
+  int width = 460, plotHeight = 240;
+};
+
+// Pixel-free scales: an axis is logarithmic when all its values are positive and
+// span more than two decades, else linear with "nice" ticks (1, 2, 5 x 10^k).
+std::string svgChart(const Chart& chart);
+
+// The points of `points` on the Pareto frontier for minimum x and minimum y
+// (no other point is at least as good in both and better in one), by ascending x.
+std::vector<ChartPoint> paretoFrontier(std::vector<ChartPoint> points);
+
+// Text escaped for HTML and SVG content and attribute values.
+std::string htmlEscape(const std::string& s);
+
+}  // namespace sb

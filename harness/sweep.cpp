@@ -1,0 +1,376 @@
+#include "harness/sweep.h"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "harness/files.h"
+#include "harness/image.h"
+#include "harness/metrics.h"
+#include "harness/report_writer.h"
+
+namespace sb {
+
+namespace fs = std::filesystem;
+using ojson = nlohmann::ordered_json;
+
+namespace {
+
+constexpr int kSchemaVersion = 1;
+
+// First line of a command's output ("" when it fails).
+std::string commandLine(const std::string& cmd) {
+  std::string out;
+  if (FILE* p = ::popen(cmd.c_str(), "r")) {
+    char buf[512];
+    if (std::fgets(buf, sizeof buf, p)) out = buf;
+    ::pclose(p);
+  }
+  while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
+  return out;
+}
+
+std::string fileValue(const std::string& path, const std::string& key, char sep) {
+  std::ifstream f(path);
+  std::string line;
+  while (std::getline(f, line)) {
+    if (line.rfind(key, 0) != 0) continue;
+    auto pos = line.find(sep);
+    if (pos == std::string::npos) continue;
+    std::string v = line.substr(pos + 1);
+    while (!v.empty() && (v.front() == ' ' || v.front() == '"')) v.erase(v.begin());
+    while (!v.empty() && (v.back() == ' ' || v.back() == '"')) v.pop_back();
+    return v;
+  }
+  return "";
+}
+
+std::string utcNow() {
+  const std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  ::gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+// The context's device list and Mesa version come from the results, since a
+// device is only known once it has been created.
+void addDevices(ojson& context, const std::vector<ojson>& results) {
+  ojson devices = ojson::array();
+  std::set<std::string> seen;
+  std::string mesa;
+  const std::regex mesaVersion("Mesa ([0-9]+\\.[0-9]+\\.[0-9]+)");
+  for (const auto& r : results) {
+    const std::string key = r.value("backend", "") + "|" + r.value("device", "");
+    if (!seen.insert(key).second) continue;
+    devices.push_back({{"backend", r.value("backend", "")},
+                       {"platform", r.value("platform", "")},
+                       {"device", r.value("device", "")},
+                       {"driver", r.value("driver", "")},
+                       {"timing", r.value("timing", "")}});
+    std::smatch m;
+    const std::string driver = r.value("driver", "");
+    if (mesa.empty() && std::regex_search(driver, m, mesaVersion)) mesa = m[1];
+  }
+  context["devices"] = devices;
+  context["mesa"] = mesa.empty() ? ojson(nullptr) : ojson(mesa);
+}
+
+ojson readJsonFile(const fs::path& path) {
+  try {
+    return ojson::parse(readTextFile(path));
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError(path.string() + ": not valid JSON (" + e.what() + ")");
+  }
+}
+
+// A case file that parses is a finished case (they are written by rename).
+bool caseDone(const fs::path& file) {
+  if (!fs::is_regular_file(file)) return false;
+  try {
+    readJsonFile(file);
+    return true;
+  } catch (const InputError&) {
+    return false;
+  }
+}
+
+fs::path caseFile(const fs::path& dir, const SweepCase& c) {
+  return dir / "cases" / (c.stem + ".json");
+}
+
+// Runs one case and writes its images, then its result file (last, so a
+// result file means its images are complete).
+ojson runCase(const fs::path& dir, const SweepCase& c, RenderCache& cache) {
+  const RenderOutcome out = runRender(c.request, &cache);
+  ojson result = ojson::parse(out.report.dump());
+  result["case"] = {{"id", c.id}, {"group", c.group}, {"index", c.index}, {"params", c.params}};
+  ojson images = ojson::object();
+  if (c.request.image) {
+    const std::string base = "images/" + c.stem;
+    writeImage(out.image, (dir / (base + ".png")).string());
+    images["image"] = base + ".png";
+    if (c.request.reference) {
+      writeImage(out.reference, (dir / (base + ".reference.png")).string());
+      writeImage(diffHeatmap(out.image, out.reference, 0.25),
+                 (dir / (base + ".heatmap.png")).string());
+      images["reference"] = base + ".reference.png";
+      images["heatmap"] = base + ".heatmap.png";
+    }
+  }
+  result["images"] = images;
+  writeFileAtomic(caseFile(dir, c), result.dump(1) + "\n");
+  return result;
+}
+
+std::string caseSummary(const ojson& r) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(2) << "frame " << r["frame_ms"]["median"].get<double>()
+    << " ms";
+  if (r.contains("error")) {
+    s << std::setprecision(4);
+    if (r["error"].contains("image") && r["error"]["image"]["rmse"].is_number())
+      s << "  rmse " << r["error"]["image"]["rmse"].get<double>();
+    if (r["error"]["visibility"]["rmse"].is_number())
+      s << "  vis " << r["error"]["visibility"]["rmse"].get<double>();
+  }
+  return s.str();
+}
+
+std::string duration(double seconds) {
+  std::ostringstream s;
+  const int t = static_cast<int>(seconds + 0.5);
+  if (t >= 60)
+    s << t / 60 << "m" << std::setw(2) << std::setfill('0') << t % 60 << "s";
+  else
+    s << t << "s";
+  return s.str();
+}
+
+void progressLine(int done, int total, const std::string& id, double elapsed) {
+  const int width = 30;
+  const int filled = total ? done * width / total : width;
+  std::string bar(static_cast<std::size_t>(filled), '#');
+  bar.resize(width, '.');
+  std::string eta = done ? duration(elapsed / done * (total - done)) : "?";
+  std::string name = id.size() > 60 ? "..." + id.substr(id.size() - 57) : id;
+  std::cout << "\r\033[K[" << bar << "] " << done << "/" << total << "  eta " << eta << "  " << name
+            << std::flush;
+}
+
+}  // namespace
+
+std::pair<int, int> parseShard(const std::string& text) {
+  int i = 0, n = 0;
+  char slash = 0;
+  std::istringstream in(text);
+  if (!(in >> i >> slash >> n) || slash != '/' || !in.eof() || n < 1 || i < 1 || i > n)
+    throw InputError("--shard " + text + ": expected I/N with 1 <= I <= N, e.g. 2/4");
+  return {i, n};
+}
+
+nlohmann::json runContext() {
+  nlohmann::json c;
+  c["date"] = utcNow();
+  const std::string git = std::string("git -C '") + SB_SOURCE_DIR + "' ";
+  const std::string commit = commandLine(git + "rev-parse HEAD 2>/dev/null");
+  c["commit"] = commit.empty() ? nlohmann::json(nullptr) : nlohmann::json(commit);
+  c["commit_dirty"] =
+      !commit.empty() &&
+      !commandLine(git + "status --porcelain --untracked-files=no 2>/dev/null").empty();
+  c["build_type"] = SB_BUILD_TYPE;
+#if defined(__clang__)
+  c["compiler"] = std::string("Clang ") + __clang_version__;
+#elif defined(__GNUC__)
+  c["compiler"] = "GNU " + std::to_string(__GNUC__) + "." + std::to_string(__GNUC_MINOR__) + "." +
+                  std::to_string(__GNUC_PATCHLEVEL__);
+#endif
+  c["cpu"] = fileValue("/proc/cpuinfo", "model name", ':') + " (" +
+             std::to_string(std::thread::hardware_concurrency()) + " threads)";
+  c["os"] = fileValue("/etc/os-release", "PRETTY_NAME", '=');
+  return c;
+}
+
+int runSweep(const SweepOptions& o) {
+  const Suite suite = loadSuite(o.suitePath);
+  if (o.out.empty()) throw InputError("--out DIR is required");
+  if (o.shardIndex < 1 || o.shardIndex > o.shardCount) throw InputError("bad --shard");
+  std::optional<std::regex> filter;
+  if (!o.filter.empty()) {
+    try {
+      filter.emplace(o.filter);
+    } catch (const std::regex_error& e) {
+      throw InputError("--filter " + o.filter + ": not a valid regular expression (" + e.what() +
+                       ")");
+    }
+  }
+
+  std::vector<const SweepCase*> selected;
+  for (const auto& c : suite.cases)
+    if (c.index % o.shardCount == o.shardIndex - 1 && (!filter || std::regex_search(c.id, *filter)))
+      selected.push_back(&c);
+  if (selected.empty())
+    throw InputError("suite " + o.suitePath + ": no case matches the filter and shard");
+
+  const fs::path dir = o.out;
+  const fs::path sweepFile = dir / "sweep.json";
+  const ojson sweepDoc = {
+      {"schema_version", kSchemaVersion}, {"suite_file", o.suitePath}, {"suite", suite.doc}};
+  if (fs::exists(sweepFile)) {
+    if (!o.resume)
+      throw InputError("--out " + o.out +
+                       " already holds a sweep: add --resume to continue it, or choose another "
+                       "folder");
+    if (readJsonFile(sweepFile)["suite"] != suite.doc)
+      throw InputError("--resume: " + o.suitePath + " has changed since the sweep in " + o.out +
+                       " started; use another folder");
+  } else if (fs::exists(dir) && !fs::is_directory(dir)) {
+    throw InputError("--out " + o.out + ": exists and is not a folder");
+  }
+  std::error_code ec;
+  fs::create_directories(dir / "cases", ec);
+  fs::create_directories(dir / "images", ec);
+  if (ec || !fs::is_directory(dir / "images"))
+    throw InputError("--out " + o.out + ": cannot create the folder (" + ec.message() + ")");
+  if (!fs::exists(sweepFile)) {
+    writeFileAtomic(dir / "context.json", runContext().dump(2) + "\n");
+    writeFileAtomic(sweepFile, sweepDoc.dump(2) + "\n");
+  }
+
+  std::vector<const SweepCase*> todo;
+  for (const auto* c : selected)
+    if (!(o.resume && caseDone(caseFile(dir, *c)))) todo.push_back(c);
+  const int total = static_cast<int>(selected.size());
+  int done = total - static_cast<int>(todo.size());
+  std::cout << "sweep " << suite.name << ": " << total << " cases";
+  if (o.shardCount > 1) std::cout << " (shard " << o.shardIndex << "/" << o.shardCount << ")";
+  if (done) std::cout << ", " << done << " already done";
+  std::cout << " -> " << o.out << "\n" << std::flush;
+
+  RenderCache cache;
+  const auto start = std::chrono::steady_clock::now();
+  const int startDone = done;
+  for (const auto* c : todo) {
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (o.progressBar) progressLine(done - startDone, total - startDone, c->id, elapsed);
+    const auto t0 = std::chrono::steady_clock::now();
+    ojson result;
+    try {
+      result = runCase(dir, *c, cache);
+    } catch (const InputError& e) {
+      if (o.progressBar) std::cout << "\n";
+      throw InputError("case " + c->id + ": " + e.what());
+    }
+    ++done;
+    if (!o.progressBar) {
+      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      std::cout << "[" << done << "/" << total << "] " << c->id << "  " << caseSummary(result)
+                << "  (" << std::fixed << std::setprecision(1) << s << " s)\n"
+                << std::flush;
+    }
+  }
+  if (o.progressBar) {
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    progressLine(done - startDone, total - startDone, "done in " + duration(elapsed), elapsed);
+    std::cout << "\n";
+  }
+  std::cout << "references rendered: " << cache.referenceRenders << "\n";
+  const int n = writeSweepReport(o.out);
+  std::cout << "wrote " << (dir / "results.json").string() << " (" << n
+            << " results), results.csv, report.md, report.html\n";
+  return 0;
+}
+
+int writeSweepReport(const std::string& dirText) {
+  const fs::path dir = dirText;
+  if (!fs::is_regular_file(dir / "sweep.json"))
+    throw InputError(dirText + ": not a sweep folder (no sweep.json)");
+  const ojson sweepDoc = readJsonFile(dir / "sweep.json");
+  const Suite suite = parseSuite(sweepDoc["suite"].dump(), sweepDoc.value("suite_file", "?"));
+  std::vector<ojson> results;
+  for (const auto& c : suite.cases) {
+    const fs::path f = caseFile(dir, c);
+    if (fs::is_regular_file(f)) results.push_back(readJsonFile(f));
+  }
+  ojson context = fs::is_regular_file(dir / "context.json") ? readJsonFile(dir / "context.json")
+                                                            : ojson(runContext());
+  addDevices(context, results);
+  ojson doc = {{"schema_version", kSchemaVersion},
+               {"suite",
+                {{"name", suite.name},
+                 {"description", suite.description},
+                 {"file", sweepDoc.value("suite_file", "")},
+                 {"cases", suite.cases.size()}}},
+               {"context", context},
+               {"groups", suite.groups},
+               {"tables", suite.doc.value("tables", ojson::array())},
+               {"results", results}};
+  writeFileAtomic(dir / "results.json", doc.dump(1) + "\n");
+  writeReports(nlohmann::json::parse(doc.dump()), dir);
+  return static_cast<int>(results.size());
+}
+
+int mergeSweeps(const std::string& outText, const std::vector<std::string>& inputs) {
+  if (inputs.empty()) throw InputError("merge: name the sweep folders to join");
+  const fs::path out = outText;
+  if (fs::exists(out)) throw InputError("merge: " + outText + " exists; choose a new folder");
+  ojson suite;
+  std::map<std::string, std::string> owner;  // case file -> input folder
+  for (const auto& in : inputs) {
+    if (!fs::is_regular_file(fs::path(in) / "sweep.json"))
+      throw InputError("merge: " + in + " is not a sweep folder (no sweep.json)");
+    const ojson doc = readJsonFile(fs::path(in) / "sweep.json");
+    if (suite.is_null())
+      suite = doc;
+    else if (doc["suite"] != suite["suite"])
+      throw InputError("merge: " + in + " ran a different suite than " + inputs.front());
+    for (const auto& e : fs::directory_iterator(fs::path(in) / "cases")) {
+      if (e.path().extension() != ".json") continue;
+      const std::string name = e.path().filename().string();
+      if (owner.count(name))
+        throw InputError("merge: case " + name + " is in both " + owner[name] + " and " + in);
+      owner[name] = in;
+    }
+  }
+  // Built beside the target and renamed: a failed merge leaves nothing behind.
+  const fs::path tmp = out.string() + ".tmp-merge";
+  std::error_code ec;
+  fs::remove_all(tmp, ec);
+  fs::create_directories(tmp / "images", ec);
+  fs::create_directories(tmp / "cases", ec);
+  if (ec) throw InputError("merge: cannot create " + tmp.string() + " (" + ec.message() + ")");
+  try {
+    for (const auto& [name, in] : owner) {
+      const ojson result = readJsonFile(fs::path(in) / "cases" / name);
+      for (const auto& [kind, rel] : result.value("images", ojson::object()).items())
+        fs::copy_file(fs::path(in) / rel.get<std::string>(), tmp / rel.get<std::string>());
+      fs::copy_file(fs::path(in) / "cases" / name, tmp / "cases" / name);
+    }
+    ojson context = readJsonFile(fs::path(inputs.front()) / "context.json");
+    context["merged_from"] = inputs;
+    writeFileAtomic(tmp / "context.json", context.dump(2) + "\n");
+    writeFileAtomic(tmp / "sweep.json", suite.dump(2) + "\n");
+    fs::rename(tmp, out);
+  } catch (const fs::filesystem_error& e) {
+    fs::remove_all(tmp, ec);
+    throw InputError(std::string("merge: ") + e.what());
+  } catch (...) {
+    fs::remove_all(tmp, ec);
+    throw;
+  }
+  return writeSweepReport(outText);
+}
+
+}  // namespace sb
