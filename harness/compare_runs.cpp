@@ -1,6 +1,534 @@
-// `strandbench compare-runs` (placeholder until implemented).
+// `strandbench compare-runs OLD NEW [--threshold PCT] [--alpha A] [--json]`.
+//
+// Rules (also in the command's help):
+//  - OLD and NEW are each a results.json, a sweep folder holding results.json, or a sweep folder
+//    holding only cases/*.json (an unfinished or unreported sweep). Anything else, or a file that
+//    is not the documented format, is bad input: message naming the file, exit status 2.
+//  - Results are matched by case.id (which includes the backend). Cases in only one run are
+//    listed as "added" / "removed" and never fail the comparison. A matched case whose
+//    definition differs (scene.spec, shadow, oit, size, primitive) is "definition changed" and
+//    not judged: its timings measure different work.
+//  - A matched case is judged on frame_ms: change = (new median - old median) / old median. Its
+//    repetitions (frame_ms.samples) are compared with a one-sided Mann-Whitney U test in the
+//    direction of the change (harness/stats.h: exact null distribution when there are no ties
+//    and m*n <= 2500, else the normal approximation with tie and continuity correction).
+//      SLOWER: change > +threshold and p < alpha   (a regression: exit status 1)
+//      faster: change < -threshold and p < alpha   (information)
+//      ok:     otherwise
+//  - Not judged (never a regression, said so in the table):
+//      "no samples": either run lacks frame_ms.samples. The summary statistics (median, min,
+//        max, stddev) are not enough for a test over the repetitions, and a threshold alone
+//        would flag noise, so no verdict is given; the medians and change are still shown.
+//      "too few repetitions": even a complete separation of the samples could not give
+//        p < alpha, i.e. 1 / C(m+n, m) >= alpha (3 vs 3 repetitions give 0.05 at best, so the
+//        default alpha needs at least 3 vs 4 or 4 vs 4).
+//      "old median is 0": no relative change.
+//  - Passes (passes[].ms) are judged the same way and listed under their case when they are
+//    slower or faster, or exist in only one run; information only (written "slower" in lower
+//    case: only a case's frame time fails the comparison).
+#include "harness/compare_runs.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <set>
+
 #include "harness/commands.h"
+#include "harness/stats.h"
+#include "scenes/scene.h"
 
 namespace sb {
-void registerCompareRunsCommand(CLI::App&) {}
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+json readJsonFile(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(file.string() + ": cannot be read");
+  try {
+    return json::parse(in);
+  } catch (const json::exception& e) {
+    throw InputError(file.string() + ": not valid JSON (" + e.what() + ")");
+  }
+}
+
+bool isFiniteNumber(const json& v) { return v.is_number() && std::isfinite(v.get<double>()); }
+
+// Checks a timing object ({median, samples?, ...}) and fills in a missing median from the
+// samples. `what` names it in messages.
+void validateTiming(json& ms, const std::string& what) {
+  if (!ms.is_object()) throw InputError(what + " must be an object");
+  if (ms.contains("samples")) {
+    const json& s = ms["samples"];
+    if (!s.is_array() || !std::all_of(s.begin(), s.end(), isFiniteNumber))
+      throw InputError(what + ".samples must be an array of numbers");
+  }
+  if (ms.contains("median")) {
+    if (!isFiniteNumber(ms["median"])) throw InputError(what + ".median must be a number");
+  } else if (ms.contains("samples") && !ms["samples"].empty()) {
+    ms["median"] = median(ms["samples"].get<std::vector<double>>());
+  } else {
+    throw InputError(what + " has neither median nor samples");
+  }
+}
+
+// Checks one result object; `where` names the file (and index) in messages.
+void validateResult(json& r, const std::string& where) {
+  if (!r.is_object()) throw InputError(where + ": a result must be an object");
+  if (!r.contains("case") || !r["case"].is_object() || !r["case"].contains("id") ||
+      !r["case"]["id"].is_string())
+    throw InputError(where + ": a result lacks case.id");
+  const std::string prefix = where + " (case " + r["case"]["id"].get<std::string>() + "): ";
+  if (!r.contains("frame_ms")) throw InputError(prefix + "no frame_ms");
+  validateTiming(r["frame_ms"], prefix + "frame_ms");
+  if (r.contains("passes")) {
+    if (!r["passes"].is_array()) throw InputError(prefix + "passes must be an array");
+    for (std::size_t i = 0; i < r["passes"].size(); ++i) {
+      json& pass = r["passes"][i];
+      const std::string name = prefix + "passes[" + std::to_string(i) + "]";
+      if (!pass.is_object() || !pass.contains("name") || !pass["name"].is_string())
+        throw InputError(name + " lacks a name");
+      if (!pass.contains("ms")) throw InputError(name + " has no ms");
+      validateTiming(pass["ms"], name + ".ms");
+    }
+  }
+}
+
+RunResults loadResultsFile(const fs::path& file) {
+  RunResults run;
+  run.source = file.string();
+  json doc = readJsonFile(file);
+  if (!doc.is_object()) throw InputError(run.source + ": not a results.json (not an object)");
+  if (doc.contains("schema_version") && doc["schema_version"] != 1)
+    throw InputError(run.source + ": unsupported schema_version " + doc["schema_version"].dump());
+  if (!doc.contains("results") || !doc["results"].is_array())
+    throw InputError(run.source + ": not a results.json (no \"results\" array)");
+  if (doc.contains("context")) run.context = doc["context"];
+  for (std::size_t i = 0; i < doc["results"].size(); ++i) {
+    json& r = doc["results"][i];
+    validateResult(r, run.source + ": results[" + std::to_string(i) + "]");
+    run.results.push_back(std::move(r));
+  }
+  return run;
+}
+
+RunResults loadCaseFiles(const fs::path& folder, const fs::path& cases) {
+  RunResults run;
+  run.source = cases.string();
+  std::vector<fs::path> files;
+  std::error_code ec;
+  for (fs::directory_iterator it(cases, ec), end; !ec && it != end; it.increment(ec))
+    if (it->is_regular_file(ec) && it->path().extension() == ".json") files.push_back(it->path());
+  if (ec) throw InputError(run.source + ": cannot be listed (" + ec.message() + ")");
+  if (files.empty())
+    throw InputError(folder.string() + ": no results.json and no case files in " + run.source);
+  std::sort(files.begin(), files.end());
+  for (const auto& f : files) {
+    json r = readJsonFile(f);
+    validateResult(r, f.string());
+    run.results.push_back(std::move(r));
+  }
+  // The order of the suite, as results.json has it.
+  auto index = [](const json& r) {
+    const json& c = r["case"];
+    return c.contains("index") && c["index"].is_number() ? c["index"].get<double>() : 1e300;
+  };
+  std::stable_sort(run.results.begin(), run.results.end(),
+                   [&](const json& a, const json& b) { return index(a) < index(b); });
+  if (fs::is_regular_file(folder / "context.json"))
+    run.context = readJsonFile(folder / "context.json");
+  return run;
+}
+
+std::string caseId(const json& r) { return r["case"]["id"].get<std::string>(); }
+
+// The settings that define what a case measures; a difference makes its timings incomparable.
+std::vector<std::string> definitionChanges(const json& a, const json& b) {
+  static const std::vector<std::pair<std::string, json::json_pointer>> kFields = {
+      {"scene", json::json_pointer("/scene/spec")},
+      {"shadow", json::json_pointer("/shadow")},
+      {"oit", json::json_pointer("/oit")},
+      {"size", json::json_pointer("/size")},
+      {"primitive", json::json_pointer("/primitive")}};
+  std::vector<std::string> changed;
+  for (const auto& [name, ptr] : kFields) {
+    const json va = a.contains(ptr) ? a[ptr] : json();
+    const json vb = b.contains(ptr) ? b[ptr] : json();
+    if (va != vb) changed.push_back(name + " " + va.dump() + " -> " + vb.dump());
+  }
+  return changed;
+}
+
+std::string format(const char* fmt, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, fmt, v);
+  return buf;
+}
+
+std::string formatP(double p) { return p < 1e-4 ? format("%.1e", p) : format("%.3g", p); }
+
+// Passes never fail a comparison, so their slowdowns are written in lower case.
+std::string verdictText(const TimingChange& t, bool pass) {
+  std::string s = pass && t.verdict == Verdict::Slower ? "slower" : verdictName(t.verdict);
+  if (!t.note.empty()) s += " (" + t.note + ")";
+  return s;
+}
+
+json optionalJson(const std::optional<double>& v) { return v ? json(*v) : json(); }
+
+json timingJson(const TimingChange& t) {
+  return {{"verdict", verdictName(t.verdict)},
+          {"note", t.note},
+          {"old_median", optionalJson(t.oldMedian)},
+          {"new_median", optionalJson(t.newMedian)},
+          {"change_pct", optionalJson(t.changePct)},
+          {"p", optionalJson(t.p)},
+          {"exact", t.exact},
+          {"old_samples", t.oldSamples},
+          {"new_samples", t.newSamples}};
+}
+
+std::string runLabel(const RunResults& run) {
+  std::string s = run.source;
+  const json& c = run.context;
+  if (c.is_object()) {
+    std::vector<std::string> parts;
+    if (c.contains("commit") && c["commit"].is_string()) {
+      std::string commit = c["commit"].get<std::string>().substr(0, 10);
+      if (c.value("commit_dirty", false)) commit += " (dirty)";
+      parts.push_back("commit " + commit);
+    }
+    if (c.contains("date") && c["date"].is_string()) parts.push_back(c["date"].get<std::string>());
+    if (!parts.empty()) {
+      s += " [";
+      for (std::size_t i = 0; i < parts.size(); ++i) s += (i ? ", " : "") + parts[i];
+      s += "]";
+    }
+  }
+  return s + ", " + std::to_string(run.results.size()) + " cases";
+}
+
+// The context keys that make timings incomparable when they differ.
+std::vector<std::string> contextDifferences(const json& a, const json& b) {
+  std::vector<std::string> diff;
+  if (!a.is_object() || !b.is_object()) return diff;
+  for (const char* key : {"cpu", "os", "mesa", "build_type", "compiler", "devices"}) {
+    const json va = a.contains(key) ? a[key] : json();
+    const json vb = b.contains(key) ? b[key] : json();
+    if (va != vb) diff.push_back(key);
+  }
+  return diff;
+}
+
+}  // namespace
+
+const char* verdictName(Verdict v) {
+  switch (v) {
+    case Verdict::Ok:
+      return "ok";
+    case Verdict::Slower:
+      return "SLOWER";
+    case Verdict::Faster:
+      return "faster";
+    case Verdict::NotJudged:
+      return "not judged";
+    case Verdict::DefinitionChanged:
+      return "definition changed";
+    case Verdict::Added:
+      return "added";
+    case Verdict::Removed:
+      return "removed";
+  }
+  return "?";
+}
+
+RunResults loadRunResults(const std::string& path) {
+  const fs::path p(path);
+  std::error_code ec;
+  if (!fs::exists(p, ec)) throw InputError(path + ": no such file or folder");
+  RunResults run;
+  if (fs::is_directory(p, ec)) {
+    if (fs::is_regular_file(p / "results.json", ec)) {
+      run = loadResultsFile(p / "results.json");
+    } else if (fs::is_directory(p / "cases", ec)) {
+      run = loadCaseFiles(p, p / "cases");
+    } else {
+      throw InputError(path + ": folder has neither results.json nor cases/*.json");
+    }
+  } else {
+    run = loadResultsFile(p);
+  }
+  std::set<std::string> seen;
+  for (const json& r : run.results)
+    if (!seen.insert(caseId(r)).second)
+      throw InputError(run.source + ": case " + caseId(r) + " appears more than once");
+  return run;
+}
+
+TimingChange compareTiming(const json& oldMs, const json& newMs, const CompareRunsOptions& opt) {
+  TimingChange t;
+  const double oldMedian = oldMs.at("median").get<double>();
+  const double newMedian = newMs.at("median").get<double>();
+  t.oldMedian = oldMedian;
+  t.newMedian = newMedian;
+  auto samples = [](const json& ms) {
+    return ms.contains("samples") ? ms["samples"].get<std::vector<double>>()
+                                  : std::vector<double>();
+  };
+  const std::vector<double> before = samples(oldMs), after = samples(newMs);
+  t.oldSamples = static_cast<int>(before.size());
+  t.newSamples = static_cast<int>(after.size());
+  if (oldMedian > 0) {
+    t.changePct = (newMedian - oldMedian) / oldMedian * 100.0;
+  } else if (newMedian == oldMedian) {
+    t.changePct = 0.0;
+  } else {
+    t.note = "old median is 0";
+    return t;
+  }
+  if (before.empty() || after.empty()) {
+    t.note = "no samples";
+    return t;
+  }
+  const double best = mannWhitneyMinP(t.oldSamples, t.newSamples);
+  if (best >= opt.alpha) {
+    t.note = "too few repetitions: " + std::to_string(t.oldSamples) + " vs " +
+             std::to_string(t.newSamples) + ", best possible p " + formatP(best);
+    return t;
+  }
+  const bool slower = *t.changePct >= 0;
+  const RankTest test =
+      slower ? mannWhitneyGreater(before, after) : mannWhitneyGreater(after, before);
+  t.p = test.p;
+  t.exact = test.exact;
+  const bool significant = test.p < opt.alpha;
+  const bool beyond = std::abs(*t.changePct) > opt.thresholdPct;
+  if (beyond && significant) {
+    t.verdict = slower ? Verdict::Slower : Verdict::Faster;
+  } else {
+    t.verdict = Verdict::Ok;
+    if (beyond) t.note = "not significant";
+  }
+  return t;
+}
+
+std::vector<CaseComparison> compareRuns(const RunResults& oldRun, const RunResults& newRun,
+                                        const CompareRunsOptions& opt) {
+  std::map<std::string, const json*> newById;
+  for (const json& r : newRun.results) newById[caseId(r)] = &r;
+  std::set<std::string> matched;
+  std::vector<CaseComparison> out;
+  for (const json& a : oldRun.results) {
+    CaseComparison c;
+    c.id = caseId(a);
+    c.frame.name = c.id;
+    c.frame.oldMedian = a["frame_ms"]["median"].get<double>();
+    const auto it = newById.find(c.id);
+    if (it == newById.end()) {
+      c.verdict = c.frame.verdict = Verdict::Removed;
+      out.push_back(std::move(c));
+      continue;
+    }
+    matched.insert(c.id);
+    const json& b = *it->second;
+    const std::vector<std::string> changes = definitionChanges(a, b);
+    if (!changes.empty()) {
+      c.verdict = c.frame.verdict = Verdict::DefinitionChanged;
+      c.frame.newMedian = b["frame_ms"]["median"].get<double>();
+      for (std::size_t i = 0; i < changes.size(); ++i) c.frame.note += (i ? "; " : "") + changes[i];
+      out.push_back(std::move(c));
+      continue;
+    }
+    c.frame = compareTiming(a["frame_ms"], b["frame_ms"], opt);
+    c.frame.name = c.id;
+    c.verdict = c.frame.verdict;
+
+    const json empty = json::array();
+    const json& oldPasses = a.contains("passes") ? a["passes"] : empty;
+    const json& newPasses = b.contains("passes") ? b["passes"] : empty;
+    std::map<std::string, const json*> oldByName;
+    for (const json& p : oldPasses) oldByName[p["name"].get<std::string>()] = &p;
+    std::set<std::string> newNames;
+    for (const json& p : newPasses) {
+      const std::string name = p["name"].get<std::string>();
+      newNames.insert(name);
+      const auto op = oldByName.find(name);
+      TimingChange t;
+      if (op == oldByName.end()) {
+        t.verdict = Verdict::Added;
+        t.newMedian = p["ms"]["median"].get<double>();
+      } else {
+        t = compareTiming((*op->second)["ms"], p["ms"], opt);
+        if (t.verdict != Verdict::Slower && t.verdict != Verdict::Faster) continue;
+      }
+      t.name = name;
+      c.passes.push_back(std::move(t));
+    }
+    for (const json& p : oldPasses) {
+      const std::string name = p["name"].get<std::string>();
+      if (newNames.count(name)) continue;
+      TimingChange t;
+      t.name = name;
+      t.verdict = Verdict::Removed;
+      t.oldMedian = p["ms"]["median"].get<double>();
+      c.passes.push_back(std::move(t));
+    }
+    out.push_back(std::move(c));
+  }
+  for (const json& b : newRun.results) {
+    if (matched.count(caseId(b))) continue;
+    CaseComparison c;
+    c.id = c.frame.name = caseId(b);
+    c.verdict = c.frame.verdict = Verdict::Added;
+    c.frame.newMedian = b["frame_ms"]["median"].get<double>();
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
+int runCompareRuns(const std::string& oldPath, const std::string& newPath,
+                   const CompareRunsOptions& opt, bool asJson, std::ostream& out) {
+  if (!std::isfinite(opt.thresholdPct) || opt.thresholdPct < 0)
+    throw InputError("--threshold must be a percentage >= 0");
+  if (!(opt.alpha > 0 && opt.alpha < 1)) throw InputError("--alpha must be between 0 and 1");
+  const RunResults oldRun = loadRunResults(oldPath);
+  const RunResults newRun = loadRunResults(newPath);
+  const std::vector<CaseComparison> cases = compareRuns(oldRun, newRun, opt);
+
+  std::map<Verdict, int> counts;
+  for (const auto& c : cases) ++counts[c.verdict];
+  const int status = counts[Verdict::Slower] > 0 ? 1 : 0;
+  const std::vector<std::string> contextDiff = contextDifferences(oldRun.context, newRun.context);
+
+  if (asJson) {
+    json j;
+    j["old"] = oldRun.source;
+    j["new"] = newRun.source;
+    j["threshold_pct"] = opt.thresholdPct;
+    j["alpha"] = opt.alpha;
+    j["context_differs"] = contextDiff;
+    j["cases"] = json::array();
+    for (const auto& c : cases) {
+      json cj = timingJson(c.frame);
+      cj["id"] = c.id;
+      cj["passes"] = json::array();
+      for (const auto& p : c.passes) {
+        json pj = timingJson(p);
+        pj["name"] = p.name;
+        cj["passes"].push_back(std::move(pj));
+      }
+      j["cases"].push_back(std::move(cj));
+    }
+    json summary;
+    for (Verdict v : {Verdict::Slower, Verdict::Faster, Verdict::Ok, Verdict::NotJudged,
+                      Verdict::DefinitionChanged, Verdict::Added, Verdict::Removed})
+      summary[verdictName(v)] = counts[v];
+    j["summary"] = summary;
+    j["status"] = status;
+    out << j.dump(2) << "\n";
+    return status;
+  }
+
+  out << "old: " << runLabel(oldRun) << "\n";
+  out << "new: " << runLabel(newRun) << "\n";
+  if (!contextDiff.empty()) {
+    out << "note: the runs' contexts differ in";
+    for (const auto& k : contextDiff) out << " " << k;
+    out << "; timings may not be comparable\n";
+  }
+  // One row per case, then its notable passes indented.
+  std::vector<std::array<std::string, 6>> rows;
+  rows.push_back({"case", "old ms", "new ms", "change", "p", "verdict"});
+  auto row = [&](const std::string& name, const TimingChange& t, bool pass) {
+    rows.push_back({name, t.oldMedian ? format("%.3f", *t.oldMedian) : "-",
+                    t.newMedian ? format("%.3f", *t.newMedian) : "-",
+                    t.changePct && t.verdict != Verdict::DefinitionChanged
+                        ? format("%+.1f%%", *t.changePct)
+                        : "-",
+                    t.p ? formatP(*t.p) : "-", verdictText(t, pass)});
+  };
+  for (const auto& c : cases) {
+    row(c.id, c.frame, false);
+    for (const auto& p : c.passes) row("  pass " + p.name, p, true);
+  }
+  std::array<std::size_t, 6> width{};
+  for (const auto& r : rows)
+    for (std::size_t i = 0; i < r.size(); ++i) width[i] = std::max(width[i], r[i].size());
+  for (const auto& r : rows) {
+    std::string line = r[0] + std::string(width[0] - r[0].size(), ' ');
+    for (std::size_t i = 1; i < 5; ++i)
+      line += "  " + std::string(width[i] - r[i].size(), ' ') + r[i];
+    line += "  " + r[5];
+    out << line << "\n";
+  }
+  out << cases.size() << " cases: " << counts[Verdict::Slower] << " slower, "
+      << counts[Verdict::Faster] << " faster, " << counts[Verdict::Ok] << " ok, "
+      << counts[Verdict::NotJudged] << " not judged, " << counts[Verdict::DefinitionChanged]
+      << " definition changed, " << counts[Verdict::Added] << " added, " << counts[Verdict::Removed]
+      << " removed (threshold " << format("%g", opt.thresholdPct) << "%, alpha "
+      << format("%g", opt.alpha) << ")\n";
+  return status;
+}
+
+void registerCompareRunsCommand(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "compare-runs",
+      "compare the timings of two runs case by case (exit 1 when a case slowed significantly)");
+  auto oldPath = std::make_shared<std::string>();
+  auto newPath = std::make_shared<std::string>();
+  auto threshold = std::make_shared<std::string>("5");
+  auto alpha = std::make_shared<double>(0.05);
+  auto asJson = std::make_shared<bool>(false);
+  cmd->add_option("OLD", *oldPath, "results.json, or a sweep folder (results.json or cases/*.json)")
+      ->required();
+  cmd->add_option("NEW", *newPath, "the same, for the run to judge")->required();
+  cmd->add_option("--threshold", *threshold,
+                  "percent a median must change by to count (e.g. 5 or 5%)")
+      ->capture_default_str();
+  cmd->add_option("--alpha", *alpha, "significance level of the one-sided test")
+      ->capture_default_str();
+  cmd->add_flag("--json", *asJson, "print one JSON object instead of the table");
+  cmd->footer(
+      "Cases are matched by case.id; cases in only one run are listed as added/removed and do not\n"
+      "fail. A case whose scene, shadow, oit, size or primitive differ is 'definition changed' "
+      "and\n"
+      "is not judged. For the rest, change = new/old frame_ms median - 1, and the repetitions\n"
+      "(frame_ms.samples) get a one-sided Mann-Whitney U test in the direction of the change\n"
+      "(exact distribution without ties and m*n <= 2500, else the normal approximation with tie\n"
+      "and continuity correction); p is that test's p-value.\n"
+      "  SLOWER  change > +threshold and p < alpha (a regression: exit status 1)\n"
+      "  faster  change < -threshold and p < alpha (information)\n"
+      "  ok      otherwise ('not significant' when the change alone is beyond the threshold)\n"
+      "  not judged: 'no samples' (a run lacks frame_ms.samples: summary statistics cannot be\n"
+      "  tested), or 'too few repetitions' (1/C(m+n,m) >= alpha: even fully separated samples\n"
+      "  could not be significant; at alpha 0.05, 3 vs 3 is too few, 4 vs 4 is enough).\n"
+      "Passes that are slower or faster by the same rules, or in only one run, are listed under\n"
+      "their case for information (only the frame time fails a case).\n"
+      "Exit status: 0 no regression, 1 a case SLOWER, 2 bad input.");
+  cmd->callback([=] {
+    runGuarded("compare-runs", [&] {
+      CompareRunsOptions opt;
+      std::string t = *threshold;
+      if (!t.empty() && t.back() == '%') t.pop_back();
+      std::size_t used = 0;
+      try {
+        opt.thresholdPct = std::stod(t, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (t.empty() || used != t.size() || !std::isfinite(opt.thresholdPct) || opt.thresholdPct < 0)
+        throw InputError("--threshold " + *threshold + ": not a percentage >= 0");
+      opt.alpha = *alpha;
+      return runCompareRuns(*oldPath, *newPath, opt, *asJson, std::cout);
+    });
+  });
+}
+
 }  // namespace sb

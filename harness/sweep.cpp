@@ -354,7 +354,8 @@ int mergeSweeps(const std::string& outText, const std::vector<std::string>& inpu
   try {
     for (const auto& [name, in] : owner) {
       const ojson result = readJsonFile(fs::path(in) / "cases" / name);
-      for (const auto& [kind, rel] : result.value("images", ojson::object()).items())
+      const ojson images = result.value("images", ojson::object());
+      for (const auto& [kind, rel] : images.items())
         fs::copy_file(fs::path(in) / rel.get<std::string>(), tmp / rel.get<std::string>());
       fs::copy_file(fs::path(in) / "cases" / name, tmp / "cases" / name);
     }

@@ -1,0 +1,484 @@
+// `strandbench compare-runs`: the Mann-Whitney U test against known values, and the command on
+// synthetic results.json files (unchanged, deliberately slowed, noise only, too few
+// repetitions, no samples, added/removed/definition changed, sweep folders, bad input).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "harness/compare_runs.h"
+#include "harness/stats.h"
+#include "test_util.h"
+
+using nlohmann::json;
+using sbtest::runCli;
+using sbtest::tempDir;
+
+namespace {
+
+// ---- statistics ----
+
+TEST(MannWhitney, FullySeparatedFiveVsFiveIsOneIn252) {
+  const sb::RankTest t = sb::mannWhitneyGreater({1, 2, 3, 4, 5}, {6, 7, 8, 9, 10});
+  EXPECT_TRUE(t.exact);
+  EXPECT_DOUBLE_EQ(t.u, 25.0);
+  EXPECT_NEAR(t.p, 1.0 / 252.0, 1e-12);
+  // The other direction: every ordering has U >= 0.
+  const sb::RankTest back = sb::mannWhitneyGreater({6, 7, 8, 9, 10}, {1, 2, 3, 4, 5});
+  EXPECT_DOUBLE_EQ(back.u, 0.0);
+  EXPECT_NEAR(back.p, 1.0, 1e-12);
+}
+
+// The tables' critical value for m = n = 5, one-sided 0.05: P(U <= 4) = 12/252 = 0.0476, so by
+// symmetry P(U >= 21) = 12/252 and P(U >= 20) = 19/252 (> 0.05).
+TEST(MannWhitney, ExactTailMatchesTheTable) {
+  EXPECT_NEAR(sb::mannWhitneyExactUpperTail(5, 5, 21), 12.0 / 252.0, 1e-12);
+  EXPECT_NEAR(sb::mannWhitneyExactUpperTail(5, 5, 20), 19.0 / 252.0, 1e-12);
+  EXPECT_NEAR(sb::mannWhitneyExactUpperTail(5, 5, 0), 1.0, 1e-12);
+}
+
+// U = m*n/2 (interleaved samples): for m = n = 4 the counts of U = 0..16 are the coefficients of
+// the Gaussian binomial [8 choose 4]: 1 1 2 3 5 5 7 7 8 7 7 5 5 3 2 1 1 (70 in all), so
+// P(U >= 8) = 39/70, a little over one half.
+TEST(MannWhitney, InterleavedSamplesGiveAboutOneHalf) {
+  const sb::RankTest t = sb::mannWhitneyGreater({1, 4, 5, 8}, {2, 3, 6, 7});
+  EXPECT_TRUE(t.exact);
+  EXPECT_DOUBLE_EQ(t.u, 8.0);
+  EXPECT_NEAR(t.p, 39.0 / 70.0, 1e-12);
+  EXPECT_GT(t.p, 0.5);
+}
+
+// The recurrence against brute force: every choice of which m of the m+n ranks are x.
+TEST(MannWhitney, ExactDistributionMatchesEnumeration) {
+  for (auto [m, n] : {std::pair{1, 1}, {1, 4}, {2, 3}, {3, 3}, {4, 4}, {3, 6}, {6, 2}, {5, 5}}) {
+    const int total = m + n;
+    std::vector<int> atLeast(m * n + 2, 0);
+    int orderings = 0;
+    for (int mask = 0; mask < (1 << total); ++mask) {
+      if (__builtin_popcount(mask) != m) continue;
+      ++orderings;
+      int u = 0, xsBelow = 0;  // ranks ascending; bit set = an x
+      for (int r = 0; r < total; ++r) {
+        if (mask & (1 << r))
+          ++xsBelow;
+        else
+          u += xsBelow;
+      }
+      for (int k = 0; k <= u; ++k) ++atLeast[k];
+    }
+    for (int k = 0; k <= m * n + 1; ++k)
+      EXPECT_NEAR(sb::mannWhitneyExactUpperTail(m, n, k),
+                  static_cast<double>(atLeast[k]) / orderings, 1e-12)
+          << m << " vs " << n << ", U >= " << k;
+    EXPECT_NEAR(sb::mannWhitneyMinP(m, n), 1.0 / orderings, 1e-12);
+  }
+}
+
+// With ties: the normal approximation with tie and continuity correction. x = 1 2 2 3 3,
+// y = 3 3 4 4 5: U = 15 + 2 * (3 + 2 * 0.5) = 23; tie groups 2, 4, 2 give sum(t^3 - t) = 72;
+// var = 25/12 * (11 - 72/90) = 21.25; z = (23 - 12.5 - 0.5) / sqrt(21.25) = 2.1693;
+// p = 1 - Phi(z) = 0.015030 (scipy.stats.mannwhitneyu(y, x, alternative="greater")).
+TEST(MannWhitney, NormalApproximationWithTies) {
+  const sb::RankTest t = sb::mannWhitneyGreater({1, 2, 2, 3, 3}, {3, 3, 4, 4, 5});
+  EXPECT_FALSE(t.exact);
+  EXPECT_DOUBLE_EQ(t.u, 23.0);
+  EXPECT_NEAR(t.p, 0.0150298, 1e-6);
+  // Every value equal: no evidence either way.
+  EXPECT_DOUBLE_EQ(sb::mannWhitneyGreater({2, 2, 2}, {2, 2, 2}).p, 1.0);
+  EXPECT_DOUBLE_EQ(sb::mannWhitneyGreater({}, {1, 2}).p, 1.0);
+}
+
+// Large samples without ties use the normal approximation, which is then close to exact.
+TEST(MannWhitney, LargeSamplesAgreeWithTheExactTail) {
+  std::vector<double> x, y;
+  for (int i = 0; i < 60; ++i) {
+    x.push_back(i * 2.0);
+    y.push_back(i * 2.0 + 9.0);  // shifted by 4.5 ranks
+  }
+  const sb::RankTest t = sb::mannWhitneyGreater(x, y);
+  EXPECT_FALSE(t.exact);
+  EXPECT_NEAR(t.p, sb::mannWhitneyExactUpperTail(60, 60, t.u), 2e-3);
+  // At the exact limit (50 x 50) the exact distribution is still used.
+  x.resize(50);
+  y.resize(50);
+  const sb::RankTest e = sb::mannWhitneyGreater(x, y);
+  EXPECT_TRUE(e.exact);
+  EXPECT_GT(e.p, 0.0);
+  EXPECT_LT(e.p, 1.0);
+}
+
+TEST(MannWhitney, SmallestPossiblePValue) {
+  EXPECT_NEAR(sb::mannWhitneyMinP(2, 2), 1.0 / 6.0, 1e-12);
+  EXPECT_NEAR(sb::mannWhitneyMinP(3, 3), 0.05, 1e-12);  // cannot be < 0.05
+  EXPECT_NEAR(sb::mannWhitneyMinP(4, 4), 1.0 / 70.0, 1e-12);
+  EXPECT_NEAR(sb::mannWhitneyMinP(5, 5), 1.0 / 252.0, 1e-12);
+}
+
+// ---- synthetic runs ----
+
+// One case: frame samples; two passes split each frame 40/60.
+json makeResult(const std::string& id, int index, const std::vector<double>& frame,
+                const std::string& shadow = "none") {
+  auto timing = [](const std::vector<double>& v) {
+    const sb::Stats s = sb::summarize(v);
+    return json{{"median", s.median}, {"min", s.min},       {"max", s.max},
+                {"mean", s.mean},     {"stddev", s.stddev}, {"samples", v}};
+  };
+  std::vector<double> shadowMs, colorMs;
+  for (double f : frame) {
+    shadowMs.push_back(0.4 * f);
+    colorMs.push_back(0.6 * f);
+  }
+  const std::string backend = id.substr(id.rfind('=') + 1);
+  return {
+      {"backend", backend},
+      {"scene", {{"spec", "straight:strands=500,points=16"}, {"strands", 500}}},
+      {"shadow", shadow},
+      {"oit", "none"},
+      {"primitive", "lines"},
+      {"size", {128, 128}},
+      {"repeat", frame.size()},
+      {"warmup", 1},
+      {"passes",
+       {{{"name", "shadow.depth"}, {"executions", 1}, {"ms", timing(shadowMs)}},
+        {{"name", "color"}, {"executions", 1}, {"ms", timing(colorMs)}}}},
+      {"frame_ms", timing(frame)},
+      {"case", {{"id", id}, {"group", "g"}, {"index", index}, {"params", {{"backend", backend}}}}}};
+}
+
+// n samples around base ms with a relative spread of +-noise (fixed seed).
+std::vector<double> samplesAround(double base, int n, double noise, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> v;
+  for (int i = 0; i < n; ++i) v.push_back(base * (1.0 + noise * u(rng)));
+  return v;
+}
+
+const std::vector<std::string> kIds = {"shadows/shadow=none,backend=gl",
+                                       "shadows/shadow=none,backend=vulkan",
+                                       "shadows/shadow=osm,backend=gl"};
+
+// Three cases of `reps` repetitions each, optionally transformed per case.
+json makeRun(int reps = 10,
+             const std::function<std::vector<double>(int, std::vector<double>)>& change = {}) {
+  json results = json::array();
+  for (int i = 0; i < static_cast<int>(kIds.size()); ++i) {
+    std::vector<double> s = samplesAround(10.0 * (i + 1), reps, 0.03, 100 + i);
+    if (change) s = change(i, s);
+    results.push_back(makeResult(kIds[i], i, s));
+  }
+  return {{"schema_version", 1},
+          {"suite", {{"name", "synthetic"}}},
+          {"context", {{"commit", "0123456789abcdef"}, {"date", "2026-11-22T22:10:00Z"}}},
+          {"groups", json::array()},
+          {"results", results}};
+}
+
+std::string write(const std::filesystem::path& file, const std::string& text) {
+  std::filesystem::create_directories(file.parent_path());
+  std::ofstream(file) << text;
+  return file.string();
+}
+std::string write(const std::filesystem::path& file, const json& j) {
+  return write(file, j.dump(1));
+}
+
+// The output line of one case (the table row starting with its id).
+std::string lineOf(const std::string& out, const std::string& id) {
+  std::istringstream in(out);
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind(id + " ", 0) == 0) return line;
+  return "";
+}
+
+std::string compareRuns(const std::string& a, const std::string& b) {
+  return "compare-runs '" + a + "' '" + b + "'";
+}
+
+TEST(CompareRunsCli, UnchangedRunPasses) {
+  const auto dir = tempDir("cmpruns");
+  const std::string file = write(dir / "results.json", makeRun());
+  const auto r = runCli(compareRuns(file, file));
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  for (const auto& id : kIds) {
+    const std::string line = lineOf(r.out, id);
+    EXPECT_NE(line.find("+0.0%"), std::string::npos) << line;
+    EXPECT_NE(line.find(" ok"), std::string::npos) << line;
+  }
+  EXPECT_NE(r.out.find("3 cases: 0 slower, 0 faster, 3 ok"), std::string::npos) << r.out;
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CompareRunsCli, FlagsADeliberatelySlowedCase) {
+  const auto dir = tempDir("cmpruns");
+  const std::string before = write(dir / "old.json", makeRun());
+  const std::string after = write(dir / "new.json", makeRun(10, [](int i, std::vector<double> s) {
+                                    if (i == 1)
+                                      for (double& x : s) x *= 1.5;
+                                    return s;
+                                  }));
+  const auto r = runCli(compareRuns(before, after));
+  EXPECT_EQ(r.status, 1) << r.out << r.err;
+  const std::string slowed = lineOf(r.out, kIds[1]);
+  EXPECT_NE(slowed.find("SLOWER"), std::string::npos) << r.out;
+  EXPECT_NE(slowed.find("+5"), std::string::npos) << slowed;  // about +50%
+  EXPECT_NE(lineOf(r.out, kIds[0]).find(" ok"), std::string::npos) << r.out;
+  EXPECT_NE(lineOf(r.out, kIds[2]).find(" ok"), std::string::npos) << r.out;
+  // Its passes are listed under it, in lower case (they never fail the comparison).
+  const std::string pass = lineOf(r.out, "  pass shadow.depth");
+  EXPECT_NE(pass.find("+50.0%"), std::string::npos) << r.out;
+  EXPECT_NE(pass.find("slower"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("1 slower"), std::string::npos) << r.out;
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CompareRunsCli, NoiseOnlyChangePasses) {
+  const auto dir = tempDir("cmpruns");
+  const std::string before = write(dir / "old.json", makeRun());
+  const std::string after = write(dir / "new.json", makeRun(10, [](int i, std::vector<double> s) {
+                                    std::mt19937 rng(7 + i);
+                                    std::shuffle(s.begin(), s.end(), rng);
+                                    std::uniform_real_distribution<double> jitter(-0.01, 0.01);
+                                    for (double& x : s) x *= 1.0 + jitter(rng);
+                                    return s;
+                                  }));
+  const auto r = runCli(compareRuns(before, after));
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_EQ(r.out.find("SLOWER"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("0 slower"), std::string::npos) << r.out;
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CompareRunsCli, TwoRepetitionsAreNotJudged) {
+  const auto dir = tempDir("cmpruns");
+  const std::string before = write(dir / "old.json", makeRun(2));
+  const std::string after = write(dir / "new.json", makeRun(2, [](int, std::vector<double> s) {
+                                    for (double& x : s) x *= 3.0;
+                                    return s;
+                                  }));
+  const auto r = runCli(compareRuns(before, after));
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  for (const auto& id : kIds) {
+    const std::string line = lineOf(r.out, id);
+    EXPECT_NE(line.find("+200.0%"), std::string::npos) << line;
+    EXPECT_NE(line.find("not judged (too few repetitions: 2 vs 2"), std::string::npos) << line;
+  }
+  EXPECT_NE(r.out.find("3 not judged"), std::string::npos) << r.out;
+  // 4 vs 4 is enough at alpha 0.05 (best possible p = 1/70).
+  write(dir / "old4.json", makeRun(4));
+  write(dir / "new4.json", makeRun(4, [](int, std::vector<double> s) {
+          for (double& x : s) x *= 3.0;
+          return s;
+        }));
+  const auto four = runCli(compareRuns((dir / "old4.json").string(), (dir / "new4.json").string()));
+  EXPECT_EQ(four.status, 1) << four.out;
+  EXPECT_NE(four.out.find("3 slower"), std::string::npos) << four.out;
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CompareRunsCli, MissingSamplesAreNotJudged) {
+  const auto dir = tempDir("cmpruns");
+  json slowed = makeRun(10, [](int, std::vector<double> s) {
+    for (double& x : s) x *= 2.0;
+    return s;
+  });
+  for (auto& res : slowed["results"]) {
+    res["frame_ms"].erase("samples");
+    for (auto& p : res["passes"]) p["ms"].erase("samples");
+  }
+  const std::string before = write(dir / "old.json", makeRun());
+  const std::string after = write(dir / "new.json", slowed);
+  const auto r = runCli(compareRuns(before, after));
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  const std::string line = lineOf(r.out, kIds[0]);
+  EXPECT_NE(line.find("not judged (no samples)"), std::string::npos) << r.out;
+  EXPECT_NE(line.find("+100.0%"), std::string::npos) << line;
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CompareRunsCli, FasterIsInformationOnly) {
+  const auto dir = tempDir("cmpruns");
+  const std::string before = write(dir / "old.json", makeRun());
+  const std::string after = write(dir / "new.json", makeRun(10, [](int i, std::vector<double> s) {
+                                    if (i == 2)
+                                      for (double& x : s) x *= 0.6;
+                                    return s;
+                                  }));
+  const auto r = runCli(compareRuns(before, after));
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(lineOf(r.out, kIds[2]).find("faster"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("0 slower, 1 faster"), std::string::npos) << r.out;
+  std::filesystem::remove_all(dir);
+}
+
+// A 4% slowdown (samples spread +-0.5%) is within the default 5% but not within --threshold 2.
+TEST(CompareRunsCli, ThresholdOption) {
+  const auto dir = tempDir("cmpruns");
+  auto tight = [](int i, std::vector<double> s) {
+    return samplesAround(10.0 * (i + 1), static_cast<int>(s.size()), 0.005, 200 + i);
+  };
+  const std::string before = write(dir / "old.json", makeRun(10, tight));
+  const std::string after = write(dir / "new.json", makeRun(10, [&](int i, std::vector<double> s) {
+                                    s = tight(i, s);
+                                    if (i == 0)
+                                      for (double& x : s) x *= 1.04;
+                                    return s;
+                                  }));
+  const auto loose = runCli(compareRuns(before, after));
+  EXPECT_EQ(loose.status, 0) << loose.out << loose.err;
+  const auto strict = runCli(compareRuns(before, after) + " --threshold 2%");
+  EXPECT_EQ(strict.status, 1) << strict.out << strict.err;
+  EXPECT_NE(lineOf(strict.out, kIds[0]).find("SLOWER"), std::string::npos) << strict.out;
+  EXPECT_NE(strict.out.find("threshold 2%"), std::string::npos) << strict.out;
+  for (const char* bad : {"--threshold abc", "--threshold -1", "--alpha 0", "--alpha 1.5"}) {
+    const auto r = runCli(compareRuns(before, after) + " " + bad);
+    EXPECT_EQ(r.status, 2) << bad << "\n" << r.out;
+    EXPECT_NE(r.err.find("strandbench compare-runs:"), std::string::npos) << bad << r.err;
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CompareRunsCli, AddedRemovedAndDefinitionChanged) {
+  const auto dir = tempDir("cmpruns");
+  json changed = makeRun();
+  auto& results = changed["results"];
+  results.erase(results.begin());        // kIds[0] removed
+  results[0]["shadow"] = "osm:maps=16";  // kIds[1]: another technique
+  results.push_back(makeResult("shadows/shadow=dom,backend=gl", 3, samplesAround(5, 10, 0.03, 9)));
+  const std::string before = write(dir / "old.json", makeRun());
+  const std::string after = write(dir / "new.json", changed);
+  const auto r = runCli(compareRuns(before, after));
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(lineOf(r.out, kIds[0]).find("removed"), std::string::npos) << r.out;
+  const std::string def = lineOf(r.out, kIds[1]);
+  EXPECT_NE(def.find("definition changed"), std::string::npos) << r.out;
+  EXPECT_NE(def.find("osm:maps=16"), std::string::npos) << def;
+  EXPECT_NE(lineOf(r.out, "shadows/shadow=dom,backend=gl").find("added"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("1 definition changed, 1 added, 1 removed"), std::string::npos) << r.out;
+  std::filesystem::remove_all(dir);
+}
+
+// A sweep folder: its results.json, or (before `report`) its cases/*.json.
+TEST(CompareRunsCli, ReadsSweepFolders) {
+  const auto dir = tempDir("cmpruns");
+  const json before = makeRun();
+  write(dir / "old" / "results.json", before);
+  const json after = makeRun(10, [](int i, std::vector<double> s) {
+    if (i == 0)
+      for (double& x : s) x *= 1.5;
+    return s;
+  });
+  // Case files named in an order other than the suite's.
+  const std::vector<std::string> names = {"z.json", "m.json", "a.json"};
+  for (std::size_t i = 0; i < names.size(); ++i)
+    write(dir / "new" / "cases" / names[i], after["results"][i]);
+  write(dir / "new" / "context.json", after["context"]);
+  const auto r = runCli(compareRuns((dir / "old").string(), (dir / "new").string()));
+  EXPECT_EQ(r.status, 1) << r.out << r.err;
+  EXPECT_NE(lineOf(r.out, kIds[0]).find("SLOWER"), std::string::npos) << r.out;
+  // Rows keep the suite's order (case.index).
+  EXPECT_LT(r.out.find(kIds[0]), r.out.find(kIds[2]));
+  EXPECT_NE(r.out.find("commit 0123456789"), std::string::npos) << r.out;
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CompareRunsCli, JsonOutput) {
+  const auto dir = tempDir("cmpruns");
+  const std::string before = write(dir / "old.json", makeRun());
+  const std::string after = write(dir / "new.json", makeRun(10, [](int i, std::vector<double> s) {
+                                    if (i == 1)
+                                      for (double& x : s) x *= 1.5;
+                                    return s;
+                                  }));
+  const auto r = runCli(compareRuns(before, after) + " --json");
+  EXPECT_EQ(r.status, 1) << r.err;
+  const json j = json::parse(r.out);
+  EXPECT_EQ(j["status"], 1);
+  EXPECT_EQ(j["summary"]["SLOWER"], 1);
+  ASSERT_EQ(j["cases"].size(), 3u);
+  EXPECT_EQ(j["cases"][1]["id"], kIds[1]);
+  EXPECT_EQ(j["cases"][1]["verdict"], "SLOWER");
+  EXPECT_NEAR(j["cases"][1]["change_pct"].get<double>(), 50.0, 1e-6);
+  EXPECT_NEAR(j["cases"][1]["p"].get<double>(), sb::mannWhitneyMinP(10, 10), 1e-12);
+  EXPECT_TRUE(j["cases"][1]["exact"].get<bool>());
+  EXPECT_EQ(j["cases"][1]["passes"].size(), 2u);
+  EXPECT_EQ(j["cases"][0]["verdict"], "ok");
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CompareRunsCli, BadInputExitsTwo) {
+  const auto dir = tempDir("cmpruns");
+  const std::string good = write(dir / "good.json", makeRun());
+  json badSamples = makeRun();
+  badSamples["results"][1]["frame_ms"]["samples"] = "fast";
+  json twice = makeRun();
+  twice["results"].push_back(twice["results"][0]);
+  json noId = makeRun();
+  noId["results"][0]["case"].erase("id");
+  std::filesystem::create_directories(dir / "empty");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {write(dir / "notjson.json", std::string("{\"results\": [")), "not valid JSON"},
+      {write(dir / "noresults.json", json{{"schema_version", 1}}), "no \"results\" array"},
+      {write(dir / "version.json", json{{"schema_version", 7}, {"results", json::array()}}),
+       "schema_version"},
+      {write(dir / "samples.json", badSamples), "frame_ms.samples must be an array of numbers"},
+      {write(dir / "twice.json", twice), "appears more than once"},
+      {write(dir / "noid.json", noId), "lacks case.id"},
+      {(dir / "missing.json").string(), "no such file or folder"},
+      {(dir / "empty").string(), "neither results.json nor cases"},
+  };
+  // Bad input as OLD and as NEW, alternately.
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const auto& [path, message] = cases[i];
+    const auto r = runCli(i % 2 ? compareRuns(good, path) : compareRuns(path, good));
+    EXPECT_EQ(r.status, 2) << path << "\n" << r.out;
+    EXPECT_NE(r.err.find("strandbench compare-runs: " + path), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+  }
+  std::filesystem::remove_all(dir);
+}
+
+// The library call: loading and judging without the CLI.
+TEST(CompareRuns, JudgesTimingsDirectly) {
+  const sb::CompareRunsOptions opt;
+  auto ms = [](std::vector<double> v) { return json{{"median", sb::median(v)}, {"samples", v}}; };
+  const json base = ms({10, 10.1, 9.9, 10.2, 9.8});
+  EXPECT_EQ(sb::compareTiming(base, ms({15, 15.1, 14.9, 15.2, 14.8}), opt).verdict,
+            sb::Verdict::Slower);
+  EXPECT_EQ(sb::compareTiming(base, ms({5, 5.1, 4.9, 5.2, 4.8}), opt).verdict, sb::Verdict::Faster);
+  // Beyond the threshold in the median but not significant: overlapping samples.
+  const sb::TimingChange overlap = sb::compareTiming(base, ms({9, 10.7, 10.8, 20, 8}), opt);
+  EXPECT_EQ(overlap.verdict, sb::Verdict::Ok);
+  EXPECT_EQ(overlap.note, "not significant");
+  // Significant but within the threshold.
+  EXPECT_EQ(sb::compareTiming(base, ms({10.3, 10.4, 10.35, 10.45, 10.5}), opt).verdict,
+            sb::Verdict::Ok);
+  // 3 vs 3 fully separated gives p = 1/20 at best: too few at alpha 0.05, enough at 0.1.
+  const json three = ms({10, 10.1, 9.9}), slowThree = ms({15, 15.1, 14.9});
+  const sb::TimingChange few = sb::compareTiming(three, slowThree, opt);
+  EXPECT_EQ(few.verdict, sb::Verdict::NotJudged);
+  EXPECT_EQ(few.note, "too few repetitions: 3 vs 3, best possible p 0.05");
+  sb::CompareRunsOptions loose;
+  loose.alpha = 0.1;
+  const sb::TimingChange judged = sb::compareTiming(three, slowThree, loose);
+  EXPECT_EQ(judged.verdict, sb::Verdict::Slower);
+  EXPECT_NEAR(*judged.p, 0.05, 1e-12);
+  const sb::TimingChange none =
+      sb::compareTiming(json{{"median", 10.0}}, json{{"median", 20.0}}, opt);
+  EXPECT_EQ(none.verdict, sb::Verdict::NotJudged);
+  EXPECT_EQ(none.note, "no samples");
+  EXPECT_NEAR(*none.changePct, 100.0, 1e-12);
+}
+
+}  // namespace

@@ -1,0 +1,236 @@
+// Suites and sweeps: expansion, resume after a kill, shards and merge, the
+// reference computed once (and not at all when no case needs it), bad input.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <regex>
+
+#include "harness/suite.h"
+#include "test_util.h"
+
+namespace {
+
+using namespace sbtest;
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+// Two groups, both backends, a reference and a probe: small enough for seconds.
+const char* kTinySuite = R"({
+  "name": "tiny",
+  "defaults": {"scene": "straight:strands=60,points=6,head=0", "size": "24x24", "repeat": 2,
+               "warmup": 0, "reference": true},
+  "presets": {"clumps": {"scene": "clustered:strands=60,points=6,head=0,alpha=0.4,clusters=6"}},
+  "groups": [
+    {"name": "shadows", "axes": {"shadow": ["none", "dom:layers=3", "occupancy"]}},
+    {"name": "oit", "preset": "clumps", "backends": ["gl"], "oit": "wavg",
+     "axes": {"shadow.maps": [2, 4]}, "shadow": "osm",
+     "probe": {"texel": [12, 12], "map_size": 24, "samples": 8}}
+  ]
+})";
+
+fs::path writeSuite(const fs::path& dir, const std::string& text, const std::string& name) {
+  const fs::path p = dir / name;
+  std::ofstream(p) << text;
+  return p;
+}
+
+// results.json without what differs run to run: timings, the context, devices.
+json withoutTimings(json doc) {
+  doc.erase("context");
+  for (auto& r : doc["results"]) {
+    r.erase("frame_ms");
+    for (auto& p : r["passes"]) p.erase("ms");
+  }
+  return doc;
+}
+
+json results(const fs::path& dir) { return json::parse(readFile(dir / "results.json")); }
+
+TEST(Suite, ExpandsAxesInOrderWithBackendInnermost) {
+  const sb::Suite s = sb::parseSuite(kTinySuite, "tiny.json");
+  ASSERT_EQ(s.cases.size(), 8u);
+  EXPECT_EQ(s.cases[0].id, "shadows/shadow=none,backend=gl");
+  EXPECT_EQ(s.cases[1].id, "shadows/shadow=none,backend=vulkan");
+  EXPECT_EQ(s.cases[6].id, "oit/shadow.maps=2,backend=gl");
+  // The axis sets one option in the group's spec; the preset's scene applies.
+  EXPECT_EQ(s.cases[7].request.shadow, "osm:maps=4");
+  EXPECT_EQ(s.cases[7].request.scene, "clustered:strands=60,points=6,head=0,alpha=0.4,clusters=6");
+  EXPECT_EQ(s.cases[7].request.oit, "wavg");
+  EXPECT_TRUE(s.cases[7].request.probe.has_value());
+  EXPECT_EQ(s.cases[0].request.width, 24u);
+  EXPECT_EQ(s.cases[0].request.repeat, 2);
+  // Stems are file-system safe and distinct.
+  std::set<std::string> stems;
+  for (const auto& c : s.cases) {
+    EXPECT_TRUE(std::regex_match(c.stem, std::regex("[A-Za-z0-9._=-]+"))) << c.stem;
+    stems.insert(c.stem);
+  }
+  EXPECT_EQ(stems.size(), s.cases.size());
+}
+
+TEST(Suite, BadSuitesNameTheProblem) {
+  expectInputError([] { sb::parseSuite("{\n  \"name\": \"x\",\n  \"groups\": [,]\n}", "s.json"); },
+                   {"s.json", "malformed JSON", "line 3"});
+  expectInputError([] { sb::parseSuite(R"({"name": "x", "grups": []})", "s.json"); },
+                   {"grups", "groups"});
+  expectInputError(
+      [] {
+        sb::parseSuite(R"({"name": "x", "groups": [{"name": "g", "shadw": "dom"}]})", "s.json");
+      },
+      {"group 'g'", "shadw", "shadow"});
+  expectInputError(
+      [] {
+        sb::parseSuite(R"({"name": "x", "groups": [{"name": "g", "shadow": "dmo"}]})", "s.json");
+      },
+      {"dmo", "dom"});
+  expectInputError(
+      [] {
+        sb::parseSuite(R"({"name": "x", "groups": [{"name": "g", "axes": {"shadow.layers": []}}]})",
+                       "s.json");
+      },
+      {"shadow.layers", "non-empty"});
+  expectInputError(
+      [] {
+        sb::parseSuite(
+            R"({"name": "x", "groups": [{"name": "g", "shadow": "dom", "axes": {"shadow.layers": [0]}}]})",
+            "s.json");
+      },
+      {"layers"});
+  expectInputError(
+      [] {
+        sb::parseSuite(R"({"name": "x", "groups": [{"name": "g", "scene": "curlly"}]})", "s.json");
+      },
+      {"curlly", "curly"});
+  expectInputError(
+      [] {
+        sb::parseSuite(R"({"name": "x", "groups": [{"name": "g", "size": "0x0"}]})", "s.json");
+      },
+      {"0x0"});
+}
+
+TEST(Sweep, ResumedAfterAKillGivesTheSameResults) {
+  const fs::path dir = tempDir("sweep-resume");
+  const fs::path suite = writeSuite(dir, kTinySuite, "tiny.json");
+  ASSERT_EQ(runCli("sweep " + suite.string() + " --out " + (dir / "full").string()).status, 0);
+
+  // Killed (SIGKILL, no chance to clean up) once two cases are written.
+  const std::string part = (dir / "part").string();
+  const std::string script =
+      "( " + std::string(SB_CLI) + " sweep " + suite.string() + " --out " + part +
+      " >/dev/null 2>&1 & pid=$!; " + "while [ $(ls " + part +
+      "/cases 2>/dev/null | grep -c 'json$') -lt 2 ]; do sleep 0.02; done; " +
+      "kill -9 $pid; wait $pid 2>/dev/null )";
+  ASSERT_EQ(std::system(("bash -c '" + script + "'").c_str()) >= 0, true);
+  ASSERT_FALSE(fs::exists(fs::path(part) / "results.json")) << "the kill came too late";
+  int written = 0;
+  for (const auto& e : fs::directory_iterator(fs::path(part) / "cases"))
+    written += e.path().extension() == ".json";
+  ASSERT_GE(written, 2);
+  ASSERT_LT(written, 8);
+
+  // Without --resume the folder is refused, and left as it is.
+  const CliResult again = runCli("sweep " + suite.string() + " --out " + part);
+  EXPECT_EQ(again.status, 2);
+  EXPECT_NE(again.err.find("--resume"), std::string::npos) << again.err;
+
+  const CliResult resumed = runCli("sweep " + suite.string() + " --out " + part + " --resume");
+  ASSERT_EQ(resumed.status, 0) << resumed.err;
+  EXPECT_NE(resumed.out.find("already done"), std::string::npos) << resumed.out;
+  EXPECT_EQ(withoutTimings(results(part)), withoutTimings(results(dir / "full")));
+  fs::remove_all(dir);
+}
+
+TEST(Sweep, ShardsMergeIntoTheUnshardedResults) {
+  const fs::path dir = tempDir("sweep-shards");
+  const fs::path suite = writeSuite(dir, kTinySuite, "tiny.json");
+  ASSERT_EQ(runCli("sweep " + suite.string() + " --out " + (dir / "full").string()).status, 0);
+  for (const char* shard : {"1/2", "2/2"})
+    ASSERT_EQ(runCli("sweep " + suite.string() + " --shard " + shard + " --out " +
+                     (dir / (std::string("s") + shard[0])).string())
+                  .status,
+              0);
+  EXPECT_EQ(results(dir / "s1")["results"].size() + results(dir / "s2")["results"].size(), 8u);
+  const CliResult merged = runCli("merge --out " + (dir / "merged").string() + " " +
+                                  (dir / "s1").string() + " " + (dir / "s2").string());
+  ASSERT_EQ(merged.status, 0) << merged.err;
+  EXPECT_EQ(withoutTimings(results(dir / "merged")), withoutTimings(results(dir / "full")));
+  // A shard given twice is refused, and nothing is created.
+  const CliResult twice = runCli("merge --out " + (dir / "twice").string() + " " +
+                                 (dir / "s1").string() + " " + (dir / "s1").string());
+  EXPECT_EQ(twice.status, 2);
+  EXPECT_NE(twice.err.find("in both"), std::string::npos) << twice.err;
+  EXPECT_FALSE(fs::exists(dir / "twice"));
+  fs::remove_all(dir);
+}
+
+TEST(Sweep, ReferenceComputedOncePerSceneAndViewAndNotWhenUnneeded) {
+  const fs::path dir = tempDir("sweep-ref");
+  // Three shadow techniques on one backend share one reference.
+  const fs::path once = writeSuite(dir, R"({"name": "once",
+    "defaults": {"scene": "straight:strands=40,points=5,head=0", "size": "16x16", "repeat": 1,
+                 "warmup": 0, "reference": true, "backends": ["gl"]},
+    "groups": [{"name": "g", "axes": {"shadow": ["none", "dom", "osm:maps=4"]}}]})",
+                                   "once.json");
+  CliResult r = runCli("sweep " + once.string() + " --out " + (dir / "once").string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("references rendered: 1\n"), std::string::npos) << r.out;
+
+  const fs::path none = writeSuite(dir, R"({"name": "none",
+    "defaults": {"scene": "straight:strands=40,points=5,head=0", "size": "16x16", "repeat": 1,
+                 "warmup": 0, "backends": ["gl"]},
+    "groups": [{"name": "g", "axes": {"shadow": ["none", "dom"]}}]})",
+                                   "none.json");
+  r = runCli("sweep " + none.string() + " --out " + (dir / "none").string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("references rendered: 0\n"), std::string::npos) << r.out;
+  for (const auto& res : results(dir / "none")["results"]) {
+    EXPECT_FALSE(res.contains("error"));
+    EXPECT_FALSE(res.contains("reference"));
+    EXPECT_FALSE(res.contains("measurement_graph"));
+  }
+  fs::remove_all(dir);
+}
+
+TEST(Sweep, FilterSelectsCasesById) {
+  const fs::path dir = tempDir("sweep-filter");
+  const fs::path suite = writeSuite(dir, kTinySuite, "tiny.json");
+  const CliResult r =
+      runCli("sweep " + suite.string() + " --filter 'dom.*gl' --out " + (dir / "f").string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json doc = results(dir / "f");
+  ASSERT_EQ(doc["results"].size(), 1u);
+  EXPECT_EQ(doc["results"][0]["case"]["id"], "shadows/shadow=dom:layers=3,backend=gl");
+  EXPECT_EQ(doc["schema_version"], 1);
+  EXPECT_TRUE(doc["context"].contains("commit"));
+  EXPECT_TRUE(doc["context"].contains("cpu"));
+  fs::remove_all(dir);
+}
+
+TEST(Sweep, BadInputExitsTwoAndWritesNothing) {
+  const fs::path dir = tempDir("sweep-bad");
+  const fs::path bad =
+      writeSuite(dir, "{\"name\": \"b\",\n\"groups\": [\n  {\"name\": 1}\n", "b.json");
+  CliResult r = runCli("sweep " + bad.string() + " --out " + (dir / "o").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("line"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "o"));
+
+  const fs::path suite = writeSuite(dir, kTinySuite, "tiny.json");
+  r = runCli("sweep " + suite.string() + " --out " + (dir / "tiny.json" / "o").string());
+  EXPECT_EQ(r.status, 2);
+  r = runCli("sweep " + suite.string() + " --shard 3/2 --out " + (dir / "o").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--shard"), std::string::npos) << r.err;
+  r = runCli("sweep " + suite.string() + " --filter '(' --out " + (dir / "o").string());
+  EXPECT_EQ(r.status, 2);
+  r = runCli("sweep " + (dir / "missing.json").string() + " --out " + (dir / "o").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("missing.json"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "o"));
+  r = runCli("report " + dir.string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("sweep.json"), std::string::npos) << r.err;
+  fs::remove_all(dir);
+}
+
+}  // namespace
