@@ -98,25 +98,28 @@ PaperTable buildPaperTable(const json& t, const std::vector<const json*>& result
       row.paperUnit = text(find(jr, {"paper_unit"}));
       if (row.paperUnit.empty()) row.paperUnit = orDefault(text(find(t, {"paper_unit"})), "ms");
       row.paper = number(find(jr, {"paper"}));
-      if (row.paper && row.paperUnit == "fps") {
-        if (*row.paper > 0) row.paperComparable = 1000.0 / *row.paper;
+      if (row.paperUnit == "fps") {
+        if (row.paper && *row.paper > 0) row.paperComparable = 1000.0 / *row.paper;
       } else if (row.paperUnit == "ms" || row.paperUnit == "MiB") {
         row.paperComparable = row.paper;
+      } else {
+        pt.notes.push_back("row \"" + row.label + "\": unknown paper_unit " + row.paperUnit);
       }
-      if (baseline < 0 && find(jr, {"baseline"}) && *find(jr, {"baseline"}) == true)
+      const json* isBaseline = find(jr, {"baseline"});
+      if (baseline < 0 && isBaseline && *isBaseline == true)
         baseline = static_cast<int>(rows.size());
+      const json* match = find(jr, {"match"});
       std::string group = text(find(jr, {"group"}));
       if (group.empty()) group = tableGroup;
       for (const json* r : results) {
-        if (!matches(*r, group, find(jr, {"match"}))) continue;
+        if (!matches(*r, group, match)) continue;
         const std::string b = backendOf(*r);
         if (std::find(backends.begin(), backends.end(), b) == backends.end()) backends.push_back(b);
         row.byBackend[b].push_back(r);
       }
       if (row.byBackend.empty())
         pt.notes.push_back("row \"" + row.label + "\": no result of group \"" + group +
-                           "\" matches " +
-                           (find(jr, {"match"}) ? find(jr, {"match"})->dump() : "{}"));
+                           "\" matches " + (match ? match->dump() : "{}"));
       for (const auto& [b, rs] : row.byBackend)
         if (rs.size() > 1)
           pt.notes.push_back("row \"" + row.label + "\" matches " + std::to_string(rs.size()) +

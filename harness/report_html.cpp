@@ -75,7 +75,8 @@ std::string paramsLabel(const json& r, const std::vector<std::string>& keys) {
   return s.empty() ? "all" : s;
 }
 
-std::vector<std::string> without(std::vector<std::string> keys, std::vector<std::string> drop) {
+std::vector<std::string> without(std::vector<std::string> keys,
+                                 const std::vector<std::string>& drop) {
   std::erase_if(keys, [&](const std::string& k) {
     return std::find(drop.begin(), drop.end(), k) != drop.end();
   });
@@ -190,6 +191,7 @@ std::string probeCharts(const Group& g) {
     const json* depth = find(*r, {"probe", "light_depth"});
     if (!depth || !depth->is_array()) continue;
     Chart c{"visibility along a light ray: " + caseId(*r), "light depth", "visibility"};
+    c.autoLog = false;  // visibility falls to 0 along the ray: a log axis hides the shape
     for (const char* curve : {"exact", "visibility"}) {
       ChartSeries s{curve};
       s.markers = false;
@@ -233,13 +235,17 @@ std::string imageGrid(const Group& g, const fs::path& dir) {
     const json* images = find(*r, {"images"});
     if (!images || !images->is_object() || images->empty()) continue;
     o << "<figure>";
-    for (const char* kind : {"image", "reference", "heatmap"})
-      if (const json* rel = find(*images, {kind}); rel && rel->is_string())
+    std::string kinds;
+    for (const char* kind : {"image", "reference", "heatmap"}) {
+      if (const json* rel = find(*images, {kind}); rel && rel->is_string()) {
         o << embeddedImage(dir, rel->get<std::string>(), kind);
+        kinds += (kinds.empty() ? "" : " / ") + std::string(kind);
+      }
+    }
     std::string caption = caseId(*r);
     if (const auto rmse = number(find(*r, {"error", "image", "rmse"})))
       caption += " (image RMSE " + formatSig(*rmse) + ")";
-    o << "<figcaption>" << h(caption) << "<br>image / reference / heatmap</figcaption></figure>\n";
+    o << "<figcaption>" << h(caption) << "<br>" << h(kinds) << "</figcaption></figure>\n";
   }
   const std::string grid = o.str();
   return grid.empty() ? "" : "<div class=\"grid\">\n" + grid + "</div>\n";

@@ -54,9 +54,9 @@ double niceStep(double raw) {
   return (f <= 1 ? 1 : f <= 2 ? 2 : f <= 5 ? 5 : 10) * p;
 }
 
-Axis makeAxis(double min, double max) {
+Axis makeAxis(double min, double max, bool autoLog) {
   Axis a;
-  if (min > 0 && max / min > 100) {
+  if (autoLog && min > 0 && max / min > 100) {
     a.log = true;
     const int e0 = static_cast<int>(std::floor(std::log10(min)));
     const int e1 = static_cast<int>(std::ceil(std::log10(max)));
@@ -141,10 +141,12 @@ std::string svgChart(const Chart& chart) {
     }
   }
   const bool empty = !(x0 <= x1);
-  const Axis ax = empty ? Axis{} : makeAxis(x0, x1);
-  const Axis ay = empty ? Axis{} : makeAxis(y0, y1);
+  const Axis ax = empty ? Axis{} : makeAxis(x0, x1, chart.autoLog);
+  const Axis ay = empty ? Axis{} : makeAxis(y0, y1, chart.autoLog);
 
-  const int plotW = chart.width - kLeft - kRight, plotH = chart.plotHeight;
+  // About 7 px per character of the 13 px title.
+  const int width = std::max(chart.width, 7 * static_cast<int>(chart.title.size()) + 16);
+  const int plotW = width - kLeft - kRight, plotH = chart.plotHeight;
   const int height =
       kTop + plotH + kBottom + kLegendRow * static_cast<int>(chart.series.size()) + 4;
   // Data are mapped inset from the frame so that points on the range ends stay visible.
@@ -153,10 +155,10 @@ std::string svgChart(const Chart& chart) {
 
   std::ostringstream o;
   o << "<svg class=\"" << htmlEscape(chart.cssClass.empty() ? "chart" : chart.cssClass)
-    << "\" width=\"" << chart.width << "\" height=\"" << height << "\" viewBox=\"0 0 "
-    << chart.width << " " << height << "\" role=\"img\" aria-label=\"" << htmlEscape(chart.title)
+    << "\" width=\"" << width << "\" height=\"" << height << "\" viewBox=\"0 0 " << width << " "
+    << height << "\" role=\"img\" aria-label=\"" << htmlEscape(chart.title)
     << "\" font-family=\"sans-serif\" font-size=\"11\">\n";
-  o << "<text x=\"" << chart.width / 2 << "\" y=\"16\" text-anchor=\"middle\" font-size=\"13\">"
+  o << "<text x=\"" << width / 2 << "\" y=\"16\" text-anchor=\"middle\" font-size=\"13\">"
     << htmlEscape(chart.title) << "</text>\n";
   o << "<rect x=\"" << kLeft << "\" y=\"" << kTop << "\" width=\"" << plotW << "\" height=\""
     << plotH << "\" fill=\"#fff\" stroke=\"#888\"/>\n";

@@ -26,10 +26,11 @@ struct Chart {
   std::string title, xLabel, yLabel;
   std::string cssClass;  // class of the <svg> element
   std::vector<ChartSeries> series;
-  int width = 460, plotHeight = 240;
+  int width = 460, plotHeight = 240;  // width grows to fit a long title
+  bool autoLog = true;                // false: linear axes whatever the values
 };
 
-// Pixel-free scales: an axis is logarithmic when all its values are positive and
+// An axis is logarithmic when autoLog is set and all its values are positive and
 // span more than two decades, else linear with "nice" ticks (1, 2, 5 x 10^k).
 std::string svgChart(const Chart& chart);
 

@@ -1,0 +1,385 @@
+// The report writer: results.csv, report.md and report.html from a synthetic
+// results document, and report.html loaded offline in headless Chromium.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "browser_util.h"
+#include "harness/image.h"
+#include "harness/report_writer.h"
+#include "harness/svg_chart.h"
+#include "scenes/scene.h"
+#include "test_util.h"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+const char* const kScene = "curly:strands=1000,points=24,head=0";
+
+// A small picture with many values, so images and heatmaps look like images.
+void writePng(const fs::path& path, float tint) {
+  sb::Image img(16, 16, 3);
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) {
+      img.at(x, y, 0) = float(x) / 15.0f;
+      img.at(x, y, 1) = float(y) / 15.0f;
+      img.at(x, y, 2) = tint;
+    }
+  sb::writeImage(img, path.string());
+}
+
+json makeResult(const std::string& group, const json& params, int index, double ms,
+                double shadowMiB) {
+  std::string id = group + "/";
+  for (const auto& [k, v] : params.items())
+    if (k != "backend") id += k + "=" + (v.is_string() ? v.get<std::string>() : v.dump()) + ",";
+  id += "backend=" + params["backend"].get<std::string>();
+  const double shadowBytes = shadowMiB * 1024 * 1024;
+  return {
+      {"backend", params["backend"]},
+      {"device", "llvmpipe"},
+      {"scene", {{"spec", kScene}, {"strands", 1000}, {"points", 24000}, {"segments", 23000}}},
+      {"shadow", params.value("shadow", "osm:maps=" + params.value("shadow.maps", json(1)).dump())},
+      {"oit", "none"},
+      {"size", {128, 96}},
+      {"passes",
+       {{{"name", "shadow.build"}, {"ms", {{"median", ms * 0.25}}}},
+        {{"name", "shadow.filter"}, {"ms", {{"median", ms * 0.25}}}},
+        {{"name", "draw"}, {"ms", {{"median", ms * 0.5}}}}}},
+      {"frame_ms", {{"median", ms}, {"min", ms * 0.9}, {"max", ms * 1.2}, {"stddev", ms * 0.05}}},
+      {"memory",
+       {{"shadow_bytes", shadowBytes},
+        {"oit_bytes", 0},
+        {"total_bytes", shadowBytes + 4 * 1024 * 1024}}},
+      {"error",
+       {{"image", {{"rmse", 0.05 / ms}, {"psnr", 40.0 - ms}, {"ssim", 0.99}}},
+        {"visibility", {{"rmse", 0.1 / ms}, {"max", 0.5}}}}},
+      {"depth_complexity", {{"eye", {{"max", 12}}}, {"light", nullptr}}},
+      {"warnings", json::array()},
+      {"case", {{"id", id}, {"group", group}, {"index", index}, {"params", params}}},
+  };
+}
+
+// Two groups (one with a numeric technique axis and a probe), a paper table
+// with a baseline row and one without, images for three cases (one missing).
+json makeDocument(const fs::path& dir) {
+  json results = json::array();
+  int index = 0;
+  const std::vector<std::pair<std::string, std::vector<double>>> shadows = {
+      {"none", {2.0, 2.5}}, {"osm:maps=16", {4.0, 5.5}}, {"dom:layers=3", {3.0, 3.5}}};
+  for (const auto& [shadow, ms] : shadows) {
+    for (int b = 0; b < 2; ++b) {
+      const std::string backend = b ? "vulkan" : "gl";
+      results.push_back(makeResult("shadows", {{"shadow", shadow}, {"backend", backend}}, index++,
+                                   ms[b], shadow == "none" ? 0.0 : 2.0 + b));
+    }
+  }
+  for (int maps : {1, 2, 4})
+    results.push_back(makeResult("osm-maps", {{"shadow.maps", maps}, {"backend", "gl"}}, index++,
+                                 1.0 + maps, 0.5 * maps));
+
+  // Absent and non-finite values: no error, NaN and infinity (written as null).
+  results[0].erase("error");
+  results[0]["depth_complexity"] = nullptr;
+  results[1]["error"]["image"]["psnr"] = std::numeric_limits<double>::infinity();
+  results[4]["frame_ms"]["stddev"] = std::numeric_limits<double>::quiet_NaN();
+  results[3]["warnings"] = {"peeling cap hit: 8 layers | more needed & <tag>"};
+  results[6]["probe"] = {{"texel", {64, 64}},
+                         {"map_size", 128},
+                         {"light_depth", {0.1, 0.3, 0.5, 0.7, 0.9}},
+                         {"exact", {1.0, 0.8, 0.5, 0.3, 0.2}},
+                         {"visibility", {1.0, 0.7, 0.55, 0.25, nullptr}}};
+
+  fs::create_directories(dir / "images");
+  for (int i : {2, 3}) {
+    const std::string stem = "images/case" + std::to_string(i);
+    for (const char* kind : {"", ".reference", ".heatmap"})
+      writePng(dir / (stem + kind + ".png"), 0.1f * i);
+    results[i]["images"] = {{"image", stem + ".png"},
+                            {"reference", stem + ".reference.png"},
+                            {"heatmap", stem + ".heatmap.png"}};
+  }
+  results[4]["images"] = {{"image", "images/gone.png"}};
+
+  return {
+      {"schema_version", 1},
+      {"suite",
+       {{"name", "quick & dirty"}, {"description", "a test | suite"}, {"file", "suites/q.json"}}},
+      {"context",
+       {{"date", "2026-11-22T22:10:00Z"},
+        {"commit", "e31ecd4"},
+        {"commit_dirty", true},
+        {"cpu", "Test CPU (2 threads)"},
+        {"devices",
+         {{{"backend", "gl"}, {"platform", "egl"}, {"device", "llvmpipe"}},
+          {{"backend", "vulkan"}, {"device", "lavapipe"}}}}}},
+      {"groups",
+       {{{"name", "shadows"},
+         {"description", "every shadow technique"},
+         {"axes",
+          {{"shadow", {"none", "osm:maps=16", "dom:layers=3"}}, {"backend", {"gl", "vulkan"}}}}},
+        {{"name", "osm-maps"}, {"axes", {{"shadow.maps", {1, 2, 4}}, {"backend", {"gl"}}}}}}},
+      {"tables",
+       {{{"title", "DOM paper, Fig. 1"},
+         {"source", "Yuksel & Keyser 2008"},
+         {"group", "shadows"},
+         {"metric", "frame_ms"},
+         {"paper_unit", "fps"},
+         {"rows",
+          {{{"label", "no shadows"},
+            {"match", {{"shadow", "none"}}},
+            {"paper", 154},
+            {"baseline", true}},
+           {{"label", "OSM 16"}, {"match", {{"shadow", "osm:maps=16"}}}, {"paper", 81}},
+           {{"label", "no such row"}, {"match", {{"shadow", "xyz"}}}, {"paper", 10}}}}},
+        {{"title", "Shadow passes"},
+         {"group", "osm-maps"},
+         {"metric", "passes:shadow."},
+         {"paper_unit", "ms"},
+         {"rows", {{{"label", "4 maps"}, {"match", {{"shadow.maps", 4}}}, {"paper", 1.25}}}}}}},
+      {"results", results},
+  };
+}
+
+// Minimal RFC 4180 reader: rows of fields.
+std::vector<std::vector<std::string>> parseCsv(const std::string& s) {
+  std::vector<std::vector<std::string>> rows(1, std::vector<std::string>(1));
+  bool quoted = false;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const char c = s[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < s.size() && s[i + 1] == '"')
+        rows.back().back() += s[++i];
+      else if (c == '"')
+        quoted = false;
+      else
+        rows.back().back() += c;
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      rows.back().emplace_back();
+    } else if (c == '\n') {
+      rows.emplace_back(1);
+    } else {
+      rows.back().back() += c;
+    }
+  }
+  if (rows.back().size() == 1 && rows.back()[0].empty()) rows.pop_back();
+  return rows;
+}
+
+// The cells of a markdown table row, trimmed.
+std::vector<std::string> mdCells(const std::string& line) {
+  std::vector<std::string> cells;
+  std::stringstream in(line.substr(1));
+  std::string cell;
+  while (std::getline(in, cell, '|')) {
+    const auto b = cell.find_first_not_of(' '), e = cell.find_last_not_of(' ');
+    cells.push_back(b == std::string::npos ? "" : cell.substr(b, e - b + 1));
+  }
+  return cells;
+}
+
+// The first line of `text` that starts with `prefix`.
+std::string lineStarting(const std::string& text, const std::string& prefix) {
+  std::stringstream in(text);
+  std::string line;
+  while (std::getline(in, line))
+    if (line.starts_with(prefix)) return line;
+  return "";
+}
+
+class ReportWriter : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = sbtest::tempDir("report");
+    doc_ = makeDocument(dir_);
+    sb::writeReports(doc_, dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+  json doc_;
+};
+
+TEST_F(ReportWriter, CsvHasOneQuotedRowPerResult) {
+  const std::string csv = sbtest::readFile(dir_ / "results.csv");
+  const auto rows = parseCsv(csv);
+  ASSERT_EQ(rows.size(), 1 + doc_["results"].size());
+  for (const auto& row : rows) EXPECT_EQ(row.size(), rows[0].size());
+  EXPECT_EQ(rows[0][0], "case_id");
+  // Specs with commas are quoted and read back whole.
+  EXPECT_NE(csv.find(std::string(",\"") + kScene + "\","), std::string::npos);
+  const auto col = [&](const std::string& name) {
+    return std::find(rows[0].begin(), rows[0].end(), name) - rows[0].begin();
+  };
+  EXPECT_EQ(rows[1][col("scene")], kScene);
+  EXPECT_EQ(rows[1][col("case_id")], "shadows/shadow=none,backend=gl");
+  EXPECT_EQ(rows[1][col("size")], "128x96");
+  EXPECT_EQ(rows[1][col("image_rmse")], "");                // no error
+  EXPECT_EQ(rows[1][col("depth_complexity_eye_max")], "");  // null depth complexity
+  EXPECT_EQ(rows[2][col("image_psnr")], "");                // infinity
+  EXPECT_EQ(rows[5][col("frame_ms_stddev")], "");           // NaN
+  EXPECT_DOUBLE_EQ(std::stod(rows[3][col("frame_ms_median")]), 4.0);
+  EXPECT_EQ(rows[3][col("memory_shadow_bytes")], std::to_string(2 * 1024 * 1024));
+  EXPECT_EQ(rows[3][col("depth_complexity_eye_max")], "12");
+  for (const auto& e : fs::directory_iterator(dir_))
+    EXPECT_NE(e.path().extension(), ".tmp") << e.path();
+}
+
+TEST_F(ReportWriter, MarkdownHasTablesRatiosAndWarnings) {
+  const std::string md = sbtest::readFile(dir_ / "report.md");
+  EXPECT_NE(md.find("# strandbench report: quick & dirty"), std::string::npos);
+  EXPECT_NE(md.find("a test \\| suite"), std::string::npos);  // escaped pipe
+  EXPECT_NE(md.find("### shadows"), std::string::npos);
+  EXPECT_NE(md.find("### osm-maps"), std::string::npos);
+  EXPECT_NE(md.find("### DOM paper, Fig. 1"), std::string::npos);
+
+  // OSM 16 on gl: 4 ms against the 2 ms baseline; the paper's 81 fps against 154 fps.
+  const auto header = mdCells(lineStarting(md, "| Row |"));
+  const auto row = mdCells(lineStarting(md, "| OSM 16 |"));
+  ASSERT_EQ(header.size(), row.size()) << md;
+  const auto at = [&](const std::string& name) {
+    const auto i = std::find(header.begin(), header.end(), name) - header.begin();
+    return i < static_cast<long>(row.size()) ? row[i] : std::string("missing");
+  };
+  EXPECT_NEAR(std::stod(at("gl ratio")), 2.0, 1e-9);
+  EXPECT_NEAR(std::stod(at("vulkan ratio")), 5.5 / 2.5, 0.005);
+  EXPECT_NEAR(std::stod(at("Paper ratio")), 154.0 / 81.0, 0.005);
+  EXPECT_EQ(at("Paper"), "81 fps (12.3 ms)");
+  EXPECT_NEAR(std::stod(at("gl (ms)")), 4.0, 1e-9);
+  EXPECT_NE(md.find("no such row"), std::string::npos);
+
+  // Without a baseline: ours / paper. passes:shadow. sums two passes of 5 ms: 2.5 ms.
+  const auto maps = mdCells(lineStarting(md, "| 4 maps |"));
+  ASSERT_EQ(maps.size(), 4u) << md;
+  EXPECT_NEAR(std::stod(maps[2]), 2.5, 1e-9);
+  EXPECT_NEAR(std::stod(maps[3]), 2.0, 1e-9);
+
+  // Group table: median ± stddev, memory MiB.
+  EXPECT_NE(lineStarting(md, "| osm:maps=16 | gl | 4.00 ± 0.20 | 6.00 |"), "") << md;
+  EXPECT_NE(md.find("peeling cap hit: 8 layers \\| more needed & \\<tag\\>"), std::string::npos);
+}
+
+TEST_F(ReportWriter, HtmlIsSelfContainedWithChartsAndImages) {
+  const std::string html = sbtest::readFile(dir_ / "report.html");
+  EXPECT_EQ(html.find("http://"), std::string::npos);
+  EXPECT_EQ(html.find("https://"), std::string::npos);
+  EXPECT_EQ(html.find("<link"), std::string::npos);
+  EXPECT_NE(html.find("data:image/png;base64,iVBORw0KGgo"), std::string::npos);  // PNG signature
+  EXPECT_NE(html.find("<svg class=\"chart-error-time\""), std::string::npos);
+  EXPECT_NE(html.find("<polyline class=\"pareto-frontier\""), std::string::npos);
+  EXPECT_NE(html.find("frame time vs shadow.maps"), std::string::npos);
+  EXPECT_NE(html.find("memory vs shadow.maps"), std::string::npos);
+  EXPECT_NE(html.find("visibility along a light ray"), std::string::npos);
+  EXPECT_NE(html.find("images/gone.png is missing"), std::string::npos);
+  EXPECT_NE(html.find("quick &amp; dirty"), std::string::npos);
+  EXPECT_NE(html.find("&lt;tag&gt;"), std::string::npos);
+  EXPECT_EQ(html.find("<tag>"), std::string::npos);
+}
+
+TEST(ReportWriterInput, SparseDocumentsGiveReports) {
+  const fs::path dir = sbtest::tempDir("report-sparse");
+  json bare = makeResult("g", {{"backend", "gl"}}, 0, 1.0, 1.0);
+  bare["frame_ms"]["median"] = std::numeric_limits<double>::quiet_NaN();
+  bare["probe"] = {{"light_depth", json::array()}, {"exact", nullptr}};
+  bare["tables_in_result"] = json::object();
+  for (const json& doc :
+       {json::object(), json{{"results", json::array()}},
+        json{{"results", {json::object(), bare}}, {"tables", {{{"rows", {json::object()}}}}}}}) {
+    ASSERT_NO_THROW(sb::writeReports(doc, dir)) << doc.dump();
+    for (const char* f : {"results.csv", "report.md", "report.html"})
+      EXPECT_TRUE(fs::exists(dir / f)) << f;
+  }
+  EXPECT_EQ(parseCsv(sbtest::readFile(dir / "results.csv")).size(), 3u);
+  fs::remove_all(dir);
+}
+
+TEST(ReportWriterInput, UnwritableFolderIsAnInputError) {
+  const fs::path dir = sbtest::tempDir("report-bad");
+  sbtest::expectInputError([&] { sb::writeReports(json::object(), dir / "missing"); },
+                           {"missing", "does not exist"});
+  std::ofstream(dir / "file") << "x";
+  sbtest::expectInputError([&] { sb::writeReports(json::object(), dir / "file"); }, {"file"});
+  sbtest::expectInputError([&] { sb::writeReports(json::array(), dir); }, {"JSON object"});
+  if (::geteuid() != 0) {  // root writes to read-only folders
+    fs::permissions(dir, fs::perms::owner_read | fs::perms::owner_exec);
+    sbtest::expectInputError([&] { sb::writeReports(json::object(), dir); }, {"not writable"});
+    fs::permissions(dir, fs::perms::owner_all);
+  }
+  fs::remove_all(dir);
+}
+
+TEST(SvgChart, ParetoFrontierAndScales) {
+  const auto front = sb::paretoFrontier(
+      {{1, 5, "a"}, {2, 3, "b"}, {3, 4, "c"}, {4, 1, "d"}, {2, 3.5, "e"}, {NAN, 0, "nan"}});
+  ASSERT_EQ(front.size(), 3u);
+  EXPECT_EQ(front[0].tip + front[1].tip + front[2].tip, "abd");
+
+  sb::Chart chart{"t & <u>", "x", "y"};
+  chart.series.push_back({"s", {{1, 0.001, "p1"}, {2, 1.0, "p2"}}});
+  const std::string svg = sb::svgChart(chart);
+  EXPECT_NE(svg.find("y (log)"), std::string::npos);  // three decades
+  EXPECT_EQ(svg.find("x (log)"), std::string::npos);
+  EXPECT_NE(svg.find("t &amp; &lt;u&gt;"), std::string::npos);
+  EXPECT_NE(svg.find("<title>p2</title>"), std::string::npos);
+  EXPECT_NE(sb::svgChart(sb::Chart{"empty"}).find("no data"), std::string::npos);
+}
+
+// report.html in a real browser, offline: no console message (no script error,
+// no load blocked by the page's Content-Security-Policy), the tables and charts
+// in the DOM, and a screenshot with something on it. Then the same checks fail
+// on a page with a script error and on a blank page.
+TEST(ReportBrowser, LoadsOfflineWithoutConsoleErrors) {
+  if (!fs::exists(sbtest::kChromium))
+    GTEST_SKIP() << sbtest::kChromium << " is not installed (apt-get install chromium)";
+  const fs::path dir = sbtest::tempDir("report-browser");
+  sb::writeReports(makeDocument(dir), dir);
+
+  const sbtest::PageLoad page = sbtest::loadPage(dir / "report.html", dir / "chromium");
+  ASSERT_EQ(page.status, 0) << page.log;
+  EXPECT_TRUE(page.console.empty()) << "console: " << ::testing::PrintToString(page.console);
+  EXPECT_NE(page.dom.find("<table>"), std::string::npos);
+  EXPECT_NE(page.dom.find("class=\"chart-error-time\""), std::string::npos);
+  EXPECT_NE(page.dom.find("class=\"pareto-frontier\""), std::string::npos);
+  const sbtest::ScreenshotVerdict shot = sbtest::inspectScreenshot(page.screenshot);
+  EXPECT_FALSE(shot.blank) << shot.distinct << " colours, " << shot.inked << " inked";
+
+  // A script error is caught.
+  std::string broken = sbtest::readFile(dir / "report.html");
+  broken.insert(broken.rfind("</body>"), "<script>undefinedFunction();</script>");
+  std::ofstream(dir / "broken.html") << broken;
+  const sbtest::PageLoad bad = sbtest::loadPage(dir / "broken.html", dir / "chromium-broken");
+  ASSERT_EQ(bad.console.size(), 1u) << bad.log;
+  EXPECT_NE(bad.console[0].find("Uncaught ReferenceError: undefinedFunction"), std::string::npos);
+
+  // A blank page is blank.
+  std::ofstream(dir / "blank.html") << "<!DOCTYPE html><html><body></body></html>";
+  const sbtest::PageLoad blank = sbtest::loadPage(dir / "blank.html", dir / "chromium-blank");
+  EXPECT_TRUE(blank.console.empty()) << blank.log;
+  EXPECT_TRUE(sbtest::inspectScreenshot(blank.screenshot).blank);
+  fs::remove_all(dir);
+}
+
+TEST(ReportBrowser, ConsoleMessagesAreFoundInTheLog) {
+  const std::string log =
+      "[1:2:1122/220850.699932:ERROR:dbus/bus.cc:405] Failed to connect to the bus\n"
+      "[1:1:1122/220851.396526:INFO:CONSOLE:1] \"hi\", source: file:///a.html (1)\n"
+      "[1:1:1122/220851.396723:INFO:CONSOLE(7)] \"Uncaught Error: x\", source: file:///a.html "
+      "(7)\n";
+  const auto messages = sbtest::consoleMessages(log);
+  ASSERT_EQ(messages.size(), 2u);
+  EXPECT_EQ(messages[0], "\"hi\", source: file:///a.html (1)");
+  EXPECT_NE(messages[1].find("Uncaught Error: x"), std::string::npos);
+}
+
+}  // namespace
