@@ -242,6 +242,8 @@ class Device {
   // tightly packed, bytesPerPixel(format) per pixel.
   virtual std::vector<uint8_t> readTexture(Texture t) = 0;
   virtual std::vector<uint8_t> readBuffer(Buffer b) = 0;
+  // What a texture was created with (to interpret its read-back bytes).
+  virtual TextureDesc describe(Texture t) const = 0;
 
   // Exact logical bytes of every live resource (width*height*bpp, buffer size).
   virtual std::vector<ResourceBytes> allocations() const = 0;

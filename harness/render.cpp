@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "backends/device.h"
+#include "harness/invariants.h"
 #include "harness/metrics.h"
 #include "harness/stats.h"
 #include "techniques/common/renderer.h"
@@ -239,6 +240,8 @@ RenderOutcome runRender(const RenderRequest& req, RenderCache* cache) {
   if (!req.image && !req.reference)
     throw InputError("--no-image measures the visibility error only: it needs --reference");
   if (req.probe) checkProbe(*req.probe);
+  if (req.invariants && !req.reference)
+    throw InputError("invariants are checked against the reference: they need reference");
   const std::shared_ptr<const Scene> scenePtr = sceneFor(req.scene, cache);
   const Scene& scene = *scenePtr;
   const Spec shadowSpec = Spec::parse(req.shadow);
@@ -360,16 +363,45 @@ RenderOutcome runRender(const RenderRequest& req, RenderCache* cache) {
         out.reference = ref->image;
         error["image"] = toJson(compareImages(out.image, out.reference));
       }
-      error["visibility"] = visibilityError(renderer.readVisibility(), ref->visibility);
+      out.visibility = renderer.readVisibility();
+      error["visibility"] = visibilityError(out.visibility, ref->visibility);
       j["error"] = error;
     }
     if (req.probe) {
-      std::vector<float> curve = renderer.readProbe();
+      out.probe = renderer.readProbe();
       j["probe"] = {{"texel", {req.probe->texel.x, req.probe->texel.y}},
                     {"map_size", req.probe->mapSize},
                     {"light_depth", probeDepths},
                     {"exact", ref->probe},
-                    {"visibility", curve}};
+                    {"visibility", out.probe}};
+    }
+    if (req.invariants) {
+      std::vector<InvariantFailure> failures;
+      if (req.image) {
+        const std::string last = j["graph"].empty() ? "" : j["graph"].back().get<std::string>();
+        checkColor(out.image, KajiyaKayShading::maxRadiance(settings), last, failures);
+      }
+      if (req.reference) {
+        checkVisibility(out.visibility, "visibility", failures);
+        for (const auto& [kind, e] : j["error"].items())
+          for (const auto& [metric, v] : e.items())
+            // PSNR is infinite (null) exactly when the images are identical.
+            if ((v.is_null() && !(metric == "psnr" && e.value("identical", false))) ||
+                (v.is_number_float() && !std::isfinite(v.get<double>())))
+              failures.push_back(
+                  {"reference", "error " + kind + "." + metric + " is not a number"});
+      }
+      if (req.probe) {
+        checkRay(out.probe, "probe (" + shadowSpec.name + ")", failures);
+        checkRay(ref->probe, "probe (reference)", failures);
+      }
+      for (Texture t : renderer.shadow().lookupTextures()) {
+        const TextureDesc d = dev->describe(t);
+        checkMap(dev->readTexture(t), d.format, "map " + d.name, failures);
+      }
+      nlohmann::json list = nlohmann::json::array();
+      for (const auto& f : failures) list.push_back({{"pass", f.pass}, {"what", f.what}});
+      j["invariants"] = {{"failures", list}};
     }
   }
   if (eye || light)

@@ -40,6 +40,7 @@ struct RenderRequest {
   bool reference = false;    // also render the reference and report errors against it
   bool image = true;         // false: no final shading; only the visibility error (needs reference)
   std::optional<ProbeSpec> probe;  // also report visibility along a light ray
+  bool invariants = false;         // check the outputs and maps (harness/invariants.h)
   std::string backend = "gl";
   std::string platform;  // empty: egl for gl, headless for vulkan
   uint32_t width = 512, height = 512;
@@ -52,9 +53,11 @@ struct RenderRequest {
 };
 
 struct RenderOutcome {
-  nlohmann::json report;  // the keys documented for `render --json`
-  Image image;            // top row first
-  Image reference;        // the reference image (when requested)
+  nlohmann::json report;            // the keys documented for `render --json`
+  Image image;                      // top row first
+  Image reference;                  // the reference image (when requested)
+  std::vector<uint8_t> visibility;  // R32F visibility image (with a reference)
+  std::vector<float> probe;         // visibility along the probe ray (with a probe)
 };
 
 // What a sweep computes once and reuses across its cases: scenes by spec and

@@ -17,10 +17,11 @@ const std::vector<std::string> kSuiteKeys = {"name",    "description", "defaults
                                              "presets", "groups",      "tables"};
 const std::vector<std::string> kGroupKeys = {"name", "description", "preset", "axes"};
 const std::vector<std::string> kSettings = {
-    "scene",    "shadow", "oit",        "size",           "primitive",       "ribbon_width",
-    "repeat",   "warmup", "reference",  "image",          "backends",        "backend",
-    "platform", "probe",  "camera_eye", "camera_target",  "camera_up",       "fov",
-    "near",     "far",    "light",      "light_position", "light_direction", "light_intensity"};
+    "scene",     "shadow", "oit",        "size",           "primitive",       "ribbon_width",
+    "repeat",    "warmup", "reference",  "image",          "backends",        "backend",
+    "platform",  "probe",  "camera_eye", "camera_target",  "camera_up",       "fov",
+    "near",      "far",    "light",      "light_position", "light_direction", "light_intensity",
+    "invariants"};
 const std::vector<std::string> kSpecSettings = {"scene", "shadow", "oit"};
 
 // 1-based line and column of a byte offset (nlohmann reports offsets).
@@ -101,6 +102,7 @@ RenderRequest toRequest(const ojson& s, const std::string& where) {
   if (s.contains("warmup")) r.warmup = get<int>(s, "warmup", where);
   if (s.contains("reference")) r.reference = get<bool>(s, "reference", where);
   if (s.contains("image")) r.image = get<bool>(s, "image", where);
+  if (s.contains("invariants")) r.invariants = get<bool>(s, "invariants", where);
   r.backend = text("backend");
   if (r.backend != "gl" && r.backend != "vulkan")
     throw InputError(where + ": " + unknownNameMessage("backend", r.backend, {"gl", "vulkan"}));

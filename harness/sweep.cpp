@@ -129,8 +129,32 @@ ojson runCase(const fs::path& dir, const SweepCase& c, RenderCache& cache) {
     }
   }
   result["images"] = images;
+  if (c.request.invariants) {
+    // Identical results run to run: the case again, on a fresh device.
+    const RenderOutcome again = runRender(c.request, &cache);
+    auto differs = [&](const char* what) {
+      result["invariants"]["failures"].push_back(
+          {{"pass", what}, {"what", std::string("not identical run to run")}});
+    };
+    if (again.image.pixels != out.image.pixels) differs("color");
+    if (again.visibility != out.visibility) differs("visibility");
+    if (again.probe != out.probe) differs("probe");
+  }
   writeFileAtomic(caseFile(dir, c), result.dump(1) + "\n");
   return result;
+}
+
+// Failures of a case's invariants, one line each naming the case, technique,
+// backend and pass.
+std::vector<std::string> invariantFailures(const ojson& r) {
+  std::vector<std::string> lines;
+  if (!r.contains("invariants")) return lines;
+  for (const auto& f : r["invariants"]["failures"])
+    lines.push_back("invariant failed: case " + r["case"]["id"].get<std::string>() + ", shadow " +
+                    r["shadow"].get<std::string>() + ", oit " + r["oit"].get<std::string>() +
+                    ", backend " + r["backend"].get<std::string>() + ", pass " +
+                    f["pass"].get<std::string>() + ": " + f["what"].get<std::string>());
+  return lines;
 }
 
 std::string caseSummary(const ojson& r) {
@@ -258,6 +282,7 @@ int runSweep(const SweepOptions& o) {
   std::cout << " -> " << o.out << "\n" << std::flush;
 
   RenderCache cache;
+  std::vector<std::string> failures;
   const auto start = std::chrono::steady_clock::now();
   const int startDone = done;
   for (const auto* c : todo) {
@@ -273,6 +298,11 @@ int runSweep(const SweepOptions& o) {
       throw InputError("case " + c->id + ": " + e.what());
     }
     ++done;
+    for (const auto& line : invariantFailures(result)) {
+      if (o.progressBar) std::cout << "\n";
+      std::cout << line << "\n";
+      failures.push_back(line);
+    }
     if (!o.progressBar) {
       const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       std::cout << "[" << done << "/" << total << "] " << c->id << "  " << caseSummary(result)
@@ -290,6 +320,17 @@ int runSweep(const SweepOptions& o) {
   const int n = writeSweepReport(o.out);
   std::cout << "wrote " << (dir / "results.json").string() << " (" << n
             << " results), results.csv, report.md, report.html\n";
+  // Cases done by an earlier run count too: a resumed sweep reports them.
+  for (const auto* c : selected) {
+    if (std::find(todo.begin(), todo.end(), c) != todo.end()) continue;
+    for (const auto& line : invariantFailures(readJsonFile(caseFile(dir, *c))))
+      failures.push_back(line);
+  }
+  if (!failures.empty()) {
+    std::cout << failures.size() << " invariant failures:\n";
+    for (const auto& line : failures) std::cout << "  " << line << "\n";
+    return 1;
+  }
   return 0;
 }
 

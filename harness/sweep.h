@@ -20,7 +20,8 @@ struct SweepOptions {
   bool progressBar = false;            // a terminal: one updating line
 };
 
-// Runs the cases and writes the reports; returns the exit status (0).
+// Runs the cases and writes the reports; returns the exit status: 0, or 1
+// when an invariant failed (cases with "invariants": true).
 // Throws InputError for a bad suite, filter, shard or folder.
 int runSweep(const SweepOptions& o);
 

@@ -83,6 +83,14 @@ std::vector<SceneInfo> buildCatalog() {
                  "one strand between the light and a dense clump (occupancy paper, Fig. 5a)",
                  std::move(o)});
   }
+  {
+    std::vector<OptionInfo> o = commonOptions("200", "16", "2", "strand length (world units)");
+    o.push_back({"wiggle", "0.1", "zigzag amplitude in the plane (strands cross each other)"});
+    c.push_back({"sheet",
+                 "strands in the plane z = 0: lit along -z, every fragment of a light texel "
+                 "is at one depth (a zero depth range)",
+                 std::move(o)});
+  }
   c.push_back({"file",
                "strands from a file (.hair, .tfx, .ply), optionally with an OBJ mesh",
                {{"path", "", "strand file (required): .hair, .tfx or .ply"},
@@ -90,6 +98,12 @@ std::vector<SceneInfo> buildCatalog() {
                 {"strands", "all", "keep this many strands, evenly spaced (default: all)"},
                 {"alpha", "1", "hair opacity in [0,1] for transparency"},
                 {"shadow_alpha", "0.5", "per-fragment shadow opacity in [0,1]"}}});
+  // Stiff cases for every scene: extreme scales and degenerate segments.
+  for (SceneInfo& info : c) {
+    info.options.push_back({"scale", "1", "uniform scale of the whole scene, 1e-6..1e6"});
+    info.options.push_back(
+        {"zero_segments", "0", "1: every point doubled (every other segment has zero length)"});
+  }
   return c;
 }
 
@@ -433,6 +447,52 @@ Scene makeStray(const Options& o) {
   return scene;
 }
 
+Scene makeSheet(const Options& o) {
+  Scene scene;
+  const Common c = readCommon(o, scene);
+  const float wiggle = o.real("wiggle", 0.0, 100.0);
+  if (!o.text("mesh").empty()) scene.mesh = loadObj(o.text("mesh"));
+  Rng rng(c.seed);
+  reserve(scene.strands, std::size_t(c.strands), std::size_t(c.points));
+  for (int64_t k = 0; k < c.strands; ++k) {
+    const float x = c.strands > 1 ? -1.0f + 2.0f * float(k) / float(c.strands - 1) : 0.0f;
+    std::vector<glm::vec3> zigzag;
+    for (int i = 0; i < c.points; ++i) {
+      const float t = float(i) / float(c.points - 1);
+      const float side = (i % 2 ? 1.0f : -1.0f) * wiggle;
+      zigzag.push_back({x + side, 0.5f * c.length - t * c.length, 0.0f});
+    }
+    appendStrand(scene.strands, zigzag, c.points, strandColor(rng, scene.hairColor), c.thickness);
+  }
+  return scene;
+}
+
+// The stiff-case options every scene has: a uniform scale and doubled points.
+void applyScaleAndZeroSegments(const Options& o, Scene& scene) {
+  const float scale = o.real("scale", 1e-6, 1e6);
+  if (scale != 1.0f) {
+    for (auto& p : scene.strands.points) p *= scale;
+    for (auto& t : scene.strands.thickness) t *= scale;
+    for (auto& p : scene.mesh.positions) p *= scale;
+  }
+  if (o.integer("zero_segments", 0, 1) == 0) return;
+  Strands in = std::move(scene.strands), out;
+  reserve(out, in.strandCount(), 2 * in.points.size() / std::max<std::size_t>(1, in.strandCount()));
+  for (std::size_t k = 0; k < in.strandCount(); ++k) {
+    out.firstPoint.push_back(uint32_t(out.points.size()));
+    out.pointCount.push_back(2 * in.pointCount[k]);
+    for (uint32_t i = in.firstPoint[k]; i < in.firstPoint[k] + in.pointCount[k]; ++i)
+      for (int twice = 0; twice < 2; ++twice) {
+        out.points.push_back(in.points[i]);
+        out.colors.push_back(in.colors[i]);
+        out.thickness.push_back(in.thickness[i]);
+        out.transparency.push_back(in.transparency[i]);
+      }
+  }
+  checkTotal(o, 1, out.points.size());
+  scene.strands = std::move(out);
+}
+
 Scene makeFur(const Options& o) {
   Scene scene;
   Common c = readCommon(o, scene, false);
@@ -591,9 +651,12 @@ Scene makeScene(const Spec& spec) {
     scene = makeFur(o);
   } else if (spec.name == "stray") {
     scene = makeStray(o);
+  } else if (spec.name == "sheet") {
+    scene = makeSheet(o);
   } else {
     scene = makeFile(o);
   }
+  applyScaleAndZeroSegments(o, scene);
   scene.name = spec.str();
   return scene;
 }

@@ -372,6 +372,12 @@ class GLDevice : public Device {
 
   std::vector<PassTiming> lastFrameTimings() const override { return timings_; }
 
+  TextureDesc describe(Texture t) const override {
+    auto it = textures_.find(t.id);
+    if (it == textures_.end()) throw DeviceError("describe: unknown texture");
+    return it->second.desc;
+  }
+
   std::vector<uint8_t> readTexture(Texture t) override {
     auto& r = texture(t);
     const GLFormat f = glFormat(r.desc.format);

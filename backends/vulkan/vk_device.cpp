@@ -790,6 +790,12 @@ class VulkanDevice final : public Device {
 
   std::vector<PassTiming> lastFrameTimings() const override { return timings_; }
 
+  TextureDesc describe(Texture t) const override {
+    auto it = textures_.find(t.id);
+    if (it == textures_.end()) throw DeviceError("describe: unknown texture");
+    return it->second.desc;
+  }
+
   std::vector<uint8_t> readTexture(Texture tex) override {
     TextureRes& t = texture(tex, "readTexture");
     if (inFrame_) throw DeviceError("readTexture('" + t.desc.name + "'): only after endFrame()");

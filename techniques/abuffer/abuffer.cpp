@@ -66,7 +66,8 @@ void ABufferOit::addPasses(FrameGraph& graph, Device& dev) {
                dev.endPass();
                auto r = listBindings();
                r.push_back(Binding::buf(0, sizeUbo_));
-               dev.dispatch("abuffer.resolve", resolve_, r, (pixels() + 63) / 64);
+               const glm::uvec2 g = dispatchGroups(pixels());
+               dev.dispatch("abuffer.resolve", resolve_, r, g.x, g.y);
                composite_.record(dev);
              }});
 }

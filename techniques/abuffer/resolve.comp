@@ -2,11 +2,12 @@
 // same arithmetic as depth peeling.
 #include "../common/key_order.glsl"
 #include "abuffer.glsl"
+#include "../common/invocation.glsl"
 layout(local_size_x = 64) in;
 layout(std140, binding = 0) uniform Size { uvec4 size; };  // x: pixel count
 
 void main() {
-  uint p = gl_GlobalInvocationID.x;
+  uint p = linearInvocation();
   if (p >= size.x) return;
   uint base = offsets[p];
   uint n = min(cursor[p], counts[p]);

@@ -1,5 +1,6 @@
 // After a peel layer: the key found becomes the previous key, the layer count
 // grows, and the minimum is reset. STATE_BINDING / PEELED_BINDING / SIZE_BINDING.
+#include "invocation.glsl"
 layout(local_size_x = 64) in;
 layout(std430, binding = STATE_BINDING) buffer PeelState { uvec4 peelState[]; };
 layout(std430, binding = PEELED_BINDING) buffer Peeled { uint peeled[]; };
@@ -11,7 +12,7 @@ layout(std430, binding = NODES_BINDING) buffer Nodes { uvec2 nodes[]; };
 layout(std140, binding = SIZE_BINDING) uniform PeelSize { uvec4 peelSize; };  // x: pixel count
 
 void main() {
-  uint p = gl_GlobalInvocationID.x;
+  uint p = linearInvocation();
   if (p >= peelSize.x) return;
   uvec4 s = peelState[p];
   if (s.z == 0xFFFFFFFFu && s.w == 0xFFFFFFFFu) return;  // nothing left in this pixel

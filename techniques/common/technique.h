@@ -3,6 +3,7 @@
 // Vulkan; they create resources and record passes through Device.
 #pragma once
 
+#include <algorithm>
 #include <glm/glm.hpp>
 #include <memory>
 #include <optional>
@@ -140,6 +141,15 @@ class OitTechnique {
   virtual std::optional<DepthComplexity> depthComplexity() const { return std::nullopt; }
   virtual std::vector<std::string> warnings(Device& /*dev*/) { return {}; }
 };
+
+// Groups of 64 for a 1D compute pass over `items`, as a 2D grid (x, y) so that
+// no dimension passes the 65535 guaranteed by GL and Vulkan. Shaders index with
+// linearInvocation() (common/invocation.glsl) and bounds-check.
+inline glm::uvec2 dispatchGroups(uint32_t items) {
+  const uint32_t groups = (items + 63) / 64;
+  const uint32_t y = (groups + 65534) / 65535;
+  return {(groups + y - 1) / std::max(y, 1u), std::max(y, 1u)};
+}
 
 struct TechniqueInfo {
   std::string name;

@@ -12,7 +12,6 @@ namespace {
 constexpr uint32_t kParams = 8, kCounts = 9, kOffsets = 10, kCursor = 11, kNodes = 12, kState = 13,
                    kStatus = 14;
 
-uint32_t groups(uint32_t n) { return (n + 63) / 64; }
 }  // namespace
 
 ExactShadow::ExactShadow(Method method, uint32_t size, float bias, uint32_t maxLayers)
@@ -124,7 +123,8 @@ void ExactShadow::addPasses(FrameGraph& graph, Device& dev) {
                  for (const auto& x : allBindings()) b.push_back(x);
                  dev.draw(fill_, b, vertices);
                  dev.endPass();
-                 dev.dispatch("exact.sort", sort_, allBindings(), groups(size_ * size_));
+                 const glm::uvec2 g = dispatchGroups(size_ * size_);
+                 dev.dispatch("exact.sort", sort_, allBindings(), g.x, g.y);
                }});
     return;
   }
@@ -144,7 +144,8 @@ void ExactShadow::addPasses(FrameGraph& graph, Device& dev) {
                  dev.beginPass(listPass("exact.peel.id"));
                  dev.draw(peel1_, b, vertices);
                  dev.endPass();
-                 dev.dispatch("exact.peel.advance", advance_, advance, groups(size_ * size_));
+                 const glm::uvec2 g = dispatchGroups(size_ * size_);
+                 dev.dispatch("exact.peel.advance", advance_, advance, g.x, g.y);
                }
              }});
 }

@@ -2,11 +2,12 @@
 // average, and any length works).
 #include "../common/key_order.glsl"
 #include "exact.glsl"
+#include "../common/invocation.glsl"
 layout(local_size_x = 64) in;
 
 void main() {
   uint size = uint(exactParams.y);
-  uint p = gl_GlobalInvocationID.x;
+  uint p = linearInvocation();
   if (p >= size * size) return;
   uint base = exactOffsets[p];
   uint n = min(exactCursor[p], exactCounts[p]);

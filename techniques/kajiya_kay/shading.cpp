@@ -1,8 +1,19 @@
 #include "techniques/kajiya_kay/shading.h"
 
+#include <algorithm>
+
 #include "techniques/common/shader_library.h"
 
 namespace sb {
+
+float KajiyaKayShading::maxRadiance(const RenderSettings& s) {
+  const glm::vec3 light = s.light.color * s.light.intensity;
+  const float l = std::max({light.r, light.g, light.b, 0.0f});
+  const float hair = kHairMaterial.w + (kHairMaterial.x + kHairMaterial.y) * l;
+  const float albedo = std::max({kMeshMaterial.r, kMeshMaterial.g, kMeshMaterial.b});
+  const float mesh = albedo * (kMeshMaterial.w + l);
+  return std::max({hair, mesh, s.background.r, s.background.g, s.background.b});
+}
 
 void KajiyaKayShading::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
                              const ShadowTechnique& shadow, Texture color, Texture depth) {
@@ -18,8 +29,8 @@ void KajiyaKayShading::setup(Device& dev, const GpuScene& scene, const RenderSet
   u.lightPos = s.light.type == LightType::Point ? glm::vec4(s.light.position, 1)
                                                 : glm::vec4(-glm::normalize(s.light.direction), 0);
   u.lightColor = glm::vec4(s.light.color * s.light.intensity, 1);
-  u.hairMaterial = glm::vec4(0.8f, 0.35f, 40.0f, 0.12f);
-  u.meshMaterial = glm::vec4(0.75f, 0.72f, 0.68f, 0.15f);
+  u.hairMaterial = kHairMaterial;
+  u.meshMaterial = kMeshMaterial;
   u.sceneParams = glm::vec4(scene.hairAlpha, scene.shadowAlpha, 0, 0);
   shadingUbo_ = dev.createBuffer({"shading.params", "frame", BufferUsage::Uniform, sizeof u}, &u);
 

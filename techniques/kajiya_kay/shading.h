@@ -19,6 +19,13 @@ struct ShadingUniforms {
 // Kajiya-Kay through the shadow technique's lookup (hair_shading.glsl).
 class KajiyaKayShading {
  public:
+  // Hair: diffuse, specular, specular exponent, ambient; mesh: albedo, ambient.
+  static constexpr glm::vec4 kHairMaterial{0.8f, 0.35f, 40.0f, 0.12f};
+  static constexpr glm::vec4 kMeshMaterial{0.75f, 0.72f, 0.68f, 0.15f};
+  // The brightest any shaded fragment or the background can be (hair colour
+  // <= 1, visibility <= 1): a bound every composited pixel must stay under.
+  static float maxRadiance(const RenderSettings& s);
+
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
              const ShadowTechnique& shadow, Texture color, Texture depth);
   // Writes "color" and "depth" (clearing them); only when the scene has a mesh.

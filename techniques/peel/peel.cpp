@@ -50,7 +50,8 @@ void PeelOit::addPasses(FrameGraph& graph, Device& dev) {
                    dev.draw(step_[pass], b, hairVertices());
                    dev.endPass();
                  }
-                 dev.dispatch("peel.advance", advance_, advance, (pixels() + 63) / 64);
+                 const glm::uvec2 g = dispatchGroups(pixels());
+                 dev.dispatch("peel.advance", advance_, advance, g.x, g.y);
                }
                if (layers_ == 0 && !targets_.opaqueDrawn) {  // still clear the depth
                  dev.beginPass(hairPass("peel.depth", true));

@@ -1,12 +1,13 @@
 // Evaluates the shadow technique's visibility at given world positions (along
 // a light ray, for the occupancy paper's Fig. 5 style plots).
 #include <shadow>
+#include "../common/invocation.glsl"
 layout(local_size_x = 64) in;
 layout(std430, binding = 16) readonly buffer ProbePoints { vec4 probePoints[]; };  // w unused
 layout(std430, binding = 17) writeonly buffer ProbeValues { float probeValues[]; };
 
 void main() {
-  uint i = gl_GlobalInvocationID.x;
+  uint i = linearInvocation();
   if (i >= uint(probePoints.length())) return;
   probeValues[i] = shadowVisibility(probePoints[i].xyz);
 }

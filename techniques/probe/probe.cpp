@@ -35,7 +35,8 @@ void ProbeOutput::addPasses(FrameGraph& graph, Device& dev) {
                auto b = shading_->shadow().lookupBindings();
                b.push_back(Binding::buf(kPoints, points_));
                b.push_back(Binding::buf(kValues, values_));
-               dev.dispatch("probe", pipeline_, b, (count_ + 63) / 64);
+               const glm::uvec2 g = dispatchGroups(count_);
+               dev.dispatch("probe", pipeline_, b, g.x, g.y);
              }});
 }
 
