@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "harness/files.h"
 #include "harness/report_data.h"
 #include "scenes/scene.h"
 
@@ -138,34 +139,6 @@ std::string renderMarkdown(const ReportData& d) {
 
 }  // namespace report
 
-namespace {
-
-// NAME.tmp then a rename: a reader sees the old file or the whole new one.
-void writeAtomically(const std::filesystem::path& path, const std::string& content) {
-  std::filesystem::path tmp = path;
-  tmp += ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary);
-    if (!f) throw InputError("cannot write " + tmp.string() + ": folder not writable");
-    f << content;
-    f.close();
-    if (!f) {
-      std::error_code ec;
-      std::filesystem::remove(tmp, ec);
-      throw InputError("writing " + tmp.string() + " failed (disk full?)");
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::filesystem::remove(tmp, ec);
-    throw InputError("cannot rename " + tmp.string() + " to " + path.filename().string() + ": " +
-                     ec.message());
-  }
-}
-
-}  // namespace
-
 void writeReports(const nlohmann::json& results, const std::filesystem::path& dir) {
   if (!std::filesystem::is_directory(dir))
     throw InputError("report folder " + dir.string() + " does not exist or is not a folder");
@@ -175,9 +148,9 @@ void writeReports(const nlohmann::json& results, const std::filesystem::path& di
   const std::string csv = report::renderCsv(data);
   const std::string markdown = report::renderMarkdown(data);
   const std::string html = report::renderHtml(data, dir);
-  writeAtomically(dir / "results.csv", csv);
-  writeAtomically(dir / "report.md", markdown);
-  writeAtomically(dir / "report.html", html);
+  writeFileAtomic(dir / "results.csv", csv);
+  writeFileAtomic(dir / "report.md", markdown);
+  writeFileAtomic(dir / "report.html", html);
 }
 
 }  // namespace sb
