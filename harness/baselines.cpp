@@ -17,8 +17,10 @@
 #include <optional>
 #include <ostream>
 #include <regex>
+#include <set>
 #include <sstream>
 
+#include "harness/commands.h"
 #include "scenes/scene.h"
 
 namespace sb {
@@ -322,13 +324,42 @@ json toleranceJson(const Tolerance& t) {
               {"min_psnr", num(t.minPsnr)}};
 }
 
-// Renders a case; bad scene or technique specs name the manifest and the case.
-RenderOutcome renderCase(const Manifest& m, const BaselineCase& c, const std::string& backend) {
+// Runs f; bad scene or technique specs name the manifest and the case.
+template <typename F>
+auto forCase(const Manifest& m, const BaselineCase& c, const std::string& backend, F&& f)
+    -> decltype(f()) {
   try {
-    return runRender(caseRequest(c, backend));
+    return f();
   } catch (const InputError& e) {
     throw InputError(m.file.string() + ": case '" + c.name + "' (" + backend + "): " + e.what());
   }
+}
+
+// Renders a case (its scene from the cache that checkCases filled).
+RenderOutcome renderCase(const Manifest& m, const BaselineCase& c, const std::string& backend,
+                         RenderCache& cache) {
+  return forCase(m, c, backend, [&] { return runRender(caseRequest(c, backend), &cache); });
+}
+
+// Everything the cases name (scenes, techniques, sizes, each backend's device),
+// checked before the first render: a bad case or an unavailable backend stops
+// check or bless before it prints or writes anything. Keeps the scenes in `cache`.
+void checkCases(const Manifest& m, const std::vector<BaselineCase>& cases, RenderCache& cache) {
+  std::set<std::string> devices;
+  for (const BaselineCase& c : cases)
+    for (const std::string& backend : c.backends) {
+      const bool device = devices.insert(backend).second;
+      forCase(m, c, backend, [&] { checkRenderRequest(caseRequest(c, backend), device, &cache); });
+    }
+}
+
+// The folder given by --baselines must exist (it holds manifest.json).
+void checkBaselinesFolder(const fs::path& dir) {
+  std::error_code ec;
+  if (!fs::exists(dir, ec))
+    throw InputError("--baselines " + dir.string() + ": no such baselines folder");
+  if (!fs::is_directory(dir, ec))
+    throw InputError("--baselines " + dir.string() + ": is a file, not a baselines folder");
 }
 
 // A folder path without a trailing separator, absolute.
@@ -553,15 +584,18 @@ int runCheck(const fs::path& baselines, const fs::path& outDir, const std::strin
              std::ostream& out) {
   return fsGuard([&] {
     const fs::path dir = folderPath(baselines);
+    checkBaselinesFolder(dir);
     const Manifest m = loadManifest(dir / "manifest.json");
     const std::vector<BaselineCase> cases = selectCases(m, filter);
+    RenderCache cache;
+    checkCases(m, cases, cache);
     const auto t0 = std::chrono::steady_clock::now();
     Checker checker(outDir, out);
     int renders = 0;
     for (const BaselineCase& c : cases) {
       std::vector<Image> images;
       for (const std::string& backend : c.backends) {
-        const Image actual = quantize16(renderCase(m, c, backend).image);
+        const Image actual = quantize16(renderCase(m, c, backend, cache).image);
         ++renders;
         const fs::path file = dir / baselineFileName(c.name, backend);
         if (!fs::exists(file)) {
@@ -626,7 +660,7 @@ int runBless(const fs::path& baselines, const std::string& filter, std::ostream&
     const std::string prefix = "." + dir.filename().string() + ".bless-";
     // A bless stopped between the two fallback renames leaves no `dir` but an
     // "old" copy: put it back.
-    if (!fs::exists(dir)) {
+    if (!fs::exists(dir) && fs::is_directory(parent)) {
       for (const auto& entry : fs::directory_iterator(parent)) {
         const std::string n = entry.path().filename().string();
         if (n.rfind(prefix + "old-", 0) == 0 && entry.is_directory()) {
@@ -636,9 +670,11 @@ int runBless(const fs::path& baselines, const std::string& filter, std::ostream&
         }
       }
     }
-    if (!fs::is_directory(dir)) throw InputError(dir.string() + ": no such baselines folder");
+    checkBaselinesFolder(dir);
     const Manifest m = loadManifest(dir / "manifest.json");
     const std::vector<BaselineCase> cases = selectCases(m, filter);
+    RenderCache cache;
+    checkCases(m, cases, cache);
 
     // Leftovers of a bless that was killed.
     std::vector<fs::path> leftovers;
@@ -657,7 +693,7 @@ int runBless(const fs::path& baselines, const std::string& filter, std::ostream&
     for (const BaselineCase& c : cases) {
       std::vector<Image> images;
       for (const std::string& backend : c.backends) {
-        const RenderOutcome r = renderCase(m, c, backend);
+        const RenderOutcome r = renderCase(m, c, backend, cache);
         const std::string name = baselineFileName(c.name, backend);
         writeImage(r.image, (staging.path / name).string(), ImageBitDepth::U16);
         ++written;

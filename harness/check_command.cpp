@@ -21,7 +21,10 @@ void registerCheckCommands(CLI::App& app) {
     cmd->add_option("--out", *out, "where failures are written (actual, expected, diff, JSON)")
         ->capture_default_str();
     cmd->callback([=] {
-      runGuarded("check", [&] { return runCheck(*baselines, *out, *filter, std::cout); });
+      runGuarded("check", [&] {
+        checkOutputFolder("--out", *out);  // written only on failure, but checked up front
+        return runCheck(*baselines, *out, *filter, std::cout);
+      });
     });
   }
   {

@@ -2,7 +2,9 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -11,11 +13,14 @@
 #include "harness/image.h"
 #include "harness/metrics.h"
 #include "harness/render.h"
+#include "scenes/options.h"
 #include "scenes/scene.h"
 #include "techniques/common/technique.h"
 
 namespace sb {
 namespace {
+
+namespace fs = std::filesystem;
 
 int gStatus = 0;
 
@@ -72,21 +77,51 @@ void registerList(CLI::App& app) {
   });
 }
 
-// Checked before any rendering so a long run never ends in an unwritable path.
-void checkOutputPath(const std::string& path) {
-  namespace fs = std::filesystem;
-  const std::string ext = fs::path(path).extension().string();
-  if (ext != ".png" && ext != ".exr")
-    throw InputError("--out " + path + ": the file must end in .png or .exr");
-  const fs::path dir = fs::absolute(path).parent_path();
-  std::error_code ec;
-  if (!fs::is_directory(dir, ec))
-    throw InputError("--out " + path + ": folder " + dir.string() + " does not exist");
+// "gl" or "vulkan", and a platform of that backend; the closest valid name otherwise.
+void checkBackendNames(const RenderRequest& req) {
+  const std::vector<std::string> backends = {"gl", "vulkan"};
+  if (std::find(backends.begin(), backends.end(), req.backend) == backends.end())
+    throw InputError("--backend " + req.backend + ": " +
+                     unknownNameMessage("backend", req.backend, backends));
+  if (req.platform.empty()) return;
+  const std::vector<std::string> platforms = req.backend == "gl"
+                                                 ? std::vector<std::string>{"egl", "osmesa"}
+                                                 : std::vector<std::string>{"headless"};
+  if (std::find(platforms.begin(), platforms.end(), req.platform) == platforms.end())
+    throw InputError("--platform " + req.platform + ": " +
+                     unknownNameMessage(req.backend + " platform", req.platform, platforms));
+}
+
+// Creates and removes a file in `dir`: unlike permission bits, this also holds
+// for root (read-only mounts, /proc, /sys).
+bool folderWritable(const fs::path& dir) {
   const fs::path probe = dir / (".strandbench-write-test-" + std::to_string(::getpid()));
   FILE* f = std::fopen(probe.c_str(), "wb");
-  if (!f) throw InputError("--out " + path + ": folder " + dir.string() + " is not writable");
+  if (!f) return false;
   std::fclose(f);
+  std::error_code ec;
   fs::remove(probe, ec);
+  return true;
+}
+
+// Options a command does not know, and stray arguments: CLI11 would only say
+// "The following arguments were not expected"; this names the command and the
+// closest valid option. Runs as soon as the command's arguments are parsed.
+void rejectUnknownArguments(const CLI::App& cmd) {
+  const std::vector<std::string> extra = cmd.remaining();
+  if (extra.empty()) return;
+  const std::string& arg = extra.front();
+  if (arg.size() < 2 || arg[0] != '-')
+    throw CLI::ParseError(cmd.get_name() + ": unexpected argument '" + arg + "'",
+                          CLI::ExitCodes::ExtrasError);
+  std::vector<std::string> valid;
+  for (const CLI::Option* o : cmd.get_options()) {
+    for (const auto& n : o->get_lnames()) valid.push_back("--" + n);
+    for (const auto& n : o->get_snames()) valid.push_back("-" + n);
+  }
+  throw CLI::ParseError(
+      unknownNameMessage(cmd.get_name() + " option", arg.substr(0, arg.find('=')), valid),
+      CLI::ExitCodes::ExtrasError);
 }
 
 void registerRender(CLI::App& app) {
@@ -133,13 +168,15 @@ void registerRender(CLI::App& app) {
       auto [w, h] = parseSize(*size);
       req->width = w;
       req->height = h;
-      if (!out->empty()) checkOutputPath(*out);
+      checkBackendNames(*req);
+      if (!out->empty()) checkOutputPath("--out", *out, {".png", ".exr"});
       if (!req->image && (!out->empty() || !referenceOut->empty() || !heatmap->empty()))
         throw InputError("--no-image writes no images: drop --out, --reference-out and --heatmap");
-      for (const auto* extra : {referenceOut.get(), heatmap.get()}) {
+      for (const auto& [option, extra] : {std::pair{"--reference-out", referenceOut.get()},
+                                          std::pair{"--heatmap", heatmap.get()}}) {
         if (extra->empty()) continue;
         if (!req->reference) throw InputError("--reference-out and --heatmap need --reference");
-        checkOutputPath(*extra);
+        checkOutputPath(option, *extra, {".png", ".exr"});
       }
       auto get = [&](const char* k) -> const std::string& { return (*view)[k]; };
       ViewOverrides& v = req->view;
@@ -221,7 +258,7 @@ void registerCompare(CLI::App& app) {
     runGuarded("compare", [&] {
       if (!heatmap->empty()) {
         if (!(*scale > 0)) throw InputError("--heatmap-scale must be positive");
-        checkOutputPath(*heatmap);
+        checkOutputPath("--heatmap", *heatmap, {".png", ".exr"});
       }
       const int status = runCompareCommand(*a, *b, std::cout, std::cerr);
       if (status == 0 && !heatmap->empty())
@@ -242,6 +279,9 @@ void registerCommands(CLI::App& app) {
   registerBenchCommand(app);
   registerSweepCommands(app);
   registerCompareRunsCommand(app);
+  // Unknown options get the closest valid one, for every command.
+  for (CLI::App* cmd : app.get_subcommands([](CLI::App*) { return true; }))
+    cmd->parse_complete_callback([cmd] { rejectUnknownArguments(*cmd); });
 }
 
 int lastCommandStatus() { return gStatus; }
@@ -256,6 +296,55 @@ void runGuarded(const char* command, const std::function<int()>& body) {
     std::cerr << "strandbench " << command << ": " << e.what() << "\n";
     gStatus = 2;
   }
+}
+
+void checkOutputPath(const std::string& option, const std::string& path,
+                     const std::vector<std::string>& extensions) {
+  const std::string what = option + " " + path + ": ";
+  const std::string ext = fs::path(path).extension().string();
+  if (std::find(extensions.begin(), extensions.end(), ext) == extensions.end()) {
+    std::string list;
+    for (std::size_t i = 0; i < extensions.size(); ++i)
+      list += (i == 0 ? "" : i + 1 == extensions.size() ? " or " : ", ") + extensions[i];
+    throw InputError(what + "the file must end in " + list);
+  }
+  const fs::path target = fs::absolute(path);
+  const fs::path dir = target.parent_path();
+  std::error_code ec;
+  if (!fs::exists(dir, ec)) throw InputError(what + "folder " + dir.string() + " does not exist");
+  if (!fs::is_directory(dir, ec))
+    throw InputError(what + dir.string() + " is a file, not a folder");
+  if (fs::is_directory(target, ec)) throw InputError(what + "it is a folder, not a file");
+  if (!folderWritable(dir)) throw InputError(what + "folder " + dir.string() + " is not writable");
+}
+
+void checkOutputFolder(const std::string& option, const std::string& path) {
+  const std::string what = option + " " + path + ": ";
+  fs::path existing = fs::absolute(path).lexically_normal();
+  std::error_code ec;
+  while (!fs::exists(existing, ec) && existing.has_parent_path() &&
+         existing != existing.parent_path())
+    existing = existing.parent_path();
+  if (!fs::is_directory(existing, ec))
+    throw InputError(what + existing.string() + " is a file, not a folder");
+  if (!folderWritable(existing))
+    throw InputError(what + "folder " + existing.string() + " is not writable");
+}
+
+void checkRenderRequest(const RenderRequest& req, bool device, RenderCache* cache) {
+  if (req.repeat < 1) throw InputError("--repeat must be at least 1");
+  if (req.warmup < 0) throw InputError("--warmup must be at least 0");
+  checkBackendNames(req);
+  std::shared_ptr<const Scene> scene;
+  if (cache && cache->scenes.count(req.scene)) scene = cache->scenes.at(req.scene);
+  if (!scene) {
+    scene = std::make_shared<const Scene>(makeScene(Spec::parse(req.scene)));
+    if (cache) cache->scenes[req.scene] = scene;
+  }
+  makeShadowTechnique(Spec::parse(req.shadow));
+  makeOitTechnique(Spec::parse(req.oit));
+  makeRenderSettings(req, *scene);
+  if (device) makeRequestDevice(req);
 }
 
 }  // namespace sb

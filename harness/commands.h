@@ -3,8 +3,13 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <string>
+#include <vector>
 
 namespace sb {
+struct RenderRequest;
+struct RenderCache;
+
 void registerCommands(CLI::App& app);
 // `check` and `bless` (harness/check_command.cpp).
 void registerCheckCommands(CLI::App& app);
@@ -21,4 +26,18 @@ int lastCommandStatus();
 // unavailable backends (DeviceError) print "strandbench <command>: <message>"
 // to stderr and give status 2.
 void runGuarded(const char* command, const std::function<int()>& body);
+
+// Checks made before any work, so that bad input stops a command before it
+// prints or writes anything; each throws InputError naming `option` and the path.
+// An output file: its extension is one of `extensions` (".png"), its folder
+// exists and is writable, and it is not a folder itself.
+void checkOutputPath(const std::string& option, const std::string& path,
+                     const std::vector<std::string>& extensions);
+// An output folder made when first needed: the folder, or its nearest existing
+// parent, is a writable folder (nothing is created).
+void checkOutputFolder(const std::string& option, const std::string& path);
+// Everything a render request names, without rendering: counts, backend and
+// platform names, scene (built, and kept in `cache` when given), techniques,
+// primitive and view; with `device`, the backend's device is created once.
+void checkRenderRequest(const RenderRequest& req, bool device, RenderCache* cache = nullptr);
 }  // namespace sb

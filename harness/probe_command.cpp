@@ -18,29 +18,33 @@ struct ProbeRequest {
   RenderRequest render;
   std::vector<std::string> shadows = {"shadowmap"};
   std::string texel = "256,256";
-  uint32_t mapSize = 512;
+  int mapSize = 512;  // signed, so that a negative size gets the range message
   int samples = 256;
   std::string out;
 };
 
 int runProbe(const ProbeRequest& p) {
   if (p.out.empty()) throw InputError("--out FILE.csv is required");
-  if (std::filesystem::path(p.out).extension() != ".csv")
-    throw InputError("--out " + p.out + ": the file must end in .csv");
+  checkOutputPath("--out", p.out, {".csv"});
   if (p.samples < 2 || p.samples > 1000000) throw InputError("--samples must be in 2..1000000");
+  if (p.mapSize < 1 || p.mapSize > 16384)
+    throw InputError("--map-size " + std::to_string(p.mapSize) + ": must be in 1..16384");
+  const uint32_t mapSize = static_cast<uint32_t>(p.mapSize);
   unsigned x = 0, y = 0;
   char comma = 0;
   std::istringstream in(p.texel);
-  if (!(in >> x >> comma >> y) || comma != ',' || !in.eof() || x >= p.mapSize || y >= p.mapSize)
-    throw InputError("--texel " + p.texel + ": expected X,Y inside the " +
-                     std::to_string(p.mapSize) + "x" + std::to_string(p.mapSize) + " map");
+  if (!(in >> x >> comma >> y) || comma != ',' || !in.eof() || x >= mapSize || y >= mapSize)
+    throw InputError("--texel " + p.texel + ": expected X,Y inside the " + std::to_string(mapSize) +
+                     "x" + std::to_string(mapSize) + " map");
 
-  const Scene scene = makeScene(Spec::parse(p.render.scene));
+  RenderCache cache;  // the scene, built once
+  checkRenderRequest(p.render, false, &cache);
+  const Scene& scene = *cache.scenes.at(p.render.scene);
   RenderSettings settings = makeRenderSettings(p.render, scene);
   std::vector<float> depths;
-  settings.probePoints = probeRay(settings.light, {{x, y}, p.mapSize, p.samples}, depths);
+  settings.probePoints = probeRay(settings.light, {{x, y}, mapSize, p.samples}, depths);
   // The exact curve first, at the probe's map size, then each technique.
-  std::vector<std::string> specs = {"exact:size=" + std::to_string(p.mapSize)};
+  std::vector<std::string> specs = {"exact:size=" + std::to_string(mapSize)};
   specs.insert(specs.end(), p.shadows.begin(), p.shadows.end());
   std::vector<std::unique_ptr<ShadowTechnique>> techniques;
   for (const auto& spec : specs) techniques.push_back(makeShadowTechnique(Spec::parse(spec)));
@@ -56,6 +60,14 @@ int runProbe(const ProbeRequest& p) {
 
   // Written beside the target and renamed: a failed run leaves no half file.
   const std::string tmp = p.out + ".tmp";
+  struct RemoveOnError {
+    const std::string& path;
+    bool keep = false;
+    ~RemoveOnError() {
+      std::error_code ec;
+      if (!keep) std::filesystem::remove(path, ec);
+    }
+  } cleanup{tmp};
   {
     std::ofstream f(tmp);
     if (!f) throw InputError("--out " + p.out + ": cannot write (folder missing or not writable)");
@@ -71,6 +83,7 @@ int runProbe(const ProbeRequest& p) {
     if (!f) throw InputError("--out " + p.out + ": write failed");
   }
   std::filesystem::rename(tmp, p.out);
+  cleanup.keep = true;
   std::cout << "wrote " << p.out << ": " << depths.size() << " samples along light texel " << x
             << "," << y << " for " << specs.size() << " curves\n";
   return 0;

@@ -225,6 +225,8 @@ TEST(Cli, CompareReportsErrors) {
   std::filesystem::remove_all(dir);
 }
 
+// One render flag or spec each; the whole list, through every command:
+// tests/test_bad_input.cpp.
 struct BadInput {
   std::string args;
   std::string expect;  // a piece of the message

@@ -99,34 +99,8 @@ TEST(Registry, ValidatesTechniqueNamesAndOptions) {
   EXPECT_THROW(makeShadowTechnique(Spec::parse("none:size=5")), InputError);
 }
 
-// A technique shader with a syntax error: both backends name the file, the
-// line and the technique, and the CLI exits with 2.
-TEST(ShaderErrors, BrokenTechniqueShaderIsNamedByTheCli) {
-  namespace fs = std::filesystem;
-  const fs::path dir = sbtest::tempDir("shaders");
-  fs::copy(fs::path(SB_SOURCE_DIR) / "techniques", dir / "techniques", fs::copy_options::recursive);
-  {
-    std::ofstream f(dir / "techniques/shadowmap/lookup.glsl", std::ios::app);
-    f << "this is not glsl;\n";
-  }
-  std::ifstream in(dir / "techniques/shadowmap/lookup.glsl");
-  int lines = 0;
-  for (std::string l; std::getline(in, l);) ++lines;
-  for (const std::string backend : {"gl", "vulkan"}) {
-    const std::string cmd = "SB_SHADER_DIR=" + dir.string() + " " + SB_CLI +
-                            " render --scene straight:strands=10 --shadow shadowmap --size 16x16 "
-                            "--backend " +
-                            backend + " 2>" + (dir / "err").string();
-    const int raw = std::system(cmd.c_str());
-    EXPECT_EQ(WEXITSTATUS(raw), 2) << backend;
-    const std::string err = sbtest::readFile(dir / "err");
-    EXPECT_NE(err.find("techniques/shadowmap/lookup.glsl:" + std::to_string(lines)),
-              std::string::npos)
-        << backend << ": " << err;
-    EXPECT_NE(err.find("shadowmap"), std::string::npos) << err;
-  }
-  fs::remove_all(dir);
-}
+// A technique shader that fails to compile, through the CLI on both backends:
+// BadInput.ShaderThatFailsToCompile (tests/test_bad_input.cpp).
 
 }  // namespace
 }  // namespace sb

@@ -3,6 +3,7 @@
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 
+#include <cstdio>
 #include <cstring>
 #include <string>
 
@@ -18,6 +19,12 @@ bool hasExtension(const char* list, const char* ext) {
   for (const char* p = list; (p = std::strstr(p, ext)); p += n)
     if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0')) return true;
   return false;
+}
+
+std::string eglErrorText() {
+  char code[16];
+  std::snprintf(code, sizeof code, "0x%04X", static_cast<unsigned>(eglGetError()));
+  return std::string("EGL error ") + code;
 }
 
 class EGLPlatform : public GLPlatform {
@@ -38,11 +45,15 @@ class EGLPlatform : public GLPlatform {
         display_ = getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[0], nullptr);
     }
     if (display_ == EGL_NO_DISPLAY)
-      throw DeviceError("EGL: no surfaceless or device display available (no GL context)");
+      throw DeviceError(
+          "no GL context: EGL offers no surfaceless or device display (is Mesa's EGL, "
+          "libegl-mesa0, installed? --platform osmesa may work)");
     EGLint major = 0, minor = 0;
     if (!eglInitialize(display_, &major, &minor))
-      throw DeviceError("EGL: eglInitialize failed (no GL context)");
-    if (!eglBindAPI(EGL_OPENGL_API)) throw DeviceError("EGL: desktop OpenGL API not available");
+      throw DeviceError("no GL context: eglInitialize failed (" + eglErrorText() +
+                        "; is a Mesa DRI driver installed? --platform osmesa may work)");
+    if (!eglBindAPI(EGL_OPENGL_API))
+      throw DeviceError("no GL context: EGL cannot bind desktop OpenGL (" + eglErrorText() + ")");
 
     const EGLint configAttribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
     EGLConfig config = nullptr;
@@ -50,7 +61,7 @@ class EGLPlatform : public GLPlatform {
     const char* dispExt = eglQueryString(display_, EGL_EXTENSIONS);
     if (!hasExtension(dispExt, "EGL_KHR_no_config_context")) {
       if (!eglChooseConfig(display_, configAttribs, &config, 1, &numConfigs) || numConfigs < 1)
-        throw DeviceError("EGL: no OpenGL config");
+        throw DeviceError("no GL context: EGL has no OpenGL config (" + eglErrorText() + ")");
     }
     const EGLint ctxAttribs[] = {EGL_CONTEXT_MAJOR_VERSION,
                                  4,
@@ -61,9 +72,11 @@ class EGLPlatform : public GLPlatform {
                                  EGL_NONE};
     context_ = eglCreateContext(display_, config, EGL_NO_CONTEXT, ctxAttribs);
     if (context_ == EGL_NO_CONTEXT)
-      throw DeviceError("EGL: could not create an OpenGL 4.5 core context");
+      throw DeviceError("no GL context: EGL could not create an OpenGL 4.5 core context (" +
+                        eglErrorText() + "; the driver may offer less than 4.5)");
     if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_))
-      throw DeviceError("EGL: eglMakeCurrent without surface failed");
+      throw DeviceError("no GL context: EGL eglMakeCurrent without a surface failed (" +
+                        eglErrorText() + ")");
   }
   ~EGLPlatform() override {
     eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);

@@ -32,14 +32,15 @@ class OSMesaPlatform : public GLPlatform {
     }
     if (!handle_)
       throw DeviceError(
-          "OSMesa: libOSMesa not found (install libosmesa6; removed in Mesa >= 25.1)");
+          "no GL context: libOSMesa not found (install libosmesa6; removed in Mesa >= 25.1; "
+          "--platform egl may work)");
     auto create =
         reinterpret_cast<CreateContextAttribsFn>(dlsym(handle_, "OSMesaCreateContextAttribs"));
     auto makeCurrent = reinterpret_cast<MakeCurrentFn>(dlsym(handle_, "OSMesaMakeCurrent"));
     destroy_ = reinterpret_cast<DestroyContextFn>(dlsym(handle_, "OSMesaDestroyContext"));
     getProc_ = reinterpret_cast<GetProcAddressFn>(dlsym(handle_, "OSMesaGetProcAddress"));
     if (!create || !makeCurrent || !destroy_ || !getProc_)
-      throw DeviceError("OSMesa: libOSMesa lacks OSMesaCreateContextAttribs (too old)");
+      throw DeviceError("no GL context: libOSMesa lacks OSMesaCreateContextAttribs (too old)");
     const int attribs[] = {kOSMesaFormat,
                            kOSMesaRGBA,
                            kOSMesaDepthBits,
@@ -52,11 +53,14 @@ class OSMesaPlatform : public GLPlatform {
                            5,
                            0};
     context_ = create(attribs, nullptr);
-    if (!context_) throw DeviceError("OSMesa: could not create an OpenGL 4.5 core context");
+    if (!context_)
+      throw DeviceError(
+          "no GL context: OSMesa could not create an OpenGL 4.5 core context (the driver may "
+          "offer less than 4.5)");
     // OSMesa needs a colour buffer to be current; rendering goes to FBOs.
     buffer_.resize(4 * 4 * 4);
     if (!makeCurrent(context_, buffer_.data(), kGLUnsignedByte, 4, 4))
-      throw DeviceError("OSMesa: OSMesaMakeCurrent failed");
+      throw DeviceError("no GL context: OSMesaMakeCurrent failed");
   }
   ~OSMesaPlatform() override {
     if (context_) destroy_(context_);
