@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "harness/commands.h"
+#include "harness/files.h"
 #include "harness/render.h"
 #include "techniques/common/renderer.h"
 
@@ -58,32 +59,17 @@ int runProbe(const ProbeRequest& p) {
     curves.push_back(r.readProbe());
   }
 
-  // Written beside the target and renamed: a failed run leaves no half file.
-  const std::string tmp = p.out + ".tmp";
-  struct RemoveOnError {
-    const std::string& path;
-    bool keep = false;
-    ~RemoveOnError() {
-      std::error_code ec;
-      if (!keep) std::filesystem::remove(path, ec);
-    }
-  } cleanup{tmp};
-  {
-    std::ofstream f(tmp);
-    if (!f) throw InputError("--out " + p.out + ": cannot write (folder missing or not writable)");
-    f << "light_depth,x,y,z";
-    for (const auto& s : specs) f << ",\"" << s << "\"";
+  std::ostringstream f;
+  f << "light_depth,x,y,z";
+  for (const auto& s : specs) f << ",\"" << s << "\"";
+  f << "\n";
+  for (std::size_t i = 0; i < depths.size(); ++i) {
+    const glm::vec3& w = settings.probePoints[i];
+    f << depths[i] << "," << w.x << "," << w.y << "," << w.z;
+    for (const auto& c : curves) f << "," << c[i];
     f << "\n";
-    for (std::size_t i = 0; i < depths.size(); ++i) {
-      const glm::vec3& w = settings.probePoints[i];
-      f << depths[i] << "," << w.x << "," << w.y << "," << w.z;
-      for (const auto& c : curves) f << "," << c[i];
-      f << "\n";
-    }
-    if (!f) throw InputError("--out " + p.out + ": write failed");
   }
-  std::filesystem::rename(tmp, p.out);
-  cleanup.keep = true;
+  writeFileAtomic(p.out, f.str());  // a failed run leaves no half file
   std::cout << "wrote " << p.out << ": " << depths.size() << " samples along light texel " << x
             << "," << y << " for " << specs.size() << " curves\n";
   return 0;
