@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <regex>
 
+#include "browser_util.h"
 #include "harness/suite.h"
 #include "test_util.h"
 
@@ -203,6 +204,28 @@ TEST(Sweep, FilterSelectsCasesById) {
   EXPECT_EQ(doc["schema_version"], 1);
   EXPECT_TRUE(doc["context"].contains("commit"));
   EXPECT_TRUE(doc["context"].contains("cpu"));
+  fs::remove_all(dir);
+}
+
+// The acceptance check on a real sweep's report: it loads offline in headless
+// Chromium with no console message, shows the tables and the error-against-time
+// chart, and its screenshot is not blank.
+TEST(Sweep, RealReportLoadsInChromium) {
+  if (!fs::exists(sbtest::kChromium))
+    GTEST_SKIP() << sbtest::kChromium << " is not installed (apt-get install chromium)";
+  const fs::path dir = tempDir("sweep-browser");
+  const fs::path suite = writeSuite(dir, kTinySuite, "tiny.json");
+  ASSERT_EQ(runCli("sweep " + suite.string() + " --out " + (dir / "run").string()).status, 0);
+  for (const char* f : {"results.json", "results.csv", "report.md", "report.html"})
+    EXPECT_TRUE(fs::is_regular_file(dir / "run" / f)) << f;
+  const sbtest::PageLoad page = sbtest::loadPage(dir / "run" / "report.html", dir / "chromium");
+  ASSERT_EQ(page.status, 0) << page.log;
+  EXPECT_TRUE(page.console.empty()) << ::testing::PrintToString(page.console);
+  EXPECT_NE(page.dom.find("<table>"), std::string::npos);
+  EXPECT_NE(page.dom.find("class=\"chart-error-time\""), std::string::npos);
+  EXPECT_NE(page.dom.find("data:image/png;base64,"), std::string::npos);
+  const sbtest::ScreenshotVerdict shot = sbtest::inspectScreenshot(page.screenshot);
+  EXPECT_FALSE(shot.blank) << shot.distinct << " colours, " << shot.inked << " inked";
   fs::remove_all(dir);
 }
 
