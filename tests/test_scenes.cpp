@@ -108,7 +108,7 @@ TEST(Catalog, ListsEverySceneWithOptionsAndHelp) {
     }
   }
   EXPECT_EQ(names, (std::set<std::string>{"straight", "wavy", "curly", "clustered", "fur", "stray",
-                                          "file"}));
+                                          "sheet", "file"}));
 }
 
 // The stray scene: a clump plus one strand nearer the default light than any
@@ -280,7 +280,7 @@ TEST(Generators, MeshOption) {
 
 TEST(Validation, UnknownSceneListsNamesAndSuggests) {
   expectSceneError("curlly", {"unknown scene 'curlly'", "did you mean 'curly'",
-                              "straight, wavy, curly, clustered, fur, stray, file"});
+                              "straight, wavy, curly, clustered, fur, stray, sheet, file"});
   expectSceneError("strait:strands=3", {"did you mean 'straight'"});
   try {
     make("zzzzzzzz");
