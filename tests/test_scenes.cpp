@@ -446,3 +446,31 @@ TEST(View, DegenerateBoundsStayFinite) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(StiffSceneOptions, ScaleZeroSegmentsAndSheet) {
+  const sb::Scene base = sb::makeScene(sb::Spec::parse("straight:strands=20,points=5"));
+  const sb::Scene big = sb::makeScene(sb::Spec::parse("straight:strands=20,points=5,scale=1e5"));
+  EXPECT_NEAR(big.bounds().max.x, base.bounds().max.x * 1e5f, 1e-3f * 1e5f);
+  EXPECT_NEAR(big.mesh.positions[0].y, base.mesh.positions[0].y * 1e5f, 1.0f);
+  EXPECT_FLOAT_EQ(big.strands.thickness[0], base.strands.thickness[0] * 1e5f);
+
+  const sb::Scene doubled =
+      sb::makeScene(sb::Spec::parse("straight:strands=20,points=5,zero_segments=1"));
+  sbtest::expectWellFormed(doubled.strands);
+  ASSERT_EQ(doubled.strands.points.size(), 2 * base.strands.points.size());
+  EXPECT_EQ(doubled.strands.segmentCount(), 20u * 9u);
+  EXPECT_EQ(doubled.strands.points[0], doubled.strands.points[1]);  // a zero-length segment
+
+  const sb::Scene sheet = sb::makeScene(sb::Spec::parse("sheet:strands=10,points=6"));
+  sbtest::expectWellFormed(sheet.strands);
+  for (const glm::vec3& p : sheet.strands.points) EXPECT_EQ(p.z, 0.0f);
+  EXPECT_EQ(sheet.strands.strandCount(), 10u);
+
+  sbtest::expectInputError([] { sb::makeScene(sb::Spec::parse("straight:scale=0")); }, {"scale"});
+  sbtest::expectInputError([] { sb::makeScene(sb::Spec::parse("straight:zero_segments=2")); },
+                           {"zero_segments"});
+}
+
+}  // namespace
