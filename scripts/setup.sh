@@ -12,6 +12,7 @@ packages=(
   glslang-dev libglfw3-dev libglm-dev
   libopenimageio-dev libcli11-dev nlohmann-json3-dev libtinyobjloader-dev
   libgtest-dev googletest
+  clang libclang-rt-14-dev llvm
   chromium
 )
 missing=()

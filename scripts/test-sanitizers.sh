@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# The whole test suite under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/),
+# then every scene file loader fuzzed for a bounded time with libFuzzer (build-fuzz/).
+# scripts/test.sh runs this after the normal tests; scripts/setup.sh installs what it needs
+# (clang and libclang-rt-14-dev for libFuzzer, llvm for llvm-symbolizer).
+# Usage: scripts/test-sanitizers.sh [ctest args for the sanitizer suite...]
+#   SB_FUZZ_SECONDS=N   seconds each fuzz target runs (default 20)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+root=$PWD
+jobs=$(nproc 2>/dev/null || echo 2)
+
+# --- 1. the test suite under ASan + UBSan ----------------------------------------------
+# GCC, because clang 14 (Debian 12) cannot build the harness (C++20 lambdas capturing
+# structured bindings). -O1 keeps instrumented code fast enough; -g1 gives file:line in
+# reports. _GLIBCXX_ASSERTIONS adds bounds checks to std::vector::operator[] etc. (ASan
+# alone misses reads between a vector's size and capacity); float-cast-overflow is not in
+# GCC's -fsanitize=undefined. GCC's flow analysis is confused by the instrumentation
+# (-Wmaybe-uninitialized false positives in <regex>), so this build does not use -Werror:
+# the normal build is the warnings gate. SB_SANITIZE makes UB fatal (-fno-sanitize-recover).
+cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DSB_SANITIZE=ON \
+  "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -g1 -D_GLIBCXX_ASSERTIONS -fsanitize=float-cast-overflow -Wno-maybe-uninitialized" \
+  "-DCMAKE_C_FLAGS_DEBUG=-O1 -g1" >/dev/null
+cmake --build build-asan -j "$jobs"
+
+# Runtime options, inherited by the CLI processes the tests start:
+# - The executables link the sanitizer runtimes themselves, so the drivers that libEGL,
+#   OSMesa and the Vulkan loader dlopen (llvmpipe, lavapipe, the validation layer) run
+#   under them with no LD_PRELOAD: their malloc/free go through ASan, their code is not
+#   instrumented (no reports from inside them), and Mesa's JIT'd shaders run as usual.
+# - Leaks: LeakSanitizer runs at every exit. scripts/lsan.supp suppresses only leaks whose
+#   allocation stack is inside a third-party library (Mesa, LLVM, the Vulkan loader and
+#   validation layer, ...); a leak from our code fails the test. print_suppressions=0
+#   keeps the suppression summary off stderr, which some CLI tests require to be empty.
+# - UBSan: halt_on_error=1 as well as -fno-sanitize-recover, so a report fails the test.
+# - SB_VALIDATION=1 (set by ctest) keeps the Vulkan validation layer on; it works under
+#   ASan unchanged.
+export ASAN_OPTIONS="halt_on_error=1:abort_on_error=0:detect_leaks=1:check_initialization_order=1"
+export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
+export LSAN_OPTIONS="suppressions=$root/scripts/lsan.supp:print_suppressions=0"
+if command -v llvm-symbolizer >/dev/null; then
+  export ASAN_SYMBOLIZER_PATH
+  ASAN_SYMBOLIZER_PATH=$(command -v llvm-symbolizer)
+fi
+(cd build-asan && ctest --output-on-failure -j "$jobs" "$@")
+
+# --- 2. fuzz the loaders -----------------------------------------------------------------
+# Clang (libFuzzer); SB_FUZZ builds only the scene library and fuzz/ (see fuzz/CMakeLists.txt).
+cmake -S . -B build-fuzz -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
+  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSB_FUZZ=ON -DSB_WERROR=ON \
+  "-DSB_FUZZ_SECONDS=${SB_FUZZ_SECONDS:-20}" >/dev/null
+cmake --build build-fuzz -j "$jobs"
+(cd build-fuzz && ctest --output-on-failure -j "$jobs" -L fuzz)
