@@ -45,9 +45,4 @@ fi
 (cd build-asan && ctest --output-on-failure -j "$jobs" "$@")
 
 # --- 2. fuzz the loaders -----------------------------------------------------------------
-# Clang (libFuzzer); SB_FUZZ builds only the scene library and fuzz/ (see fuzz/CMakeLists.txt).
-cmake -S . -B build-fuzz -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
-  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSB_FUZZ=ON -DSB_WERROR=ON \
-  "-DSB_FUZZ_SECONDS=${SB_FUZZ_SECONDS:-20}" >/dev/null
-cmake --build build-fuzz -j "$jobs"
-(cd build-fuzz && ctest --output-on-failure -j "$jobs" -L fuzz)
+scripts/test-fuzz.sh

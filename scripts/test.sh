@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
-# Sets up, builds and runs the whole test suite (unit, backend, CLI tests).
+# Sets up, builds and runs the whole test suite (unit, backend, CLI tests, the extreme
+# suite), then fuzzes every file loader for a bounded time (scripts/test-fuzz.sh).
+# The suite under ASan + UBSan is scripts/test-sanitizers.sh (not run here: see README).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh -DSB_WERROR=ON
-cd build
-ctest --output-on-failure -j "$(nproc 2>/dev/null || echo 2)" "$@"
+(cd build && ctest --output-on-failure -j "$(nproc 2>/dev/null || echo 2)" "$@")
+scripts/test-fuzz.sh

@@ -184,7 +184,9 @@ TEST(Sweep, ReferenceComputedOncePerSceneAndViewAndNotWhenUnneeded) {
   r = runCli("sweep " + none.string() + " --out " + (dir / "none").string());
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("references rendered: 0\n"), std::string::npos) << r.out;
-  for (const auto& res : results(dir / "none")["results"]) {
+  // Named: a range-for over results(...)["results"] reads a destroyed temporary.
+  const json noneRun = results(dir / "none");
+  for (const auto& res : noneRun.at("results")) {
     EXPECT_FALSE(res.contains("error"));
     EXPECT_FALSE(res.contains("reference"));
     EXPECT_FALSE(res.contains("measurement_graph"));
