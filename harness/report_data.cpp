@@ -142,9 +142,10 @@ PaperTable buildPaperTable(const json& t, const std::vector<const json*>& result
 
   const std::string source = text(find(t, {"source"}));
   pt.about = (source.empty() ? "" : "Source: " + source + ". ") + "Group " +
-             orDefault(tableGroup, "(per row)") + ", metric " + tableMetric + " (" +
-             orDefault(tableUnit, "?") + ")" + ", paper values in " +
-             orDefault(text(find(t, {"paper_unit"})), "ms") + ". ";
+             orDefault(tableGroup, "(per row)") +
+             (rowMetrics ? std::string(", metric per row")
+                         : ", metric " + tableMetric + " (" + orDefault(tableUnit, "?") + ")") +
+             ", paper values in " + orDefault(text(find(t, {"paper_unit"})), "ms") + ". ";
   if (baseline >= 0)
     pt.about += "Ratios: ours / our baseline (\"" + rows[baseline].label +
                 "\") beside paper / paper's baseline, both in time for fps tables.";
