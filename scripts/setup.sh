@@ -9,8 +9,8 @@ packages=(
   build-essential cmake pkg-config git
   libegl-dev libegl-mesa0 libgl-dev libgl1-mesa-dri libosmesa6
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
-  glslang-dev libglfw3-dev libglm-dev
-  libopenimageio-dev libcli11-dev nlohmann-json3-dev libtinyobjloader-dev
+  glslang-dev glslang-tools libglfw3-dev libglm-dev
+  libopenimageio-dev openimageio-tools libcli11-dev nlohmann-json3-dev libtinyobjloader-dev
   libgtest-dev googletest
   clang libclang-rt-14-dev llvm
   chromium
