@@ -282,7 +282,8 @@ RenderOutcome runRender(const RenderRequest& req, RenderCache* cache) {
   if (req.image) out.image = colorImage(renderer, settings);
   // Memory of this run's techniques only (before any reference is built).
   auto allocations = dev->allocations();
-  std::vector<std::string> warnings = renderer.warnings();
+  std::vector<std::string> warnings = scene.warnings;  // the input's, then the techniques'
+  for (const auto& w : renderer.warnings()) warnings.push_back(w);
 
   const DeviceInfo info = dev->info();
   nlohmann::json& j = out.report;

@@ -96,6 +96,10 @@ std::vector<SceneInfo> buildCatalog() {
                {{"path", "", "strand file (required): .hair, .tfx or .ply"},
                 {"mesh", "", "OBJ file drawn opaque"},
                 {"strands", "all", "keep this many strands, evenly spaced (default: all)"},
+                {"points_per_strand", "",
+                 "PLY without a 'strand' element (e.g. NeuralHaircut): strands of N "
+                 "consecutive vertices, 2.." +
+                     std::to_string(kMaxPointsPerStrand)},
                 {"alpha", "1", "hair opacity in [0,1] for transparency"},
                 {"shadow_alpha", "0.5", "per-fragment shadow opacity in [0,1]"}}});
   // Stiff cases for every scene: extreme scales and degenerate segments.
@@ -591,9 +595,13 @@ Scene makeFile(const Options& o) {
   scene.shadowAlpha = o.real("shadow_alpha", 0.0, 1.0);
   int64_t keep = 0;  // 0 = all
   if (o.text("strands") != "all") keep = o.integer("strands", 1, kMaxStrands);
+  uint32_t pointsPerStrand = 0;  // 0 = not given
+  if (o.given("points_per_strand")) {
+    pointsPerStrand = uint32_t(o.integer("points_per_strand", 2, kMaxPointsPerStrand));
+  }
   const std::string mesh = o.text("mesh");
   if (!mesh.empty()) scene.mesh = loadObj(mesh);
-  Strands all = loadStrandFile(path);
+  Strands all = loadStrandFile(path, pointsPerStrand, &scene.warnings);
   if (keep == 0 || uint64_t(keep) == all.strandCount()) {
     scene.strands = std::move(all);
     return scene;

@@ -1,7 +1,10 @@
-// PLY strands: element vertex (x, y, z and optional red, green, blue) and element
+// PLY strands: element vertex (x, y, z and optional red, green, blue, alpha) and element
 // strand with one integer count property (nsegs: segments per strand, points = nsegs + 1).
+// Files with no strand element (NeuralHaircut and similar: vertices only, every strand
+// the same length) are read with pointsPerStrand: strands of N consecutive vertices.
 // ascii, binary_little_endian and binary_big_endian; other elements and properties,
-// list properties included, are skipped generically.
+// list properties included, are skipped generically. A triangle mesh (element face, no
+// strands) is refused with a pointer to mesh=.
 #include <algorithm>
 #include <cctype>
 #include <charconv>
@@ -143,13 +146,25 @@ class BodyReader {
   const std::string& name_;
 };
 
+// "1 face", "2 faces".
+std::string plural(uint64_t n, const std::string& noun) {
+  return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
+}
+
+// An integer colour or alpha value in [0, 1] (its type's full range).
+float unitFromInteger(double v, const Type& t) {
+  const double maxv = double((uint64_t(1) << (8 * t.size)) - 1);
+  return float(std::clamp(v / maxv, 0.0, 1.0));
+}
+
 float srgbToLinear(float c) {
   return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
 }
 
 }  // namespace
 
-Strands parsePly(const uint8_t* data, std::size_t size, const std::string& name) {
+Strands parsePly(const uint8_t* data, std::size_t size, const std::string& name,
+                 uint32_t pointsPerStrand) {
   using detail::fail;
   if (data == nullptr || size < 4 || std::memcmp(data, "ply", 3) != 0 ||
       (data[3] != '\n' && data[3] != '\r')) {
@@ -234,19 +249,42 @@ Strands parsePly(const uint8_t* data, std::size_t size, const std::string& name)
   if (!haveFormat) fail(name, "PLY header has no format line");
   if (!haveEnd) fail(name, "PLY header has no end_header line");
 
-  // --- locate the vertex and strand elements and their properties ---
+  // --- locate the vertex, strand and face elements and their properties ---
   const Element* vertex = nullptr;
   const Element* strand = nullptr;
+  const Element* face = nullptr;
   for (const Element& e : elements) {
     if (e.name == "vertex" && !vertex) vertex = &e;
     if ((e.name == "strand" || e.name == "strands") && !strand) strand = &e;
+    if (e.name == "face" && !face) face = &e;
   }
   if (!vertex) fail(name, "PLY has no 'vertex' element");
-  if (!strand) fail(name, "PLY has no 'strand' element (segments per strand)");
+  if (!strand && face && face->count > 0) {
+    fail(name, "is a triangle mesh (element 'face', " + plural(face->count, "face") +
+                   ") with no strands; a mesh goes in mesh= (as an OBJ file), strands in path=");
+  }
+  if (!strand && pointsPerStrand == 0) {
+    fail(name, "PLY has no 'strand' element (segments per strand); if its " +
+                   std::to_string(vertex->count) +
+                   " vertices are strands of equal length one after another (NeuralHaircut "
+                   "and similar), give points_per_strand=N");
+  }
+  if (strand && pointsPerStrand != 0) {
+    fail(name, "has a 'strand' element (segments per strand), so points_per_strand=" +
+                   std::to_string(pointsPerStrand) + " does not apply; leave it out");
+  }
   if (vertex->count == 0) fail(name, "PLY has zero vertices");
-  if (strand->count == 0) fail(name, "PLY has zero strands");
+  if (strand && strand->count == 0) fail(name, "PLY has zero strands");
   if (vertex->count > std::numeric_limits<uint32_t>::max()) {
     fail(name, "too many vertices (" + std::to_string(vertex->count) + ")");
+  }
+  if (!strand && vertex->count % pointsPerStrand != 0) {
+    fail(name, "its " + std::to_string(vertex->count) +
+                   (vertex->count == 1 ? " vertex is" : " vertices are") +
+                   " not a whole number of strands of points_per_strand=" +
+                   std::to_string(pointsPerStrand) + " points (" +
+                   plural(vertex->count / pointsPerStrand, "strand") + " and " +
+                   std::to_string(vertex->count % pointsPerStrand) + " left over)");
   }
   auto findScalar = [&](const Element& e, const char* prop) -> int {
     for (std::size_t i = 0; i < e.props.size(); ++i) {
@@ -263,8 +301,9 @@ Strands parsePly(const uint8_t* data, std::size_t size, const std::string& name)
   const int ir = findScalar(*vertex, "red"), ig = findScalar(*vertex, "green"),
             ib = findScalar(*vertex, "blue");
   const bool hasColor = ir >= 0 && ig >= 0 && ib >= 0;
-  int ic = findScalar(*strand, "nsegs");
-  if (ic < 0) {
+  const int ia = findScalar(*vertex, "alpha");
+  int ic = strand ? findScalar(*strand, "nsegs") : 0;
+  if (strand && ic < 0) {
     for (std::size_t i = 0; i < strand->props.size(); ++i) {
       if (!strand->props[i].isList && !strand->props[i].type.isFloat) {
         if (ic >= 0) fail(name, "strand element has no 'nsegs' and several integer properties");
@@ -273,8 +312,9 @@ Strands parsePly(const uint8_t* data, std::size_t size, const std::string& name)
     }
     if (ic < 0) fail(name, "strand element has no integer segment-count property (nsegs)");
   }
-  if (strand->props[ic].type.isFloat) {
-    fail(name, "strand property '" + strand->props[ic].name + "' must be an integer type");
+  if (strand && strand->props[std::size_t(ic)].type.isFloat) {
+    fail(name,
+         "strand property '" + strand->props[std::size_t(ic)].name + "' must be an integer type");
   }
 
   // --- body ---
@@ -296,6 +336,7 @@ Strands parsePly(const uint8_t* data, std::size_t size, const std::string& name)
     if (isVertex) {
       s.points.resize(e.count);
       if (hasColor) s.colors.resize(e.count);
+      if (ia >= 0) s.transparency.resize(e.count);
     }
     if (isStrand) s.pointCount.resize(e.count);
     values.assign(e.props.size(), 0.0);
@@ -321,20 +362,26 @@ Strands parsePly(const uint8_t* data, std::size_t size, const std::string& name)
           glm::vec3 c;
           const int idx[3] = {ir, ig, ib};
           for (int j = 0; j < 3; ++j) {
-            const Type& t = e.props[idx[j]].type;
-            double val = values[idx[j]];
-            if (t.isFloat) {
-              c[j] = float(val);  // float colours are taken as linear
-            } else {
-              const double maxv = t.size == 1 ? 255.0 : double((uint64_t(1) << (8 * t.size)) - 1);
-              c[j] = srgbToLinear(float(std::clamp(val / maxv, 0.0, 1.0)));
-            }
+            const std::size_t k = std::size_t(idx[j]);
+            const Type& t = e.props[k].type;
+            // Float colours are taken as linear, integer ones as sRGB.
+            c[j] = t.isFloat ? float(values[k]) : srgbToLinear(unitFromInteger(values[k], t));
           }
-          if (!detail::finite3(c)) fail(name, "colour of vertex " + std::to_string(i) + " is NaN");
+          if (!detail::finite3(c)) {
+            fail(name, "colour of vertex " + std::to_string(i) + " is NaN or infinite");
+          }
           s.colors[i] = c;
         }
+        if (ia >= 0) {
+          // Alpha is opacity; the renderer's per-point transparency is 1 - alpha.
+          const std::size_t k = std::size_t(ia);
+          const Type& t = e.props[k].type;
+          const double a = t.isFloat ? values[k] : double(unitFromInteger(values[k], t));
+          if (std::isnan(a)) fail(name, "alpha of vertex " + std::to_string(i) + " is NaN");
+          s.transparency[i] = 1.0f - float(std::clamp(a, 0.0, 1.0));
+        }
       } else if (isStrand) {
-        const double n = values[ic];
+        const double n = values[std::size_t(ic)];
         if (n < 0) fail(name, "strand " + std::to_string(i) + " has a negative segment count");
         if (n >= double(std::numeric_limits<uint32_t>::max())) {
           fail(name, "strand " + std::to_string(i) + " has too many segments");
@@ -344,6 +391,7 @@ Strands parsePly(const uint8_t* data, std::size_t size, const std::string& name)
     }
   }
 
+  if (!strand) s.pointCount.assign(std::size_t(vertex->count / pointsPerStrand), pointsPerStrand);
   uint64_t total = 0;
   s.firstPoint.resize(s.pointCount.size());
   for (std::size_t i = 0; i < s.pointCount.size(); ++i) {
@@ -358,7 +406,7 @@ Strands parsePly(const uint8_t* data, std::size_t size, const std::string& name)
   const std::size_t n = s.points.size();
   if (!hasColor) s.colors.assign(n, detail::kDefaultHairColor);
   s.thickness.assign(n, detail::kDefaultThickness);
-  s.transparency.assign(n, 0.0f);
+  if (ia < 0) s.transparency.assign(n, 0.0f);
   return s;
 }
 

@@ -132,17 +132,18 @@ Strands loadHair(const std::string& path) {
   return parseHair(bytes.data(), bytes.size(), path);
 }
 
-Strands loadTfx(const std::string& path) {
+Strands loadTfx(const std::string& path, std::vector<std::string>* warnings) {
   const std::vector<uint8_t> bytes = detail::readFileBytes(path);
-  return parseTfx(bytes.data(), bytes.size(), path);
+  return parseTfx(bytes.data(), bytes.size(), path, warnings);
 }
 
-Strands loadPly(const std::string& path) {
+Strands loadPly(const std::string& path, uint32_t pointsPerStrand) {
   const std::vector<uint8_t> bytes = detail::readFileBytes(path);
-  return parsePly(bytes.data(), bytes.size(), path);
+  return parsePly(bytes.data(), bytes.size(), path, pointsPerStrand);
 }
 
-Strands loadStrandFile(const std::string& path) {
+Strands loadStrandFile(const std::string& path, uint32_t pointsPerStrand,
+                       std::vector<std::string>* warnings) {
   const std::size_t dot = path.find_last_of('.');
   const std::size_t slash = path.find_last_of('/');
   std::string ext;
@@ -150,9 +151,13 @@ Strands loadStrandFile(const std::string& path) {
     ext = path.substr(dot);
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   }
+  if (ext == ".ply") return loadPly(path, pointsPerStrand);
+  if (pointsPerStrand != 0 && (ext == ".hair" || ext == ".tfx")) {
+    throw InputError(path + ": points_per_strand= applies to .ply files only (a " + ext +
+                     " file says where its strands end)");
+  }
   if (ext == ".hair") return loadHair(path);
-  if (ext == ".tfx") return loadTfx(path);
-  if (ext == ".ply") return loadPly(path);
+  if (ext == ".tfx") return loadTfx(path, warnings);
   throw InputError(path + ": unknown strand file extension '" + ext +
                    "' (expected .hair, .tfx or .ply)");
 }

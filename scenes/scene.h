@@ -51,6 +51,9 @@ struct Scene {
   float hairAlpha = 1.0f;    // hair opacity for transparency (scene option alpha=)
   float shadowAlpha = 0.5f;  // per-fragment shadow opacity alpha_s (shadow_alpha=)
   glm::vec3 hairColor{0.45f, 0.3f, 0.18f};
+  // Input accepted with a defect worth knowing (e.g. a file cut inside a block that is
+  // not read); `render` reports them under "warnings".
+  std::vector<std::string> warnings;
   Bounds bounds() const;  // strands and mesh together
 };
 
@@ -81,17 +84,26 @@ const std::vector<SceneInfo>& sceneCatalog();
 // out-of-range values and bad files throw InputError.
 Scene makeScene(const Spec& spec);
 
-// Loaders (throw InputError naming the file and the problem).
-Strands loadHair(const std::string& path);        // Cem Yuksel's HAIR
-Strands loadTfx(const std::string& path);         // AMD TressFX .tfx, version 3 and 4
-Strands loadPly(const std::string& path);         // PLY strands: vertex + strand(nsegs)
-Mesh loadObj(const std::string& path);            // triangulated OBJ
-Strands loadStrandFile(const std::string& path);  // by extension
+// Loaders (throw InputError naming the file and the problem). `warnings`, when given,
+// receives what a loader accepted but the user should hear about ("<file>: <what>").
+// pointsPerStrand (PLY only; 0 = not given): a PLY without a 'strand' element is read as
+// strands of that many consecutive vertices (NeuralHaircut-style files).
+Strands loadHair(const std::string& path);  // Cem Yuksel's HAIR
+// AMD TressFX .tfx: binary versions 3 and 4, and the text form of TressFX 1.x/2.x.
+Strands loadTfx(const std::string& path, std::vector<std::string>* warnings = nullptr);
+// PLY strands: vertex + strand(nsegs), or vertex only with pointsPerStrand.
+Strands loadPly(const std::string& path, uint32_t pointsPerStrand = 0);
+Mesh loadObj(const std::string& path);  // triangulated OBJ
+// By extension; pointsPerStrand is an input error for anything but .ply.
+Strands loadStrandFile(const std::string& path, uint32_t pointsPerStrand = 0,
+                       std::vector<std::string>* warnings = nullptr);
 
 // Same, from memory (used by the fuzz targets and tests).
 Strands parseHair(const uint8_t* data, std::size_t size, const std::string& name);
-Strands parseTfx(const uint8_t* data, std::size_t size, const std::string& name);
-Strands parsePly(const uint8_t* data, std::size_t size, const std::string& name);
+Strands parseTfx(const uint8_t* data, std::size_t size, const std::string& name,
+                 std::vector<std::string>* warnings = nullptr);
+Strands parsePly(const uint8_t* data, std::size_t size, const std::string& name,
+                 uint32_t pointsPerStrand = 0);
 Mesh parseObj(const std::string& text, const std::string& name);  // OBJ text
 
 }  // namespace sb

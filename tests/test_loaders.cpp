@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <limits>
 #include <random>
@@ -315,9 +316,196 @@ TEST(TfxParser, Malformed) {
   }
 }
 
-// ---------------------------------------------------------------- PLY builder
+// Version 4 with a strand UV block after the positions (as Ratboy_mohawk.tfx), optionally
+// cut short by `cut` bytes.
+Bytes tfxWithUvs(std::size_t cut) {
+  Bytes b = smallTfx(4);             // 3 strands x 4 points
+  put32(b, 16, uint32_t(b.size()));  // offsetStrandUV: right after the positions
+  for (int i = 0; i < 3 * 2; ++i) appendF(b, 0.5f);
+  b.resize(b.size() - cut);
+  return b;
+}
+
+TEST(TfxParser, CutInsideUnreadBlockIsAcceptedWithAWarning) {
+  std::vector<std::string> warnings;
+  const Bytes complete = tfxWithUvs(0);
+  const sb::Strands whole = sb::parseTfx(complete.data(), complete.size(), "mem.tfx", &warnings);
+  EXPECT_TRUE(warnings.empty()) << warnings[0];
+  EXPECT_EQ(whole.strandCount(), 3u);
+  for (std::size_t cut : {std::size_t(1), std::size_t(12), std::size_t(24)}) {
+    warnings.clear();
+    const Bytes b = tfxWithUvs(cut);
+    const sb::Strands s = sb::parseTfx(b.data(), b.size(), "mem.tfx", &warnings);
+    sbtest::expectWellFormed(s);
+    EXPECT_EQ(s.strandCount(), 3u);
+    EXPECT_EQ(s.points, whole.points);
+    ASSERT_EQ(warnings.size(), 1u) << "cut " << cut;
+    for (const char* needle : {"mem.tfx", "strand UV", "truncated"}) {
+      EXPECT_NE(warnings[0].find(needle), std::string::npos) << warnings[0];
+    }
+  }
+  // Without a place for warnings the file still loads (the fuzz targets' and tests' call).
+  const Bytes cut = tfxWithUvs(5);
+  EXPECT_EQ(tfx(cut).strandCount(), 3u);
+  // A cut inside the positions is still an error, UV block or not.
+  Bytes b = tfxWithUvs(24);
+  b.resize(b.size() - 1);
+  expectInputError([&] { tfx(b); }, {"mem.tfx", "truncated"});
+  // Every other later block is checked too: vertex colours (float4 per point) declared, absent.
+  b = smallTfx(4);
+  put32(b, 28, uint32_t(b.size()));
+  warnings.clear();
+  sb::parseTfx(b.data(), b.size(), "mem.tfx", &warnings);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("vertex colour"), std::string::npos) << warnings[0];
+}
+
+// ---------------------------------------------------------------- TFX text (1.x / 2.x)
 
 Bytes text(const std::string& s) { return Bytes(s.begin(), s.end()); }
+
+// Two strands (3 and 2 points) in the TressFX 2.0 sample layout.
+const char* kTextTfx =
+    "version 2.0\n"
+    "scale 1.0\n"
+    "rotation 0 0 0\n"
+    "translation 0 0 0\n"
+    "bothEndsImmovable 0\n"
+    "maxNumVerticesInStrand 3\n"
+    "numFollowHairsPerGuideHair 4\n"
+    "maxRadiusAroundGuideHair 0.5\n"
+    "numStrands 2\n"
+    "is sorted 1\n"
+    "strand 0 numVerts 3 texcoord 0.000000 0.522833\n"
+    "0.0 0.0 0.0\n"
+    "0.0 1.0 0.0\n"
+    "0.0 2.0 0.5\n"
+    "strand 1 numVerts 2 texcoord 0.100000 000000\n"
+    "1.0 0.0 0.0\n"
+    "1.0 -1.5 0.0\n";
+
+std::string replaced(std::string s, const std::string& from, const std::string& to) {
+  const std::size_t p = s.find(from);
+  EXPECT_NE(p, std::string::npos) << from;
+  if (p != std::string::npos) s.replace(p, from.size(), to);
+  return s;
+}
+
+TEST(TfxTextParser, Version2) {
+  const sb::Strands s = tfx(text(kTextTfx));
+  sbtest::expectWellFormed(s);
+  ASSERT_EQ(s.strandCount(), 2u);
+  EXPECT_EQ(s.pointCount[0], 3u);
+  EXPECT_EQ(s.pointCount[1], 2u);
+  EXPECT_EQ(s.points[2], glm::vec3(0.0f, 2.0f, 0.5f));
+  EXPECT_EQ(s.points[4], glm::vec3(1.0f, -1.5f, 0.0f));
+}
+
+TEST(TfxTextParser, Version1CommasCrLfAndBlankLines) {
+  // 1.x files start at numStrands; some exporters write "x, y, z"; Windows line ends.
+  std::string t =
+      "numStrands 1\r\nis sorted 1\r\n\r\nstrand 0 numVerts 2 texcoord 0 0\r\n"
+      "0.5, 1, 2\r\n\r\n3, 4, 5\r\n";
+  const sb::Strands s = tfx(text(t));
+  sbtest::expectWellFormed(s);
+  ASSERT_EQ(s.strandCount(), 1u);
+  EXPECT_EQ(s.points[0], glm::vec3(0.5f, 1.0f, 2.0f));
+  EXPECT_EQ(s.points[1], glm::vec3(3.0f, 4.0f, 5.0f));
+  // A UTF-8 byte order mark and no texcoord are fine too.
+  EXPECT_EQ(tfx(text("\xEF\xBB\xBFnumStrands 1\nstrand 0 numVerts 1\n1 2 3\n")).points[0],
+            glm::vec3(1, 2, 3));
+}
+
+TEST(TfxTextParser, ScaleRotationTranslationAsAmdsLoader) {
+  // scale, then roll (z), pitch (x), yaw (y) in radians, then translation.
+  const float half = 1.5707963267948966f;
+  std::string t = replaced(kTextTfx, "scale 1.0", "scale 2.0");
+  t = replaced(t, "rotation 0 0 0", "rotation 0 " + std::to_string(half) + " 0");
+  t = replaced(t, "translation 0 0 0", "translation 10 20 30");
+  const sb::Strands s = tfx(text(t));
+  // (0, 2, 0.5) -> scaled (0, 4, 1) -> yaw 90 degrees about y: (1, 4, 0) -> + (10, 20, 30).
+  EXPECT_NEAR(s.points[2].x, 11.0f, 1e-5f);
+  EXPECT_NEAR(s.points[2].y, 24.0f, 1e-5f);
+  EXPECT_NEAR(s.points[2].z, 30.0f, 1e-5f);
+  // Roll about z: (1, 0, 0) -> (0, 1, 0).
+  t = replaced(kTextTfx, "rotation 0 0 0", "rotation 0 0 " + std::to_string(half));
+  const sb::Strands r = tfx(text(t));
+  EXPECT_NEAR(r.points[3].x, 0.0f, 1e-5f);
+  EXPECT_NEAR(r.points[3].y, 1.0f, 1e-5f);
+  // Pitch about x: (0, 1, 0) -> (0, 0, 1).
+  t = replaced(kTextTfx, "rotation 0 0 0", "rotation " + std::to_string(half) + " 0 0");
+  const sb::Strands q = tfx(text(t));
+  EXPECT_NEAR(q.points[1].y, 0.0f, 1e-5f);
+  EXPECT_NEAR(q.points[1].z, 1.0f, 1e-5f);
+}
+
+TEST(TfxTextParser, EveryMalformedLineNamesFileAndLine) {
+  const std::string a = kTextTfx;
+  struct Case {
+    std::string from, to, line, what;
+  };
+  const std::vector<Case> cases = {
+      {"version 2.0", "version 7.5", "line 1", "7.5"},
+      {"version 2.0", "version two", "line 1", "two"},
+      {"scale 1.0", "scale", "line 2", "scale"},
+      {"scale 1.0", "scale nan", "line 2", "nan"},
+      {"rotation 0 0 0", "rotation 0 0", "line 3", "rotation"},
+      {"translation 0 0 0", "translation 0 0 1e999", "line 4", "1e999"},
+      {"bothEndsImmovable 0", "bothEndsImmovable x", "line 5", "'x'"},
+      {"maxNumVerticesInStrand 3", "maxNumVerticesInStrand -3", "line 6", "-3"},
+      {"numStrands 2", "numStrands 0", "line 9", "numStrands"},
+      {"numStrands 2", "numStrands 2.5", "line 9", "2.5"},
+      {"is sorted 1", "is unsorted", "line 10", "is sorted"},
+      {"is sorted 1", "17 18", "line 10", "'17'"},
+      {"strand 0 numVerts 3", "strand 0 numVerts x", "line 11", "'x'"},
+      {"strand 0 numVerts 3", "strand 0 numVerts 0", "line 11", "numVerts"},
+      {"strand 0 numVerts 3", "strand 0 nverts 3", "line 11", "numVerts"},
+      {"strand 0 numVerts 3", "strand -1 numVerts 3", "line 11", "strand index"},
+      {"texcoord 0.000000 0.522833", "texcoord 0.5", "line 11", "texcoord"},
+      {"texcoord 0.000000 0.522833", "uv 0 0", "line 11", "texcoord"},
+      {"0.0 1.0 0.0", "0.0 1.0", "line 13", "x y z"},
+      {"0.0 1.0 0.0", "0.0 1.0 0.0 1.0", "line 13", "x y z"},
+      {"0.0 1.0 0.0", "0.0 1,0 0.0", "line 13", "x y z"},  // decimal comma
+      {"0.0 1.0 0.0", "0.0 -1.#INF 0.0", "line 13", "-1.#INF"},
+      {"0.0 2.0 0.5", "strand 9 numVerts 1", "line 14", "x y z"},  // numVerts says 3
+      {"strand 1 numVerts 2", "strnd 1 numVerts 2", "line 15", "strnd"},
+      {"1.0 -1.5 0.0\n", "1.0 -1.5 0.0\n0 0 0\n", "line 18", "more data"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.to);
+    expectInputError([&] { tfx(text(replaced(a, c.from, c.to))); }, {"mem.tfx", c.line, c.what});
+  }
+  // Scale times a coordinate overflows float: the vertex's line is named.
+  std::string t = replaced(a, "scale 1.0", "scale 1e30");
+  t = replaced(t, "0.0 1.0 0.0", "0.0 1e20 0.0");
+  expectInputError([&] { tfx(text(t)); }, {"mem.tfx", "line 13", "finite"});
+  // numStrands missing before the strands.
+  expectInputError([&] { tfx(text(replaced(a, "numStrands 2\n", ""))); },
+                   {"mem.tfx", "numStrands"});
+  // Declared strands missing.
+  expectInputError([&] { tfx(text(replaced(a, "numStrands 2", "numStrands 3"))); },
+                   {"mem.tfx", "truncated", "3 strands"});
+}
+
+TEST(TfxTextParser, EveryCutAtALineEndIsRejected) {
+  const std::string a = kTextTfx;
+  for (std::size_t p = a.find('\n'); p + 1 < a.size(); p = a.find('\n', p + 1)) {
+    const std::string cut = a.substr(0, p + 1);
+    SCOPED_TRACE(cut);
+    expectInputError([&] { tfx(text(cut)); }, {"mem.tfx"});
+  }
+}
+
+TEST(TfxTextParser, OtherTextIsNotReadAsBinary) {
+  // Text that is not TressFX: said plainly, not "unsupported TressFX version 1.9e31".
+  expectInputError([] { tfx(text("hello, this is not hair data\n")); },
+                   {"mem.tfx", "text", "version 2.0"});
+  expectInputError([] { tfx(text("version 2.0\nstrand 0 numVerts 1\n1 2 3\n")); },
+                   {"mem.tfx", "numStrands"});
+}
+
+// ---------------------------------------------------------------- PLY builder
+
 sb::Strands ply(const Bytes& b) { return sb::parsePly(b.data(), b.size(), "mem.ply"); }
 
 const char* kAsciiPly =
@@ -473,6 +661,102 @@ TEST(PlyParser, BadBodies) {
   }
 }
 
+// A PLY with no 'strand' element (NeuralHaircut-style): x y z, normals (ignored) and a
+// per-strand colour with alpha, strands of perStrand consecutive vertices.
+Bytes vertexOnlyPly(bool ascii, uint32_t strands, uint32_t perStrand) {
+  const uint32_t n = strands * perStrand;
+  std::string h = std::string("ply\nformat ") + (ascii ? "ascii" : "binary_little_endian") +
+                  " 1.0\nelement vertex " + std::to_string(n) +
+                  "\nproperty float x\nproperty float y\nproperty float z\n"
+                  "property float nx\nproperty float ny\nproperty float nz\n"
+                  "property uchar red\nproperty uchar green\nproperty uchar blue\n"
+                  "property uchar alpha\nend_header\n";
+  Bytes b = text(h);
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint32_t s = i / perStrand, k = i % perStrand;
+    const float xyz[6] = {float(s), float(k), 0.5f, 0, 0, 1};
+    const uint8_t rgba[4] = {uint8_t(255 - 40 * (s % 6)), uint8_t(40 * (s % 6)), 0,
+                             uint8_t(255 - s % 2 * 127)};
+    if (ascii) {
+      std::string line;
+      for (float f : xyz) line += std::to_string(f) + " ";
+      for (uint8_t c : rgba) line += std::to_string(int(c)) + " ";
+      line.back() = '\n';
+      b.insert(b.end(), line.begin(), line.end());
+    } else {
+      for (float f : xyz) appendF(b, f);
+      b.insert(b.end(), rgba, rgba + 4);
+    }
+  }
+  return b;
+}
+
+sb::Strands plyN(const Bytes& b, uint32_t perStrand) {
+  return sb::parsePly(b.data(), b.size(), "mem.ply", perStrand);
+}
+
+TEST(PlyParser, VertexOnlyWithPointsPerStrand) {
+  for (bool ascii : {false, true}) {
+    SCOPED_TRACE(ascii ? "ascii" : "binary");
+    const sb::Strands s = plyN(vertexOnlyPly(ascii, 3, 4), 4);
+    sbtest::expectWellFormed(s);
+    ASSERT_EQ(s.strandCount(), 3u);
+    for (std::size_t i = 0; i < 3; ++i) {
+      EXPECT_EQ(s.pointCount[i], 4u);
+      EXPECT_EQ(s.firstPoint[i], 4u * i);
+    }
+    EXPECT_EQ(s.points[6], glm::vec3(1.0f, 2.0f, 0.5f));  // strand 1, point 2
+    // Colour as the strand-element PLYs: uchar sRGB to linear; per strand here.
+    EXPECT_NEAR(s.colors[0].x, 1.0f, 1e-6f);
+    EXPECT_EQ(s.colors[0].y, 0.0f);
+    EXPECT_EQ(s.colors[4], s.colors[7]);
+    EXPECT_NE(s.colors[4], s.colors[0]);
+    EXPECT_GT(s.colors[4].y, 0.0f);
+    // Alpha is opacity: transparency = 1 - alpha (255 opaque, 128 on odd strands).
+    EXPECT_FLOAT_EQ(s.transparency[0], 0.0f);
+    EXPECT_NEAR(s.transparency[5], 1.0f - 128.0f / 255.0f, 1e-6f);
+  }
+}
+
+TEST(PlyParser, NeuralHaircutSized) {
+  // 190,000 vertices = 1,900 strands x 100 points, binary little endian.
+  const sb::Strands s = plyN(vertexOnlyPly(false, 1900, 100), 100);
+  sbtest::expectWellFormed(s);
+  EXPECT_EQ(s.strandCount(), 1900u);
+  EXPECT_EQ(s.points.size(), 190000u);
+  EXPECT_EQ(s.segmentCount(), 1900u * 99u);
+  EXPECT_EQ(s.points.back(), glm::vec3(1899.0f, 99.0f, 0.5f));
+}
+
+TEST(PlyParser, VertexOnlyErrors) {
+  const Bytes b = vertexOnlyPly(false, 3, 4);  // 12 vertices
+  // Without the option: the message says what to give.
+  expectInputError([&] { ply(b); },
+                   {"mem.ply", "no 'strand' element", "points_per_strand=", "12 vertices"});
+  // Not a whole number of strands: both numbers named.
+  expectInputError([&] { plyN(b, 5); }, {"mem.ply", "12 vertices", "points_per_strand=5"});
+  expectInputError([&] { plyN(b, 24); }, {"mem.ply", "12 vertices", "points_per_strand=24"});
+  // A file with a strand element says where its strands end: the option is refused.
+  expectInputError([] { plyN(text(kAsciiPly), 5); }, {"mem.ply", "points_per_strand=5"});
+  // Truncated bodies are still errors with the option.
+  const Bytes full = vertexOnlyPly(false, 2, 3);
+  for (std::size_t n = 0; n < full.size(); n += 5) {
+    const Bytes cut(full.begin(), full.begin() + std::ptrdiff_t(n));
+    expectInputError([&] { plyN(cut, 3); }, {"mem.ply"});
+  }
+}
+
+TEST(PlyParser, TriangleMeshPointsToMeshOption) {
+  const std::string mesh =
+      "ply\nformat ascii 1.0\nelement vertex 3\n"
+      "property float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  for (uint32_t n : {0u, 3u}) {  // with or without points_per_strand
+    expectInputError([&] { plyN(text(mesh), n); }, {"mem.ply", "mesh", "mesh=", "OBJ"});
+  }
+}
+
 // ---------------------------------------------------------------- OBJ
 
 TEST(ObjParser, QuadIsTriangulatedAndNormalsComputed) {
@@ -496,16 +780,89 @@ TEST(ObjParser, Malformed) {
                    {"mem.obj"});
 }
 
+// ---------------------------------------------------------------- file scene options
+
+TEST(FileSceneOptions, PointsPerStrand) {
+  const auto dir = sbtest::tempDir("pps");
+  const std::string path = (dir / "neural.ply").string();
+  const Bytes b = vertexOnlyPly(false, 5, 8);
+  std::ofstream(path, std::ios::binary)
+      .write(reinterpret_cast<const char*>(b.data()), std::streamsize(b.size()));
+  const sb::Scene s = sb::makeScene(sb::Spec::parse("file:path=" + path + ",points_per_strand=8"));
+  sbtest::expectWellFormed(s.strands);
+  EXPECT_EQ(s.strands.strandCount(), 5u);
+  EXPECT_EQ(s.strands.points.size(), 40u);
+  EXPECT_TRUE(s.warnings.empty());
+  // strands= keeps working on top of it.
+  EXPECT_EQ(sb::makeScene(sb::Spec::parse("file:path=" + path + ",points_per_strand=8,strands=2"))
+                .strands.strandCount(),
+            2u);
+  expectInputError([&] { sb::makeScene(sb::Spec::parse("file:path=" + path)); },
+                   {path, "points_per_strand="});
+  expectInputError(
+      [&] { sb::makeScene(sb::Spec::parse("file:path=" + path + ",points_per_strand=3")); },
+      {path, "40 vertices", "points_per_strand=3"});
+  expectInputError(
+      [&] { sb::makeScene(sb::Spec::parse("file:path=" + path + ",points_per_strand=1")); },
+      {"points_per_strand=1", "range"});
+  expectInputError(
+      [&] { sb::makeScene(sb::Spec::parse("file:path=" + path + ",points_per_strand=x")); },
+      {"points_per_strand=x"});
+  // Only PLY files take it.
+  const std::string hairPath = (dir / "a.hair").string();
+  expectInputError(
+      [&] { sb::makeScene(sb::Spec::parse("file:path=" + hairPath + ",points_per_strand=8")); },
+      {hairPath, "points_per_strand=", ".ply"});
+  // Declared for `strandbench list`.
+  bool listed = false;
+  for (const sb::SceneInfo& info : sb::sceneCatalog())
+    if (info.name == "file")
+      for (const sb::OptionInfo& o : info.options) listed |= o.name == "points_per_strand";
+  EXPECT_TRUE(listed);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(FileSceneOptions, CutTfxBlockBecomesASceneWarning) {
+  const auto dir = sbtest::tempDir("tfxwarn");
+  const std::string path = (dir / "cut.tfx").string();
+  const Bytes b = tfxWithUvs(10);
+  std::ofstream(path, std::ios::binary)
+      .write(reinterpret_cast<const char*>(b.data()), std::streamsize(b.size()));
+  const sb::Scene s = sb::makeScene(sb::Spec::parse("file:path=" + path));
+  EXPECT_EQ(s.strands.strandCount(), 3u);
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_NE(s.warnings[0].find(path), std::string::npos) << s.warnings[0];
+  EXPECT_NE(s.warnings[0].find("strand UV"), std::string::npos) << s.warnings[0];
+  std::filesystem::remove_all(dir);
+}
+
 // ---------------------------------------------------------------- robustness smoke test
 
 // Random bytes and random mutations of valid files: every parser must either succeed
 // or throw InputError (run under SB_SANITIZE for over-reads).
 TEST(LoaderRobustness, RandomAndMutatedInputs) {
   std::mt19937 rng(12345);
-  const std::vector<Bytes> seeds = {smallHair(),      smallTfx(3),     smallTfx(4),
-                                    binaryPly(false), binaryPly(true), text(kAsciiPly)};
-  using Parser = sb::Strands (*)(const uint8_t*, std::size_t, const std::string&);
-  const Parser parsers[3] = {sb::parseHair, sb::parseTfx, sb::parsePly};
+  const std::vector<Bytes> seeds = {smallHair(),
+                                    smallTfx(3),
+                                    smallTfx(4),
+                                    binaryPly(false),
+                                    binaryPly(true),
+                                    text(kAsciiPly),
+                                    text(kTextTfx),
+                                    vertexOnlyPly(false, 3, 4),
+                                    vertexOnlyPly(true, 2, 3)};
+  using Parser = std::function<sb::Strands(const uint8_t*, std::size_t, const std::string&)>;
+  const Parser parsers[4] = {sb::parseHair,
+                             [](const uint8_t* d, std::size_t n, const std::string& name) {
+                               std::vector<std::string> warnings;
+                               return sb::parseTfx(d, n, name, &warnings);
+                             },
+                             [](const uint8_t* d, std::size_t n, const std::string& name) {
+                               return sb::parsePly(d, n, name);
+                             },
+                             [](const uint8_t* d, std::size_t n, const std::string& name) {
+                               return sb::parsePly(d, n, name, 4);
+                             }};
   for (int iter = 0; iter < 3000; ++iter) {
     Bytes b = seeds[std::size_t(iter) % seeds.size()];
     const int edits = 1 + int(rng() % 8);
@@ -530,7 +887,7 @@ TEST(LoaderRobustness, RandomAndMutatedInputs) {
       b.resize(rng() % 300);
       for (uint8_t& x : b) x = uint8_t(rng());
     }
-    for (Parser p : parsers) {
+    for (const Parser& p : parsers) {
       try {
         const sb::Strands s = p(b.data(), b.size(), "fuzz.bin");
         sbtest::expectWellFormed(s);
