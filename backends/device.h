@@ -19,12 +19,9 @@
 #include <string>
 #include <vector>
 
-namespace sb {
+#include "harness/errors.h"  // DeviceError
 
-// Any failure of a backend (no device, shader compile error, API error).
-struct DeviceError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
+namespace sb {
 
 enum class Format {
   RGBA8,  // unorm

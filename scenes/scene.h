@@ -10,13 +10,9 @@
 #include <string>
 #include <vector>
 
-namespace sb {
+#include "harness/errors.h"  // InputError
 
-// Bad input from the user (a file, a spec, an option): the CLI prints the
-// message and exits with status 2. The message names the file/option and the problem.
-struct InputError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
+namespace sb {
 
 struct Strands {
   // Strand s owns points [firstPoint[s], firstPoint[s] + pointCount[s]).
