@@ -1,11 +1,11 @@
-#include "backends/gl/gl_device.h"
-#include "backends/vulkan/vk_device.h"
+#include "backends/gl/gl_driver.h"
+#include "backends/vulkan/vk_driver.h"
 
 namespace sb {
 
 std::unique_ptr<Device> createDevice(const DeviceOptions& opts) {
-  if (opts.backend == "gl") return createGLDevice(opts);
-  if (opts.backend == "vulkan") return createVulkanDevice(opts);
+  if (opts.backend == "gl") return std::make_unique<Device>(createGLDriver(opts));
+  if (opts.backend == "vulkan") return std::make_unique<Device>(createVulkanDriver(opts));
   throw DeviceError("unknown backend '" + opts.backend + "' (valid: gl, vulkan)");
 }
 

@@ -1,5 +1,9 @@
 #include "backends/device.h"
 
+#include <algorithm>
+
+#include "backends/driver.h"
+
 namespace sb {
 
 std::size_t bytesPerPixel(Format f) {
@@ -48,6 +52,342 @@ const char* formatName(Format f) {
       return "Depth32F";
   }
   return "?";
+}
+
+// ---- the front end: handle tables, frame/pass state, contract checks ----
+
+struct Device::BufferRec {
+  BufferDesc desc;
+  std::unique_ptr<DriverObject> object;
+};
+struct Device::TextureRec {
+  TextureDesc desc;
+  std::unique_ptr<DriverObject> object;
+};
+struct Device::PipelineRec {
+  PipelineDesc desc;  // fixed state only: the shader pointers are not kept
+  std::unique_ptr<DriverObject> object;
+  bool compute = false;
+};
+struct Device::OpenPass {
+  std::string name;
+  std::vector<uint32_t> attachments, sampled;
+  std::vector<Format> colorFormats;
+  bool hasDepth = false;
+};
+
+namespace {
+std::string quoted(const std::string& op, const std::string& name) {
+  return op + "('" + name + "')";
+}
+}  // namespace
+
+Device::Device(std::unique_ptr<Driver> driver) : driver_(std::move(driver)) {}
+
+Device::~Device() {
+  // Native objects go back to the driver that made them, before it goes.
+  auto releaseAll = [this](auto& table) {
+    for (auto& [id, rec] : table) driver_->release(std::move(rec->object));
+    table.clear();
+  };
+  releaseAll(pipelines_);
+  releaseAll(textures_);
+  releaseAll(buffers_);
+}
+
+DeviceInfo Device::info() const { return driver_->info(); }
+
+Device::BufferRec& Device::buffer(Buffer b, const std::string& where) {
+  auto it = buffers_.find(b.id);
+  if (it == buffers_.end())
+    throw DeviceError(where + ": unknown buffer handle " + std::to_string(b.id));
+  return *it->second;
+}
+
+Device::TextureRec& Device::texture(Texture t, const std::string& where) {
+  auto it = textures_.find(t.id);
+  if (it == textures_.end())
+    throw DeviceError(where + ": unknown texture handle " + std::to_string(t.id));
+  return *it->second;
+}
+
+const Device::TextureRec& Device::texture(Texture t, const std::string& where) const {
+  auto it = textures_.find(t.id);
+  if (it == textures_.end())
+    throw DeviceError(where + ": unknown texture handle " + std::to_string(t.id));
+  return *it->second;
+}
+
+Device::PipelineRec& Device::pipeline(Pipeline p, const std::string& where) {
+  auto it = pipelines_.find(p.id);
+  if (it == pipelines_.end())
+    throw DeviceError(where + ": unknown pipeline handle " + std::to_string(p.id));
+  return *it->second;
+}
+
+// inFrame/inPass: what the call needs (a frame open; a pass open, or none).
+void Device::requireFrame(const std::string& where, bool inFrame, bool inPass) const {
+  if (inFrame && !inFrame_) throw DeviceError(where + ": outside a frame (call beginFrame first)");
+  if (!inFrame && inFrame_) throw DeviceError(where + ": only outside a frame (after endFrame)");
+  if (inPass && !inPass_) throw DeviceError(where + ": outside a pass (call beginPass first)");
+  if (!inPass && inPass_)
+    throw DeviceError(where + ": inside pass '" + pass_->name + "' (call endPass first)");
+}
+
+Buffer Device::createBuffer(const BufferDesc& desc, const void* data) {
+  const std::string where = quoted("createBuffer", desc.name);
+  if (desc.bytes == 0) throw DeviceError(where + ": zero size");
+  auto rec = std::make_unique<BufferRec>(BufferRec{desc, driver_->createBuffer(desc, data)});
+  const uint32_t id = nextId_++;
+  buffers_.emplace(id, std::move(rec));
+  return Buffer{id};
+}
+
+void Device::updateBuffer(Buffer b, const void* data, std::size_t bytes, std::size_t offset) {
+  BufferRec& r = buffer(b, "updateBuffer");
+  const std::string where = quoted("updateBuffer", r.desc.name);
+  if (inPass_)
+    throw DeviceError(where + ": inside pass '" + pass_->name +
+                      "': buffers may only be updated between passes");
+  if (offset > r.desc.bytes || bytes > r.desc.bytes - offset)
+    throw DeviceError(where + ": " + std::to_string(bytes) + " bytes at offset " +
+                      std::to_string(offset) + " exceed its " + std::to_string(r.desc.bytes) +
+                      " bytes");
+  if (bytes == 0) return;
+  driver_->updateBuffer(*r.object, r.desc, data, bytes, offset);
+}
+
+void Device::fillBuffer(Buffer b, uint32_t value) {
+  BufferRec& r = buffer(b, "fillBuffer");
+  if (inPass_)
+    throw DeviceError(quoted("fillBuffer", r.desc.name) + ": inside pass '" + pass_->name +
+                      "': buffers may only be filled between passes");
+  driver_->fillBuffer(*r.object, r.desc, value);
+}
+
+Texture Device::createTexture(const TextureDesc& desc) {
+  if (desc.width == 0 || desc.height == 0)
+    throw DeviceError(quoted("createTexture", desc.name) + ": zero size (" +
+                      std::to_string(desc.width) + "x" + std::to_string(desc.height) + ")");
+  auto rec = std::make_unique<TextureRec>(TextureRec{desc, driver_->createTexture(desc)});
+  const uint32_t id = nextId_++;
+  textures_.emplace(id, std::move(rec));
+  return Texture{id};
+}
+
+Pipeline Device::createPipeline(const PipelineDesc& desc) {
+  const std::string where =
+      "createPipeline('" + desc.name + "', technique '" + desc.technique + "')";
+  const bool compute = desc.compute != nullptr;
+  const bool graphics = desc.vertex != nullptr && desc.fragment != nullptr;
+  if (compute == (desc.vertex != nullptr || desc.fragment != nullptr) || (!compute && !graphics))
+    throw DeviceError(where + ": give either vertex+fragment or compute shaders");
+  if (graphics && desc.hasDepth && !isDepthFormat(desc.depthFormat))
+    throw DeviceError(where + ": depthFormat " + formatName(desc.depthFormat) +
+                      " is not a depth format");
+  for (Format f : desc.colorFormats)
+    if (isDepthFormat(f)) throw DeviceError(where + ": depth format as colour target");
+  if (desc.blend.size() > desc.colorFormats.size())
+    throw DeviceError(where + ": " + std::to_string(desc.blend.size()) + " blend states for " +
+                      std::to_string(desc.colorFormats.size()) + " colour targets");
+  for (std::size_t i = 0; i < desc.bindings.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (desc.bindings[i].binding == desc.bindings[j].binding)
+        throw DeviceError(where + ": binding " + std::to_string(desc.bindings[i].binding) +
+                          " declared twice");
+  auto rec =
+      std::make_unique<PipelineRec>(PipelineRec{desc, driver_->createPipeline(desc), compute});
+  rec->desc.vertex = rec->desc.fragment = rec->desc.compute = nullptr;
+  const uint32_t id = nextId_++;
+  pipelines_.emplace(id, std::move(rec));
+  return Pipeline{id};
+}
+
+void Device::destroy(Buffer b) {
+  if (!b) return;
+  BufferRec& r = buffer(b, "destroy");
+  if (inPass_)
+    throw DeviceError(quoted("destroy", r.desc.name) + ": inside pass '" + pass_->name + "'");
+  driver_->release(std::move(r.object));
+  buffers_.erase(b.id);
+}
+
+void Device::destroy(Texture t) {
+  if (!t) return;
+  TextureRec& r = texture(t, "destroy");
+  if (inPass_)
+    throw DeviceError(quoted("destroy", r.desc.name) + ": inside pass '" + pass_->name + "'");
+  driver_->release(std::move(r.object));
+  textures_.erase(t.id);
+}
+
+void Device::beginFrame() {
+  if (inFrame_) throw DeviceError("beginFrame: a frame is already being recorded");
+  driver_->beginFrame();
+  inFrame_ = true;
+}
+
+void Device::beginPass(const PassDesc& pd) {
+  const std::string where = quoted("beginPass", pd.name);
+  requireFrame(where, true, false);
+  auto open = std::make_unique<OpenPass>();
+  open->name = pd.name;
+  DriverPass dp;
+  dp.name = pd.name;
+  auto size = [&](const TextureRec& t) {
+    if (dp.width == 0) {
+      dp.width = t.desc.width;
+      dp.height = t.desc.height;
+    } else if (dp.width != t.desc.width || dp.height != t.desc.height) {
+      throw DeviceError(where + ": attachments differ in size ('" + t.desc.name + "' is " +
+                        std::to_string(t.desc.width) + "x" + std::to_string(t.desc.height) +
+                        ", the pass " + std::to_string(dp.width) + "x" + std::to_string(dp.height) +
+                        ")");
+    }
+  };
+  auto attach = [&](Texture tex) -> TextureRec& {
+    TextureRec& t = texture(tex, where);
+    if (std::count(open->attachments.begin(), open->attachments.end(), tex.id))
+      throw DeviceError(where + ": texture '" + t.desc.name + "' attached twice");
+    open->attachments.push_back(tex.id);
+    size(t);
+    return t;
+  };
+  for (const ColorAttachment& a : pd.color) {
+    TextureRec& t = attach(a.texture);
+    if (isDepthFormat(t.desc.format))
+      throw DeviceError(where + ": depth texture '" + t.desc.name + "' as colour attachment");
+    open->colorFormats.push_back(t.desc.format);
+    dp.color.push_back({{t.object.get(), &t.desc}, a.load, a.clear, a.clearUint});
+  }
+  if (pd.depth.texture) {
+    TextureRec& t = attach(pd.depth.texture);
+    if (!isDepthFormat(t.desc.format))
+      throw DeviceError(where + ": '" + t.desc.name + "' is not a depth texture");
+    open->hasDepth = true;
+    dp.depth = {t.object.get(), &t.desc};
+    dp.depthLoad = pd.depth.load;
+    dp.depthClear = pd.depth.clear;
+  }
+  if (open->attachments.empty()) {
+    if (pd.width == 0 || pd.height == 0) throw DeviceError(where + ": no attachments and no size");
+    dp.width = pd.width;
+    dp.height = pd.height;
+  }
+  for (Texture s : pd.sampledTextures) {
+    TextureRec& t = texture(s, where);
+    if (std::count(open->attachments.begin(), open->attachments.end(), s.id))
+      throw DeviceError(where + ": texture '" + t.desc.name +
+                        "' is both an attachment and sampled");
+    if (std::count(open->sampled.begin(), open->sampled.end(), s.id)) continue;
+    open->sampled.push_back(s.id);
+    dp.sampled.push_back({t.object.get(), &t.desc});
+  }
+  driver_->beginPass(dp);
+  pass_ = std::move(open);
+  inPass_ = true;
+}
+
+// Checks `given` against the pipeline's declared slots and resolves it, in
+// slot order, to driver objects.
+std::vector<DriverBinding> Device::resolve(const PipelineRec& p, const std::vector<Binding>& given,
+                                           const std::string& where, bool inPass) {
+  for (std::size_t i = 0; i < given.size(); ++i) {
+    const uint32_t n = given[i].binding;
+    if (std::none_of(p.desc.bindings.begin(), p.desc.bindings.end(),
+                     [&](const BindingSlot& s) { return s.binding == n; }))
+      throw DeviceError(where + ": binding " + std::to_string(n) +
+                        " is not declared in the pipeline");
+    for (std::size_t j = 0; j < i; ++j)
+      if (given[j].binding == n)
+        throw DeviceError(where + ": binding " + std::to_string(n) + " given twice");
+  }
+  std::vector<DriverBinding> out;
+  for (const BindingSlot& s : p.desc.bindings) {
+    auto it = std::find_if(given.begin(), given.end(),
+                           [&](const Binding& b) { return b.binding == s.binding; });
+    const std::string slot = where + ": binding " + std::to_string(s.binding);
+    if (it == given.end()) throw DeviceError(slot + " not provided");
+    if (s.kind == BindingKind::SampledTexture) {
+      if (!it->texture || it->buffer) throw DeviceError(slot + " needs a texture");
+      TextureRec& t = texture(it->texture, where);
+      if (inPass && !std::count(pass_->sampled.begin(), pass_->sampled.end(), it->texture.id))
+        throw DeviceError(where + ": texture '" + t.desc.name + "' is sampled but pass '" +
+                          pass_->name + "' does not list it in sampledTextures");
+      out.push_back({s.binding, s.kind, t.object.get(), nullptr, &t.desc});
+    } else {
+      if (!it->buffer || it->texture) throw DeviceError(slot + " needs a buffer");
+      BufferRec& b = buffer(it->buffer, where);
+      out.push_back({s.binding, s.kind, b.object.get(), &b.desc, nullptr});
+    }
+  }
+  return out;
+}
+
+void Device::draw(Pipeline pipe, const std::vector<Binding>& bindings, uint32_t vertexCount,
+                  uint32_t instanceCount) {
+  PipelineRec& p = pipeline(pipe, "draw");
+  const std::string where = quoted("draw", p.desc.name);
+  requireFrame(where, true, true);
+  if (p.compute) throw DeviceError(where + ": a compute pipeline (use dispatch)");
+  if (p.desc.colorFormats != pass_->colorFormats || p.desc.hasDepth != pass_->hasDepth)
+    throw DeviceError(where + ": the pipeline's targets do not match pass '" + pass_->name +
+                      "' (colour formats and depth must be the same)");
+  const auto resolved = resolve(p, bindings, where, true);
+  driver_->draw(*p.object, p.desc, resolved, vertexCount, instanceCount);
+}
+
+void Device::endPass() {
+  if (!inPass_) throw DeviceError("endPass: no pass is open");
+  inPass_ = false;
+  driver_->endPass();
+}
+
+void Device::dispatch(const std::string& passName, Pipeline pipe,
+                      const std::vector<Binding>& bindings, uint32_t x, uint32_t y, uint32_t z) {
+  const std::string where = quoted("dispatch", passName);
+  requireFrame(where, true, false);
+  PipelineRec& p = pipeline(pipe, where);
+  if (!p.compute) throw DeviceError(where + ": '" + p.desc.name + "' is not a compute pipeline");
+  const auto resolved = resolve(p, bindings, where, false);
+  driver_->dispatch(passName, *p.object, p.desc, resolved, x, y, z);
+}
+
+void Device::endFrame() {
+  if (!inFrame_) throw DeviceError("endFrame: no frame is being recorded");
+  if (inPass_) throw DeviceError("endFrame: pass '" + pass_->name + "' is still open");
+  inFrame_ = false;  // whatever happens below, the frame is over
+  driver_->endFrame();
+}
+
+std::vector<PassTiming> Device::lastFrameTimings() const { return driver_->lastFrameTimings(); }
+
+std::vector<uint8_t> Device::readTexture(Texture t) {
+  TextureRec& r = texture(t, "readTexture");
+  requireFrame(quoted("readTexture", r.desc.name), false, false);
+  return driver_->readTexture(*r.object, r.desc);
+}
+
+std::vector<uint8_t> Device::readBuffer(Buffer b) {
+  BufferRec& r = buffer(b, "readBuffer");
+  requireFrame(quoted("readBuffer", r.desc.name), false, false);
+  return driver_->readBuffer(*r.object, r.desc);
+}
+
+TextureDesc Device::describe(Texture t) const { return texture(t, "describe").desc; }
+
+std::vector<ResourceBytes> Device::allocations() const {
+  std::vector<std::pair<uint32_t, ResourceBytes>> all;
+  for (const auto& [id, r] : buffers_)
+    all.push_back({id, {r->desc.name, r->desc.owner, r->desc.bytes}});
+  for (const auto& [id, t] : textures_)
+    all.push_back({id,
+                   {t->desc.name, t->desc.owner,
+                    std::size_t{t->desc.width} * t->desc.height * bytesPerPixel(t->desc.format)}});
+  std::sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<ResourceBytes> out;
+  for (auto& [id, r] : all) out.push_back(std::move(r));
+  return out;
 }
 
 }  // namespace sb

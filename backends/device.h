@@ -1,5 +1,6 @@
-// The one small interface techniques call. GL and Vulkan each implement it once
-// (backends/gl, backends/vulkan); nothing above backends/ names either API.
+// The one small interface techniques call: the Device front end below, over a
+// driver that GL and Vulkan each implement once (backends/gl, backends/vulkan);
+// nothing above backends/ names either API.
 //
 // Conventions shared by both backends (so images match pixel for pixel):
 //  - NDC y=-1 is memory row 0, texture v=0 is row 0, depth range is [0,1]
@@ -14,6 +15,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -208,42 +210,79 @@ struct DeviceInfo {
   std::string lines;     // how Lines topology is rasterized
 };
 
+class Driver;
+struct DriverObject;
+struct DriverBinding;
+
+// The one device front end. It owns the handle tables, the frame/pass state
+// machine, every contract check and the memory accounting, once for both APIs;
+// below it a narrow per-API Driver (backends/driver.h) records the work. A rule
+// broken on one API is broken on both, with one message (DeviceError).
 class Device {
  public:
-  virtual ~Device() = default;
-  virtual DeviceInfo info() const = 0;
+  explicit Device(std::unique_ptr<Driver> driver);
+  ~Device();
+  Device(const Device&) = delete;
+  Device& operator=(const Device&) = delete;
 
-  virtual Buffer createBuffer(const BufferDesc& desc, const void* data = nullptr) = 0;
+  DeviceInfo info() const;
+
+  // A buffer of zero bytes is an error. Contents are zero unless data is given.
+  Buffer createBuffer(const BufferDesc& desc, const void* data = nullptr);
   // Ordered with the recorded work: allowed between passes inside a frame.
-  virtual void updateBuffer(Buffer b, const void* data, std::size_t bytes,
-                            std::size_t offset = 0) = 0;
-  virtual void fillBuffer(Buffer b, uint32_t value) = 0;  // outside passes
-  virtual Texture createTexture(const TextureDesc& desc) = 0;
-  virtual Pipeline createPipeline(const PipelineDesc& desc) = 0;  // throws DeviceError
-  virtual void destroy(Buffer b) = 0;
-  virtual void destroy(Texture t) = 0;
+  void updateBuffer(Buffer b, const void* data, std::size_t bytes, std::size_t offset = 0);
+  void fillBuffer(Buffer b, uint32_t value);  // between passes
+  // Contents are zero (colour) or 1 (depth) until first written.
+  Texture createTexture(const TextureDesc& desc);
+  Pipeline createPipeline(const PipelineDesc& desc);  // throws DeviceError
+  // A null handle is ignored; an unknown one is an error.
+  void destroy(Buffer b);
+  void destroy(Texture t);
 
-  virtual void beginFrame() = 0;
-  virtual void beginPass(const PassDesc& pass) = 0;
-  virtual void draw(Pipeline p, const std::vector<Binding>& bindings, uint32_t vertexCount,
-                    uint32_t instanceCount = 1) = 0;
-  virtual void endPass() = 0;
+  void beginFrame();
+  void beginPass(const PassDesc& pass);
+  // Every binding the pipeline declares must be given, of its kind, once; a
+  // sampled texture must be listed in the pass's sampledTextures.
+  void draw(Pipeline p, const std::vector<Binding>& bindings, uint32_t vertexCount,
+            uint32_t instanceCount = 1);
+  void endPass();
   // Compute work runs as its own timed pass (outside render passes).
-  virtual void dispatch(const std::string& passName, Pipeline p,
-                        const std::vector<Binding>& bindings, uint32_t x, uint32_t y = 1,
-                        uint32_t z = 1) = 0;
-  virtual void endFrame() = 0;  // submits, waits
-  virtual std::vector<PassTiming> lastFrameTimings() const = 0;
+  void dispatch(const std::string& passName, Pipeline p, const std::vector<Binding>& bindings,
+                uint32_t x, uint32_t y = 1, uint32_t z = 1);
+  void endFrame();  // submits, waits
+  std::vector<PassTiming> lastFrameTimings() const;
 
   // Read back after endFrame(). Rows are bottom-up (row 0 = NDC y=-1);
   // tightly packed, bytesPerPixel(format) per pixel.
-  virtual std::vector<uint8_t> readTexture(Texture t) = 0;
-  virtual std::vector<uint8_t> readBuffer(Buffer b) = 0;
+  std::vector<uint8_t> readTexture(Texture t);
+  std::vector<uint8_t> readBuffer(Buffer b);
   // What a texture was created with (to interpret its read-back bytes).
-  virtual TextureDesc describe(Texture t) const = 0;
+  TextureDesc describe(Texture t) const;
 
-  // Exact logical bytes of every live resource (width*height*bpp, buffer size).
-  virtual std::vector<ResourceBytes> allocations() const = 0;
+  // Exact logical bytes of every live resource (width*height*bpp, buffer size),
+  // in creation order.
+  std::vector<ResourceBytes> allocations() const;
+
+ private:
+  struct BufferRec;
+  struct TextureRec;
+  struct PipelineRec;
+  struct OpenPass;
+  BufferRec& buffer(Buffer b, const std::string& where);
+  TextureRec& texture(Texture t, const std::string& where);
+  const TextureRec& texture(Texture t, const std::string& where) const;
+  PipelineRec& pipeline(Pipeline p, const std::string& where);
+  void requireFrame(const std::string& where, bool inFrame, bool inPass) const;
+  std::vector<DriverBinding> resolve(const PipelineRec& p, const std::vector<Binding>& given,
+                                     const std::string& where, bool inPass);
+
+  std::unique_ptr<Driver> driver_;
+  uint32_t nextId_ = 1;  // shared by all kinds: ids give creation order
+  std::map<uint32_t, std::unique_ptr<BufferRec>> buffers_;
+  std::map<uint32_t, std::unique_ptr<TextureRec>> textures_;
+  std::map<uint32_t, std::unique_ptr<PipelineRec>> pipelines_;
+  bool inFrame_ = false, inPass_ = false;
+  std::unique_ptr<OpenPass> pass_;
 };
 
 struct DeviceOptions {

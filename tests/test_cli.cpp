@@ -27,6 +27,16 @@ std::string render(const std::string& backend, const std::string& out,
   return readFile(out);
 }
 
+TEST(Cli, VersionNamesBuildAndDrivers) {
+  auto r = runCli("--version");
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* part : {"strandbench ", "commit: ", "build type: ", "gl (egl): ",
+                           "gl (osmesa): ", "vulkan: "})
+    EXPECT_NE(r.out.find(part), std::string::npos) << part << " in\n" << r.out;
+  // On these machines both backends are Mesa's CPU drivers: their versions are named.
+  EXPECT_NE(r.out.find("Mesa "), std::string::npos) << r.out;
+}
+
 TEST(Cli, ListShowsScenesAndTechniques) {
   auto r = runCli("list");
   ASSERT_EQ(r.status, 0) << r.err;

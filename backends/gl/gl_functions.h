@@ -18,6 +18,7 @@
   X(PFNGLNAMEDBUFFERSTORAGEPROC, NamedBufferStorage)                   \
   X(PFNGLNAMEDBUFFERSUBDATAPROC, NamedBufferSubData)                   \
   X(PFNGLCLEARNAMEDBUFFERDATAPROC, ClearNamedBufferData)               \
+  X(PFNGLCLEARTEXIMAGEPROC, ClearTexImage)                             \
   X(PFNGLGETNAMEDBUFFERSUBDATAPROC, GetNamedBufferSubData)             \
   X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                             \
   X(PFNGLBINDBUFFERBASEPROC, BindBufferBase)                           \

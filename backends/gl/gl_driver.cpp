@@ -1,5 +1,5 @@
-// The Device interface on OpenGL 4.5 core (direct state access).
-#include "backends/gl/gl_device.h"
+// The driver under the Device front end on OpenGL 4.5 core (direct state access).
+#include "backends/gl/gl_driver.h"
 
 #include <chrono>
 #include <cstring>
@@ -123,9 +123,23 @@ const char* glErrorName(GLenum e) {
 
 using Clock = std::chrono::steady_clock;
 
-class GLDevice : public Device {
+struct GLBuffer : DriverObject {
+  GLuint name = 0;
+};
+struct GLTexture : DriverObject {
+  GLuint name = 0;
+};
+struct GLPipeline : DriverObject {
+  GLuint program = 0;
+};
+GLuint nameOf(const DriverObject* o) {
+  if (auto* b = dynamic_cast<const GLBuffer*>(o)) return b->name;
+  return static_cast<const GLTexture*>(o)->name;
+}
+
+class GLDriver final : public Driver {
  public:
-  explicit GLDevice(std::unique_ptr<GLPlatform> platform) : platform_(std::move(platform)) {
+  explicit GLDriver(std::unique_ptr<GLPlatform> platform) : platform_(std::move(platform)) {
 #define SB_GL_LOAD(type, fn)                                            \
   gl_.fn = reinterpret_cast<type>(platform_->getProcAddress("gl" #fn)); \
   if (!gl_.fn)                                                          \
@@ -158,64 +172,52 @@ class GLDevice : public Device {
     checkError("context setup");
   }
 
-  ~GLDevice() override {
+  ~GLDriver() override {
     for (auto& [key, fbo] : fbos_) gl_.DeleteFramebuffers(1, &fbo);
-    for (auto& [id, b] : buffers_) gl_.DeleteBuffers(1, &b.name);
-    for (auto& [id, t] : textures_) gl_.DeleteTextures(1, &t.name);
-    for (auto& [id, p] : pipelines_) gl_.DeleteProgram(p.program);
     gl_.DeleteVertexArrays(1, &vao_);
   }
 
   DeviceInfo info() const override { return info_; }
 
-  Buffer createBuffer(const BufferDesc& desc, const void* data) override {
-    if (desc.bytes == 0) throw DeviceError("buffer '" + desc.name + "' has zero size");
-    BufferRec r{desc, 0};
-    gl_.CreateBuffers(1, &r.name);
-    gl_.NamedBufferStorage(r.name, static_cast<GLsizeiptr>(desc.bytes), data,
+  std::unique_ptr<DriverObject> createBuffer(const BufferDesc& desc, const void* data) override {
+    auto b = std::make_unique<GLBuffer>();
+    gl_.CreateBuffers(1, &b->name);
+    gl_.NamedBufferStorage(b->name, static_cast<GLsizeiptr>(desc.bytes), data,
                            GL_DYNAMIC_STORAGE_BIT);
+    if (!data) {  // a fresh store is zero-filled, as on Vulkan
+      const uint8_t zero = 0;
+      gl_.ClearNamedBufferData(b->name, GL_R8UI, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &zero);
+    }
     checkError("createBuffer " + desc.name);
-    const uint32_t id = ++nextId_;
-    buffers_[id] = r;
-    return Buffer{id};
+    return b;
   }
 
-  void updateBuffer(Buffer b, const void* data, std::size_t bytes, std::size_t offset) override {
-    if (inPass_) throw DeviceError("updateBuffer inside a pass");
-    auto& r = buffer(b);
-    if (offset + bytes > r.desc.bytes)
-      throw DeviceError("updateBuffer past the end of " + r.desc.name);
-    gl_.NamedBufferSubData(r.name, static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes),
-                           data);
-  }
-
-  void fillBuffer(Buffer b, uint32_t value) override {
-    if (inPass_) throw DeviceError("fillBuffer inside a pass");
-    gl_.ClearNamedBufferData(buffer(b).name, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &value);
-  }
-
-  Texture createTexture(const TextureDesc& desc) override {
-    if (desc.width == 0 || desc.height == 0)
-      throw DeviceError("texture '" + desc.name + "' has zero size");
-    TextureRec r{desc, 0};
+  std::unique_ptr<DriverObject> createTexture(const TextureDesc& desc) override {
+    auto t = std::make_unique<GLTexture>();
     const GLFormat f = glFormat(desc.format);
-    gl_.CreateTextures(GL_TEXTURE_2D, 1, &r.name);
-    gl_.TextureStorage2D(r.name, 1, f.internal, static_cast<GLsizei>(desc.width),
+    gl_.CreateTextures(GL_TEXTURE_2D, 1, &t->name);
+    gl_.TextureStorage2D(t->name, 1, f.internal, static_cast<GLsizei>(desc.width),
                          static_cast<GLsizei>(desc.height));
     const GLint filter =
         desc.linearFilter && !isIntegerFormat(desc.format) ? GL_LINEAR : GL_NEAREST;
-    gl_.TextureParameteri(r.name, GL_TEXTURE_MIN_FILTER, filter);
-    gl_.TextureParameteri(r.name, GL_TEXTURE_MAG_FILTER, filter);
-    gl_.TextureParameteri(r.name, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    gl_.TextureParameteri(r.name, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl_.TextureParameteri(t->name, GL_TEXTURE_MIN_FILTER, filter);
+    gl_.TextureParameteri(t->name, GL_TEXTURE_MAG_FILTER, filter);
+    gl_.TextureParameteri(t->name, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl_.TextureParameteri(t->name, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    // Defined initial contents, as on Vulkan: colour 0, depth 1 (far).
+    const float depthOne = 1.0f;
+    const uint32_t zero[4] = {0, 0, 0, 0};
+    if (isDepthFormat(desc.format))
+      gl_.ClearTexImage(t->name, 0, f.format, f.type, &depthOne);
+    else
+      gl_.ClearTexImage(t->name, 0, f.format, f.type, zero);
     checkError("createTexture " + desc.name);
-    const uint32_t id = ++nextId_;
-    textures_[id] = r;
-    return Texture{id};
+    return t;
   }
 
-  Pipeline createPipeline(const PipelineDesc& desc) override {
-    PipelineRec r{desc, gl_.CreateProgram()};
+  std::unique_ptr<DriverObject> createPipeline(const PipelineDesc& desc) override {
+    auto p = std::make_unique<GLPipeline>();
+    p->program = gl_.CreateProgram();
     std::vector<GLuint> shaders;
     auto addStage = [&](const ShaderCode* code, GLenum stage) {
       if (!code) return;
@@ -230,131 +232,116 @@ class GLDevice : public Device {
         std::string log = shaderLog(s, false);
         gl_.DeleteShader(s);
         for (GLuint x : shaders) gl_.DeleteShader(x);
-        gl_.DeleteProgram(r.program);
+        gl_.DeleteProgram(p->program);
         throw DeviceError(describeCompileError(*code, desc.technique, log));
       }
-      gl_.AttachShader(r.program, s);
+      gl_.AttachShader(p->program, s);
       shaders.push_back(s);
     };
     addStage(desc.vertex, GL_VERTEX_SHADER);
     addStage(desc.fragment, GL_FRAGMENT_SHADER);
     addStage(desc.compute, GL_COMPUTE_SHADER);
-    gl_.LinkProgram(r.program);
+    gl_.LinkProgram(p->program);
     for (GLuint s : shaders) gl_.DeleteShader(s);
     GLint ok = 0;
-    gl_.GetProgramiv(r.program, GL_LINK_STATUS, &ok);
+    gl_.GetProgramiv(p->program, GL_LINK_STATUS, &ok);
     if (!ok) {
-      std::string log = shaderLog(r.program, true);
-      gl_.DeleteProgram(r.program);
+      std::string log = shaderLog(p->program, true);
+      gl_.DeleteProgram(p->program);
       throw DeviceError("shader link error in pipeline '" + desc.name + "' (technique '" +
                         desc.technique + "'):\n" + log);
     }
-    // The ShaderCode pointers are not kept: only the fixed state is.
-    r.desc.vertex = r.desc.fragment = r.desc.compute = nullptr;
-    const uint32_t id = ++nextId_;
-    pipelines_[id] = r;
-    return Pipeline{id};
+    return p;
   }
 
-  void destroy(Buffer b) override {
-    auto it = buffers_.find(b.id);
-    if (it == buffers_.end()) return;
-    gl_.DeleteBuffers(1, &it->second.name);
-    buffers_.erase(it);
-  }
-
-  void destroy(Texture t) override {
-    auto it = textures_.find(t.id);
-    if (it == textures_.end()) return;
-    // Framebuffers that used it are dropped too.
-    std::string needle = ",";
-    needle += std::to_string(t.id);
-    needle += ",";
-    for (auto f = fbos_.begin(); f != fbos_.end();) {
-      if (f->first.find(needle) != std::string::npos) {
-        gl_.DeleteFramebuffers(1, &f->second);
-        f = fbos_.erase(f);
-      } else {
-        ++f;
+  void release(std::unique_ptr<DriverObject> object) override {
+    // GL orders deletion after the work that uses an object: free at once.
+    if (auto* p = dynamic_cast<GLPipeline*>(object.get())) {
+      gl_.DeleteProgram(p->program);
+    } else if (auto* b = dynamic_cast<GLBuffer*>(object.get())) {
+      gl_.DeleteBuffers(1, &b->name);
+    } else if (auto* t = dynamic_cast<GLTexture*>(object.get())) {
+      // Framebuffers that used it are dropped too.
+      const std::string needle = "," + std::to_string(t->name) + ",";
+      for (auto f = fbos_.begin(); f != fbos_.end();) {
+        if (f->first.find(needle) != std::string::npos) {
+          gl_.DeleteFramebuffers(1, &f->second);
+          f = fbos_.erase(f);
+        } else {
+          ++f;
+        }
       }
+      gl_.DeleteTextures(1, &t->name);
     }
-    gl_.DeleteTextures(1, &it->second.name);
-    textures_.erase(it);
+  }
+
+  void updateBuffer(DriverObject& b, const BufferDesc& desc, const void* data, std::size_t bytes,
+                    std::size_t offset) override {
+    gl_.NamedBufferSubData(nameOf(&b), static_cast<GLintptr>(offset),
+                           static_cast<GLsizeiptr>(bytes), data);
+    checkError("updateBuffer " + desc.name);
+  }
+
+  void fillBuffer(DriverObject& b, const BufferDesc& desc, uint32_t value) override {
+    gl_.ClearNamedBufferData(nameOf(&b), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &value);
+    checkError("fillBuffer " + desc.name);
   }
 
   void beginFrame() override {
-    if (inFrame_) throw DeviceError("beginFrame twice");
-    inFrame_ = true;
     timings_.clear();
     gl_.Finish();  // earlier uploads do not count against the first pass
   }
 
-  void beginPass(const PassDesc& pass) override {
-    if (!inFrame_ || inPass_) throw DeviceError("beginPass outside a frame or inside a pass");
-    inPass_ = true;
+  void beginPass(const DriverPass& pass) override {
     passName_ = pass.name;
-    passSampled_ = pass.sampledTextures;
-    // Storage writes of earlier passes become visible (the Vulkan backend
-    // puts a full barrier here too).
+    // Storage writes of earlier passes become visible (the Vulkan driver puts
+    // a full barrier here too).
     gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
-    GLuint fbo = framebuffer(pass);
+    const GLuint fbo = framebuffer(pass);
     gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
-    uint32_t w = pass.width, h = pass.height;
-    for (auto& a : pass.color) {
-      w = texture(a.texture).desc.width;
-      h = texture(a.texture).desc.height;
-    }
-    if (pass.depth.texture) {
-      w = texture(pass.depth.texture).desc.width;
-      h = texture(pass.depth.texture).desc.height;
-    }
-    gl_.Viewport(0, 0, static_cast<GLsizei>(w), static_cast<GLsizei>(h));
+    gl_.Viewport(0, 0, static_cast<GLsizei>(pass.width), static_cast<GLsizei>(pass.height));
     gl_.Finish();
     passStart_ = Clock::now();
     for (std::size_t i = 0; i < pass.color.size(); ++i) {
       const auto& a = pass.color[i];
       if (a.load != LoadOp::Clear) continue;
       gl_.ColorMaski(static_cast<GLuint>(i), GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-      if (isIntegerFormat(texture(a.texture).desc.format))
+      if (isIntegerFormat(a.texture.desc->format))
         gl_.ClearNamedFramebufferuiv(fbo, GL_COLOR, static_cast<GLint>(i), a.clearUint.data());
       else
         gl_.ClearNamedFramebufferfv(fbo, GL_COLOR, static_cast<GLint>(i), a.clear.data());
     }
-    if (pass.depth.texture && pass.depth.load == LoadOp::Clear) {
+    if (pass.depth.object && pass.depthLoad == LoadOp::Clear) {
       gl_.DepthMask(GL_TRUE);
-      gl_.ClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &pass.depth.clear);
+      gl_.ClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &pass.depthClear);
     }
   }
 
-  void draw(Pipeline p, const std::vector<Binding>& bindings, uint32_t vertexCount,
+  void draw(DriverObject& pipeline, const PipelineDesc& desc,
+            const std::vector<DriverBinding>& bindings, uint32_t vertexCount,
             uint32_t instanceCount) override {
-    if (!inPass_) throw DeviceError("draw outside a pass");
-    auto& r = pipeline(p);
-    gl_.UseProgram(r.program);
-    applyState(r.desc);
-    bind(r.desc, bindings, true);
-    gl_.DrawArraysInstanced(r.desc.topology == Topology::Lines ? GL_LINES : GL_TRIANGLES, 0,
+    gl_.UseProgram(static_cast<GLPipeline&>(pipeline).program);
+    applyState(desc);
+    bind(bindings);
+    gl_.DrawArraysInstanced(desc.topology == Topology::Lines ? GL_LINES : GL_TRIANGLES, 0,
                             static_cast<GLsizei>(vertexCount), static_cast<GLsizei>(instanceCount));
   }
 
   void endPass() override {
-    if (!inPass_) throw DeviceError("endPass without beginPass");
     gl_.Finish();  // GL timer queries on llvmpipe miss vertex work: time with the CPU
     timings_.push_back(
         {passName_, std::chrono::duration<double, std::milli>(Clock::now() - passStart_).count()});
-    inPass_ = false;
     checkError("pass " + passName_);
   }
 
-  void dispatch(const std::string& passName, Pipeline p, const std::vector<Binding>& bindings,
-                uint32_t x, uint32_t y, uint32_t z) override {
-    if (!inFrame_ || inPass_) throw DeviceError("dispatch outside a frame or inside a pass");
-    auto& r = pipeline(p);
+  void dispatch(const std::string& passName, DriverObject& pipeline, const PipelineDesc&,
+                const std::vector<DriverBinding>& bindings, uint32_t x, uint32_t y,
+                uint32_t z) override {
     gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
     gl_.Finish();
     const auto start = Clock::now();
-    gl_.UseProgram(r.program);
-    bind(r.desc, bindings, false);
+    gl_.UseProgram(static_cast<GLPipeline&>(pipeline).program);
+    bind(bindings);
     gl_.DispatchCompute(x, y, z);
     gl_.Finish();
     timings_.push_back(
@@ -363,77 +350,30 @@ class GLDevice : public Device {
   }
 
   void endFrame() override {
-    if (!inFrame_ || inPass_) throw DeviceError("endFrame outside a frame or inside a pass");
     gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
     gl_.Finish();
-    inFrame_ = false;
     checkError("endFrame");
   }
 
   std::vector<PassTiming> lastFrameTimings() const override { return timings_; }
 
-  TextureDesc describe(Texture t) const override {
-    auto it = textures_.find(t.id);
-    if (it == textures_.end()) throw DeviceError("describe: unknown texture");
-    return it->second.desc;
-  }
-
-  std::vector<uint8_t> readTexture(Texture t) override {
-    auto& r = texture(t);
-    const GLFormat f = glFormat(r.desc.format);
-    std::vector<uint8_t> out(r.desc.width * r.desc.height * bytesPerPixel(r.desc.format));
-    gl_.GetTextureImage(r.name, 0, f.format, f.type, static_cast<GLsizei>(out.size()), out.data());
-    checkError("readTexture " + r.desc.name);
+  std::vector<uint8_t> readTexture(DriverObject& t, const TextureDesc& desc) override {
+    const GLFormat f = glFormat(desc.format);
+    std::vector<uint8_t> out(std::size_t{desc.width} * desc.height * bytesPerPixel(desc.format));
+    gl_.GetTextureImage(nameOf(&t), 0, f.format, f.type, static_cast<GLsizei>(out.size()),
+                        out.data());
+    checkError("readTexture " + desc.name);
     return out;
   }
 
-  std::vector<uint8_t> readBuffer(Buffer b) override {
-    auto& r = buffer(b);
-    std::vector<uint8_t> out(r.desc.bytes);
-    gl_.GetNamedBufferSubData(r.name, 0, static_cast<GLsizeiptr>(out.size()), out.data());
-    checkError("readBuffer " + r.desc.name);
-    return out;
-  }
-
-  std::vector<ResourceBytes> allocations() const override {
-    std::vector<ResourceBytes> out;
-    for (auto& [id, b] : buffers_) out.push_back({b.desc.name, b.desc.owner, b.desc.bytes});
-    for (auto& [id, t] : textures_)
-      out.push_back(
-          {t.desc.name, t.desc.owner, t.desc.width * t.desc.height * bytesPerPixel(t.desc.format)});
+  std::vector<uint8_t> readBuffer(DriverObject& b, const BufferDesc& desc) override {
+    std::vector<uint8_t> out(desc.bytes);
+    gl_.GetNamedBufferSubData(nameOf(&b), 0, static_cast<GLsizeiptr>(out.size()), out.data());
+    checkError("readBuffer " + desc.name);
     return out;
   }
 
  private:
-  struct BufferRec {
-    BufferDesc desc;
-    GLuint name;
-  };
-  struct TextureRec {
-    TextureDesc desc;
-    GLuint name;
-  };
-  struct PipelineRec {
-    PipelineDesc desc;
-    GLuint program;
-  };
-
-  BufferRec& buffer(Buffer b) {
-    auto it = buffers_.find(b.id);
-    if (it == buffers_.end()) throw DeviceError("unknown buffer handle");
-    return it->second;
-  }
-  TextureRec& texture(Texture t) {
-    auto it = textures_.find(t.id);
-    if (it == textures_.end()) throw DeviceError("unknown texture handle");
-    return it->second;
-  }
-  PipelineRec& pipeline(Pipeline p) {
-    auto it = pipelines_.find(p.id);
-    if (it == pipelines_.end()) throw DeviceError("unknown pipeline handle");
-    return it->second;
-  }
-
   std::string shaderLog(GLuint obj, bool program) {
     GLint len = 0;
     if (program)
@@ -454,13 +394,11 @@ class GLDevice : public Device {
   }
 
   // One framebuffer object per distinct attachment set, kept for reuse.
-  GLuint framebuffer(const PassDesc& pass) {
-    if (pass.color.empty() && !pass.depth.texture && (pass.width == 0 || pass.height == 0))
-      throw DeviceError("beginPass('" + pass.name + "'): no attachments and no size");
+  GLuint framebuffer(const DriverPass& pass) {
     std::string key = ",";
-    for (auto& a : pass.color) key += std::to_string(a.texture.id) + ",";
-    key += "d," + std::to_string(pass.depth.texture.id) + ",";
-    if (pass.color.empty() && !pass.depth.texture)
+    for (auto& a : pass.color) key += std::to_string(nameOf(a.texture.object)) + ",";
+    key += "d," + std::to_string(pass.depth.object ? nameOf(pass.depth.object) : 0) + ",";
+    if (pass.color.empty() && !pass.depth.object)
       key += "size," + std::to_string(pass.width) + "x" + std::to_string(pass.height);
     auto it = fbos_.find(key);
     if (it != fbos_.end()) return it->second;
@@ -469,12 +407,12 @@ class GLDevice : public Device {
     std::vector<GLenum> drawBuffers;
     for (std::size_t i = 0; i < pass.color.size(); ++i) {
       gl_.NamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i),
-                                  texture(pass.color[i].texture).name, 0);
+                                  nameOf(pass.color[i].texture.object), 0);
       drawBuffers.push_back(GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i));
     }
-    if (pass.depth.texture)
-      gl_.NamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, texture(pass.depth.texture).name, 0);
-    if (pass.color.empty() && !pass.depth.texture) {
+    if (pass.depth.object)
+      gl_.NamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, nameOf(pass.depth.object), 0);
+    if (pass.color.empty() && !pass.depth.object) {
       gl_.NamedFramebufferParameteri(fbo, GL_FRAMEBUFFER_DEFAULT_WIDTH,
                                      static_cast<GLint>(pass.width));
       gl_.NamedFramebufferParameteri(fbo, GL_FRAMEBUFFER_DEFAULT_HEIGHT,
@@ -523,29 +461,19 @@ class GLDevice : public Device {
     }
   }
 
-  void bind(const PipelineDesc& d, const std::vector<Binding>& bindings, bool graphics) {
+  // The front end has checked kinds and declarations: bind each slot.
+  void bind(const std::vector<DriverBinding>& bindings) {
     for (const auto& b : bindings) {
-      const BindingSlot* slot = nullptr;
-      for (const auto& s : d.bindings)
-        if (s.binding == b.binding) slot = &s;
-      if (!slot)
-        throw DeviceError("pipeline '" + d.name + "' has no binding " + std::to_string(b.binding));
-      switch (slot->kind) {
+      switch (b.kind) {
         case BindingKind::UniformBuffer:
-          gl_.BindBufferBase(GL_UNIFORM_BUFFER, b.binding, buffer(b.buffer).name);
+          gl_.BindBufferBase(GL_UNIFORM_BUFFER, b.binding, nameOf(b.object));
           break;
         case BindingKind::StorageBuffer:
-          gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, b.binding, buffer(b.buffer).name);
+          gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, b.binding, nameOf(b.object));
           break;
-        case BindingKind::SampledTexture: {
-          bool declared = !graphics;
-          for (auto& t : passSampled_) declared = declared || t.id == b.texture.id;
-          if (!declared)
-            throw DeviceError("pass '" + passName_ + "' samples texture '" +
-                              texture(b.texture).desc.name + "' it did not declare");
-          gl_.BindTextureUnit(b.binding, texture(b.texture).name);
+        case BindingKind::SampledTexture:
+          gl_.BindTextureUnit(b.binding, nameOf(b.object));
           break;
-        }
       }
     }
   }
@@ -554,21 +482,15 @@ class GLDevice : public Device {
   GLFunctions gl_;
   DeviceInfo info_;
   GLuint vao_ = 0;
-  uint32_t nextId_ = 0;
-  std::map<uint32_t, BufferRec> buffers_;
-  std::map<uint32_t, TextureRec> textures_;
-  std::map<uint32_t, PipelineRec> pipelines_;
   std::map<std::string, GLuint> fbos_;
-  bool inFrame_ = false, inPass_ = false;
   std::string passName_;
-  std::vector<Texture> passSampled_;
   Clock::time_point passStart_;
   std::vector<PassTiming> timings_;
 };
 
 }  // namespace
 
-std::unique_ptr<Device> createGLDevice(const DeviceOptions& opts) {
+std::unique_ptr<Driver> createGLDriver(const DeviceOptions& opts) {
   std::unique_ptr<GLPlatform> platform;
   if (opts.platform == "egl" || opts.platform.empty())
     platform = createEGLPlatform();
@@ -576,7 +498,7 @@ std::unique_ptr<Device> createGLDevice(const DeviceOptions& opts) {
     platform = createOSMesaPlatform();
   else
     throw DeviceError("unknown GL platform '" + opts.platform + "' (valid: egl, osmesa)");
-  return std::make_unique<GLDevice>(std::move(platform));
+  return std::make_unique<GLDriver>(std::move(platform));
 }
 
 }  // namespace sb

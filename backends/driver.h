@@ -1,0 +1,97 @@
+// The narrow per-API layer under the Device front end (backends/device.cpp).
+// The front end has already checked every call against the device contract
+// (handles, frame and pass state, sizes, formats, bindings), so a driver only
+// translates: it creates native objects, records passes and reads back. It
+// never sees a handle id; it gets back the objects it made.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "backends/device.h"
+
+namespace sb {
+
+// What a driver keeps for one buffer, texture or pipeline. The front end owns
+// it and hands it back to the driver that made it (which casts it to its type).
+struct DriverObject {
+  virtual ~DriverObject() = default;
+};
+
+struct DriverTexture {
+  DriverObject* object = nullptr;
+  const TextureDesc* desc = nullptr;
+};
+
+struct DriverColorTarget {
+  DriverTexture texture;
+  LoadOp load = LoadOp::Clear;
+  std::array<float, 4> clear{0, 0, 0, 0};
+  std::array<uint32_t, 4> clearUint{0, 0, 0, 0};
+};
+
+// A pass as checked by the front end: attachments share one size (width x
+// height, also for a pass without attachments), and no attachment is sampled.
+struct DriverPass {
+  std::string name;
+  std::vector<DriverColorTarget> color;
+  DriverTexture depth;  // object null: no depth attachment
+  LoadOp depthLoad = LoadOp::Clear;
+  float depthClear = 1.0f;
+  std::vector<DriverTexture> sampled;
+  uint32_t width = 0, height = 0;
+};
+
+// One binding of a draw or dispatch, in the order the pipeline declares them:
+// every declared slot is present once, with an object of its kind.
+struct DriverBinding {
+  uint32_t binding = 0;
+  BindingKind kind = BindingKind::UniformBuffer;
+  DriverObject* object = nullptr;
+  const BufferDesc* buffer = nullptr;    // buffer kinds
+  const TextureDesc* texture = nullptr;  // SampledTexture
+};
+
+class Driver {
+ public:
+  virtual ~Driver() = default;
+  virtual DeviceInfo info() const = 0;
+
+  // desc.bytes > 0; contents zero unless data is given.
+  virtual std::unique_ptr<DriverObject> createBuffer(const BufferDesc& desc, const void* data) = 0;
+  // desc.width, desc.height > 0; contents zero (colour) or 1 (depth).
+  virtual std::unique_ptr<DriverObject> createTexture(const TextureDesc& desc) = 0;
+  // Either vertex+fragment or compute; bindings unique; formats checked.
+  virtual std::unique_ptr<DriverObject> createPipeline(const PipelineDesc& desc) = 0;
+  // Frees the object now, or once the recorded work of the frame is done.
+  virtual void release(std::unique_ptr<DriverObject> object) = 0;
+
+  // Outside passes; inside a frame they are ordered with the recorded work.
+  virtual void updateBuffer(DriverObject& buffer, const BufferDesc& desc, const void* data,
+                            std::size_t bytes, std::size_t offset) = 0;
+  virtual void fillBuffer(DriverObject& buffer, const BufferDesc& desc, uint32_t value) = 0;
+
+  virtual void beginFrame() = 0;
+  virtual void beginPass(const DriverPass& pass) = 0;
+  // The pipeline's colour formats and depth match the open pass.
+  virtual void draw(DriverObject& pipeline, const PipelineDesc& desc,
+                    const std::vector<DriverBinding>& bindings, uint32_t vertexCount,
+                    uint32_t instanceCount) = 0;
+  virtual void endPass() = 0;
+  virtual void dispatch(const std::string& passName, DriverObject& pipeline,
+                        const PipelineDesc& desc, const std::vector<DriverBinding>& bindings,
+                        uint32_t x, uint32_t y, uint32_t z) = 0;
+  // Submits and waits. The frame is over even when this throws.
+  virtual void endFrame() = 0;
+  virtual std::vector<PassTiming> lastFrameTimings() const = 0;
+
+  // Outside frames.
+  virtual std::vector<uint8_t> readTexture(DriverObject& texture, const TextureDesc& desc) = 0;
+  virtual std::vector<uint8_t> readBuffer(DriverObject& buffer, const BufferDesc& desc) = 0;
+};
+
+}  // namespace sb

@@ -1,0 +1,44 @@
+// Where a Vulkan device comes from, beside the GL platforms (backends/gl/gl_platform.h):
+// the instance (with validation layers when asked), the choice of physical
+// device and the logical device with the features the techniques use.
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include "backends/device.h"
+
+namespace sb {
+
+class VulkanPlatform {
+ public:
+  // Throws DeviceError ("no Vulkan device found ...") when no usable device exists.
+  // Device choice: env SB_VULKAN_DEVICE (substring of deviceName), else discrete,
+  // integrated, then CPU. Validation: `validation` or env SB_VALIDATION=1.
+  explicit VulkanPlatform(bool validation);
+  ~VulkanPlatform();
+  VulkanPlatform(const VulkanPlatform&) = delete;
+  VulkanPlatform& operator=(const VulkanPlatform&) = delete;
+
+  VkInstance instance = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
+  VkPhysicalDevice physical = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  VkQueue queue = VK_NULL_HANDLE;
+  uint32_t queueFamily = 0;
+  VkPhysicalDeviceLimits limits{};
+  VkPhysicalDeviceMemoryProperties memProps{};
+  float timestampPeriod = 1.0f;
+  uint32_t timestampBits = 0;
+  bool cpuTiming = false;  // time passes on the CPU (CPU devices, or asked for)
+  bool logicOp = false;    // the logicOp feature
+  bool bresenham = false;  // Bresenham lines (VK_EXT_line_rasterization)
+  DeviceInfo info;         // backend, platform, device, driver, timing, lines
+
+ private:
+  void createInstance(bool validation);
+  void pickPhysicalDevice();
+  void createLogicalDevice();
+  void destroy();
+};
+
+}  // namespace sb
