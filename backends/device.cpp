@@ -72,6 +72,7 @@ struct Device::PipelineRec {
 struct Device::OpenPass {
   std::string name;
   std::vector<uint32_t> attachments, sampled;
+  std::vector<uint32_t> attachmentLayers;  // the layer of each attachment
   std::vector<Format> colorFormats;
   bool hasDepth = false;
 };
@@ -169,6 +170,13 @@ Texture Device::createTexture(const TextureDesc& desc) {
   if (desc.width == 0 || desc.height == 0)
     throw DeviceError(quoted("createTexture", desc.name) + ": zero size (" +
                       std::to_string(desc.width) + "x" + std::to_string(desc.height) + ")");
+  if (desc.layers == 0 || desc.layers > kMaxTextureLayers)
+    throw DeviceError(quoted("createTexture", desc.name) + ": " + std::to_string(desc.layers) +
+                      " layers (1.." + std::to_string(kMaxTextureLayers) + ")");
+  // Attachments name no layer of a depth texture: depth arrays are not offered.
+  if (desc.layers > 1 && isDepthFormat(desc.format))
+    throw DeviceError(quoted("createTexture", desc.name) + ": a depth texture has one layer, not " +
+                      std::to_string(desc.layers));
   auto rec = std::make_unique<TextureRec>(TextureRec{desc, driver_->createTexture(desc)});
   const uint32_t id = nextId_++;
   textures_.emplace(id, std::move(rec));
@@ -245,23 +253,30 @@ void Device::beginPass(const PassDesc& pd) {
                         ")");
     }
   };
-  auto attach = [&](Texture tex) -> TextureRec& {
+  auto attach = [&](Texture tex, uint32_t layer) -> TextureRec& {
     TextureRec& t = texture(tex, where);
-    if (std::count(open->attachments.begin(), open->attachments.end(), tex.id))
-      throw DeviceError(where + ": texture '" + t.desc.name + "' attached twice");
+    if (layer >= t.desc.layers)
+      throw DeviceError(where + ": layer " + std::to_string(layer) + " of texture '" + t.desc.name +
+                        "' is out of range (it has " + std::to_string(t.desc.layers) + ")");
+    for (std::size_t i = 0; i < open->attachments.size(); ++i)
+      if (open->attachments[i] == tex.id && open->attachmentLayers[i] == layer)
+        throw DeviceError(where + ": texture '" + t.desc.name + "'" +
+                          (t.desc.layers > 1 ? " layer " + std::to_string(layer) : "") +
+                          " attached twice");
     open->attachments.push_back(tex.id);
+    open->attachmentLayers.push_back(layer);
     size(t);
     return t;
   };
   for (const ColorAttachment& a : pd.color) {
-    TextureRec& t = attach(a.texture);
+    TextureRec& t = attach(a.texture, a.layer);
     if (isDepthFormat(t.desc.format))
       throw DeviceError(where + ": depth texture '" + t.desc.name + "' as colour attachment");
     open->colorFormats.push_back(t.desc.format);
-    dp.color.push_back({{t.object.get(), &t.desc}, a.load, a.clear, a.clearUint});
+    dp.color.push_back({{t.object.get(), &t.desc}, a.load, a.clear, a.clearUint, a.layer});
   }
   if (pd.depth.texture) {
-    TextureRec& t = attach(pd.depth.texture);
+    TextureRec& t = attach(pd.depth.texture, 0);
     if (!isDepthFormat(t.desc.format))
       throw DeviceError(where + ": '" + t.desc.name + "' is not a depth texture");
     open->hasDepth = true;
@@ -308,9 +323,13 @@ std::vector<DriverBinding> Device::resolve(const PipelineRec& p, const std::vect
                            [&](const Binding& b) { return b.binding == s.binding; });
     const std::string slot = where + ": binding " + std::to_string(s.binding);
     if (it == given.end()) throw DeviceError(slot + " not provided");
-    if (s.kind == BindingKind::SampledTexture) {
+    if (s.kind == BindingKind::SampledTexture || s.kind == BindingKind::SampledTextureArray) {
       if (!it->texture || it->buffer) throw DeviceError(slot + " needs a texture");
       TextureRec& t = texture(it->texture, where);
+      if (s.kind == BindingKind::SampledTexture && t.desc.layers > 1)
+        throw DeviceError(slot + ": texture '" + t.desc.name + "' has " +
+                          std::to_string(t.desc.layers) +
+                          " layers (a sampler2D slot; arrays need SampledTextureArray)");
       if (inPass && !std::count(pass_->sampled.begin(), pass_->sampled.end(), it->texture.id))
         throw DeviceError(where + ": texture '" + t.desc.name + "' is sampled but pass '" +
                           pass_->name + "' does not list it in sampledTextures");
@@ -383,7 +402,8 @@ std::vector<ResourceBytes> Device::allocations() const {
   for (const auto& [id, t] : textures_)
     all.push_back({id,
                    {t->desc.name, t->desc.owner,
-                    std::size_t{t->desc.width} * t->desc.height * bytesPerPixel(t->desc.format)}});
+                    std::size_t{t->desc.width} * t->desc.height * t->desc.layers *
+                        bytesPerPixel(t->desc.format)}});
   std::sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   std::vector<ResourceBytes> out;
   for (auto& [id, r] : all) out.push_back(std::move(r));

@@ -71,7 +71,17 @@ struct TextureDesc {
   // Every texture can be a render target, sampled and read back. Sampling is
   // nearest or linear, always clamp-to-edge.
   bool linearFilter = false;
+  // A 2D array of `layers` images of one format and size (1..kMaxTextureLayers;
+  // depth textures have one). A pass renders into one layer per attachment
+  // (ColorAttachment::layer); shaders sample the whole array through a
+  // SampledTextureArray slot (sampler2DArray / usampler2DArray, any layer
+  // count, one layer included) and a one-layer texture also through a
+  // SampledTexture slot (sampler2D). Read-back returns the layers in order.
+  uint32_t layers = 1;
 };
+// The most layers a texture may have: the least both APIs guarantee (Vulkan's
+// maxImageArrayLayers; GL 4.5 guarantees 2048).
+constexpr uint32_t kMaxTextureLayers = 256;
 
 enum class Topology { Lines, Triangles };
 enum class CompareOp { Never, Less, LessEqual, Equal, Greater, GreaterEqual, NotEqual, Always };
@@ -120,7 +130,9 @@ struct BlendState {
   }
 };
 
-enum class BindingKind { UniformBuffer, StorageBuffer, SampledTexture };
+// SampledTexture: sampler2D of a one-layer texture; SampledTextureArray:
+// sampler2DArray of any texture (a one-layer texture is an array of one).
+enum class BindingKind { UniformBuffer, StorageBuffer, SampledTexture, SampledTextureArray };
 
 struct BindingSlot {
   uint32_t binding = 0;
@@ -156,11 +168,15 @@ struct PipelineDesc {
 
 enum class LoadOp { Clear, Load };
 
+// Always one layer of its texture: an array texture is attached layer by
+// layer (several layers of one array may be attachments of one pass; the whole
+// array at once, layered rendering, is not offered).
 struct ColorAttachment {
   Texture texture;
   LoadOp load = LoadOp::Clear;
   std::array<float, 4> clear{0, 0, 0, 0};         // float/unorm formats
   std::array<uint32_t, 4> clearUint{0, 0, 0, 0};  // integer formats
+  uint32_t layer = 0;                             // < the texture's layers
 };
 
 struct DepthAttachment {
@@ -253,14 +269,15 @@ class Device {
   std::vector<PassTiming> lastFrameTimings() const;
 
   // Read back after endFrame(). Rows are bottom-up (row 0 = NDC y=-1);
-  // tightly packed, bytesPerPixel(format) per pixel.
+  // tightly packed, bytesPerPixel(format) per pixel; the layers of an array
+  // one after the other (layer 0 first).
   std::vector<uint8_t> readTexture(Texture t);
   std::vector<uint8_t> readBuffer(Buffer b);
   // What a texture was created with (to interpret its read-back bytes).
   TextureDesc describe(Texture t) const;
 
-  // Exact logical bytes of every live resource (width*height*bpp, buffer size),
-  // in creation order.
+  // Exact logical bytes of every live resource (width*height*layers*bpp,
+  // buffer size), in creation order.
   std::vector<ResourceBytes> allocations() const;
 
  private:

@@ -32,10 +32,13 @@ struct DriverColorTarget {
   LoadOp load = LoadOp::Clear;
   std::array<float, 4> clear{0, 0, 0, 0};
   std::array<uint32_t, 4> clearUint{0, 0, 0, 0};
+  uint32_t layer = 0;  // the one layer rendered into (< desc->layers)
 };
 
 // A pass as checked by the front end: attachments share one size (width x
-// height, also for a pass without attachments), and no attachment is sampled.
+// height, also for a pass without attachments), no attachment is sampled, no
+// layer is attached twice (several layers of one array may be), and the depth
+// attachment has one layer.
 struct DriverPass {
   std::string name;
   std::vector<DriverColorTarget> color;
@@ -53,7 +56,7 @@ struct DriverBinding {
   BindingKind kind = BindingKind::UniformBuffer;
   DriverObject* object = nullptr;
   const BufferDesc* buffer = nullptr;    // buffer kinds
-  const TextureDesc* texture = nullptr;  // SampledTexture
+  const TextureDesc* texture = nullptr;  // SampledTexture (one layer), SampledTextureArray
 };
 
 class Driver {
@@ -63,7 +66,8 @@ class Driver {
 
   // desc.bytes > 0; contents zero unless data is given.
   virtual std::unique_ptr<DriverObject> createBuffer(const BufferDesc& desc, const void* data) = 0;
-  // desc.width, desc.height > 0; contents zero (colour) or 1 (depth).
+  // desc.width, desc.height > 0, desc.layers in 1..kMaxTextureLayers (1 for
+  // depth); contents zero (colour) or 1 (depth).
   virtual std::unique_ptr<DriverObject> createTexture(const TextureDesc& desc) = 0;
   // Either vertex+fragment or compute; bindings unique; formats checked.
   virtual std::unique_ptr<DriverObject> createPipeline(const PipelineDesc& desc) = 0;

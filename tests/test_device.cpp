@@ -54,6 +54,38 @@ void main() {
 }
 )");
 
+// Two layers of one array in one pass: layer 2 gets the colour, layer 0 twice it.
+const ShaderCode kTwoTargetsFrag = shader("tests/two_targets.frag", R"(
+layout(std140, binding = 1) uniform Params { vec4 color; };
+layout(location = 0) out vec4 outFirst;
+layout(location = 1) out vec4 outSecond;
+void main() {
+  outFirst = color;
+  outSecond = 2.0 * color;
+}
+)");
+// Every layer of an array, sampled at once: L0 + 10 L2 + 100 L1, and the layer count.
+const ShaderCode kSampleLayersFrag = shader("tests/sample_layers.frag", R"(
+layout(binding = 2) uniform sampler2DArray layersTex;
+layout(location = 0) out vec4 outColor;
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  vec4 sum = vec4(0.0);
+  const float scale[3] = float[3](1.0, 100.0, 10.0);
+  for (int l = 0; l < textureSize(layersTex, 0).z; ++l)
+    sum += scale[l] * texelFetch(layersTex, ivec3(p, l), 0);
+  outColor = vec4(sum.rgb, float(textureSize(layersTex, 0).z));
+}
+)");
+// A one-layer integer texture sampled as an array of one.
+const ShaderCode kSampleUintArrayFrag = shader("tests/sample_uint_array.frag", R"(
+layout(binding = 2) uniform usampler2DArray bitsTex;
+layout(location = 0) out vec4 outColor;
+void main() {
+  outColor = vec4(texelFetch(bitsTex, ivec3(ivec2(gl_FragCoord.xy), 0), 0));
+}
+)");
+
 using Quad = std::vector<float>;  // vec4 per vertex
 
 // Two triangles covering x in [x0,x1], y in [y0,y1] (NDC) at depth z.
@@ -566,6 +598,104 @@ TEST_P(DeviceTest, ManyDrawsAndPassesInOneFrame) {
   EXPECT_EQ(dev_->lastFrameTimings().back().name, "pass79");
   const std::vector<uint8_t> px = dev_->readTexture(t);
   EXPECT_FLOAT_EQ(at<float>(px, 0), 800.0f / 1024);
+}
+
+// Two layers of one array as the two attachments of one pass (out of order,
+// one layer left alone), then the whole array sampled by a later pass, and
+// read back layer after layer.
+TEST_P(DeviceTest, RenderIntoTwoLayersOfOneArrayAndSampleThem) {
+  const Texture arr =
+      dev_->createTexture({"layers", "test", Format::RGBA32F, kSize, kSize, false, 3});
+  const Texture out = target(Format::RGBA32F, "out");
+  Buffer lower = positions(quad(-1, -1, 1, 0));
+  Buffer full = positions(quad(-1, -1, 1, 1));
+  Buffer col = color(0.25f, 0.5f, 0.75f, 1.0f);
+  PipelineDesc wd = colorPipeline(Format::RGBA32F, &kTwoTargetsFrag);
+  wd.colorFormats = {Format::RGBA32F, Format::RGBA32F};
+  Pipeline write = dev_->createPipeline(wd);
+  PipelineDesc sd = colorPipeline(Format::RGBA32F, &kSampleLayersFrag);
+  sd.bindings = {{0, BindingKind::StorageBuffer}, {2, BindingKind::SampledTextureArray}};
+  Pipeline sample = dev_->createPipeline(sd);
+
+  dev_->beginFrame();
+  PassDesc p1;
+  p1.name = "layers";
+  p1.color = {{arr, LoadOp::Clear, {0.5f, 0.5f, 0.5f, 0.5f}, {}, 2},
+              {arr, LoadOp::Clear, {0, 0, 0, 0}, {}, 0}};
+  dev_->beginPass(p1);
+  dev_->draw(write, {Binding::buf(0, lower), Binding::buf(1, col)}, 6);
+  dev_->endPass();
+  PassDesc p2 = pass("sample", out, {-1, -1, -1, -1});
+  p2.sampledTextures = {arr};
+  dev_->beginPass(p2);
+  dev_->draw(sample, {Binding::buf(0, full), Binding::tex(2, arr)}, 6);
+  dev_->endPass();
+  dev_->endFrame();
+
+  const std::vector<uint8_t> px = dev_->readTexture(out);
+  for (uint32_t y = 0; y < kSize; ++y) {
+    const std::size_t i = (y * kSize + 7) * 4;
+    const bool lowerHalf = y < kSize / 2;
+    // Lower: 2c + 10c = 12c; upper: 0 + 10 * 0.5; layer 1 is still zero.
+    EXPECT_FLOAT_EQ(at<float>(px, i + 0), lowerHalf ? 3.0f : 5.0f) << "y=" << y;
+    EXPECT_FLOAT_EQ(at<float>(px, i + 1), lowerHalf ? 6.0f : 5.0f) << "y=" << y;
+    EXPECT_FLOAT_EQ(at<float>(px, i + 2), lowerHalf ? 9.0f : 5.0f) << "y=" << y;
+    EXPECT_FLOAT_EQ(at<float>(px, i + 3), 3.0f) << "y=" << y;  // textureSize().z
+  }
+
+  const std::vector<uint8_t> layers = dev_->readTexture(arr);
+  ASSERT_EQ(layers.size(), std::size_t{3} * kSize * kSize * 16);
+  const std::size_t perLayer = std::size_t{kSize} * kSize * 4;  // floats
+  for (uint32_t y = 0; y < kSize; ++y) {
+    const std::size_t i = (y * kSize + 3) * 4;
+    const bool lowerHalf = y < kSize / 2;
+    EXPECT_FLOAT_EQ(at<float>(layers, i + 1), lowerHalf ? 1.0f : 0.0f) << "layer 0 y=" << y;
+    EXPECT_FLOAT_EQ(at<float>(layers, perLayer + i + 1), 0.0f) << "layer 1 y=" << y;
+    EXPECT_FLOAT_EQ(at<float>(layers, 2 * perLayer + i + 0), lowerHalf ? 0.25f : 0.5f)
+        << "layer 2 y=" << y;
+    EXPECT_FLOAT_EQ(at<float>(layers, 2 * perLayer + i + 2), lowerHalf ? 0.75f : 0.5f)
+        << "layer 2 y=" << y;
+  }
+  // The accounting counts every layer.
+  for (const ResourceBytes& r : dev_->allocations()) {
+    if (r.name == "layers") {
+      EXPECT_EQ(r.bytes, std::size_t{3} * kSize * kSize * 16);
+    }
+  }
+}
+
+// A one-layer texture is also an array of one (sampler2DArray), here an
+// integer one written by logic-op OR, as the occupancy maps are.
+TEST_P(DeviceTest, OneLayerTextureSampledAsAnArray) {
+  const Texture bits = target(Format::RGBA32UI, "bits");
+  const Texture out = target(Format::RGBA32F, "out");
+  Buffer full = positions(quad(-1, -1, 1, 1));
+  const uint32_t value[4] = {1, 2, 4, 8};
+  Buffer v = makeBuffer("value", BufferUsage::Uniform, value, sizeof value);
+  PipelineDesc wd = colorPipeline(Format::RGBA32UI, &kUintFrag);
+  wd.logicOpOr = true;
+  Pipeline write = dev_->createPipeline(wd);
+  PipelineDesc sd = colorPipeline(Format::RGBA32F, &kSampleUintArrayFrag);
+  sd.bindings = {{0, BindingKind::StorageBuffer}, {2, BindingKind::SampledTextureArray}};
+  Pipeline sample = dev_->createPipeline(sd);
+  dev_->beginFrame();
+  PassDesc p1 = pass("bits", bits, {});
+  p1.color[0].clearUint = {16, 0, 0, 0};
+  dev_->beginPass(p1);
+  dev_->draw(write, {Binding::buf(0, full), Binding::buf(1, v)}, 6);
+  dev_->endPass();
+  PassDesc p2 = pass("sample", out, {});
+  p2.sampledTextures = {bits};
+  dev_->beginPass(p2);
+  dev_->draw(sample, {Binding::buf(0, full), Binding::tex(2, bits)}, 6);
+  dev_->endPass();
+  dev_->endFrame();
+  const std::vector<uint8_t> px = dev_->readTexture(out);
+  const std::size_t i = (5 * kSize + 9) * 4;
+  EXPECT_FLOAT_EQ(at<float>(px, i + 0), 17.0f);
+  EXPECT_FLOAT_EQ(at<float>(px, i + 1), 2.0f);
+  EXPECT_FLOAT_EQ(at<float>(px, i + 2), 4.0f);
+  EXPECT_FLOAT_EQ(at<float>(px, i + 3), 8.0f);
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, DeviceTest, ::testing::Values("gl", "vulkan"),

@@ -29,23 +29,30 @@ layout(binding = 1) uniform sampler2D tex;
 layout(location = 0) out vec4 outColor;
 void main() { outColor = texelFetch(tex, ivec2(0), 0); }
 )");
+const ShaderCode kArrayFrag = shader("tests/contract_array.frag", R"(
+layout(binding = 1) uniform sampler2DArray tex;
+layout(location = 0) out vec4 outColor;
+void main() { outColor = texelFetch(tex, ivec3(0, 0, textureSize(tex, 0).z - 1), 0); }
+)");
 const ShaderCode kComp = shader("tests/contract.comp", R"(
 layout(local_size_x = 1) in;
 layout(std430, binding = 0) buffer Data { uint v[]; };
 void main() { v[0] = 1u; }
 )");
 
-// A small world for each rule: two targets, a buffer and two pipelines.
+// A small world for each rule: targets (one a two-layer array), a buffer and
+// three pipelines.
 struct World {
   Device& dev;
-  Texture color, other, depth, small;
+  Texture color, other, depth, small, array;
   Buffer data;
-  Pipeline draw, compute;
+  Pipeline draw, drawArray, compute;
   explicit World(Device& d) : dev(d) {
     color = dev.createTexture({"color", "test", Format::RGBA32F, 8, 8, false});
     other = dev.createTexture({"other", "test", Format::RGBA32F, 8, 8, false});
     depth = dev.createTexture({"depth", "test", Format::Depth32F, 8, 8, false});
     small = dev.createTexture({"small", "test", Format::RGBA32F, 4, 4, false});
+    array = dev.createTexture({"array", "test", Format::RGBA32F, 8, 8, false, 2});
     data = dev.createBuffer({"data", "test", BufferUsage::Storage, 64});
     PipelineDesc g;
     g.name = "contract.draw";
@@ -55,6 +62,10 @@ struct World {
     g.colorFormats = {Format::RGBA32F};
     g.bindings = {{0, BindingKind::StorageBuffer}, {1, BindingKind::SampledTexture}};
     draw = dev.createPipeline(g);
+    g.name = "contract.draw_array";
+    g.fragment = &kArrayFrag;
+    g.bindings = {{0, BindingKind::StorageBuffer}, {1, BindingKind::SampledTextureArray}};
+    drawArray = dev.createPipeline(g);
     PipelineDesc c;
     c.name = "contract.compute";
     c.technique = "tests";
@@ -62,10 +73,10 @@ struct World {
     c.bindings = {{0, BindingKind::StorageBuffer}};
     compute = dev.createPipeline(c);
   }
-  PassDesc pass(Texture target, std::vector<Texture> sampled = {}) const {
+  PassDesc pass(Texture target, std::vector<Texture> sampled = {}, uint32_t layer = 0) const {
     PassDesc p;
     p.name = "contract.pass";
-    p.color = {{target, LoadOp::Clear, {0, 0, 0, 0}, {}}};
+    p.color = {{target, LoadOp::Clear, {0, 0, 0, 0}, {}, layer}};
     p.sampledTextures = std::move(sampled);
     return p;
   }
@@ -89,6 +100,18 @@ std::vector<Rule> rules() {
       {"zero-size texture", "createTexture('flat'): zero size",
        [](World& w) {
          w.dev.createTexture({"flat", "test", Format::RGBA8, 0, 4, false});
+       }},
+      {"texture without layers", "createTexture('none'): 0 layers (1..256)",
+       [](World& w) {
+         w.dev.createTexture({"none", "test", Format::RGBA8, 4, 4, false, 0});
+       }},
+      {"texture with too many layers", "createTexture('deep'): 257 layers (1..256)",
+       [](World& w) {
+         w.dev.createTexture({"deep", "test", Format::RGBA8, 4, 4, false, 257});
+       }},
+      {"depth texture with layers", "createTexture('depths'): a depth texture has one layer, not 2",
+       [](World& w) {
+         w.dev.createTexture({"depths", "test", Format::Depth32F, 4, 4, false, 2});
        }},
       {"pipeline without shaders", "give either vertex+fragment or compute shaders",
        [](World& w) {
@@ -162,6 +185,30 @@ std::vector<Rule> rules() {
          p.color.push_back({w.color, LoadOp::Clear, {}, {}});
          w.dev.beginPass(p);
        }},
+      {"an array layer out of range", "layer 2 of texture 'array' is out of range (it has 2)",
+       [](World& w) {
+         w.dev.beginFrame();
+         w.dev.beginPass(w.pass(w.array, {}, 2));
+       }},
+      {"a layer of a one-layer texture", "layer 1 of texture 'color' is out of range (it has 1)",
+       [](World& w) {
+         w.dev.beginFrame();
+         w.dev.beginPass(w.pass(w.color, {}, 1));
+       }},
+      {"an array layer attached twice", "texture 'array' layer 1 attached twice",
+       [](World& w) {
+         w.dev.beginFrame();
+         PassDesc p = w.pass(w.array, {}, 1);
+         p.color.push_back({w.array, LoadOp::Clear, {}, {}, 0});
+         p.color.push_back({w.array, LoadOp::Load, {}, {}, 1});
+         w.dev.beginPass(p);
+       }},
+      {"an array sampled while a layer is attached",
+       "texture 'array' is both an attachment and sampled",
+       [](World& w) {
+         w.dev.beginFrame();
+         w.dev.beginPass(w.pass(w.array, {w.array}, 1));
+       }},
       {"depth texture as colour attachment", "depth texture 'depth' as colour attachment",
        [](World& w) {
          w.dev.beginFrame();
@@ -234,6 +281,14 @@ std::vector<Rule> rules() {
          w.dev.beginFrame();
          w.dev.beginPass(w.pass(w.color));
          w.dev.draw(w.draw, w.goodBindings(), 3);
+       }},
+      {"an array through a sampler2D slot",
+       "binding 1: texture 'array' has 2 layers (a sampler2D slot; arrays need "
+       "SampledTextureArray)",
+       [](World& w) {
+         w.dev.beginFrame();
+         w.dev.beginPass(w.pass(w.color, {w.array}));
+         w.dev.draw(w.draw, {Binding::buf(0, w.data), Binding::tex(1, w.array)}, 3);
        }},
       {"compute pipeline drawn", "a compute pipeline (use dispatch)",
        [](World& w) {
@@ -346,15 +401,28 @@ INSTANTIATE_TEST_SUITE_P(Rules, DeviceContractRule, ::testing::ValuesIn(rules())
 // The same world with every binding right is accepted on both: the rules above
 // fail for the reason they name, not for a broken setup.
 TEST(DeviceContract, TheUnbrokenWorldRendersOnBothApis) {
-  const Rule valid{"valid", "", [](World& w) {
-                     w.dev.beginFrame();
-                     w.dev.beginPass(w.pass(w.color, {w.other}));
-                     w.dev.draw(w.draw, w.goodBindings(), 3);
-                     w.dev.endPass();
-                     w.dev.dispatch("contract.dispatch", w.compute, {Binding::buf(0, w.data)}, 1);
-                     w.dev.endFrame();
-                     w.dev.readTexture(w.color);
-                   }};
+  const Rule valid{
+      "valid", "", [](World& w) {
+        w.dev.beginFrame();
+        w.dev.beginPass(w.pass(w.color, {w.other}));
+        w.dev.draw(w.draw, w.goodBindings(), 3);
+        w.dev.endPass();
+        // Both layers of the array in one pass, then the array
+        // and a one-layer texture sampled as arrays.
+        PassDesc layers = w.pass(w.array, {}, 1);
+        layers.color.push_back({w.array, LoadOp::Clear, {}, {}, 0});
+        w.dev.beginPass(layers);
+        w.dev.endPass();
+        w.dev.beginPass(w.pass(w.color, {w.array, w.other}));
+        w.dev.draw(w.drawArray, {Binding::buf(0, w.data), Binding::tex(1, w.array)}, 3);
+        w.dev.draw(w.drawArray, w.goodBindings(), 3);
+        w.dev.endPass();
+        w.dev.dispatch("contract.dispatch", w.compute, {Binding::buf(0, w.data)}, 1);
+        w.dev.endFrame();
+        w.dev.readTexture(w.color);
+        if (w.dev.readTexture(w.array).size() != 2u * 8 * 8 * 16)
+          throw DeviceError("an array reads back every layer");
+      }};
   const auto got = messages(valid);
   if (got.empty()) GTEST_SKIP() << "no backend available";
   for (const auto& [backend, message] : got) EXPECT_EQ(message, "") << backend;

@@ -127,7 +127,9 @@ struct GLBuffer : DriverObject {
   GLuint name = 0;
 };
 struct GLTexture : DriverObject {
-  GLuint name = 0;
+  GLuint name = 0;  // GL_TEXTURE_2D, or GL_TEXTURE_2D_ARRAY with layers > 1
+  uint32_t layers = 1;
+  GLuint arrayView = 0;  // layers == 1: a GL_TEXTURE_2D_ARRAY view, made when first needed
 };
 struct GLPipeline : DriverObject {
   GLuint program = 0;
@@ -195,15 +197,17 @@ class GLDriver final : public Driver {
   std::unique_ptr<DriverObject> createTexture(const TextureDesc& desc) override {
     auto t = std::make_unique<GLTexture>();
     const GLFormat f = glFormat(desc.format);
-    gl_.CreateTextures(GL_TEXTURE_2D, 1, &t->name);
-    gl_.TextureStorage2D(t->name, 1, f.internal, static_cast<GLsizei>(desc.width),
-                         static_cast<GLsizei>(desc.height));
-    const GLint filter =
-        desc.linearFilter && !isIntegerFormat(desc.format) ? GL_LINEAR : GL_NEAREST;
-    gl_.TextureParameteri(t->name, GL_TEXTURE_MIN_FILTER, filter);
-    gl_.TextureParameteri(t->name, GL_TEXTURE_MAG_FILTER, filter);
-    gl_.TextureParameteri(t->name, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    gl_.TextureParameteri(t->name, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    t->layers = desc.layers;
+    if (desc.layers > 1) {
+      gl_.CreateTextures(GL_TEXTURE_2D_ARRAY, 1, &t->name);
+      gl_.TextureStorage3D(t->name, 1, f.internal, static_cast<GLsizei>(desc.width),
+                           static_cast<GLsizei>(desc.height), static_cast<GLsizei>(desc.layers));
+    } else {
+      gl_.CreateTextures(GL_TEXTURE_2D, 1, &t->name);
+      gl_.TextureStorage2D(t->name, 1, f.internal, static_cast<GLsizei>(desc.width),
+                           static_cast<GLsizei>(desc.height));
+    }
+    samplerState(t->name, desc);
     // Defined initial contents, as on Vulkan: colour 0, depth 1 (far).
     const float depthOne = 1.0f;
     const uint32_t zero[4] = {0, 0, 0, 0};
@@ -271,6 +275,7 @@ class GLDriver final : public Driver {
           ++f;
         }
       }
+      if (t->arrayView) gl_.DeleteTextures(1, &t->arrayView);
       gl_.DeleteTextures(1, &t->name);
     }
   }
@@ -359,7 +364,9 @@ class GLDriver final : public Driver {
 
   std::vector<uint8_t> readTexture(DriverObject& t, const TextureDesc& desc) override {
     const GLFormat f = glFormat(desc.format);
-    std::vector<uint8_t> out(std::size_t{desc.width} * desc.height * bytesPerPixel(desc.format));
+    // An array's level 0 holds every layer, layer after layer.
+    std::vector<uint8_t> out(std::size_t{desc.width} * desc.height * desc.layers *
+                             bytesPerPixel(desc.format));
     gl_.GetTextureImage(nameOf(&t), 0, f.format, f.type, static_cast<GLsizei>(out.size()),
                         out.data());
     checkError("readTexture " + desc.name);
@@ -393,10 +400,36 @@ class GLDriver final : public Driver {
     if (e != GL_NO_ERROR) throw DeviceError(std::string(glErrorName(e)) + " in " + what);
   }
 
-  // One framebuffer object per distinct attachment set, kept for reuse.
+  void samplerState(GLuint name, const TextureDesc& desc) {
+    const GLint filter =
+        desc.linearFilter && !isIntegerFormat(desc.format) ? GL_LINEAR : GL_NEAREST;
+    gl_.TextureParameteri(name, GL_TEXTURE_MIN_FILTER, filter);
+    gl_.TextureParameteri(name, GL_TEXTURE_MAG_FILTER, filter);
+    gl_.TextureParameteri(name, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl_.TextureParameteri(name, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  }
+
+  // What a sampler2DArray samples: the array itself, or a one-layer
+  // texture's GL_TEXTURE_2D_ARRAY view (a GL_TEXTURE_2D cannot be).
+  GLuint arrayName(const DriverBinding& b) {
+    auto& t = *static_cast<GLTexture*>(b.object);
+    if (t.layers > 1) return t.name;
+    if (!t.arrayView) {
+      gl_.GenTextures(1, &t.arrayView);  // a view needs a name never bound
+      gl_.TextureView(t.arrayView, GL_TEXTURE_2D_ARRAY, t.name,
+                      glFormat(b.texture->format).internal, 0, 1, 0, 1);
+      samplerState(t.arrayView, *b.texture);
+      checkError("array view of " + b.texture->name);
+    }
+    return t.arrayView;
+  }
+
+  // One framebuffer object per distinct attachment set (textures and layers),
+  // kept for reuse.
   GLuint framebuffer(const DriverPass& pass) {
     std::string key = ",";
-    for (auto& a : pass.color) key += std::to_string(nameOf(a.texture.object)) + ",";
+    for (auto& a : pass.color)
+      key += std::to_string(nameOf(a.texture.object)) + ",L" + std::to_string(a.layer) + ",";
     key += "d," + std::to_string(pass.depth.object ? nameOf(pass.depth.object) : 0) + ",";
     if (pass.color.empty() && !pass.depth.object)
       key += "size," + std::to_string(pass.width) + "x" + std::to_string(pass.height);
@@ -406,8 +439,13 @@ class GLDriver final : public Driver {
     gl_.CreateFramebuffers(1, &fbo);
     std::vector<GLenum> drawBuffers;
     for (std::size_t i = 0; i < pass.color.size(); ++i) {
-      gl_.NamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i),
-                                  nameOf(pass.color[i].texture.object), 0);
+      const DriverColorTarget& a = pass.color[i];
+      const GLenum at = GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i);
+      if (a.texture.desc->layers > 1)
+        gl_.NamedFramebufferTextureLayer(fbo, at, nameOf(a.texture.object), 0,
+                                         static_cast<GLint>(a.layer));
+      else
+        gl_.NamedFramebufferTexture(fbo, at, nameOf(a.texture.object), 0);
       drawBuffers.push_back(GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i));
     }
     if (pass.depth.object)
@@ -473,6 +511,9 @@ class GLDriver final : public Driver {
           break;
         case BindingKind::SampledTexture:
           gl_.BindTextureUnit(b.binding, nameOf(b.object));
+          break;
+        case BindingKind::SampledTextureArray:
+          gl_.BindTextureUnit(b.binding, arrayName(b));
           break;
       }
     }

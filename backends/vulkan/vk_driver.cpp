@@ -50,8 +50,10 @@ struct TextureRes : DriverObject {
   VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
   VkImage image = VK_NULL_HANDLE;
   VkDeviceMemory memory = VK_NULL_HANDLE;
-  VkImageView view = VK_NULL_HANDLE;
-  VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
+  VkImageView view = VK_NULL_HANDLE;       // 2D (one layer): attachment and sampler2D
+  VkImageView arrayView = VK_NULL_HANDLE;  // 2D_ARRAY of every layer: sampler2DArray
+  std::vector<VkImageView> layerViews;     // layers > 1: 2D of one layer, made when attached
+  VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;  // of every layer (they move together)
   bool linear = false;  // sampler actually used (linear may fall back to nearest)
 };
 
@@ -209,7 +211,7 @@ class VulkanDriver final : public Driver {
     ci.format = t.format;
     ci.extent = {desc.width, desc.height, 1};
     ci.mipLevels = 1;
-    ci.arrayLayers = 1;
+    ci.arrayLayers = desc.layers;
     ci.samples = VK_SAMPLE_COUNT_1_BIT;
     ci.tiling = VK_IMAGE_TILING_OPTIMAL;
     ci.usage = (depth ? VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT
@@ -227,19 +229,16 @@ class VulkanDriver final : public Driver {
       vkGetImageMemoryRequirements(device_, t.image, &req);
       t.memory = allocate(req, false, "texture " + desc.name);
       check(vkBindImageMemory(device_, t.image, t.memory, 0), "vkBindImageMemory");
-      VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-      vi.image = t.image;
-      vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
-      vi.format = t.format;
-      vi.subresourceRange = {t.aspect, 0, 1, 0, 1};
-      check(vkCreateImageView(device_, &vi, nullptr, &t.view), "vkCreateImageView");
+      if (desc.layers == 1) t.view = makeView(t, VK_IMAGE_VIEW_TYPE_2D, 0, 1);
+      t.arrayView = makeView(t, VK_IMAGE_VIEW_TYPE_2D_ARRAY, 0, desc.layers);
+      t.layerViews.assign(desc.layers > 1 ? desc.layers : 0, VK_NULL_HANDLE);
       // Defined initial contents: colour 0, depth 1 (far). A fresh resource, so an
       // immediate submission is ordered correctly even inside a frame.
       immediate([&](VkCommandBuffer cmd) {
         std::vector<VkImageMemoryBarrier> barriers;
         transition(barriers, t, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
         fullBarrier(cmd, barriers);
-        VkImageSubresourceRange range{t.aspect, 0, 1, 0, 1};
+        VkImageSubresourceRange range{t.aspect, 0, 1, 0, desc.layers};
         if (depth) {
           VkClearDepthStencilValue v{1.0f, 0};
           vkCmdClearDepthStencilImage(cmd, t.image, t.layout, &v, 1, &range);
@@ -361,7 +360,7 @@ class VulkanDriver final : public Driver {
     for (const DriverColorTarget& a : pd.color) {
       const TextureRes& t = tex(a.texture);
       VkRenderingAttachmentInfo ai{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-      ai.imageView = t.view;
+      ai.imageView = attachmentView(tex(a.texture), a.layer);
       ai.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
       ai.loadOp =
           a.load == LoadOp::Clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
@@ -427,7 +426,7 @@ class VulkanDriver final : public Driver {
     if (cpuTiming_) flushFrame();
     std::vector<VkImageMemoryBarrier> barriers;
     for (const DriverBinding& b : bindings) {
-      if (b.kind == BindingKind::SampledTexture) {
+      if (b.kind == BindingKind::SampledTexture || b.kind == BindingKind::SampledTextureArray) {
         transition(barriers, static_cast<TextureRes&>(*b.object),
                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
       }
@@ -483,7 +482,9 @@ class VulkanDriver final : public Driver {
 
   std::vector<uint8_t> readTexture(DriverObject& object, const TextureDesc& desc) override {
     auto& t = static_cast<TextureRes&>(object);
-    const std::size_t bytes = std::size_t{desc.width} * desc.height * bytesPerPixel(desc.format);
+    // Layers are copied one after the other, each tightly packed.
+    const std::size_t bytes =
+        std::size_t{desc.width} * desc.height * desc.layers * bytesPerPixel(desc.format);
     HostBuffer staging = createHostBuffer(bytes);
     std::vector<uint8_t> out(bytes);
     try {
@@ -492,7 +493,7 @@ class VulkanDriver final : public Driver {
         transition(barriers, t, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
         fullBarrier(cmd, barriers);
         VkBufferImageCopy region{};
-        region.imageSubresource = {t.aspect, 0, 0, 1};
+        region.imageSubresource = {t.aspect, 0, 0, desc.layers};
         region.imageExtent = {desc.width, desc.height, 1};
         vkCmdCopyImageToBuffer(cmd, t.image, t.layout, staging.buffer, 1, &region);
         hostReadBarrier(cmd);
@@ -640,6 +641,11 @@ class VulkanDriver final : public Driver {
   }
 
   void destroyTextureRes(TextureRes& t) {
+    for (VkImageView v : t.layerViews)
+      if (v != VK_NULL_HANDLE) vkDestroyImageView(device_, v, nullptr);
+    t.layerViews.clear();
+    if (t.arrayView != VK_NULL_HANDLE) vkDestroyImageView(device_, t.arrayView, nullptr);
+    t.arrayView = VK_NULL_HANDLE;
     if (t.view != VK_NULL_HANDLE) vkDestroyImageView(device_, t.view, nullptr);
     if (t.image != VK_NULL_HANDLE) vkDestroyImage(device_, t.image, nullptr);
     if (t.memory != VK_NULL_HANDLE) vkFreeMemory(device_, t.memory, nullptr);
@@ -669,6 +675,25 @@ class VulkanDriver final : public Driver {
     for (VkDescriptorPool p : descPools_) vkResetDescriptorPool(device_, p, 0);
     descPool_ = 0;
   }
+  VkImageView makeView(const TextureRes& t, VkImageViewType type, uint32_t first, uint32_t count) {
+    VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    vi.image = t.image;
+    vi.viewType = type;
+    vi.format = t.format;
+    vi.subresourceRange = {t.aspect, 0, 1, first, count};
+    VkImageView v = VK_NULL_HANDLE;
+    check(vkCreateImageView(device_, &vi, nullptr, &v), "vkCreateImageView");
+    return v;
+  }
+
+  // The view a pass renders into: the texture's own, or its layer's (made once).
+  VkImageView attachmentView(TextureRes& t, uint32_t layer) {
+    if (t.layerViews.empty()) return t.view;
+    VkImageView& v = t.layerViews[layer];
+    if (v == VK_NULL_HANDLE) v = makeView(t, VK_IMAGE_VIEW_TYPE_2D, layer, 1);
+    return v;
+  }
+
   // ---- recording helpers ----
   static void fullBarrier(VkCommandBuffer cmd,
                           const std::vector<VkImageMemoryBarrier>& images = {}) {
@@ -700,7 +725,7 @@ class VulkanDriver final : public Driver {
     b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     b.image = t.image;
-    b.subresourceRange = {t.aspect, 0, 1, 0, 1};
+    b.subresourceRange = {t.aspect, 0, 1, 0, VK_REMAINING_ARRAY_LAYERS};
     out.push_back(b);
     t.layout = layout;
   }
@@ -813,10 +838,11 @@ class VulkanDriver final : public Driver {
       w.dstBinding = b.binding;
       w.descriptorCount = 1;
       w.descriptorType = toVk(b.kind);
-      if (b.kind == BindingKind::SampledTexture) {
+      if (b.kind == BindingKind::SampledTexture || b.kind == BindingKind::SampledTextureArray) {
         const auto& t = static_cast<const TextureRes&>(*b.object);
+        const VkImageView v = b.kind == BindingKind::SampledTexture ? t.view : t.arrayView;
         imgInfos.push_back(
-            {samplers_[t.linear ? 1 : 0], t.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+            {samplers_[t.linear ? 1 : 0], v, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
         w.pImageInfo = &imgInfos.back();
       } else {
         const auto& r = static_cast<const BufferRes&>(*b.object);

@@ -152,6 +152,7 @@ VkDescriptorType toVk(BindingKind k) {
     case BindingKind::StorageBuffer:
       return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     case BindingKind::SampledTexture:
+    case BindingKind::SampledTextureArray:
       return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
   }
   return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
