@@ -19,7 +19,7 @@ void registerProbeCommand(CLI::App& app);
 void registerBenchCommand(CLI::App& app);
 // `sweep`, `merge` and `report` (harness/sweep_command.cpp).
 void registerSweepCommands(CLI::App& app);
-// `compare-runs` (harness/compare_runs.cpp).
+// `compare-runs` (harness/compare_runs_command.cpp).
 void registerCompareRunsCommand(CLI::App& app);
 int lastCommandStatus();
 // Runs a command's body and records its exit status; bad input (InputError) and

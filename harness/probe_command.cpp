@@ -7,8 +7,8 @@
 #include <sstream>
 
 #include "harness/commands.h"
-#include "harness/files.h"
 #include "harness/render.h"
+#include "reports/files.h"
 #include "techniques/common/renderer.h"
 
 namespace sb {

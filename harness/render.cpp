@@ -11,7 +11,7 @@
 #include "backends/device.h"
 #include "harness/invariants.h"
 #include "harness/metrics.h"
-#include "harness/stats.h"
+#include "reports/stats.h"
 #include "techniques/common/renderer.h"
 
 namespace sb {

@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <set>
 
-#include "harness/files.h"
+#include "reports/files.h"
 #include "scenes/options.h"
 #include "techniques/common/technique.h"
 

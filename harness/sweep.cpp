@@ -13,10 +13,10 @@
 #include <sstream>
 #include <thread>
 
-#include "harness/files.h"
 #include "harness/image.h"
 #include "harness/metrics.h"
-#include "harness/report_writer.h"
+#include "reports/files.h"
+#include "reports/report_writer.h"
 
 namespace sb {
 

@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "harness/compare_runs.h"
-#include "harness/stats.h"
+#include "reports/compare_runs.h"
+#include "reports/stats.h"
 #include "test_util.h"
 
 using nlohmann::json;

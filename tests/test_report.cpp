@@ -14,8 +14,8 @@
 
 #include "browser_util.h"
 #include "harness/image.h"
-#include "harness/report_writer.h"
-#include "harness/svg_chart.h"
+#include "reports/report_writer.h"
+#include "reports/svg_chart.h"
 #include "scenes/scene.h"
 #include "test_util.h"
 

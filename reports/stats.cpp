@@ -1,4 +1,4 @@
-#include "harness/stats.h"
+#include "reports/stats.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "harness/report_data.h"
+#include "reports/report_data.h"
 
 #include <algorithm>
 #include <charconv>
@@ -8,7 +8,7 @@
 #include <map>
 #include <set>
 
-#include "scenes/scene.h"
+#include "harness/errors.h"
 
 namespace sb::report {
 

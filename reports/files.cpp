@@ -1,4 +1,4 @@
-#include "harness/files.h"
+#include "reports/files.h"
 
 #include <unistd.h>
 
@@ -7,7 +7,7 @@
 #include <sstream>
 #include <vector>
 
-#include "scenes/scene.h"
+#include "harness/errors.h"
 
 namespace sb {
 

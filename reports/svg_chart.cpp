@@ -1,4 +1,4 @@
-#include "harness/svg_chart.h"
+#include "reports/svg_chart.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // Internals of the report writer: tolerant access to a results document and the
-// tables that report.md and report.html both show (harness/report_writer.h).
+// tables that report.md and report.html both show (reports/report_writer.h).
 #pragma once
 
 #include <filesystem>

@@ -7,8 +7,8 @@
 #include <map>
 #include <sstream>
 
-#include "harness/report_data.h"
-#include "harness/svg_chart.h"
+#include "reports/report_data.h"
+#include "reports/svg_chart.h"
 
 namespace sb::report {
 

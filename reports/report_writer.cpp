@@ -1,12 +1,12 @@
-// results.csv and report.md, and writeReports (report.html: harness/report_html.cpp).
-#include "harness/report_writer.h"
+// results.csv and report.md, and writeReports (report.html: reports/report_html.cpp).
+#include "reports/report_writer.h"
 
 #include <fstream>
 #include <sstream>
 
-#include "harness/files.h"
-#include "harness/report_data.h"
-#include "scenes/scene.h"
+#include "harness/errors.h"
+#include "reports/files.h"
+#include "reports/report_data.h"
 
 namespace sb {
 

@@ -1,0 +1,28 @@
+# Fails when a source file in DIR includes a project header ("...") that does not start
+# with one of ALLOWED (a |-separated list of prefixes), so that a library cannot come to use
+# code it does not link; touches STAMP when all is well. Run by the build (CMakeLists.txt):
+#   cmake -DDIR=reports "-DALLOWED=reports/|harness/errors.h" -DSTAMP=ok -P CheckIncludes.cmake
+file(GLOB _files ${DIR}/*.h ${DIR}/*.cpp)
+string(REPLACE "|" ";" _allowed "${ALLOWED}")
+set(_bad "")
+foreach(_file IN LISTS _files)
+  file(STRINGS ${_file} _lines REGEX "^[ \t]*#[ \t]*include[ \t]*\"")
+  foreach(_line IN LISTS _lines)
+    string(REGEX REPLACE "^[ \t]*#[ \t]*include[ \t]*\"([^\"]*)\".*" "\\1" _header "${_line}")
+    set(_ok FALSE)
+    foreach(_prefix IN LISTS _allowed)
+      string(FIND "${_header}" "${_prefix}" _at)
+      if(_at EQUAL 0)
+        set(_ok TRUE)
+      endif()
+    endforeach()
+    if(NOT _ok)
+      list(APPEND _bad "${_file}: #include \"${_header}\"")
+    endif()
+  endforeach()
+endforeach()
+if(_bad)
+  list(JOIN _bad "\n  " _list)
+  message(FATAL_ERROR "Only headers starting with ${ALLOWED} may be included here:\n  ${_list}")
+endif()
+file(TOUCH ${STAMP})

@@ -1,0 +1,67 @@
+// `strandbench compare-runs`: the command line over runCompareRuns (reports/compare_runs.h).
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "harness/commands.h"
+#include "harness/errors.h"
+#include "reports/compare_runs.h"
+
+namespace sb {
+
+void registerCompareRunsCommand(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "compare-runs",
+      "compare the timings of two runs case by case (exit 1 when a case slowed significantly)");
+  auto oldPath = std::make_shared<std::string>();
+  auto newPath = std::make_shared<std::string>();
+  auto threshold = std::make_shared<std::string>("5");
+  auto alpha = std::make_shared<double>(0.05);
+  auto asJson = std::make_shared<bool>(false);
+  cmd->add_option("OLD", *oldPath, "results.json, or a sweep folder (results.json or cases/*.json)")
+      ->required();
+  cmd->add_option("NEW", *newPath, "the same, for the run to judge")->required();
+  cmd->add_option("--threshold", *threshold,
+                  "percent a median must change by to count (e.g. 5 or 5%)")
+      ->capture_default_str();
+  cmd->add_option("--alpha", *alpha, "significance level of the one-sided test")
+      ->capture_default_str();
+  cmd->add_flag("--json", *asJson, "print one JSON object instead of the table");
+  cmd->footer(
+      "Cases are matched by case.id; cases in only one run are listed as added/removed and do not\n"
+      "fail. A case whose scene, shadow, oit, size or primitive differ is 'definition changed' "
+      "and\n"
+      "is not judged. For the rest, change = new/old frame_ms median - 1, and the repetitions\n"
+      "(frame_ms.samples) get a one-sided Mann-Whitney U test in the direction of the change\n"
+      "(exact distribution without ties and m*n <= 2500, else the normal approximation with tie\n"
+      "and continuity correction); p is that test's p-value.\n"
+      "  SLOWER  change > +threshold and p < alpha (a regression: exit status 1)\n"
+      "  faster  change < -threshold and p < alpha (information)\n"
+      "  ok      otherwise ('not significant' when the change alone is beyond the threshold)\n"
+      "  not judged: 'no samples' (a run lacks frame_ms.samples: summary statistics cannot be\n"
+      "  tested), or 'too few repetitions' (1/C(m+n,m) >= alpha: even fully separated samples\n"
+      "  could not be significant; at alpha 0.05, 3 vs 3 is too few, 4 vs 4 is enough).\n"
+      "Passes that are slower or faster by the same rules, or in only one run, are listed under\n"
+      "their case for information (only the frame time fails a case).\n"
+      "Exit status: 0 no regression, 1 a case SLOWER, 2 bad input.");
+  cmd->callback([=] {
+    runGuarded("compare-runs", [&] {
+      CompareRunsOptions opt;
+      std::string t = *threshold;
+      if (!t.empty() && t.back() == '%') t.pop_back();
+      std::size_t used = 0;
+      try {
+        opt.thresholdPct = std::stod(t, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (t.empty() || used != t.size() || !std::isfinite(opt.thresholdPct) || opt.thresholdPct < 0)
+        throw InputError("--threshold " + *threshold + ": not a percentage >= 0");
+      opt.alpha = *alpha;
+      return runCompareRuns(*oldPath, *newPath, opt, *asJson, std::cout);
+    });
+  });
+}
+
+}  // namespace sb
