@@ -21,6 +21,8 @@
 #include <sstream>
 
 #include "harness/commands.h"
+#include "harness/json_keys.h"
+#include "reports/json_file.h"
 #include "scenes/scene.h"
 
 namespace sb {
@@ -129,42 +131,14 @@ class ManifestReader {
   }
 
   json parse() const {
-    std::ifstream in(file_, std::ios::binary);
-    if (!in) fail("", std::string("cannot read the manifest: ") + std::strerror(errno));
-    std::ostringstream s;
-    s << in.rdbuf();
-    const std::string textData = s.str();
-    try {
-      return json::parse(textData);
-    } catch (const json::parse_error& e) {
-      // e.byte: 1-based offset of the character where parsing stopped.
-      const std::size_t end = std::min<std::size_t>(e.byte == 0 ? 0 : e.byte - 1, textData.size());
-      std::size_t line = 1, column = 1;
-      for (std::size_t i = 0; i < end; ++i) {
-        if (textData[i] == '\n') {
-          ++line;
-          column = 1;
-        } else {
-          ++column;
-        }
-      }
-      std::string detail = e.what();
-      // Drop nlohmann's "[json.exception.parse_error.101] parse error at line L, column C: ".
-      if (auto p = detail.find("column "); p != std::string::npos) {
-        if (auto q = detail.find(": ", p); q != std::string::npos) detail = detail.substr(q + 2);
-      }
-      throw InputError(file_.string() + ":" + std::to_string(line) + ":" + std::to_string(column) +
-                       ": invalid JSON at line " + std::to_string(line) + ", column " +
-                       std::to_string(column) + ": " + detail);
-    }
+    if (!std::ifstream(file_, std::ios::binary))
+      fail("", std::string("cannot read the manifest: ") + std::strerror(errno));
+    return readJsonFile(file_);
   }
 
   void checkKeys(const json& obj, const std::vector<std::string>& known,
                  const std::string& where) const {
-    for (const auto& item : obj.items()) {
-      if (std::find(known.begin(), known.end(), item.key()) == known.end())
-        fail(where, "unknown key '" + item.key() + "' (known keys: " + joined(known) + ")");
-    }
+    sb::checkKeys(obj, known, file_.string() + (where.empty() ? "" : ": " + where), "key");
   }
 
   std::string text(const json& obj, const char* key, const std::string& where) const {

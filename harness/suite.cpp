@@ -3,7 +3,9 @@
 #include <cstdint>
 #include <set>
 
+#include "harness/json_keys.h"
 #include "reports/files.h"
+#include "reports/json_file.h"
 #include "scenes/options.h"
 #include "techniques/common/technique.h"
 
@@ -24,31 +26,8 @@ const std::vector<std::string> kSettings = {
     "invariants"};
 const std::vector<std::string> kSpecSettings = {"scene", "shadow", "oit"};
 
-// 1-based line and column of a byte offset (nlohmann reports offsets).
-std::string lineAndColumn(const std::string& text, std::size_t byte) {
-  std::size_t line = 1, column = 1;
-  for (std::size_t i = 0; i + 1 < byte && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      column = 1;
-    } else {
-      ++column;
-    }
-  }
-  return "line " + std::to_string(line) + ", column " + std::to_string(column);
-}
-
 // An axis or setting value as text: strings as they are, numbers as JSON writes them.
 std::string valueText(const ojson& v) { return v.is_string() ? v.get<std::string>() : v.dump(); }
-
-void checkKeys(const ojson& obj, const std::vector<std::string>& valid, const std::string& where,
-               const std::string& kind) {
-  if (!obj.is_object()) throw InputError(where + ": expected a JSON object");
-  for (const auto& [key, value] : obj.items()) {
-    if (std::find(valid.begin(), valid.end(), key) == valid.end())
-      throw InputError(where + ": " + unknownNameMessage(kind, key, valid));
-  }
-}
 
 // Settings layered in order: later keys win.
 void overlay(ojson& settings, const ojson& layer, const std::string& where) {
@@ -193,14 +172,7 @@ std::string caseStem(const std::string& id) {
 Suite parseSuite(const std::string& text, const std::string& file) {
   Suite suite;
   suite.file = file;
-  try {
-    suite.doc = ojson::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    std::string what = e.what();
-    const auto cut = what.find("parse error");
-    throw InputError("suite " + file + ": malformed JSON at " + lineAndColumn(text, e.byte) + ": " +
-                     (cut == std::string::npos ? what : what.substr(cut)));
-  }
+  suite.doc = parseJson<ojson>(text, file);
   const ojson& d = suite.doc;
   const std::string where = "suite " + file;
   checkKeys(d, kSuiteKeys, where, "suite key");

@@ -16,6 +16,7 @@
 #include "harness/image.h"
 #include "harness/metrics.h"
 #include "reports/files.h"
+#include "reports/json_file.h"
 #include "reports/report_writer.h"
 
 namespace sb {
@@ -86,19 +87,11 @@ void addDevices(ojson& context, const std::vector<ojson>& results) {
   context["mesa"] = mesa.empty() ? ojson(nullptr) : ojson(mesa);
 }
 
-ojson readJsonFile(const fs::path& path) {
-  try {
-    return ojson::parse(readTextFile(path));
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(path.string() + ": not valid JSON (" + e.what() + ")");
-  }
-}
-
 // A case file that parses is a finished case (they are written by rename).
 bool caseDone(const fs::path& file) {
   if (!fs::is_regular_file(file)) return false;
   try {
-    readJsonFile(file);
+    readJsonFile<ojson>(file);
     return true;
   } catch (const InputError&) {
     return false;
@@ -255,7 +248,7 @@ int runSweep(const SweepOptions& o) {
       throw InputError("--out " + o.out +
                        " already holds a sweep: add --resume to continue it, or choose another "
                        "folder");
-    if (readJsonFile(sweepFile)["suite"] != suite.doc)
+    if (readJsonFile<ojson>(sweepFile)["suite"] != suite.doc)
       throw InputError("--resume: " + o.suitePath + " has changed since the sweep in " + o.out +
                        " started; use another folder");
   } else if (fs::exists(dir) && !fs::is_directory(dir)) {
@@ -323,7 +316,7 @@ int runSweep(const SweepOptions& o) {
   // Cases done by an earlier run count too: a resumed sweep reports them.
   for (const auto* c : selected) {
     if (std::find(todo.begin(), todo.end(), c) != todo.end()) continue;
-    for (const auto& line : invariantFailures(readJsonFile(caseFile(dir, *c))))
+    for (const auto& line : invariantFailures(readJsonFile<ojson>(caseFile(dir, *c))))
       failures.push_back(line);
   }
   if (!failures.empty()) {
@@ -338,15 +331,16 @@ int writeSweepReport(const std::string& dirText) {
   const fs::path dir = dirText;
   if (!fs::is_regular_file(dir / "sweep.json"))
     throw InputError(dirText + ": not a sweep folder (no sweep.json)");
-  const ojson sweepDoc = readJsonFile(dir / "sweep.json");
+  const ojson sweepDoc = readJsonFile<ojson>(dir / "sweep.json");
   const Suite suite = parseSuite(sweepDoc["suite"].dump(), sweepDoc.value("suite_file", "?"));
   std::vector<ojson> results;
   for (const auto& c : suite.cases) {
     const fs::path f = caseFile(dir, c);
-    if (fs::is_regular_file(f)) results.push_back(readJsonFile(f));
+    if (fs::is_regular_file(f)) results.push_back(readJsonFile<ojson>(f));
   }
-  ojson context = fs::is_regular_file(dir / "context.json") ? readJsonFile(dir / "context.json")
-                                                            : ojson(runContext());
+  ojson context = fs::is_regular_file(dir / "context.json")
+                      ? readJsonFile<ojson>(dir / "context.json")
+                      : ojson(runContext());
   addDevices(context, results);
   ojson doc = {{"schema_version", kSchemaVersion},
                {"suite",
@@ -372,7 +366,7 @@ int mergeSweeps(const std::string& outText, const std::vector<std::string>& inpu
   for (const auto& in : inputs) {
     if (!fs::is_regular_file(fs::path(in) / "sweep.json"))
       throw InputError("merge: " + in + " is not a sweep folder (no sweep.json)");
-    const ojson doc = readJsonFile(fs::path(in) / "sweep.json");
+    const ojson doc = readJsonFile<ojson>(fs::path(in) / "sweep.json");
     if (suite.is_null())
       suite = doc;
     else if (doc["suite"] != suite["suite"])
@@ -394,13 +388,13 @@ int mergeSweeps(const std::string& outText, const std::vector<std::string>& inpu
   if (ec) throw InputError("merge: cannot create " + tmp.string() + " (" + ec.message() + ")");
   try {
     for (const auto& [name, in] : owner) {
-      const ojson result = readJsonFile(fs::path(in) / "cases" / name);
+      const ojson result = readJsonFile<ojson>(fs::path(in) / "cases" / name);
       const ojson images = result.value("images", ojson::object());
       for (const auto& [kind, rel] : images.items())
         fs::copy_file(fs::path(in) / rel.get<std::string>(), tmp / rel.get<std::string>());
       fs::copy_file(fs::path(in) / "cases" / name, tmp / "cases" / name);
     }
-    ojson context = readJsonFile(fs::path(inputs.front()) / "context.json");
+    ojson context = readJsonFile<ojson>(fs::path(inputs.front()) / "context.json");
     context["merged_from"] = inputs;
     writeFileAtomic(tmp / "context.json", context.dump(2) + "\n");
     writeFileAtomic(tmp / "sweep.json", suite.dump(2) + "\n");

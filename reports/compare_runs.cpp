@@ -33,11 +33,11 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <set>
 
 #include "harness/errors.h"
+#include "reports/json_file.h"
 #include "reports/stats.h"
 
 namespace sb {
@@ -45,16 +45,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-json readJsonFile(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(file.string() + ": cannot be read");
-  try {
-    return json::parse(in);
-  } catch (const json::exception& e) {
-    throw InputError(file.string() + ": not valid JSON (" + e.what() + ")");
-  }
-}
 
 bool isFiniteNumber(const json& v) { return v.is_number() && std::isfinite(v.get<double>()); }
 

@@ -71,7 +71,7 @@ TEST(Suite, ExpandsAxesInOrderWithBackendInnermost) {
 
 TEST(Suite, BadSuitesNameTheProblem) {
   expectInputError([] { sb::parseSuite("{\n  \"name\": \"x\",\n  \"groups\": [,]\n}", "s.json"); },
-                   {"s.json", "malformed JSON", "line 3"});
+                   {"s.json", "not valid JSON", "line 3"});
   expectInputError([] { sb::parseSuite(R"({"name": "x", "grups": []})", "s.json"); },
                    {"grups", "groups"});
   expectInputError(
