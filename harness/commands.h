@@ -1,4 +1,6 @@
-// The subcommands of the CLI (list, render, compare, check, bless).
+// The subcommands of the CLI. registerCommands adds them all: list, render and compare
+// (harness/commands.cpp), and those of the functions below, in the files they name. Each
+// command's body runs under runGuarded.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -15,7 +17,7 @@ void registerCommands(CLI::App& app);
 void registerCheckCommands(CLI::App& app);
 // `probe` (harness/probe_command.cpp).
 void registerProbeCommand(CLI::App& app);
-// `bench-shadows` (harness/bench_command.cpp).
+// `bench-shadows` and `bench-oit` (harness/bench_command.cpp).
 void registerBenchCommand(CLI::App& app);
 // `sweep`, `merge` and `report` (harness/sweep_command.cpp).
 void registerSweepCommands(CLI::App& app);
