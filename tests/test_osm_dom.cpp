@@ -222,6 +222,10 @@ const std::vector<std::string>& allOptionSpecs() {
       "dom:size=64,layers=1",
       "dom:size=64,layers=7,spacing=constant",
       "dom:size=64,layers=23,spacing=pow2",
+      // The cap: 8 layers of one array, each a colour attachment of the opacity pass.
+      "dom:size=64,layers=31",
+      "dom:size=64,layers=31,spacing=linear,size_frac=0.01,beyond=extend",
+      "dom:size=64,layers=26,depth_bits=16",
       "dom:size=64,spacing=fibonacci",
       "dom:size=64,spacing=list,list=1;0.5;4",
       "dom:size=64,size_abs=0.01",
@@ -269,6 +273,7 @@ TEST_F(OsmDomTest, EveryOptionRendersAndTheApisAgree) {
         for (float x : r.visibility) {
           ASSERT_TRUE(std::isfinite(x)) << name;
           ASSERT_LE(x, 1.0f) << name;
+          ASSERT_TRUE(x >= 0.0f || x == -1.0f) << name << ": " << x;  // -1: background
         }
         if (scene == kScene) results.push_back(std::move(r));
       }
@@ -295,6 +300,10 @@ TEST_F(OsmDomTest, ShadowMemoryIsExactlyTheMaps) {
   EXPECT_EQ(osm.shadowBytes, std::size_t(128) << 20);
   const Result dom = render(dev, scene, "dom:layers=3,size=512", 16);
   EXPECT_EQ(dom.shadowBytes, std::size_t(512) * 512 * (4 + 16));
+  // 31 layers: the R32F depth map and an array of 8 RGBA32F layers (paper: 34 MB
+  // for 32 slices).
+  const Result dom31 = render(dev, scene, "dom:layers=31,size=512", 16);
+  EXPECT_EQ(dom31.shadowBytes, std::size_t(512) * 512 * (4 + 8 * 16));
   std::cout << "[ measured ] shadow_bytes osm maps=128 size=512 fp32: " << osm.shadowBytes
             << ", dom layers=3 size=512: " << dom.shadowBytes << "\n";
 }

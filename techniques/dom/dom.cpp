@@ -9,13 +9,13 @@
 namespace sb {
 
 namespace {
-constexpr uint32_t kParams = 8, kDepth = 9, kMapFirst = 9;
+constexpr uint32_t kParams = 8, kDepth = 9, kMaps = 9;
 
 struct Params {
   glm::mat4 viewProj;
   glm::vec4 params;   // bias, size, shadow alpha, depth bits
   glm::ivec4 layout;  // K, targets, beyond, 0
-  glm::vec4 d[6];
+  glm::vec4 d[8];     // d_0..d_K, K <= 31
 };
 }  // namespace
 
@@ -86,9 +86,8 @@ void DeepOpacityMaps::setup(Device& dev, const GpuScene& scene, const RenderSett
   params_ = dev.createBuffer({"dom.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
 
   depth_ = dev.createTexture({"dom.depth", "shadow", Format::R32F, opt_.size, opt_.size, false});
-  for (uint32_t t = 0; t < targets(); ++t)
-    maps_.push_back(dev.createTexture({"dom.opacity" + std::to_string(t), "shadow", Format::RGBA32F,
-                                       opt_.size, opt_.size, false}));
+  maps_ = dev.createTexture(
+      {"dom.opacity", "shadow", Format::RGBA32F, opt_.size, opt_.size, false, targets()});
   if (!scene.hasHair()) return;
 
   const ShaderCode vert = Geometry::strandVertexShader(s);
@@ -123,7 +122,7 @@ void DeepOpacityMaps::addPasses(FrameGraph& graph, Device& dev) {
                PassDesc pass;
                pass.name = "dom.depth";
                pass.color.push_back({depth_, LoadOp::Clear, {1, 0, 0, 0}, {}});
-               pass.color.push_back({maps_[0], LoadOp::Clear, {1, 0, 0, 0}, {}});
+               pass.color.push_back({maps_, LoadOp::Clear, {1, 0, 0, 0}, {}, 0});
                dev.beginPass(pass);
                if (depthPipeline_) {
                  auto b = Geometry::bindings(*scene_, lightView_);
@@ -137,7 +136,7 @@ void DeepOpacityMaps::addPasses(FrameGraph& graph, Device& dev) {
                pass.name = "dom.opacity";
                for (uint32_t t = 0; t < targets(); ++t)
                  pass.color.push_back(
-                     {maps_[t], t == 0 ? LoadOp::Load : LoadOp::Clear, {0, 0, 0, 0}, {}});
+                     {maps_, t == 0 ? LoadOp::Load : LoadOp::Clear, {0, 0, 0, 0}, {}, t});
                pass.sampledTextures = {depth_};
                dev.beginPass(pass);
                if (opacityPipeline_) {
@@ -152,7 +151,6 @@ void DeepOpacityMaps::addPasses(FrameGraph& graph, Device& dev) {
 
 ShaderDefines DeepOpacityMaps::lookupDefines() const {
   ShaderDefines d;
-  d.defines.push_back({"SB_DOM_TARGETS", std::to_string(targets())});
   opaque_.addDefines(d);
   return d;
 }
@@ -164,22 +162,20 @@ std::vector<std::string> DeepOpacityMaps::lookupReads() const {
 }
 
 std::vector<BindingSlot> DeepOpacityMaps::lookupSlots() const {
-  std::vector<BindingSlot> s = {{kParams, BindingKind::UniformBuffer}};
-  for (uint32_t t = 0; t < targets(); ++t)
-    s.push_back({kMapFirst + t, BindingKind::SampledTexture});
+  std::vector<BindingSlot> s = {{kParams, BindingKind::UniformBuffer},
+                                {kMaps, BindingKind::SampledTextureArray}};
   opaque_.addSlots(s);
   return s;
 }
 
 std::vector<Binding> DeepOpacityMaps::lookupBindings() const {
-  std::vector<Binding> b = {Binding::buf(kParams, params_)};
-  for (uint32_t t = 0; t < targets(); ++t) b.push_back(Binding::tex(kMapFirst + t, maps_[t]));
+  std::vector<Binding> b = {Binding::buf(kParams, params_), Binding::tex(kMaps, maps_)};
   opaque_.addBindings(b);
   return b;
 }
 
 std::vector<Texture> DeepOpacityMaps::lookupTextures() const {
-  std::vector<Texture> t = maps_;
+  std::vector<Texture> t = {maps_};
   opaque_.addTextures(t);
   return t;
 }

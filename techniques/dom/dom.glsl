@@ -3,6 +3,6 @@ layout(std140, binding = 8) uniform DomParams {
   mat4 domViewProj;
   vec4 domParams;   // bias (light depth units), map size, shadow alpha, depth bits
   ivec4 domLayout;  // layers K, targets, beyond (opacity.glsl kDom*), 0
-  vec4 domD[6];     // d_0..d_K (K <= 23), 4 per vec4
+  vec4 domD[8];     // d_0..d_K (K <= 31), 4 per vec4
 };
 #define SB_DOM_D(k) domD[(k) / 4][(k) % 4]

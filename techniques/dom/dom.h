@@ -10,9 +10,10 @@ namespace sb {
 // light gives each texel the depth z0 where its hair begins; K opacity layers
 // [z0 + d_(k-1), z0 + d_k) follow the hair's shape. One hair pass accumulates
 // every fragment into its layer and all layers behind it (additive blending);
-// K = 4n - 1 layers are packed in n RGBA targets with z0 in the first channel
-// (the slides' layout). The lookup interpolates within the point's layer and
-// returns (1 - alpha_s)^opacity.
+// K = 4n - 1 layers are packed in the n RGBA layers of one texture array with
+// z0 in the first channel (the slides' layout), each layer a render target.
+// The lookup interpolates within the point's layer and returns
+// (1 - alpha_s)^opacity.
 class DeepOpacityMaps : public ShadowTechnique {
  public:
   struct Options {
@@ -26,7 +27,7 @@ class DeepOpacityMaps : public ShadowTechnique {
     uint32_t size = 512;
     float bias = 0.002f;
   };
-  static constexpr uint32_t kMaxLayers = 23;  // 6 targets (bindings 9..14)
+  static constexpr uint32_t kMaxLayers = 31;  // 8 targets: the colour attachments a pass may have
 
   static Options readOptions(const OptionReader& o);  // the registry's options
   explicit DeepOpacityMaps(const Options& o) : opt_(o) {}
@@ -41,7 +42,7 @@ class DeepOpacityMaps : public ShadowTechnique {
   std::vector<Texture> lookupTextures() const override;
 
   const std::vector<float>& boundaries() const { return d_; }
-  uint32_t targets() const { return (opt_.layers + 4) / 4; }
+  uint32_t targets() const { return (opt_.layers + 4) / 4; }  // layers of the array
 
  private:
   Options opt_;
@@ -49,7 +50,7 @@ class DeepOpacityMaps : public ShadowTechnique {
   RenderSettings settings_;
   std::vector<float> d_;
   Texture depth_;
-  std::vector<Texture> maps_;
+  Texture maps_;  // RGBA32F array of targets() layers
   Buffer params_, lightView_;
   Pipeline depthPipeline_, opacityPipeline_;
   OpaqueShadow opaque_;

@@ -4,16 +4,13 @@
 #include "../common/opaque_shadow.glsl"
 #include "dom.glsl"
 
-#define SB_MAP_COUNT SB_DOM_TARGETS
-#include "../common/map_set.glsl"
+layout(binding = 9) uniform sampler2DArray domMaps;  // the opacity layers, 4 channels each
 
 ivec2 domTexel;
 
 // Channel j of the packed maps: 0 is z0, k = 1..K layer k.
 float domChannel(int j) {
-  int t = j / 4;
-  vec4 v = fetchShadowMap(t, domTexel);
-  return v[j % 4];
+  return texelFetch(domMaps, ivec3(domTexel, j / 4), 0)[j % 4];
 }
 
 #define SB_DOM_LAYER(k) domChannel(k)
