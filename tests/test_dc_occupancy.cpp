@@ -336,6 +336,10 @@ const std::vector<std::string>& allOptions() {
       "occupancy:size=64,slices=256,slabs=8",
       "occupancy:size=64,slices=512,slabs=4",
       "occupancy:size=64,slices=512,slab_map=off,bias=0",
+      "occupancy:size=64,slices=512,slabs=8",  // 6 textures once: more than the bindings held
+      // The cap: 8 layers of bits and of slabs, each layer a colour attachment.
+      "occupancy:size=64,slices=1024,slabs=32",
+      "occupancy:size=64,slices=1024,slab_map=off",
       "dc:size=64",
       "dc:size=64,clusters=1,iterations=1",
       "dc:size=64,clusters=2,iterations=3",
@@ -439,10 +443,10 @@ TEST(DcOccupancyApis, GlAndVulkanAgree) {
 }
 
 TEST(DcOccupancyOptions, InvalidOptionsAreRejected) {
-  for (const char* bad : {"occupancy:slices=100", "occupancy:slices=16", "occupancy:slices=1024",
-                          "occupancy:slices=128,slabs=3", "occupancy:slices=512,slabs=8",
-                          "occupancy:jitter=maybe", "occupancy:slab_map=1", "dc:clusters=5",
-                          "dc:clusters=0", "dc:iterations=0", "dc:layers=3"}) {
+  for (const char* bad : {"occupancy:slices=100", "occupancy:slices=16", "occupancy:slices=1056",
+                          "occupancy:slices=128,slabs=3", "occupancy:slices=1024,slabs=64",
+                          "occupancy:slices=2048", "occupancy:jitter=maybe", "occupancy:slab_map=1",
+                          "dc:clusters=5", "dc:clusters=0", "dc:iterations=0", "dc:layers=3"}) {
     SCOPED_TRACE(bad);
     EXPECT_THROW(makeShadowTechnique(Spec::parse(bad)), InputError);
   }

@@ -203,11 +203,11 @@ Rendered render(Device& dev, const std::string& sceneSpec, uint32_t size,
   out.warnings = r.warnings();
   out.passes = r.graphPasses();
   if (auto* occ = dynamic_cast<OccupancyOit*>(&r.oit())) {
-    out.slabTotals.assign(std::size_t(size) * size, 0.0f);
-    for (Texture t : occ->slabMaps()) {
-      const std::vector<float> v = sbtest::floats(dev.readTexture(t));
-      for (std::size_t i = 0; i < v.size(); ++i) out.slabTotals[i / 4] += v[i];
-    }
+    const std::size_t pixels = std::size_t(size) * size;
+    out.slabTotals.assign(pixels, 0.0f);
+    // The layers one after the other, 4 slabs per texel of each.
+    const std::vector<float> v = sbtest::floats(dev.readTexture(occ->slabMap()));
+    for (std::size_t i = 0; i < v.size(); ++i) out.slabTotals[i / 4 % pixels] += v[i];
   }
   return out;
 }
@@ -227,6 +227,7 @@ TEST_P(OccupancyOitTest, OptionsRenderFiniteImages) {
       {kCurly, "occupancy"},
       {kCurly, "occupancy:slices=32,slabs=1"},
       {kCurly, "occupancy:slices=512,slabs=16"},
+      {kCurly, "occupancy:slices=1024,slabs=32"},  // 8 layers of each array: the cap
       {kCurly, "occupancy:lambda=off"},
       {"curly:strands=300,points=24,alpha=1", "occupancy"},  // with the head mesh
       {"curly:strands=300,points=24,alpha=0,head=0", "occupancy"},
@@ -266,7 +267,8 @@ TEST_P(OccupancyOitTest, RendersWithOccupancyShadows) {
 TEST_P(OccupancyOitTest, SlabsCountEveryFragmentAndMemoryIsTheTargets) {
   const std::string withHead = "curly:strands=300,points=24,alpha=0.4";
   const Rendered peel = render(*dev_, kCurly, 64, "peel");
-  for (const std::string oit : {"occupancy", "occupancy:slices=256,slabs=8"}) {
+  for (const std::string oit :
+       {"occupancy", "occupancy:slices=256,slabs=8", "occupancy:slices=1024,slabs=32"}) {
     SCOPED_TRACE(oit);
     const Rendered occ = render(*dev_, kCurly, 64, oit);
     const Rendered head = render(*dev_, withHead, 64, oit);
@@ -277,8 +279,10 @@ TEST_P(OccupancyOitTest, SlabsCountEveryFragmentAndMemoryIsTheTargets) {
     EXPECT_GT(total, 0.0);
     EXPECT_GT(headTotal, 0.0);
     EXPECT_LT(headTotal, total);
-    // RG32F range + RGBA32UI bits + RGBA32F slabs + RGBA32F accum + R32F.
-    const std::size_t targets = oit == "occupancy" ? 1 : 2;
+    // RG32F range + RGBA32UI bits + RGBA32F slabs (as many layers) + RGBA32F accum + R32F.
+    const std::size_t targets = oit == "occupancy"                      ? 1
+                                : oit.find("1024") != std::string::npos ? 8
+                                                                        : 2;
     EXPECT_EQ(occ.oitBytes, std::size_t(64) * 64 * (8 + targets * 32 + 16 + 4));
   }
 }
@@ -293,7 +297,8 @@ TEST(OccupancyOitBackends, GlAndVulkanAgree) {
   const std::size_t messages = validationMessageCount();
   for (const std::string& scene :
        {std::string(kCurly), std::string("curly:strands=300,points=24,alpha=0.4")}) {
-    for (const std::string oit : {"occupancy", "occupancy:slices=64,slabs=2,lambda=off"}) {
+    for (const std::string oit :
+         {"occupancy", "occupancy:slices=64,slabs=2,lambda=off", "occupancy:slices=1024,slabs=8"}) {
       SCOPED_TRACE(scene + " " + oit);
       const Rendered a = render(*gl, scene, 64, oit);
       const Rendered b = render(*vk, scene, 64, oit);

@@ -11,27 +11,9 @@ layout(std140, binding = 8) uniform OccupancyParams {
   vec4 occParams;  // x: bias (light depth units), y: map size, z: shadow alpha
 };
 layout(binding = 9) uniform sampler2D occRange;  // x: nearest depth, y: -furthest depth
-layout(binding = 10) uniform usampler2D occBits0;
-#if SB_OCC_WORD_TARGETS > 1
-layout(binding = 11) uniform usampler2D occBits1;
-#endif
-#if SB_OCC_WORD_TARGETS > 2
-layout(binding = 12) uniform usampler2D occBits2;
-#endif
-#if SB_OCC_WORD_TARGETS > 3
-layout(binding = 13) uniform usampler2D occBits3;
-#endif
+layout(binding = 10) uniform usampler2DArray occBits;  // 128 slices per layer
 #if SB_OCC_SLAB_TARGETS > 0
-layout(binding = SB_OCC_SLAB_BINDING0) uniform sampler2D occSlabs0;
-#endif
-#if SB_OCC_SLAB_TARGETS > 1
-layout(binding = SB_OCC_SLAB_BINDING1) uniform sampler2D occSlabs1;
-#endif
-#if SB_OCC_SLAB_TARGETS > 2
-layout(binding = SB_OCC_SLAB_BINDING2) uniform sampler2D occSlabs2;
-#endif
-#if SB_OCC_SLAB_TARGETS > 3
-layout(binding = SB_OCC_SLAB_BINDING3) uniform sampler2D occSlabs3;
+layout(binding = 11) uniform sampler2DArray occSlabs;  // 4 slabs per layer
 #endif
 
 // The paper's anti-aliasing: the lookup moves by up to half a texel. The
@@ -59,38 +41,17 @@ float shadowVisibility(vec3 worldPos) {
   vec2 r = texelFetch(occRange, t, 0).rg;
   uint bits[SB_OCC_MAX_WORDS];
   for (int i = 0; i < SB_OCC_MAX_WORDS; ++i) bits[i] = 0u;
-  uvec4 w = texelFetch(occBits0, t, 0);
-  bits[0] = w.x; bits[1] = w.y; bits[2] = w.z; bits[3] = w.w;
-#if SB_OCC_WORD_TARGETS > 1
-  w = texelFetch(occBits1, t, 0);
-  bits[4] = w.x; bits[5] = w.y; bits[6] = w.z; bits[7] = w.w;
-#endif
-#if SB_OCC_WORD_TARGETS > 2
-  w = texelFetch(occBits2, t, 0);
-  bits[8] = w.x; bits[9] = w.y; bits[10] = w.z; bits[11] = w.w;
-#endif
-#if SB_OCC_WORD_TARGETS > 3
-  w = texelFetch(occBits3, t, 0);
-  bits[12] = w.x; bits[13] = w.y; bits[14] = w.z; bits[15] = w.w;
-#endif
+  for (int k = 0; k < SB_OCC_WORD_TARGETS; ++k) {
+    uvec4 w = texelFetch(occBits, ivec3(t, k), 0);
+    for (int c = 0; c < 4; ++c) bits[4 * k + c] = w[c];
+  }
   float slabs[SB_OCC_MAX_SLABS];
   for (int i = 0; i < SB_OCC_MAX_SLABS; ++i) slabs[i] = 0.0;
-  vec4 f;
 #if SB_OCC_SLAB_TARGETS > 0
-  f = texelFetch(occSlabs0, t, 0);
-  slabs[0] = f.x; slabs[1] = f.y; slabs[2] = f.z; slabs[3] = f.w;
-#endif
-#if SB_OCC_SLAB_TARGETS > 1
-  f = texelFetch(occSlabs1, t, 0);
-  slabs[4] = f.x; slabs[5] = f.y; slabs[6] = f.z; slabs[7] = f.w;
-#endif
-#if SB_OCC_SLAB_TARGETS > 2
-  f = texelFetch(occSlabs2, t, 0);
-  slabs[8] = f.x; slabs[9] = f.y; slabs[10] = f.z; slabs[11] = f.w;
-#endif
-#if SB_OCC_SLAB_TARGETS > 3
-  f = texelFetch(occSlabs3, t, 0);
-  slabs[12] = f.x; slabs[13] = f.y; slabs[14] = f.z; slabs[15] = f.w;
+  for (int m = 0; m < SB_OCC_SLAB_TARGETS; ++m) {
+    vec4 f = texelFetch(occSlabs, ivec3(t, m), 0);
+    for (int c = 0; c < 4; ++c) slabs[4 * m + c] = f[c];
+  }
 #endif
   float n = occupancyCount(ndc.z - bias, r.x, -r.y, bits, slabs, SB_OCC_SLICES, SB_OCC_SLABS,
                            SB_OCC_SLAB_TARGETS > 0);

@@ -7,16 +7,15 @@ namespace sb {
 
 namespace {
 // Binding numbers, as in techniques/occupancy/lookup.glsl (15: OpaqueShadow).
-constexpr uint32_t kParams = 8, kRange = 9, kBitsFirst = 10;
-constexpr uint32_t kMaxSlices = 512, kMaxSlabs = 16, kMaxTextures = 5;  // bindings 10..14
+constexpr uint32_t kParams = 8, kRange = 9, kBits = 10, kSlabs = 11;
 }  // namespace
 
 OccupancyShadow::Options OccupancyShadow::readOptions(const OptionReader& o) {
   Options opts;
   opts.size = static_cast<uint32_t>(o.integer("size", 1, 16384));
   opts.bias = static_cast<float>(o.number("bias", 0.0, 1.0));
-  opts.slices = static_cast<uint32_t>(o.integer("slices", 32, kMaxSlices));
-  opts.slabs = static_cast<uint32_t>(o.integer("slabs", 1, kMaxSlabs));
+  opts.slices = static_cast<uint32_t>(o.integer("slices", 32, OccupancyMaps::kMaxSlices));
+  opts.slabs = static_cast<uint32_t>(o.integer("slabs", 1, OccupancyMaps::kMaxSlabs));
   opts.slabMap = o.choice("slab_map", {"on", "off"}) == "on";
   opts.jitter = o.choice("jitter", {"on", "off"}) == "on";
   const std::string what = "shadow technique 'occupancy': ";
@@ -26,20 +25,11 @@ OccupancyShadow::Options OccupancyShadow::readOptions(const OptionReader& o) {
   if (opts.slabMap && opts.slices % opts.slabs != 0)
     throw InputError(what + "slabs=" + std::to_string(opts.slabs) + " must divide slices=" +
                      std::to_string(opts.slices) + " (every slab holds the same number of slices)");
-  const uint32_t textures = (opts.slices + 127) / 128 + (opts.slabMap ? (opts.slabs + 3) / 4 : 0);
-  if (textures > kMaxTextures)
-    throw InputError(what + "slices=" + std::to_string(opts.slices) + " and slabs=" +
-                     std::to_string(opts.slabs) + " need " + std::to_string(textures) +
-                     " textures; at most " + std::to_string(kMaxTextures) +
-                     " fit the shadow bindings (ceil(slices/128) + ceil(slabs/4))");
   return opts;
 }
 
 ShaderDefines OccupancyShadow::lookupDefines() const {
   ShaderDefines d = maps_.defines();
-  for (uint32_t m = 0; m < maps_.slabTargets(); ++m)
-    d.defines.push_back({"SB_OCC_SLAB_BINDING" + std::to_string(m),
-                         std::to_string(kBitsFirst + maps_.wordTargets() + m)});
   d.defines.push_back({"SB_OCC_JITTER", opts_.jitter ? "1" : "0"});
   opaque_.addDefines(d);
   return d;
@@ -75,26 +65,23 @@ std::vector<std::string> OccupancyShadow::lookupReads() const {
 
 std::vector<BindingSlot> OccupancyShadow::lookupSlots() const {
   std::vector<BindingSlot> s = {{kParams, BindingKind::UniformBuffer},
-                                {kRange, BindingKind::SampledTexture}};
-  for (uint32_t i = 0; i < maps_.wordTargets() + maps_.slabTargets(); ++i)
-    s.push_back({kBitsFirst + i, BindingKind::SampledTexture});
+                                {kRange, BindingKind::SampledTexture},
+                                {kBits, BindingKind::SampledTextureArray}};
+  if (maps_.slabs()) s.push_back({kSlabs, BindingKind::SampledTextureArray});
   opaque_.addSlots(s);
   return s;
 }
 
 std::vector<Binding> OccupancyShadow::lookupBindings() const {
-  std::vector<Binding> b = {Binding::buf(kParams, params_), Binding::tex(kRange, maps_.range())};
-  uint32_t next = kBitsFirst;
-  for (Texture t : maps_.bits()) b.push_back(Binding::tex(next++, t));
-  for (Texture t : maps_.slabs()) b.push_back(Binding::tex(next++, t));
+  std::vector<Binding> b = {Binding::buf(kParams, params_), Binding::tex(kRange, maps_.range()),
+                            Binding::tex(kBits, maps_.bits())};
+  if (maps_.slabs()) b.push_back(Binding::tex(kSlabs, maps_.slabs()));
   opaque_.addBindings(b);
   return b;
 }
 
 std::vector<Texture> OccupancyShadow::lookupTextures() const {
-  std::vector<Texture> t = {maps_.range()};
-  t.insert(t.end(), maps_.bits().begin(), maps_.bits().end());
-  t.insert(t.end(), maps_.slabs().begin(), maps_.slabs().end());
+  std::vector<Texture> t = maps_.maps();
   opaque_.addTextures(t);
   return t;
 }

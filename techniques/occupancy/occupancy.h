@@ -19,8 +19,8 @@ class OccupancyShadow : public ShadowTechnique {
   struct Options {
     uint32_t size = 512;
     float bias = 0.002f;
-    uint32_t slices = 128;  // multiple of 32, at most 512
-    uint32_t slabs = 4;     // divides slices; 4 per RGBA32F target
+    uint32_t slices = 128;  // multiple of 32, at most 1024 (8 RGBA32UI layers)
+    uint32_t slabs = 4;     // divides slices, at most 32; 4 per RGBA32F layer
     bool slabMap = true;    // false: every set bit counts as one fragment
     bool jitter = false;    // half-texel jitter of the lookup (the paper's anti-aliasing)
   };
@@ -38,11 +38,11 @@ class OccupancyShadow : public ShadowTechnique {
   std::vector<Binding> lookupBindings() const override;
   std::vector<Texture> lookupTextures() const override;
 
-  // The maps, for tests: depth range (RG32F), occupancy bits (RGBA32UI each),
-  // slab counts (RGBA32F each; none with slab_map=off).
+  // The maps, for tests: depth range (RG32F), occupancy bits (an RGBA32UI
+  // array), slab counts (an RGBA32F array; none with slab_map=off).
   Texture rangeMap() const { return maps_.range(); }
-  const std::vector<Texture>& bitMaps() const { return maps_.bits(); }
-  const std::vector<Texture>& slabMaps() const { return maps_.slabs(); }
+  Texture bitMap() const { return maps_.bits(); }
+  Texture slabMap() const { return maps_.slabs(); }
 
  private:
   Options opts_;

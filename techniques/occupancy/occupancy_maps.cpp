@@ -2,12 +2,6 @@
 
 namespace sb {
 
-namespace {
-std::string indexed(const std::string& base, std::size_t i, std::size_t count) {
-  return count > 1 ? base + std::to_string(i) : base;
-}
-}  // namespace
-
 ShaderDefines OccupancyMaps::defines() const {
   ShaderDefines d;
   d.defines.push_back({"SB_OCC_SLICES", std::to_string(config_.slices)});
@@ -26,12 +20,11 @@ void OccupancyMaps::setup(Device& dev, const GpuScene& scene, const RenderSettin
   const uint32_t w = config.width, h = config.height;
   range_ =
       dev.createTexture({config.prefix + ".depth_range", config.owner, Format::RG32F, w, h, false});
-  for (uint32_t k = 0; k < wordTargets(); ++k)
-    bits_.push_back(dev.createTexture({indexed(config.prefix + ".bits", k, wordTargets()),
-                                       config.owner, Format::RGBA32UI, w, h, false}));
-  for (uint32_t m = 0; m < slabTargets(); ++m)
-    slabs_.push_back(dev.createTexture({indexed(config.prefix + ".slabs", m, slabTargets()),
-                                        config.owner, Format::RGBA32F, w, h, false}));
+  bits_ = dev.createTexture(
+      {config.prefix + ".bits", config.owner, Format::RGBA32UI, w, h, false, wordTargets()});
+  if (config.slabMap)
+    slabs_ = dev.createTexture(
+        {config.prefix + ".slabs", config.owner, Format::RGBA32F, w, h, false, slabTargets()});
   if (!scene.hasHair()) return;  // the passes only clear the maps
 
   const ShaderDefines defs = defines();
@@ -79,6 +72,12 @@ PassDesc OccupancyMaps::pass(const std::string& step, bool first) const {
   return p;
 }
 
+std::vector<Texture> OccupancyMaps::maps() const {
+  std::vector<Texture> t = {range_, bits_};
+  if (slabs_) t.push_back(slabs_);
+  return t;
+}
+
 std::vector<std::string> OccupancyMaps::reads() const {
   std::vector<std::string> r = {config_.graph + "_range", config_.graph + "_bits"};
   if (config_.slabMap) r.push_back(config_.graph + "_slabs");
@@ -114,7 +113,8 @@ void OccupancyMaps::addPasses(FrameGraph& graph, Device& dev) {
   graph.add(
       {config_.prefix + ".occupancy", mapReads, {config_.graph + "_bits"}, [this, drawHair, &dev] {
          PassDesc p = pass("occupancy", false);
-         for (Texture t : bits_) p.color.push_back({t, LoadOp::Clear, {}, {}});
+         for (uint32_t k = 0; k < wordTargets(); ++k)
+           p.color.push_back({bits_, LoadOp::Clear, {}, {}, k});
          dev.beginPass(p);
          drawHair(bitsPipeline_, true);
          dev.endPass();
@@ -123,7 +123,8 @@ void OccupancyMaps::addPasses(FrameGraph& graph, Device& dev) {
   graph.add(
       {config_.prefix + ".slabs", mapReads, {config_.graph + "_slabs"}, [this, drawHair, &dev] {
          PassDesc p = pass("slabs", false);
-         for (Texture t : slabs_) p.color.push_back({t, LoadOp::Clear, {}, {}});
+         for (uint32_t m = 0; m < slabTargets(); ++m)
+           p.color.push_back({slabs_, LoadOp::Clear, {}, {}, m});
          dev.beginPass(p);
          drawHair(slabsPipeline_, true);
          dev.endPass();

@@ -3,8 +3,10 @@
 // occupancy-ordered blending (from the eye, techniques/occupancy_oit). Three
 // passes over the hair:
 //   <prefix>.depth_range  nearest/furthest fragment per pixel (RG32F, min of (z, -z))
-//   <prefix>.occupancy    one bit per slice of that range (RGBA32UI per 128, logic-op OR)
-//   <prefix>.slabs        fragment count per slab (RGBA32F per 4, additive); optional
+//   <prefix>.occupancy    one bit per slice of that range (an RGBA32UI array, a layer
+//                         per 128 slices, each layer a target; logic-op OR)
+//   <prefix>.slabs        fragment count per slab (an RGBA32F array, a layer per 4
+//                         slabs; additive); optional
 #pragma once
 
 #include "techniques/common/technique.h"
@@ -18,7 +20,7 @@ class OccupancyMaps {
     std::string owner;   // memory owner of the textures
     std::string graph;   // graph resource names: <graph>_range, _bits, _slabs
     uint32_t width = 0, height = 0;
-    uint32_t slices = 128, slabs = 4;
+    uint32_t slices = 128, slabs = 4;  // at most kMaxSlices, kMaxSlabs
     bool slabMap = true;
     // From the eye: the opaque depth the hair is tested against (none from
     // the light), cleared by the first pass when nothing opaque was drawn.
@@ -26,19 +28,23 @@ class OccupancyMaps {
     bool clearDepth = false;
   };
   static constexpr uint32_t kRangeBinding = 9;  // where occupancy.frag/slabs.frag read the range
+  // One colour attachment per layer, and a pass may have 8 (the least GL
+  // guarantees): 8 RGBA32UI layers of 128 slices, 8 RGBA32F layers of 4 slabs.
+  static constexpr uint32_t kMaxSlices = 1024, kMaxSlabs = 32;
 
   // defs: SB_OCC_* for the shaders (see occupancyDefines()).
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s, Buffer viewUbo,
              const Config& config);
   void addPasses(FrameGraph& graph, Device& dev);
 
-  uint32_t wordTargets() const { return (config_.slices + 127) / 128; }
+  uint32_t wordTargets() const { return (config_.slices + 127) / 128; }  // layers of bits()
   uint32_t slabTargets() const { return config_.slabMap ? (config_.slabs + 3) / 4 : 0; }
   ShaderDefines defines() const;  // SB_OCC_SLICES, _SLABS, _WORD_TARGETS, _SLAB_TARGETS
   Texture range() const { return range_; }
-  const std::vector<Texture>& bits() const { return bits_; }
-  const std::vector<Texture>& slabs() const { return slabs_; }
-  std::vector<std::string> reads() const;  // the graph resources the maps are
+  Texture bits() const { return bits_; }    // RGBA32UI, wordTargets() layers
+  Texture slabs() const { return slabs_; }  // RGBA32F, slabTargets() layers; none without
+  std::vector<Texture> maps() const;        // range, bits and slabs (if any)
+  std::vector<std::string> reads() const;   // the graph resources the maps are
 
  private:
   PassDesc pass(const std::string& step, bool first) const;
@@ -47,8 +53,7 @@ class OccupancyMaps {
   const GpuScene* scene_ = nullptr;
   RenderSettings settings_;
   Buffer viewUbo_;
-  Texture range_;
-  std::vector<Texture> bits_, slabs_;
+  Texture range_, bits_, slabs_;
   Pipeline rangePipeline_, bitsPipeline_, slabsPipeline_;
 };
 

@@ -14,8 +14,8 @@
 #define SB_INLINE
 #endif
 
-#define SB_OCC_MAX_WORDS 16  // 512 slices
-#define SB_OCC_MAX_SLABS 16
+#define SB_OCC_MAX_WORDS 32  // 1024 slices (OccupancyMaps::kMaxSlices)
+#define SB_OCC_MAX_SLABS 32  // OccupancyMaps::kMaxSlabs
 
 // The slice a fragment at depth z falls in (the occupancy and slab passes).
 SB_INLINE int occupancySlice(float z, float zMin, float zMax, int slices) {

@@ -8,15 +8,14 @@ namespace sb {
 
 namespace {
 // The accumulation pass (which also binds the shadow lookup, 8..15) reads the
-// maps at 20.. (techniques/occupancy_oit/accumulate.frag).
-constexpr uint32_t kRange = 20, kBitsFirst = 21, kSlabsFirst = 25;
-constexpr uint32_t kMaxSlices = 512, kMaxSlabs = 16;
+// maps at 20, 21, 25 (techniques/occupancy_oit/accumulate.frag).
+constexpr uint32_t kRange = 20, kBits = 21, kSlabs = 25;
 }  // namespace
 
 OccupancyOit::Options OccupancyOit::readOptions(const OptionReader& o) {
   Options opts;
-  opts.slices = static_cast<uint32_t>(o.integer("slices", 32, kMaxSlices));
-  opts.slabs = static_cast<uint32_t>(o.integer("slabs", 1, kMaxSlabs));
+  opts.slices = static_cast<uint32_t>(o.integer("slices", 32, OccupancyMaps::kMaxSlices));
+  opts.slabs = static_cast<uint32_t>(o.integer("slabs", 1, OccupancyMaps::kMaxSlabs));
   opts.lambda = o.choice("lambda", {"on", "off"}) == "on";
   const std::string what = "transparency technique 'occupancy': ";
   if (opts.slices % 32 != 0)
@@ -97,10 +96,8 @@ void OccupancyOit::setup(Device& dev, const GpuScene& scene, const RenderSetting
   d.blend.assign(2, BlendState::additive());
   d.bindings = shading.hairSlots();
   d.bindings.push_back({kRange, BindingKind::SampledTexture});
-  for (uint32_t k = 0; k < maps_.wordTargets(); ++k)
-    d.bindings.push_back({kBitsFirst + k, BindingKind::SampledTexture});
-  for (uint32_t m = 0; m < maps_.slabTargets(); ++m)
-    d.bindings.push_back({kSlabsFirst + m, BindingKind::SampledTexture});
+  d.bindings.push_back({kBits, BindingKind::SampledTextureArray});
+  d.bindings.push_back({kSlabs, BindingKind::SampledTextureArray});
   accumPipeline_ = dev.createPipeline(d);
 }
 
@@ -117,17 +114,13 @@ void OccupancyOit::addPasses(FrameGraph& graph, Device& dev) {
                pass.depth = {targets_.depth, LoadOp::Load, 1.0f};
                pass.color = {{accum_, LoadOp::Clear, {}, {}}, {log2T_, LoadOp::Clear, {}, {}}};
                pass.sampledTextures = shading_->sampledTextures();
-               pass.sampledTextures.push_back(maps_.range());
-               for (Texture t : maps_.bits()) pass.sampledTextures.push_back(t);
-               for (Texture t : maps_.slabs()) pass.sampledTextures.push_back(t);
+               for (Texture t : maps_.maps()) pass.sampledTextures.push_back(t);
                dev.beginPass(pass);
                if (accumPipeline_) {
                  auto b = shading_->hairBindings();
                  b.push_back(Binding::tex(kRange, maps_.range()));
-                 for (uint32_t k = 0; k < maps_.bits().size(); ++k)
-                   b.push_back(Binding::tex(kBitsFirst + k, maps_.bits()[k]));
-                 for (uint32_t m = 0; m < maps_.slabs().size(); ++m)
-                   b.push_back(Binding::tex(kSlabsFirst + m, maps_.slabs()[m]));
+                 b.push_back(Binding::tex(kBits, maps_.bits()));
+                 b.push_back(Binding::tex(kSlabs, maps_.slabs()));
                  dev.draw(accumPipeline_, b, vertices);
                }
                dev.endPass();

@@ -14,16 +14,16 @@ class OptionReader;
 // o, and a resolve with the paper's Lambda renormalisation. Passes, all hair
 // passes depth-tested against the opaque depth without writing it:
 //   occupancy_oit.depth_range  nearest/furthest fragment per pixel (RG32F, min)
-//   occupancy_oit.occupancy    one bit per slice (RGBA32UI per 128, logic-op OR)
-//   occupancy_oit.slabs        fragment count per slab (RGBA32F per 4, additive)
+//   occupancy_oit.occupancy    one bit per slice (RGBA32UI array, a layer per 128, logic-op OR)
+//   occupancy_oit.slabs        fragment count per slab (RGBA32F array, a layer per 4, additive)
 //   occupancy_oit.accumulate   (1 - a)^o a (c, 1) into RGBA32F and log2(1 - a)
 //                              into R32F (additive, fp32)
 //   occupancy_oit.resolve      hair over the opaque colour
 class OccupancyOit : public OitTechnique {
  public:
   struct Options {
-    uint32_t slices = 128;  // multiple of 32, at most 512
-    uint32_t slabs = 4;     // divides slices, at most 16
+    uint32_t slices = 128;  // multiple of 32, at most 1024
+    uint32_t slabs = 4;     // divides slices, at most 32
     bool lambda = true;     // the paper's renormalisation of the hair weights
   };
   // Reads and validates slices, slabs, lambda (InputError).
@@ -37,13 +37,12 @@ class OccupancyOit : public OitTechnique {
 
   // The eye-space maps and accumulation targets, for tests.
   Texture rangeMap() const { return maps_.range(); }
-  const std::vector<Texture>& bitMaps() const { return maps_.bits(); }
-  const std::vector<Texture>& slabMaps() const { return maps_.slabs(); }
+  Texture bitMap() const { return maps_.bits(); }    // RGBA32UI array
+  Texture slabMap() const { return maps_.slabs(); }  // RGBA32F array
   Texture accumulation() const { return accum_; }
   Texture log2Transmittance() const { return log2T_; }
 
  private:
-
   Options opts_;
   const GpuScene* scene_ = nullptr;
   const KajiyaKayShading* shading_ = nullptr;
