@@ -88,7 +88,8 @@ Device::Device(std::unique_ptr<Driver> driver) : driver_(std::move(driver)) {}
 Device::~Device() {
   // Native objects go back to the driver that made them, before it goes.
   auto releaseAll = [this](auto& table) {
-    for (auto& [id, rec] : table) driver_->release(std::move(rec->object));
+    for (auto& [id, rec] : table)
+      if (rec->object) driver_->release(std::move(rec->object));
     table.clear();
   };
   releaseAll(pipelines_);
@@ -126,6 +127,19 @@ Device::PipelineRec& Device::pipeline(Pipeline p, const std::string& where) {
   return *it->second;
 }
 
+// Resources are declared by create*() and made on the device when a pass, a
+// binding, an update or a read first uses them: what only culled passes use is
+// never allocated, and allocations() counts exactly what was made.
+DriverObject* Device::created(BufferRec& r) {
+  if (!r.object) r.object = driver_->createBuffer(r.desc, nullptr);
+  return r.object.get();
+}
+
+DriverObject* Device::created(TextureRec& t) {
+  if (!t.object) t.object = driver_->createTexture(t.desc);
+  return t.object.get();
+}
+
 // inFrame/inPass: what the call needs (a frame open; a pass open, or none).
 void Device::requireFrame(const std::string& where, bool inFrame, bool inPass) const {
   if (inFrame && !inFrame_) throw DeviceError(where + ": outside a frame (call beginFrame first)");
@@ -138,7 +152,9 @@ void Device::requireFrame(const std::string& where, bool inFrame, bool inPass) c
 Buffer Device::createBuffer(const BufferDesc& desc, const void* data) {
   const std::string where = quoted("createBuffer", desc.name);
   if (desc.bytes == 0) throw DeviceError(where + ": zero size");
-  auto rec = std::make_unique<BufferRec>(BufferRec{desc, driver_->createBuffer(desc, data)});
+  // Created now only when it has contents to take; otherwise when first used.
+  auto rec = std::make_unique<BufferRec>(
+      BufferRec{desc, data ? driver_->createBuffer(desc, data) : nullptr});
   const uint32_t id = nextId_++;
   buffers_.emplace(id, std::move(rec));
   return Buffer{id};
@@ -155,7 +171,7 @@ void Device::updateBuffer(Buffer b, const void* data, std::size_t bytes, std::si
                       std::to_string(offset) + " exceed its " + std::to_string(r.desc.bytes) +
                       " bytes");
   if (bytes == 0) return;
-  driver_->updateBuffer(*r.object, r.desc, data, bytes, offset);
+  driver_->updateBuffer(*created(r), r.desc, data, bytes, offset);
 }
 
 void Device::fillBuffer(Buffer b, uint32_t value) {
@@ -163,7 +179,7 @@ void Device::fillBuffer(Buffer b, uint32_t value) {
   if (inPass_)
     throw DeviceError(quoted("fillBuffer", r.desc.name) + ": inside pass '" + pass_->name +
                       "': buffers may only be filled between passes");
-  driver_->fillBuffer(*r.object, r.desc, value);
+  driver_->fillBuffer(*created(r), r.desc, value);
 }
 
 Texture Device::createTexture(const TextureDesc& desc) {
@@ -177,7 +193,7 @@ Texture Device::createTexture(const TextureDesc& desc) {
   if (desc.layers > 1 && isDepthFormat(desc.format))
     throw DeviceError(quoted("createTexture", desc.name) + ": a depth texture has one layer, not " +
                       std::to_string(desc.layers));
-  auto rec = std::make_unique<TextureRec>(TextureRec{desc, driver_->createTexture(desc)});
+  auto rec = std::make_unique<TextureRec>(TextureRec{desc, nullptr});  // created when first used
   const uint32_t id = nextId_++;
   textures_.emplace(id, std::move(rec));
   return Texture{id};
@@ -216,7 +232,7 @@ void Device::destroy(Buffer b) {
   BufferRec& r = buffer(b, "destroy");
   if (inPass_)
     throw DeviceError(quoted("destroy", r.desc.name) + ": inside pass '" + pass_->name + "'");
-  driver_->release(std::move(r.object));
+  if (r.object) driver_->release(std::move(r.object));
   buffers_.erase(b.id);
 }
 
@@ -225,7 +241,7 @@ void Device::destroy(Texture t) {
   TextureRec& r = texture(t, "destroy");
   if (inPass_)
     throw DeviceError(quoted("destroy", r.desc.name) + ": inside pass '" + pass_->name + "'");
-  driver_->release(std::move(r.object));
+  if (r.object) driver_->release(std::move(r.object));
   textures_.erase(t.id);
 }
 
@@ -273,14 +289,14 @@ void Device::beginPass(const PassDesc& pd) {
     if (isDepthFormat(t.desc.format))
       throw DeviceError(where + ": depth texture '" + t.desc.name + "' as colour attachment");
     open->colorFormats.push_back(t.desc.format);
-    dp.color.push_back({{t.object.get(), &t.desc}, a.load, a.clear, a.clearUint, a.layer});
+    dp.color.push_back({{created(t), &t.desc}, a.load, a.clear, a.clearUint, a.layer});
   }
   if (pd.depth.texture) {
     TextureRec& t = attach(pd.depth.texture, 0);
     if (!isDepthFormat(t.desc.format))
       throw DeviceError(where + ": '" + t.desc.name + "' is not a depth texture");
     open->hasDepth = true;
-    dp.depth = {t.object.get(), &t.desc};
+    dp.depth = {created(t), &t.desc};
     dp.depthLoad = pd.depth.load;
     dp.depthClear = pd.depth.clear;
   }
@@ -296,7 +312,7 @@ void Device::beginPass(const PassDesc& pd) {
                         "' is both an attachment and sampled");
     if (std::count(open->sampled.begin(), open->sampled.end(), s.id)) continue;
     open->sampled.push_back(s.id);
-    dp.sampled.push_back({t.object.get(), &t.desc});
+    dp.sampled.push_back({created(t), &t.desc});
   }
   driver_->beginPass(dp);
   pass_ = std::move(open);
@@ -333,11 +349,11 @@ std::vector<DriverBinding> Device::resolve(const PipelineRec& p, const std::vect
       if (inPass && !std::count(pass_->sampled.begin(), pass_->sampled.end(), it->texture.id))
         throw DeviceError(where + ": texture '" + t.desc.name + "' is sampled but pass '" +
                           pass_->name + "' does not list it in sampledTextures");
-      out.push_back({s.binding, s.kind, t.object.get(), nullptr, &t.desc});
+      out.push_back({s.binding, s.kind, created(t), nullptr, &t.desc});
     } else {
       if (!it->buffer || it->texture) throw DeviceError(slot + " needs a buffer");
       BufferRec& b = buffer(it->buffer, where);
-      out.push_back({s.binding, s.kind, b.object.get(), &b.desc, nullptr});
+      out.push_back({s.binding, s.kind, created(b), &b.desc, nullptr});
     }
   }
   return out;
@@ -384,30 +400,36 @@ std::vector<PassTiming> Device::lastFrameTimings() const { return driver_->lastF
 std::vector<uint8_t> Device::readTexture(Texture t) {
   TextureRec& r = texture(t, "readTexture");
   requireFrame(quoted("readTexture", r.desc.name), false, false);
-  return driver_->readTexture(*r.object, r.desc);
+  return driver_->readTexture(*created(r), r.desc);
 }
 
 std::vector<uint8_t> Device::readBuffer(Buffer b) {
   BufferRec& r = buffer(b, "readBuffer");
   requireFrame(quoted("readBuffer", r.desc.name), false, false);
-  return driver_->readBuffer(*r.object, r.desc);
+  return driver_->readBuffer(*created(r), r.desc);
 }
 
 TextureDesc Device::describe(Texture t) const { return texture(t, "describe").desc; }
 
-std::vector<ResourceBytes> Device::allocations() const {
+std::vector<ResourceBytes> Device::resources(bool createdOnly) const {
   std::vector<std::pair<uint32_t, ResourceBytes>> all;
   for (const auto& [id, r] : buffers_)
-    all.push_back({id, {r->desc.name, r->desc.owner, r->desc.bytes}});
+    if (r->object || !createdOnly)
+      all.push_back({id, {r->desc.name, r->desc.owner, r->desc.bytes}});
   for (const auto& [id, t] : textures_)
-    all.push_back({id,
-                   {t->desc.name, t->desc.owner,
-                    std::size_t{t->desc.width} * t->desc.height * t->desc.layers *
-                        bytesPerPixel(t->desc.format)}});
+    if (t->object || !createdOnly)
+      all.push_back({id,
+                     {t->desc.name, t->desc.owner,
+                      std::size_t{t->desc.width} * t->desc.height * t->desc.layers *
+                          bytesPerPixel(t->desc.format)}});
   std::sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   std::vector<ResourceBytes> out;
   for (auto& [id, r] : all) out.push_back(std::move(r));
   return out;
 }
+
+std::vector<ResourceBytes> Device::allocations() const { return resources(true); }
+
+std::vector<ResourceBytes> Device::declared() const { return resources(false); }
 
 }  // namespace sb

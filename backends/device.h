@@ -276,9 +276,12 @@ class Device {
   // What a texture was created with (to interpret its read-back bytes).
   TextureDesc describe(Texture t) const;
 
-  // Exact logical bytes of every live resource (width*height*layers*bpp,
-  // buffer size), in creation order.
+  // Exact logical bytes (width*height*layers*bpp, buffer size) of every resource made
+  // on the device, in creation order. A resource is made when first used (by a
+  // pass, a binding, an update or a read), or at once when created with data.
   std::vector<ResourceBytes> allocations() const;
+  // The same for every live resource declared, made or not.
+  std::vector<ResourceBytes> declared() const;
 
  private:
   struct BufferRec;
@@ -290,6 +293,9 @@ class Device {
   const TextureRec& texture(Texture t, const std::string& where) const;
   PipelineRec& pipeline(Pipeline p, const std::string& where);
   void requireFrame(const std::string& where, bool inFrame, bool inPass) const;
+  DriverObject* created(BufferRec& r);
+  DriverObject* created(TextureRec& t);
+  std::vector<ResourceBytes> resources(bool createdOnly) const;
   std::vector<DriverBinding> resolve(const PipelineRec& p, const std::vector<Binding>& given,
                                      const std::string& where, bool inPass);
 

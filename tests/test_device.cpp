@@ -489,8 +489,15 @@ TEST_P(DeviceTest, MemoryAccounting) {
   Texture t = dev_->createTexture({"occupancy", "shadow", Format::RGBA32UI, 16, 8, false});
   Texture d = dev_->createTexture({"depth", "shadow", Format::Depth32F, 7, 3, false});
   Texture c = dev_->createTexture({"accum", "oit", Format::RGBA16F, 5, 5, true});
+  // Declared, not yet made: nothing has used them.
+  EXPECT_TRUE(dev_->allocations().empty());
+  EXPECT_EQ(dev_->declared().size(), 5u);
+  dev_->readBuffer(a);
+  dev_->readBuffer(u);
+  for (Texture x : {t, d, c}) dev_->readTexture(x);
   std::vector<ResourceBytes> all = dev_->allocations();
   ASSERT_EQ(all.size(), 5u);
+  EXPECT_EQ(dev_->declared().size(), 5u);
   auto find = [&](const std::string& name) {
     for (const ResourceBytes& r : all) {
       if (r.name == name) return r;

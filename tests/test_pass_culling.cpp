@@ -2,6 +2,7 @@
 // and each kind of unneeded work is shown absent, beside a run that needs it.
 #include <gtest/gtest.h>
 
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "test_util.h"
@@ -87,6 +88,64 @@ TEST(PassCulling, NoReferenceNeededNoneComputed) {
   EXPECT_FALSE(ran(with, "visibility"));
   EXPECT_EQ(with["graph"], without["graph"]);
   EXPECT_GT(withResources, 0u);
+}
+
+// Memory only for what runs: a resource is made on the device when a kept pass
+// first uses it, so the report counts exactly what the run allocated.
+std::map<std::string, std::size_t> resourceBytes(const json& report) {
+  std::map<std::string, std::size_t> out;
+  std::size_t sum = 0;
+  for (const auto& r : report["memory"]["resources"]) {
+    out[r["name"]] = r["bytes"];
+    sum += r["bytes"].get<std::size_t>();
+  }
+  EXPECT_EQ(sum, report["memory"]["total_bytes"].get<std::size_t>());
+  return out;
+}
+
+TEST(PassCulling, NoMeshNoOpaqueShadowMapAllocated) {
+  for (const char* shadow : {"osm", "dom", "dc", "occupancy"}) {
+    const auto with = resourceBytes(render(kHair + "1 --shadow " + shadow));
+    const auto without = resourceBytes(render(kHair + "0 --shadow " + shadow));
+    const std::string map = std::string(shadow) + ".opaque_depth";
+    ASSERT_TRUE(with.count(map)) << shadow;
+    EXPECT_FALSE(without.count(map)) << shadow;
+    // Everything else the shadow technique holds is the same with and without the mesh.
+    for (const auto& [name, bytes] : with)
+      if (name != map && name.rfind("scene.", 0) != 0 && name.rfind("shading.", 0) != 0) {
+        ASSERT_TRUE(without.count(name)) << name;
+        EXPECT_EQ(without.at(name), bytes) << name;
+      }
+  }
+}
+
+TEST(PassCulling, VisibilityOnlyRunAllocatesNoShadingTargets) {
+  const std::string args = kHair + "1 --shadow occupancy --oit occupancy --reference";
+  const json fullReport = render(args);
+  const json visReport = render(args + " --no-image");
+  const auto full = resourceBytes(fullReport);
+  const auto vis = resourceBytes(visReport);
+  // The final shading targets and every transparency target are gone ...
+  for (const auto& [name, bytes] : full) {
+    const bool shadingOnly = name == "frame.color" || name == "frame.depth" ||
+                             name.rfind("occupancy_oit.", 0) == 0;
+    EXPECT_EQ(vis.count(name) == 0, shadingOnly) << name;
+  }
+  EXPECT_TRUE(full.count("frame.color"));
+  EXPECT_TRUE(full.count("occupancy_oit.bits"));
+  // ... and the bytes drop by exactly their sizes, plus the visibility pass's own targets,
+  // which only the visibility-only run has in its timed frames.
+  std::size_t dropped = 0, added = 0;
+  for (const auto& [name, bytes] : full)
+    if (!vis.count(name)) dropped += bytes;
+  for (const auto& [name, bytes] : vis)
+    if (!full.count(name)) {
+      EXPECT_EQ(name.rfind("visibility.", 0), 0u) << name;
+      added += bytes;
+    }
+  EXPECT_GT(dropped, added);
+  EXPECT_EQ(fullReport["memory"]["total_bytes"].get<std::size_t>() - dropped + added,
+            visReport["memory"]["total_bytes"].get<std::size_t>());
 }
 
 }  // namespace

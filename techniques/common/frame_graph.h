@@ -1,10 +1,13 @@
 // A frame as a small graph of passes. Each pass declares the named resources
 // it reads and writes; passes that no requested output depends on are left
-// out (as in Filament's FrameGraph), and the report lists the passes that ran.
+// out, and the report lists the passes that ran. A read that no pass writes is
+// a technique bug (a misspelled name would silently cull its writer), so
+// compile() rejects it, naming the pass and the resource.
 #pragma once
 
 #include <functional>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -20,8 +23,17 @@ struct PassNode {
 class FrameGraph {
  public:
   void add(PassNode pass) { passes_.push_back(std::move(pass)); }
-  // The passes needed for the outputs, in submission order.
+  // The passes needed for the outputs, in submission order. Throws
+  // std::logic_error for a read with no writer earlier in the graph.
   std::vector<const PassNode*> compile(const std::set<std::string>& outputs) const {
+    std::set<std::string> written;
+    for (const auto& p : passes_) {
+      for (const auto& r : p.reads)
+        if (!written.count(r))
+          throw std::logic_error("frame graph: pass '" + p.name + "' reads '" + r +
+                                 "', which no earlier pass writes");
+      written.insert(p.writes.begin(), p.writes.end());
+    }
     std::set<std::string> needed = outputs;
     std::vector<const PassNode*> kept;
     for (auto it = passes_.rbegin(); it != passes_.rend(); ++it) {

@@ -62,8 +62,10 @@ ListLayout HairOit::countFragments(Device& dev) {
 
 std::vector<std::string> HairOit::graphReads() const {
   auto reads = shading_->shadowReads();
-  reads.push_back("depth");
-  if (targets_.opaqueDrawn) reads.push_back("color");
+  if (targets_.opaqueDrawn) {  // otherwise the first pass clears the depth itself
+    reads.push_back("depth");
+    reads.push_back("color");
+  }
   return reads;
 }
 

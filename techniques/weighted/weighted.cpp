@@ -64,8 +64,10 @@ void BlendedOitBase::setup(Device& dev, const GpuScene& scene, const RenderSetti
 
 void BlendedOitBase::addPasses(FrameGraph& graph, Device& dev) {
   auto reads = shading_->shadowReads();
-  reads.push_back("depth");
-  if (targets_.opaqueDrawn) reads.push_back("color");
+  if (targets_.opaqueDrawn) {  // otherwise the accumulation clears the depth itself
+    reads.push_back("depth");
+    reads.push_back("color");
+  }
   graph.add(
       {name(), reads, {"color"}, [this, &dev] {
          PassDesc acc;
