@@ -1,58 +1,32 @@
 #include "backends/device.h"
 
 #include <algorithm>
+#include <iterator>
 
 #include "backends/driver.h"
 
 namespace sb {
 
-std::size_t bytesPerPixel(Format f) {
-  switch (f) {
-    case Format::RGBA8:
-      return 4;
-    case Format::RGBA16F:
-      return 8;
-    case Format::RGBA32F:
-      return 16;
-    case Format::R32F:
-      return 4;
-    case Format::RG32F:
-      return 8;
-    case Format::R32UI:
-      return 4;
-    case Format::RGBA32UI:
-      return 16;
-    case Format::Depth32F:
-      return 4;
-  }
-  return 0;
-}
+namespace {
+struct FormatInfo {
+  const char* name;
+  std::size_t bytes;
+  bool depth, integer;
+};
+// In the order of enum class Format (device.h).
+constexpr FormatInfo kFormats[] = {
+    {"RGBA8", 4, false, false},    {"RGBA16F", 8, false, false}, {"RGBA32F", 16, false, false},
+    {"R32F", 4, false, false},     {"RG32F", 8, false, false},   {"R32UI", 4, false, true},
+    {"RGBA32UI", 16, false, true}, {"Depth32F", 4, true, false},
+};
+static_assert(std::size(kFormats) == static_cast<std::size_t>(Format::Depth32F) + 1);
+const FormatInfo& info(Format f) { return kFormats[static_cast<std::size_t>(f)]; }
+}  // namespace
 
-bool isDepthFormat(Format f) { return f == Format::Depth32F; }
-
-bool isIntegerFormat(Format f) { return f == Format::R32UI || f == Format::RGBA32UI; }
-
-const char* formatName(Format f) {
-  switch (f) {
-    case Format::RGBA8:
-      return "RGBA8";
-    case Format::RGBA16F:
-      return "RGBA16F";
-    case Format::RGBA32F:
-      return "RGBA32F";
-    case Format::R32F:
-      return "R32F";
-    case Format::RG32F:
-      return "RG32F";
-    case Format::R32UI:
-      return "R32UI";
-    case Format::RGBA32UI:
-      return "RGBA32UI";
-    case Format::Depth32F:
-      return "Depth32F";
-  }
-  return "?";
-}
+std::size_t bytesPerPixel(Format f) { return info(f).bytes; }
+bool isDepthFormat(Format f) { return info(f).depth; }
+bool isIntegerFormat(Format f) { return info(f).integer; }
+const char* formatName(Format f) { return info(f).name; }
 
 // ---- the front end: handle tables, frame/pass state, contract checks ----
 
