@@ -63,7 +63,7 @@ const std::vector<TechniqueInfo>& shadowCatalog() {
        "density clustering (Mertens et al. 2004): per-texel k-means of fragment depths",
        {{"size", "512", "map resolution (size x size), 1..16384"},
         {"bias", "0.002", "depth bias in light depth units [0,1], 0..1"},
-        {"clusters", "4", "depth clusters per texel (one channel each), 1..4"},
+        {"clusters", "4", "depth clusters per texel (one channel each, 4 per layer), 1..8"},
         {"iterations", "2", "k-means iterations (passes over the hair), 1..64"}}},
       {"osm",
        "opacity shadow maps (Kim & Neumann 2001): planar opacity maps, linear interpolation",

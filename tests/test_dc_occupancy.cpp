@@ -344,6 +344,9 @@ const std::vector<std::string>& allOptions() {
       "dc:size=64,clusters=1,iterations=1",
       "dc:size=64,clusters=2,iterations=3",
       "dc:size=64,clusters=3,bias=0",
+      // Two layers of every map; 8 clusters fill 6 colour attachments.
+      "dc:size=64,clusters=5,iterations=3",
+      "dc:size=64,clusters=8",
   };
   return specs;
 }
@@ -387,6 +390,9 @@ TEST_P(DcOccupancyGpu, OccupancyMapsTakeTenMiB) {
   EXPECT_EQ(bitsOnly.shadowBytes, 6u * 1024 * 1024);
   const Frame dc = render(*dev_, "straight:strands=200,points=8,head=0", "dc:size=512");
   EXPECT_EQ(dc.shadowBytes, 18u * 1024 * 1024);  // RG32F range + 4 RGBA32F
+  // 8 clusters: the four RGBA32F maps are arrays of two layers.
+  const Frame dc8 = render(*dev_, "straight:strands=200,points=8,head=0", "dc:size=512,clusters=8");
+  EXPECT_EQ(dc8.shadowBytes, 34u * 1024 * 1024);
 }
 
 TEST_P(DcOccupancyGpu, CloserToExactThanAShadowMap) {
@@ -446,7 +452,7 @@ TEST(DcOccupancyOptions, InvalidOptionsAreRejected) {
   for (const char* bad : {"occupancy:slices=100", "occupancy:slices=16", "occupancy:slices=1056",
                           "occupancy:slices=128,slabs=3", "occupancy:slices=1024,slabs=64",
                           "occupancy:slices=2048", "occupancy:jitter=maybe", "occupancy:slab_map=1",
-                          "dc:clusters=5", "dc:clusters=0", "dc:iterations=0", "dc:layers=3"}) {
+                          "dc:clusters=9", "dc:clusters=0", "dc:iterations=0", "dc:layers=3"}) {
     SCOPED_TRACE(bad);
     EXPECT_THROW(makeShadowTechnique(Spec::parse(bad)), InputError);
   }

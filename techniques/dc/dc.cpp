@@ -15,7 +15,7 @@ DensityClusteringShadow::Options DensityClusteringShadow::readOptions(const Opti
   Options opts;
   opts.size = static_cast<uint32_t>(o.integer("size", 1, 16384));
   opts.bias = static_cast<float>(o.number("bias", 0.0, 1.0));
-  opts.clusters = static_cast<uint32_t>(o.integer("clusters", 1, 4));
+  opts.clusters = static_cast<uint32_t>(o.integer("clusters", 1, kMaxClusters));
   opts.iterations = static_cast<uint32_t>(o.integer("iterations", 1, 64));
   return opts;
 }
@@ -23,6 +23,7 @@ DensityClusteringShadow::Options DensityClusteringShadow::readOptions(const Opti
 ShaderDefines DensityClusteringShadow::lookupDefines() const {
   ShaderDefines d;
   d.defines.push_back({"SB_DC_CLUSTERS", std::to_string(opts_.clusters)});
+  d.defines.push_back({"SB_DC_LAYERS", std::to_string(layers())});
   opaque_.addDefines(d);
   return d;
 }
@@ -34,14 +35,14 @@ void DensityClusteringShadow::setup(Device& dev, const GpuScene& scene, const Re
   const ViewUniforms view = lightView(s, size, size);
   lightView_ = createLightViewBuffer(dev, view, "dc");
   params_ = createLightLookupParams(dev, view, opts_.bias, size, scene.shadowAlpha, "dc");
-  auto map = [&](const std::string& what, Format f) {
-    return dev.createTexture({"dc." + what, "shadow", f, size, size, false});
+  auto map = [&](const std::string& what, Format f, uint32_t layers) {
+    return dev.createTexture({"dc." + what, "shadow", f, size, size, false, layers});
   };
-  range_ = map("depth_range", Format::RG32F);
-  centres_ = map("centres", Format::RGBA32F);
-  counts_ = map("counts", Format::RGBA32F);
-  sums_ = map("sums", Format::RGBA32F);
-  squares_ = map("square_sums", Format::RGBA32F);
+  range_ = map("depth_range", Format::RG32F, 1);
+  centres_ = map("centres", Format::RGBA32F, layers());
+  counts_ = map("counts", Format::RGBA32F, layers());
+  sums_ = map("sums", Format::RGBA32F, layers());
+  squares_ = map("square_sums", Format::RGBA32F, layers());
   opaque_.setup(dev, scene, size, lightView_, "dc");
 
   const ShaderDefines defs = lookupDefines();
@@ -50,7 +51,7 @@ void DensityClusteringShadow::setup(Device& dev, const GpuScene& scene, const Re
     PipelineDesc d;
     d.technique = "dc";
     d.vertex = &vert;
-    d.colorFormats = {Format::RGBA32F};
+    d.colorFormats.assign(layers(), Format::RGBA32F);
     d.bindings = {{kRange, BindingKind::SampledTexture}};
     for (int first = 1; first >= 0; --first) {
       ShaderDefines md = defs;
@@ -59,8 +60,8 @@ void DensityClusteringShadow::setup(Device& dev, const GpuScene& scene, const Re
       d.name = first ? "dc.means.first" : "dc.means";
       d.fragment = &frag;
       if (!first) {
-        d.bindings.push_back({kCounts, BindingKind::SampledTexture});
-        d.bindings.push_back({kSums, BindingKind::SampledTexture});
+        d.bindings.push_back({kCounts, BindingKind::SampledTextureArray});
+        d.bindings.push_back({kSums, BindingKind::SampledTextureArray});
       }
       (first ? firstMeansPipeline_ : meansPipeline_) = dev.createPipeline(d);
     }
@@ -84,9 +85,9 @@ void DensityClusteringShadow::setup(Device& dev, const GpuScene& scene, const Re
   d.name = "dc.iterate";
   d.fragment = &iterateFrag;
   d.bindings.push_back({kRange, BindingKind::SampledTexture});
-  d.bindings.push_back({kCentres, BindingKind::SampledTexture});
-  d.colorFormats.assign(3, Format::RGBA32F);
-  d.blend.assign(3, BlendState::additive());
+  d.bindings.push_back({kCentres, BindingKind::SampledTextureArray});
+  d.colorFormats.assign(3 * layers(), Format::RGBA32F);
+  d.blend.assign(3 * layers(), BlendState::additive());
   iteratePipeline_ = dev.createPipeline(d);
 }
 
@@ -110,7 +111,8 @@ void DensityClusteringShadow::addPasses(FrameGraph& graph, Device& dev) {
                for (uint32_t i = 0; i < opts_.iterations; ++i) {
                  PassDesc means;
                  means.name = "dc.means";
-                 means.color = {{centres_, LoadOp::Clear, {}, {}}};
+                 for (uint32_t l = 0; l < layers(); ++l)
+                   means.color.push_back({centres_, LoadOp::Clear, {}, {}, l});
                  means.sampledTextures = {range_};
                  std::vector<Binding> mb = {Binding::tex(kRange, range_)};
                  if (i > 0) {
@@ -126,7 +128,8 @@ void DensityClusteringShadow::addPasses(FrameGraph& graph, Device& dev) {
                  PassDesc iterate;
                  iterate.name = "dc.iterate";
                  for (Texture t : {counts_, sums_, squares_})
-                   iterate.color.push_back({t, LoadOp::Clear, {}, {}});
+                   for (uint32_t l = 0; l < layers(); ++l)
+                     iterate.color.push_back({t, LoadOp::Clear, {}, {}, l});
                  iterate.sampledTextures = {range_, centres_};
                  dev.beginPass(iterate);
                  if (iteratePipeline_) {
@@ -149,9 +152,9 @@ std::vector<std::string> DensityClusteringShadow::lookupReads() const {
 std::vector<BindingSlot> DensityClusteringShadow::lookupSlots() const {
   std::vector<BindingSlot> s = {{kParams, BindingKind::UniformBuffer},
                                 {kRange, BindingKind::SampledTexture},
-                                {kCounts, BindingKind::SampledTexture},
-                                {kSums, BindingKind::SampledTexture},
-                                {kSquares, BindingKind::SampledTexture}};
+                                {kCounts, BindingKind::SampledTextureArray},
+                                {kSums, BindingKind::SampledTextureArray},
+                                {kSquares, BindingKind::SampledTextureArray}};
   opaque_.addSlots(s);
   return s;
 }

@@ -1,5 +1,6 @@
 // Density clustering (Mertens et al. 2004): per light texel, the hair
-// fragments' depths are grouped by k-means into up to 4 clusters; a cluster
+// fragments' depths are grouped by k-means into up to 8 clusters (the
+// functions below take them 4 at a time, an RGBA layer); a cluster
 // is its fragment count n, mean depth m and standard deviation sd, and its
 // fragments are taken as spread uniformly over [m - sqrt(3) sd, m + sqrt(3) sd]
 // (the uniform distribution with that deviation), so the count in front of a

@@ -11,9 +11,10 @@ layout(std140, binding = 8) uniform DcParams {
   vec4 dcParams;  // x: bias (light depth units), y: map size, z: shadow alpha
 };
 layout(binding = 9) uniform sampler2D dcRange;    // x: nearest depth, y: -furthest depth
-layout(binding = 10) uniform sampler2D dcCounts;  // fragments per cluster
-layout(binding = 11) uniform sampler2D dcSums;    // sum of (z - nearest) per cluster
-layout(binding = 12) uniform sampler2D dcSquares;  // sum of (z - nearest)^2 per cluster
+// 4 clusters per layer:
+layout(binding = 10) uniform sampler2DArray dcCounts;   // fragments per cluster
+layout(binding = 11) uniform sampler2DArray dcSums;     // sum of (z - nearest) per cluster
+layout(binding = 12) uniform sampler2DArray dcSquares;  // sum of (z - nearest)^2 per cluster
 
 float shadowVisibility(vec3 worldPos) {
   vec3 ndc;
@@ -24,7 +25,11 @@ float shadowVisibility(vec3 worldPos) {
   int size = int(dcParams.y);
   ivec2 t = clamp(ivec2(floor(uv * dcParams.y)), ivec2(0), ivec2(size - 1));
   vec2 r = texelFetch(dcRange, t, 0).rg;
-  float n = dcCount(ndc.z - bias, r.x, -r.y, texelFetch(dcCounts, t, 0),
-                    texelFetch(dcSums, t, 0), texelFetch(dcSquares, t, 0), SB_DC_CLUSTERS);
+  float n = 0.0;
+  for (int l = 0; l < SB_DC_LAYERS; ++l) {
+    ivec3 p = ivec3(t, l);
+    n += dcCount(ndc.z - bias, r.x, -r.y, texelFetch(dcCounts, p, 0), texelFetch(dcSums, p, 0),
+                 texelFetch(dcSquares, p, 0), min(SB_DC_CLUSTERS - 4 * l, 4));
+  }
   return dcVisibility(n, dcParams.z);
 }
