@@ -74,4 +74,24 @@ std::vector<Binding> Geometry::bindings(const GpuScene& g, Buffer viewUbo) {
           Binding::buf(bind::kMeshIndices, g.meshIndices)};
 }
 
+Geometry::HairAndMesh Geometry::pipelines(Device& dev, PipelineDesc d, const GpuScene& g,
+                                          const RenderSettings& s, const std::string& name) {
+  HairAndMesh out;
+  if (g.hasHair()) {
+    const ShaderCode vert = strandVertexShader(s);
+    d.name = name + ".hair";
+    d.vertex = &vert;
+    d.topology = strandTopology(s);
+    out.hair = dev.createPipeline(d);
+  }
+  if (g.hasMesh()) {
+    const ShaderCode vert = meshVertexShader();
+    d.name = name + ".mesh";
+    d.vertex = &vert;
+    d.topology = Topology::Triangles;
+    out.mesh = dev.createPipeline(d);
+  }
+  return out;
+}
+
 }  // namespace sb

@@ -90,6 +90,14 @@ struct Geometry {
   static uint32_t strandVertexCount(const GpuScene& g, const RenderSettings& s);
   static std::vector<BindingSlot> slots();  // view UBO + scene buffers
   static std::vector<Binding> bindings(const GpuScene& g, Buffer viewUbo);
+  // One fixed state (d: fragment shader, targets, depth, bindings) drawn over the
+  // strands and over the mesh: pipelines "<name>.hair" and "<name>.mesh", each
+  // made only when the scene has that geometry.
+  struct HairAndMesh {
+    Pipeline hair, mesh;
+  };
+  static HairAndMesh pipelines(Device& dev, PipelineDesc d, const GpuScene& g,
+                               const RenderSettings& s, const std::string& name);
 };
 
 // A self-shadowing technique: its own passes (from the light) and a GLSL

@@ -27,20 +27,9 @@ void ShadowMap::setup(Device& dev, const GpuScene& scene, const RenderSettings& 
   d.hasDepth = d.depthTest = d.depthWrite = true;
   d.depthCompare = CompareOp::Less;
   d.bindings = Geometry::slots();
-  if (scene.hasHair()) {
-    const ShaderCode vert = Geometry::strandVertexShader(s);
-    d.name = "shadowmap.hair";
-    d.vertex = &vert;
-    d.topology = Geometry::strandTopology(s);
-    hairPipeline_ = dev.createPipeline(d);
-  }
-  if (scene.hasMesh()) {
-    const ShaderCode vert = Geometry::meshVertexShader();
-    d.name = "shadowmap.mesh";
-    d.vertex = &vert;
-    d.topology = Topology::Triangles;
-    meshPipeline_ = dev.createPipeline(d);
-  }
+  const auto pipelines = Geometry::pipelines(dev, d, scene, s, "shadowmap");
+  hairPipeline_ = pipelines.hair;
+  meshPipeline_ = pipelines.mesh;
 }
 
 void ShadowMap::addPasses(FrameGraph& graph, Device& dev) {

@@ -22,20 +22,9 @@ void VisibilityOutput::setup(Device& dev, const GpuScene& scene, const RenderSet
   d.hasDepth = d.depthTest = d.depthWrite = true;
   d.depthCompare = CompareOp::Less;
   d.bindings = shading.hairSlots();
-  if (scene.hasHair()) {
-    const ShaderCode vert = Geometry::strandVertexShader(s);
-    d.name = "visibility.hair";
-    d.vertex = &vert;
-    d.topology = Geometry::strandTopology(s);
-    hair_ = dev.createPipeline(d);
-  }
-  if (scene.hasMesh()) {
-    const ShaderCode vert = Geometry::meshVertexShader();
-    d.name = "visibility.mesh";
-    d.vertex = &vert;
-    d.topology = Topology::Triangles;
-    mesh_ = dev.createPipeline(d);
-  }
+  const auto pipelines = Geometry::pipelines(dev, d, scene, s, "visibility");
+  hair_ = pipelines.hair;
+  mesh_ = pipelines.mesh;
 }
 
 void VisibilityOutput::addPasses(FrameGraph& graph, Device& dev) {
