@@ -59,6 +59,13 @@ struct DriverBinding {
   const TextureDesc* texture = nullptr;  // SampledTexture (one layer), SampledTextureArray
 };
 
+// An API's value for one of the device's enums, from a table written in the
+// enum's order (each driver keeps one table per enum instead of a switch).
+template <class T, std::size_t N, class E>
+constexpr T byEnum(const T (&table)[N], E e) {
+  return table[static_cast<std::size_t>(e)];
+}
+
 class Driver {
  public:
   virtual ~Driver() = default;

@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <cstring>
+#include <iterator>
 #include <map>
 #include <string>
 #include <vector>
@@ -18,91 +19,33 @@ struct GLFormat {
   GLenum internal, format, type;
 };
 
-GLFormat glFormat(Format f) {
-  switch (f) {
-    case Format::RGBA8:
-      return {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE};
-    case Format::RGBA16F:
-      return {GL_RGBA16F, GL_RGBA, GL_HALF_FLOAT};
-    case Format::RGBA32F:
-      return {GL_RGBA32F, GL_RGBA, GL_FLOAT};
-    case Format::R32F:
-      return {GL_R32F, GL_RED, GL_FLOAT};
-    case Format::RG32F:
-      return {GL_RG32F, GL_RG, GL_FLOAT};
-    case Format::R32UI:
-      return {GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT};
-    case Format::RGBA32UI:
-      return {GL_RGBA32UI, GL_RGBA_INTEGER, GL_UNSIGNED_INT};
-    case Format::Depth32F:
-      return {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT};
-  }
-  return {0, 0, 0};
-}
+// Tables in the order of the enums in backends/device.h.
+constexpr GLFormat kFormats[] = {{GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE},
+                                 {GL_RGBA16F, GL_RGBA, GL_HALF_FLOAT},
+                                 {GL_RGBA32F, GL_RGBA, GL_FLOAT},
+                                 {GL_R32F, GL_RED, GL_FLOAT},
+                                 {GL_RG32F, GL_RG, GL_FLOAT},
+                                 {GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT},
+                                 {GL_RGBA32UI, GL_RGBA_INTEGER, GL_UNSIGNED_INT},
+                                 {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT}};
+static_assert(std::size(kFormats) == std::size_t(Format::Depth32F) + 1);
+constexpr GLenum kCompare[] = {GL_NEVER,   GL_LESS,   GL_LEQUAL,   GL_EQUAL,
+                               GL_GREATER, GL_GEQUAL, GL_NOTEQUAL, GL_ALWAYS};
+static_assert(std::size(kCompare) == std::size_t(CompareOp::Always) + 1);
+constexpr GLenum kBlendFactors[] = {GL_ZERO,      GL_ONE,
+                                    GL_SRC_COLOR, GL_ONE_MINUS_SRC_COLOR,
+                                    GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA,
+                                    GL_DST_COLOR, GL_ONE_MINUS_DST_COLOR,
+                                    GL_DST_ALPHA, GL_ONE_MINUS_DST_ALPHA};
+static_assert(std::size(kBlendFactors) == std::size_t(BlendFactor::OneMinusDstAlpha) + 1);
+constexpr GLenum kBlendOps[] = {GL_FUNC_ADD, GL_FUNC_SUBTRACT, GL_FUNC_REVERSE_SUBTRACT, GL_MIN,
+                                GL_MAX};
+static_assert(std::size(kBlendOps) == std::size_t(BlendOp::Max) + 1);
 
-GLenum glCompare(CompareOp op) {
-  switch (op) {
-    case CompareOp::Never:
-      return GL_NEVER;
-    case CompareOp::Less:
-      return GL_LESS;
-    case CompareOp::LessEqual:
-      return GL_LEQUAL;
-    case CompareOp::Equal:
-      return GL_EQUAL;
-    case CompareOp::Greater:
-      return GL_GREATER;
-    case CompareOp::GreaterEqual:
-      return GL_GEQUAL;
-    case CompareOp::NotEqual:
-      return GL_NOTEQUAL;
-    case CompareOp::Always:
-      return GL_ALWAYS;
-  }
-  return GL_LESS;
-}
-
-GLenum glBlendFactor(BlendFactor f) {
-  switch (f) {
-    case BlendFactor::Zero:
-      return GL_ZERO;
-    case BlendFactor::One:
-      return GL_ONE;
-    case BlendFactor::SrcColor:
-      return GL_SRC_COLOR;
-    case BlendFactor::OneMinusSrcColor:
-      return GL_ONE_MINUS_SRC_COLOR;
-    case BlendFactor::SrcAlpha:
-      return GL_SRC_ALPHA;
-    case BlendFactor::OneMinusSrcAlpha:
-      return GL_ONE_MINUS_SRC_ALPHA;
-    case BlendFactor::DstColor:
-      return GL_DST_COLOR;
-    case BlendFactor::OneMinusDstColor:
-      return GL_ONE_MINUS_DST_COLOR;
-    case BlendFactor::DstAlpha:
-      return GL_DST_ALPHA;
-    case BlendFactor::OneMinusDstAlpha:
-      return GL_ONE_MINUS_DST_ALPHA;
-  }
-  return GL_ONE;
-}
-
-GLenum glBlendOp(BlendOp op) {
-  switch (op) {
-    case BlendOp::Add:
-      return GL_FUNC_ADD;
-    case BlendOp::Subtract:
-      return GL_FUNC_SUBTRACT;
-    case BlendOp::ReverseSubtract:
-      return GL_FUNC_REVERSE_SUBTRACT;
-    case BlendOp::Min:
-      return GL_MIN;
-    case BlendOp::Max:
-      return GL_MAX;
-  }
-  return GL_FUNC_ADD;
-}
+GLFormat glFormat(Format f) { return byEnum(kFormats, f); }
+GLenum glCompare(CompareOp op) { return byEnum(kCompare, op); }
+GLenum glBlendFactor(BlendFactor f) { return byEnum(kBlendFactors, f); }
+GLenum glBlendOp(BlendOp op) { return byEnum(kBlendOps, op); }
 
 const char* glErrorName(GLenum e) {
   switch (e) {

@@ -2,49 +2,40 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <iterator>
 #include <string>
+#include <utility>
+
+#include "backends/driver.h"
 
 namespace sb {
 
 const char* resultName(VkResult r) {
-  switch (r) {
-    case VK_SUCCESS:
-      return "VK_SUCCESS";
-    case VK_NOT_READY:
-      return "VK_NOT_READY";
-    case VK_TIMEOUT:
-      return "VK_TIMEOUT";
-    case VK_INCOMPLETE:
-      return "VK_INCOMPLETE";
-    case VK_ERROR_OUT_OF_HOST_MEMORY:
-      return "VK_ERROR_OUT_OF_HOST_MEMORY";
-    case VK_ERROR_OUT_OF_DEVICE_MEMORY:
-      return "VK_ERROR_OUT_OF_DEVICE_MEMORY";
-    case VK_ERROR_INITIALIZATION_FAILED:
-      return "VK_ERROR_INITIALIZATION_FAILED";
-    case VK_ERROR_DEVICE_LOST:
-      return "VK_ERROR_DEVICE_LOST";
-    case VK_ERROR_MEMORY_MAP_FAILED:
-      return "VK_ERROR_MEMORY_MAP_FAILED";
-    case VK_ERROR_LAYER_NOT_PRESENT:
-      return "VK_ERROR_LAYER_NOT_PRESENT";
-    case VK_ERROR_EXTENSION_NOT_PRESENT:
-      return "VK_ERROR_EXTENSION_NOT_PRESENT";
-    case VK_ERROR_FEATURE_NOT_PRESENT:
-      return "VK_ERROR_FEATURE_NOT_PRESENT";
-    case VK_ERROR_INCOMPATIBLE_DRIVER:
-      return "VK_ERROR_INCOMPATIBLE_DRIVER";
-    case VK_ERROR_TOO_MANY_OBJECTS:
-      return "VK_ERROR_TOO_MANY_OBJECTS";
-    case VK_ERROR_FORMAT_NOT_SUPPORTED:
-      return "VK_ERROR_FORMAT_NOT_SUPPORTED";
-    case VK_ERROR_FRAGMENTED_POOL:
-      return "VK_ERROR_FRAGMENTED_POOL";
-    case VK_ERROR_OUT_OF_POOL_MEMORY:
-      return "VK_ERROR_OUT_OF_POOL_MEMORY";
-    default:
-      return "VkResult error";
-  }
+#define SB_VK_RESULT(x) \
+  { x, #x }
+  static constexpr std::pair<VkResult, const char*> kNames[] = {
+      SB_VK_RESULT(VK_SUCCESS),
+      SB_VK_RESULT(VK_NOT_READY),
+      SB_VK_RESULT(VK_TIMEOUT),
+      SB_VK_RESULT(VK_INCOMPLETE),
+      SB_VK_RESULT(VK_ERROR_OUT_OF_HOST_MEMORY),
+      SB_VK_RESULT(VK_ERROR_OUT_OF_DEVICE_MEMORY),
+      SB_VK_RESULT(VK_ERROR_INITIALIZATION_FAILED),
+      SB_VK_RESULT(VK_ERROR_DEVICE_LOST),
+      SB_VK_RESULT(VK_ERROR_MEMORY_MAP_FAILED),
+      SB_VK_RESULT(VK_ERROR_LAYER_NOT_PRESENT),
+      SB_VK_RESULT(VK_ERROR_EXTENSION_NOT_PRESENT),
+      SB_VK_RESULT(VK_ERROR_FEATURE_NOT_PRESENT),
+      SB_VK_RESULT(VK_ERROR_INCOMPATIBLE_DRIVER),
+      SB_VK_RESULT(VK_ERROR_TOO_MANY_OBJECTS),
+      SB_VK_RESULT(VK_ERROR_FORMAT_NOT_SUPPORTED),
+      SB_VK_RESULT(VK_ERROR_FRAGMENTED_POOL),
+      SB_VK_RESULT(VK_ERROR_OUT_OF_POOL_MEMORY),
+  };
+#undef SB_VK_RESULT
+  for (const auto& [value, name] : kNames)
+    if (value == r) return name;
+  return "VkResult error";
 }
 
 void check(VkResult r, const char* what) {
@@ -59,103 +50,36 @@ bool envFlag(const char* name) {
   return v != nullptr && *v != '\0' && std::strcmp(v, "0") != 0;
 }
 
-VkFormat toVkFormat(Format f) {
-  switch (f) {
-    case Format::RGBA8:
-      return VK_FORMAT_R8G8B8A8_UNORM;
-    case Format::RGBA16F:
-      return VK_FORMAT_R16G16B16A16_SFLOAT;
-    case Format::RGBA32F:
-      return VK_FORMAT_R32G32B32A32_SFLOAT;
-    case Format::R32F:
-      return VK_FORMAT_R32_SFLOAT;
-    case Format::RG32F:
-      return VK_FORMAT_R32G32_SFLOAT;
-    case Format::R32UI:
-      return VK_FORMAT_R32_UINT;
-    case Format::RGBA32UI:
-      return VK_FORMAT_R32G32B32A32_UINT;
-    case Format::Depth32F:
-      return VK_FORMAT_D32_SFLOAT;
-  }
-  return VK_FORMAT_UNDEFINED;
-}
+// Tables in the order of the enums in backends/device.h.
+constexpr VkFormat kFormats[] = {VK_FORMAT_R8G8B8A8_UNORM,      VK_FORMAT_R16G16B16A16_SFLOAT,
+                                 VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R32_SFLOAT,
+                                 VK_FORMAT_R32G32_SFLOAT,       VK_FORMAT_R32_UINT,
+                                 VK_FORMAT_R32G32B32A32_UINT,   VK_FORMAT_D32_SFLOAT};
+static_assert(std::size(kFormats) == std::size_t(Format::Depth32F) + 1);
+constexpr VkCompareOp kCompare[] = {VK_COMPARE_OP_NEVER,         VK_COMPARE_OP_LESS,
+                                    VK_COMPARE_OP_LESS_OR_EQUAL, VK_COMPARE_OP_EQUAL,
+                                    VK_COMPARE_OP_GREATER,       VK_COMPARE_OP_GREATER_OR_EQUAL,
+                                    VK_COMPARE_OP_NOT_EQUAL,     VK_COMPARE_OP_ALWAYS};
+static_assert(std::size(kCompare) == std::size_t(CompareOp::Always) + 1);
+constexpr VkBlendFactor kBlendFactors[] = {
+    VK_BLEND_FACTOR_ZERO,      VK_BLEND_FACTOR_ONE,
+    VK_BLEND_FACTOR_SRC_COLOR, VK_BLEND_FACTOR_ONE_MINUS_SRC_COLOR,
+    VK_BLEND_FACTOR_SRC_ALPHA, VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA,
+    VK_BLEND_FACTOR_DST_COLOR, VK_BLEND_FACTOR_ONE_MINUS_DST_COLOR,
+    VK_BLEND_FACTOR_DST_ALPHA, VK_BLEND_FACTOR_ONE_MINUS_DST_ALPHA};
+static_assert(std::size(kBlendFactors) == std::size_t(BlendFactor::OneMinusDstAlpha) + 1);
+constexpr VkBlendOp kBlendOps[] = {VK_BLEND_OP_ADD, VK_BLEND_OP_SUBTRACT,
+                                   VK_BLEND_OP_REVERSE_SUBTRACT, VK_BLEND_OP_MIN, VK_BLEND_OP_MAX};
+static_assert(std::size(kBlendOps) == std::size_t(BlendOp::Max) + 1);
+constexpr VkDescriptorType kDescriptors[] = {
+    VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+    VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
+static_assert(std::size(kDescriptors) == std::size_t(BindingKind::SampledTextureArray) + 1);
 
-VkCompareOp toVk(CompareOp op) {
-  switch (op) {
-    case CompareOp::Never:
-      return VK_COMPARE_OP_NEVER;
-    case CompareOp::Less:
-      return VK_COMPARE_OP_LESS;
-    case CompareOp::LessEqual:
-      return VK_COMPARE_OP_LESS_OR_EQUAL;
-    case CompareOp::Equal:
-      return VK_COMPARE_OP_EQUAL;
-    case CompareOp::Greater:
-      return VK_COMPARE_OP_GREATER;
-    case CompareOp::GreaterEqual:
-      return VK_COMPARE_OP_GREATER_OR_EQUAL;
-    case CompareOp::NotEqual:
-      return VK_COMPARE_OP_NOT_EQUAL;
-    case CompareOp::Always:
-      return VK_COMPARE_OP_ALWAYS;
-  }
-  return VK_COMPARE_OP_ALWAYS;
-}
-
-VkBlendFactor toVk(BlendFactor f) {
-  switch (f) {
-    case BlendFactor::Zero:
-      return VK_BLEND_FACTOR_ZERO;
-    case BlendFactor::One:
-      return VK_BLEND_FACTOR_ONE;
-    case BlendFactor::SrcColor:
-      return VK_BLEND_FACTOR_SRC_COLOR;
-    case BlendFactor::OneMinusSrcColor:
-      return VK_BLEND_FACTOR_ONE_MINUS_SRC_COLOR;
-    case BlendFactor::SrcAlpha:
-      return VK_BLEND_FACTOR_SRC_ALPHA;
-    case BlendFactor::OneMinusSrcAlpha:
-      return VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
-    case BlendFactor::DstColor:
-      return VK_BLEND_FACTOR_DST_COLOR;
-    case BlendFactor::OneMinusDstColor:
-      return VK_BLEND_FACTOR_ONE_MINUS_DST_COLOR;
-    case BlendFactor::DstAlpha:
-      return VK_BLEND_FACTOR_DST_ALPHA;
-    case BlendFactor::OneMinusDstAlpha:
-      return VK_BLEND_FACTOR_ONE_MINUS_DST_ALPHA;
-  }
-  return VK_BLEND_FACTOR_ONE;
-}
-
-VkBlendOp toVk(BlendOp op) {
-  switch (op) {
-    case BlendOp::Add:
-      return VK_BLEND_OP_ADD;
-    case BlendOp::Subtract:
-      return VK_BLEND_OP_SUBTRACT;
-    case BlendOp::ReverseSubtract:
-      return VK_BLEND_OP_REVERSE_SUBTRACT;
-    case BlendOp::Min:
-      return VK_BLEND_OP_MIN;
-    case BlendOp::Max:
-      return VK_BLEND_OP_MAX;
-  }
-  return VK_BLEND_OP_ADD;
-}
-
-VkDescriptorType toVk(BindingKind k) {
-  switch (k) {
-    case BindingKind::UniformBuffer:
-      return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-    case BindingKind::StorageBuffer:
-      return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    case BindingKind::SampledTexture:
-    case BindingKind::SampledTextureArray:
-      return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-  }
-  return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-}
+VkFormat toVkFormat(Format f) { return byEnum(kFormats, f); }
+VkCompareOp toVk(CompareOp op) { return byEnum(kCompare, op); }
+VkBlendFactor toVk(BlendFactor f) { return byEnum(kBlendFactors, f); }
+VkBlendOp toVk(BlendOp op) { return byEnum(kBlendOps, op); }
+VkDescriptorType toVk(BindingKind k) { return byEnum(kDescriptors, k); }
 
 }  // namespace sb
