@@ -4,8 +4,7 @@
 #include "../common/opaque_shadow.glsl"
 #include "osm.glsl"
 
-#define SB_MAP_COUNT SB_OSM_ATLASES
-#include "../common/map_set.glsl"
+layout(binding = 9) uniform sampler2DArray osmAtlases;  // one atlas per layer
 
 ivec2 osmTexel;  // the point's texel within a tile
 
@@ -15,8 +14,7 @@ float osmStored(int m) {
   int a = g % osmLayout.z;
   int t = g / osmLayout.z;
   ivec2 p = osmTexel + ivec2(t % osmLayout.x, t / osmLayout.x) * int(osmParams.y);
-  vec4 v = fetchShadowMap(a, p);
-  return v[m % 4];
+  return texelFetch(osmAtlases, ivec3(p, a), 0)[m % 4];
 }
 
 #define SB_OSM_MAP(i) osmStored((i) - 1)

@@ -9,7 +9,7 @@
 namespace sb {
 
 namespace {
-constexpr uint32_t kParams = 8, kPass = 9, kAtlasFirst = 9;
+constexpr uint32_t kParams = 8, kPass = 9, kAtlases = 9;
 
 struct Params {
   glm::mat4 viewProj;
@@ -117,9 +117,7 @@ void OpacityShadowMaps::setup(Device& dev, const GpuScene& scene, const RenderSe
 
   const Format format = mapFormat(opt_.bits);
   const uint32_t w = layout_.cols * opt_.size, h = layout_.rows * opt_.size;
-  for (uint32_t a = 0; a < layout_.atlases; ++a)
-    atlases_.push_back(
-        dev.createTexture({"osm.maps" + std::to_string(a), "shadow", format, w, h, false}));
+  atlases_ = dev.createTexture({"osm.maps", "shadow", format, w, h, false, layout_.atlases});
 
   // The light's view pointed at each tile: x' = x / cols + offset, so tile
   // pixels are the map's pixels shifted by whole tiles.
@@ -198,7 +196,7 @@ void OpacityShadowMaps::addPasses(FrameGraph& graph, Device& dev) {
                  pass.name = "osm.map";
                  for (uint32_t k = 0; k < mp.targets; ++k)
                    pass.color.push_back(
-                       {atlases_[k], mp.clear ? LoadOp::Clear : LoadOp::Load, {0, 0, 0, 0}, {}});
+                       {atlases_, mp.clear ? LoadOp::Clear : LoadOp::Load, {0, 0, 0, 0}, {}, k});
                  dev.beginPass(pass);
                  if (scene_->hasHair()) {
                    auto b = Geometry::bindings(*scene_, tileViews_[mp.tile]);
@@ -213,7 +211,6 @@ void OpacityShadowMaps::addPasses(FrameGraph& graph, Device& dev) {
 
 ShaderDefines OpacityShadowMaps::lookupDefines() const {
   ShaderDefines d;
-  d.defines.push_back({"SB_OSM_ATLASES", std::to_string(layout_.atlases)});
   opaque_.addDefines(d);
   return d;
 }
@@ -225,23 +222,20 @@ std::vector<std::string> OpacityShadowMaps::lookupReads() const {
 }
 
 std::vector<BindingSlot> OpacityShadowMaps::lookupSlots() const {
-  std::vector<BindingSlot> s = {{kParams, BindingKind::UniformBuffer}};
-  for (uint32_t a = 0; a < layout_.atlases; ++a)
-    s.push_back({kAtlasFirst + a, BindingKind::SampledTexture});
+  std::vector<BindingSlot> s = {{kParams, BindingKind::UniformBuffer},
+                                {kAtlases, BindingKind::SampledTextureArray}};
   opaque_.addSlots(s);
   return s;
 }
 
 std::vector<Binding> OpacityShadowMaps::lookupBindings() const {
-  std::vector<Binding> b = {Binding::buf(kParams, params_)};
-  for (uint32_t a = 0; a < layout_.atlases; ++a)
-    b.push_back(Binding::tex(kAtlasFirst + a, atlases_[a]));
+  std::vector<Binding> b = {Binding::buf(kParams, params_), Binding::tex(kAtlases, atlases_)};
   opaque_.addBindings(b);
   return b;
 }
 
 std::vector<Texture> OpacityShadowMaps::lookupTextures() const {
-  std::vector<Texture> t = atlases_;
+  std::vector<Texture> t = {atlases_};
   opaque_.addTextures(t);
   return t;
 }

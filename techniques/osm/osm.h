@@ -11,11 +11,11 @@ namespace sb {
 // of its depth D_i; a point's opacity is interpolated linearly between the
 // two maps enclosing it, and its visibility is (1 - alpha_s)^n.
 //
-// Maps are packed 4 per RGBA texel group; groups are tiles of a few atlas
-// textures (the lookup may bind only 6 samplers, bindings 9..14), rendered by
-// pointing the light's projection at a tile and discarding outside it.
-// passes=single draws the hair once per map (the original); passes=multi
-// draws it once per tile row of up to 6 render targets x 4 channels.
+// Maps are packed 4 per RGBA texel group; groups are tiles of a few atlases,
+// the layers of one texture array, rendered by pointing the light's
+// projection at a tile and discarding outside it. passes=single draws the
+// hair once per map (the original); passes=multi draws it once per tile row
+// of up to 6 render targets (atlas layers) x 4 channels.
 class OpacityShadowMaps : public ShadowTechnique {
  public:
   struct Options {
@@ -28,13 +28,15 @@ class OpacityShadowMaps : public ShadowTechnique {
     uint32_t size = 512;
     float bias = 0.002f;
   };
+  // Atlases (layers) per multi pass. A pass may have 8 targets, but more
+  // atlases would lay the maps out differently and change today's images.
   static constexpr uint32_t kMaxTargets = 6;
   static constexpr uint32_t kMaxAtlasSize = 16384;
 
   // How the maps are laid out; throws InputError when they cannot fit.
   struct Layout {
     uint32_t groups = 0;   // ceil(maps / 4) RGBA texel groups
-    uint32_t atlases = 0;  // textures (= render targets of a multi pass)
+    uint32_t atlases = 0;  // layers of the array (= render targets of a multi pass)
     uint32_t tiles = 0;    // tiles per atlas
     uint32_t cols = 0, rows = 0;
   };
@@ -69,7 +71,7 @@ class OpacityShadowMaps : public ShadowTechnique {
   RenderSettings settings_;
   float weight_ = 1.0f;
   std::vector<float> slices_;
-  std::vector<Texture> atlases_;
+  Texture atlases_;                // layout_.atlases layers
   std::vector<Buffer> tileViews_;  // the light's view pointed at each tile
   std::vector<MapPass> passes_;
   std::vector<Pipeline> pipelines_;  // by target count - 1
