@@ -17,7 +17,7 @@ row() {
 }
 row "occupancy:slices=128,slabs=4,size=512" "10"
 row "dom:layers=15,size=512" "18 (DOM 16 slices)"
-row "dom:layers=23,size=512" "34 (DOM 32 slices; ours caps at 23 layers)"
+row "dom:layers=31,size=512" "34 (DOM 32 slices)"
 row "osm:maps=128,size=512,bits=32" "130"
 row "osm:maps=256,size=512,bits=32" "258"
 row "dc:clusters=4,size=512" "-"
