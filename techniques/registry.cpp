@@ -1,4 +1,12 @@
 // The shadow and transparency techniques by name, with their options and defaults.
+//
+// A technique's folder is its CLI name, except where that cannot be:
+//   --shadow none       techniques/none/
+//   --oit none          techniques/opaque_hair/    (a second "none": opaque, depth-tested hair)
+//   --oit occupancy     techniques/occupancy_oit/  (a second "occupancy": ordered blending)
+//   --oit wsum, wavg    techniques/weighted/       (one class, two weightings)
+// The ground-truth helpers shared by both kinds (fragment lists, peeling steps) are in
+// techniques/common/.
 #include "scenes/options.h"
 #include "techniques/abuffer/abuffer.h"
 #include "techniques/common/technique.h"
