@@ -174,7 +174,7 @@ TEST(BadInput, OutOfRangeValues) {
   Sandbox s;
   const std::string render = "render --scene " + kScene + " --size 16x16 --out {dir}/x.png ";
   s.expectRejected(render + "--shadow dom:layers=0",
-                   {"shadow technique 'dom'", "layers=0", "out of range [1, 23]"});
+                   {"shadow technique 'dom'", "layers=0", "out of range [1, 31]"});
   // `strandbench list`: both occupancy techniques take `slices`, a multiple of 32.
   s.expectRejected(render + "--shadow occupancy:slices=33",
                    {"shadow technique 'occupancy'", "slices=33", "multiple of 32"});
