@@ -13,13 +13,17 @@
 //  - Timing: one timestamp pair per pass on GPUs; on CPU devices (lavapipe),
 //    without timestamps, or with SB_VULKAN_CPU_TIMING=1, each pass is submitted
 //    alone and timed on the CPU (SB_VULKAN_GPU_TIMING=1 forces timestamps).
+//
+// This file holds the driver class: frames, passes, draws, dispatches,
+// descriptor sets and timing. The objects it records with (buffers, textures,
+// pipelines), memory, staging, the immediate submission and the barriers are in
+// vk_resources.h/.cpp; graphics pipeline state is in vk_pipeline.cpp.
 #include "backends/vulkan/vk_driver.h"
 
 #include <vulkan/vulkan.h>
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
 #include <cstring>
 #include <string>
 #include <utility>
@@ -27,6 +31,7 @@
 
 #include "backends/vulkan/vk_pipeline.h"
 #include "backends/vulkan/vk_platform.h"
+#include "backends/vulkan/vk_resources.h"
 #include "backends/vulkan/vk_shader.h"
 #include "backends/vulkan/vk_util.h"
 
@@ -37,52 +42,18 @@ namespace {
 constexpr uint32_t kQueriesPerPool = 128;  // even: a pass's pair never straddles pools
 constexpr VkDeviceSize kMaxCmdUpdateBytes = 65536;
 
-struct BufferRes : DriverObject {
-  BufferDesc desc;
-  VkBuffer buffer = VK_NULL_HANDLE;
-  VkDeviceMemory memory = VK_NULL_HANDLE;
-  VkDeviceSize size = 0;  // allocated size (>= desc.bytes, multiple of 4, at least 4)
-};
-
-struct TextureRes : DriverObject {
-  TextureDesc desc;
-  VkFormat format = VK_FORMAT_UNDEFINED;
-  VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
-  VkImage image = VK_NULL_HANDLE;
-  VkDeviceMemory memory = VK_NULL_HANDLE;
-  VkImageView view = VK_NULL_HANDLE;       // 2D (one layer): attachment and sampler2D
-  VkImageView arrayView = VK_NULL_HANDLE;  // 2D_ARRAY of every layer: sampler2DArray
-  std::vector<VkImageView> layerViews;     // layers > 1: 2D of one layer, made when attached
-  VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;  // of every layer (they move together)
-  bool linear = false;  // sampler actually used (linear may fall back to nearest)
-};
-
-struct PipelineRes : DriverObject {
-  VkPipeline pipeline = VK_NULL_HANDLE;
-  VkPipelineLayout layout = VK_NULL_HANDLE;
-  VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
-};
-
-struct HostBuffer {
-  VkBuffer buffer = VK_NULL_HANDLE;
-  VkDeviceMemory memory = VK_NULL_HANDLE;
-  void* mapped = nullptr;
-};
-
 class VulkanDriver final : public Driver {
  public:
-  explicit VulkanDriver(std::unique_ptr<VulkanPlatform> platform) : platform_(std::move(platform)) {
+  explicit VulkanDriver(std::unique_ptr<VulkanPlatform> platform)
+      : platform_(std::move(platform)), resources_(*platform_) {
     const VulkanPlatform& p = *platform_;
     device_ = p.device;
-    physical_ = p.physical;
-    queue_ = p.queue;
     limits_ = p.limits;
-    memProps_ = p.memProps;
     timestampPeriod_ = p.timestampPeriod;
     timestampBits_ = p.timestampBits;
     cpuTiming_ = p.cpuTiming;
     try {
-      createCommandObjects(p.queueFamily);
+      createCommandObjects();
     } catch (...) {
       cleanup();
       throw;
@@ -95,59 +66,20 @@ class VulkanDriver final : public Driver {
   DeviceInfo info() const override { return platform_->info; }
 
   std::unique_ptr<DriverObject> createBuffer(const BufferDesc& desc, const void* data) override {
-    auto r = std::make_unique<BufferRes>();
-    r->desc = desc;
-    r->size = std::max<VkDeviceSize>(4, (desc.bytes + 3) / 4 * 4);
-    VkBufferCreateInfo ci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
-    ci.size = r->size;
-    // Both uniform and storage usage: GL buffers are untyped, so are these.
-    ci.usage = VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
-               VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
-    ci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-    check(vkCreateBuffer(device_, &ci, nullptr, &r->buffer), "vkCreateBuffer");
-    try {
-      VkMemoryRequirements req;
-      vkGetBufferMemoryRequirements(device_, r->buffer, &req);
-      r->memory = allocate(req, false, "buffer " + desc.name);
-      check(vkBindBufferMemory(device_, r->buffer, r->memory, 0), "vkBindBufferMemory");
-      // Defined contents (zero) unless data is given, as on GL.
-      HostBuffer staging;
-      if (data != nullptr) {
-        staging = createHostBuffer(desc.bytes);
-        std::memcpy(staging.mapped, data, desc.bytes);
-      }
-      immediate([&](VkCommandBuffer cmd) {
-        vkCmdFillBuffer(cmd, r->buffer, 0, VK_WHOLE_SIZE, 0);
-        if (staging.buffer != VK_NULL_HANDLE) {
-          fullBarrier(cmd);
-          VkBufferCopy region{0, 0, desc.bytes};
-          vkCmdCopyBuffer(cmd, staging.buffer, r->buffer, 1, &region);
-        }
-      });
-      destroyHostBuffer(staging);
-    } catch (...) {
-      destroyBufferRes(*r);
-      throw;
-    }
-    return r;
+    return resources_.createBuffer(desc, data);
   }
 
   void updateBuffer(DriverObject& object, const BufferDesc&, const void* data, std::size_t bytes,
                     std::size_t offset) override {
     auto& r = static_cast<BufferRes&>(object);
     if (!inFrame_) {
-      HostBuffer staging = createHostBuffer(bytes);
-      std::memcpy(staging.mapped, data, bytes);
-      try {
-        immediate([&](VkCommandBuffer cmd) {
+      resources_.withHostBuffer(bytes, [&](HostBuffer& staging) {
+        std::memcpy(staging.mapped, data, bytes);
+        resources_.immediate([&](VkCommandBuffer cmd) {
           VkBufferCopy region{0, offset, bytes};
           vkCmdCopyBuffer(cmd, staging.buffer, r.buffer, 1, &region);
         });
-      } catch (...) {
-        destroyHostBuffer(staging);
-        throw;
-      }
-      destroyHostBuffer(staging);
+      });
       return;
     }
     // Inside a frame: ordered with the recorded work. The barrier orders this
@@ -156,7 +88,7 @@ class VulkanDriver final : public Driver {
     if (bytes <= kMaxCmdUpdateBytes && bytes % 4 == 0 && offset % 4 == 0) {
       vkCmdUpdateBuffer(frameCmd_, r.buffer, offset, bytes, data);
     } else {
-      HostBuffer staging = createHostBuffer(bytes);
+      HostBuffer staging = resources_.createHostBuffer(bytes);
       frameStaging_.push_back(staging);
       std::memcpy(staging.mapped, data, bytes);
       VkBufferCopy region{0, offset, bytes};
@@ -167,7 +99,7 @@ class VulkanDriver final : public Driver {
   void fillBuffer(DriverObject& object, const BufferDesc&, uint32_t value) override {
     auto& r = static_cast<BufferRes&>(object);
     if (!inFrame_) {
-      immediate(
+      resources_.immediate(
           [&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, r.buffer, 0, VK_WHOLE_SIZE, value); });
       return;
     }
@@ -176,82 +108,7 @@ class VulkanDriver final : public Driver {
   }
 
   std::unique_ptr<DriverObject> createTexture(const TextureDesc& desc) override {
-    auto owned = std::make_unique<TextureRes>();
-    TextureRes& t = *owned;
-    t.desc = desc;
-    t.format = toVkFormat(desc.format);
-    const bool depth = isDepthFormat(desc.format);
-    t.aspect = depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
-
-    VkFormatProperties fp;
-    vkGetPhysicalDeviceFormatProperties(physical_, t.format, &fp);
-    const VkFormatFeatureFlags have = fp.optimalTilingFeatures;
-    const VkFormatFeatureFlags need = (depth ? VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT
-                                             : VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT) |
-                                      VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT |
-                                      VK_FORMAT_FEATURE_TRANSFER_SRC_BIT |
-                                      VK_FORMAT_FEATURE_TRANSFER_DST_BIT;
-    if ((have & need) != need) {
-      throw DeviceError(
-          std::string("createTexture('") + desc.name + "'): format " + formatName(desc.format) +
-          " cannot be a render target, sampled and copied on " + platform_->info.device);
-    }
-    t.linear = desc.linearFilter;
-    if (t.linear && (isIntegerFormat(desc.format) ||
-                     (have & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT) == 0)) {
-      std::fprintf(stderr,
-                   "strandbench: vulkan: texture '%s' (%s) cannot be filtered linearly on this "
-                   "device; sampling it nearest\n",
-                   desc.name.c_str(), formatName(desc.format));
-      t.linear = false;
-    }
-
-    VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-    ci.imageType = VK_IMAGE_TYPE_2D;
-    ci.format = t.format;
-    ci.extent = {desc.width, desc.height, 1};
-    ci.mipLevels = 1;
-    ci.arrayLayers = desc.layers;
-    ci.samples = VK_SAMPLE_COUNT_1_BIT;
-    ci.tiling = VK_IMAGE_TILING_OPTIMAL;
-    ci.usage = (depth ? VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT
-                      : VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT) |
-               VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
-               VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-    if (!depth && (have & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT) != 0) {
-      ci.usage |= VK_IMAGE_USAGE_STORAGE_BIT;
-    }
-    ci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-    ci.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    check(vkCreateImage(device_, &ci, nullptr, &t.image), "vkCreateImage");
-    try {
-      VkMemoryRequirements req;
-      vkGetImageMemoryRequirements(device_, t.image, &req);
-      t.memory = allocate(req, false, "texture " + desc.name);
-      check(vkBindImageMemory(device_, t.image, t.memory, 0), "vkBindImageMemory");
-      if (desc.layers == 1) t.view = makeView(t, VK_IMAGE_VIEW_TYPE_2D, 0, 1);
-      t.arrayView = makeView(t, VK_IMAGE_VIEW_TYPE_2D_ARRAY, 0, desc.layers);
-      t.layerViews.assign(desc.layers > 1 ? desc.layers : 0, VK_NULL_HANDLE);
-      // Defined initial contents: colour 0, depth 1 (far). A fresh resource, so an
-      // immediate submission is ordered correctly even inside a frame.
-      immediate([&](VkCommandBuffer cmd) {
-        std::vector<VkImageMemoryBarrier> barriers;
-        transition(barriers, t, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-        fullBarrier(cmd, barriers);
-        VkImageSubresourceRange range{t.aspect, 0, 1, 0, desc.layers};
-        if (depth) {
-          VkClearDepthStencilValue v{1.0f, 0};
-          vkCmdClearDepthStencilImage(cmd, t.image, t.layout, &v, 1, &range);
-        } else {
-          VkClearColorValue v{};
-          vkCmdClearColorImage(cmd, t.image, t.layout, &v, 1, &range);
-        }
-      });
-    } catch (...) {
-      destroyTextureRes(t);
-      throw;
-    }
-    return owned;
+    return resources_.createTexture(desc);
   }
 
   std::unique_ptr<DriverObject> createPipeline(const PipelineDesc& desc) override {
@@ -313,7 +170,7 @@ class VulkanDriver final : public Driver {
       destroyModules();
     } catch (...) {
       destroyModules();
-      destroyPipelineRes(p);
+      resources_.destroyPipeline(p);
       throw;
     }
     return owned;
@@ -323,15 +180,12 @@ class VulkanDriver final : public Driver {
     if (inFrame_) {
       dead_.push_back(std::move(object));  // recorded work may still use it
     } else {
-      destroyObject(*object);
+      resources_.destroyObject(*object);
     }
   }
 
   void beginFrame() override {
-    check(vkResetCommandBuffer(frameCmd_, 0), "vkResetCommandBuffer");
-    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    check(vkBeginCommandBuffer(frameCmd_, &bi), "vkBeginCommandBuffer");
+    resetAndBegin(frameCmd_);
     inFrame_ = true;
     passNames_.clear();
     passQueries_.clear();
@@ -360,7 +214,7 @@ class VulkanDriver final : public Driver {
     for (const DriverColorTarget& a : pd.color) {
       const TextureRes& t = tex(a.texture);
       VkRenderingAttachmentInfo ai{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-      ai.imageView = attachmentView(tex(a.texture), a.layer);
+      ai.imageView = resources_.attachmentView(tex(a.texture), a.layer);
       ai.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
       ai.loadOp =
           a.load == LoadOp::Clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
@@ -451,7 +305,7 @@ class VulkanDriver final : public Driver {
     } frameCleanup{this};
     fullBarrier(frameCmd_);
     check(vkEndCommandBuffer(frameCmd_), "vkEndCommandBuffer");
-    submitAndWait(frameCmd_);
+    resources_.submitAndWait(frameCmd_);
 
     timings_.clear();
     if (cpuTiming_) {
@@ -485,10 +339,9 @@ class VulkanDriver final : public Driver {
     // Layers are copied one after the other, each tightly packed.
     const std::size_t bytes =
         std::size_t{desc.width} * desc.height * desc.layers * bytesPerPixel(desc.format);
-    HostBuffer staging = createHostBuffer(bytes);
     std::vector<uint8_t> out(bytes);
-    try {
-      immediate([&](VkCommandBuffer cmd) {
+    resources_.withHostBuffer(bytes, [&](HostBuffer& staging) {
+      resources_.immediate([&](VkCommandBuffer cmd) {
         std::vector<VkImageMemoryBarrier> barriers;
         transition(barriers, t, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
         fullBarrier(cmd, barriers);
@@ -499,48 +352,28 @@ class VulkanDriver final : public Driver {
         hostReadBarrier(cmd);
       });
       std::memcpy(out.data(), staging.mapped, bytes);
-    } catch (...) {
-      destroyHostBuffer(staging);
-      throw;
-    }
-    destroyHostBuffer(staging);
+    });
     return out;
   }
 
   std::vector<uint8_t> readBuffer(DriverObject& object, const BufferDesc& desc) override {
     auto& r = static_cast<BufferRes&>(object);
     std::vector<uint8_t> out(desc.bytes);
-    HostBuffer staging = createHostBuffer(desc.bytes);
-    try {
-      immediate([&](VkCommandBuffer cmd) {
+    resources_.withHostBuffer(desc.bytes, [&](HostBuffer& staging) {
+      resources_.immediate([&](VkCommandBuffer cmd) {
         fullBarrier(cmd);
         VkBufferCopy region{0, 0, desc.bytes};
         vkCmdCopyBuffer(cmd, r.buffer, staging.buffer, 1, &region);
         hostReadBarrier(cmd);
       });
       std::memcpy(out.data(), staging.mapped, out.size());
-    } catch (...) {
-      destroyHostBuffer(staging);
-      throw;
-    }
-    destroyHostBuffer(staging);
+    });
     return out;
   }
 
  private:
-  void createCommandObjects(uint32_t queueFamily) {
-    VkCommandPoolCreateInfo cp{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-    cp.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-    cp.queueFamilyIndex = queueFamily;
-    check(vkCreateCommandPool(device_, &cp, nullptr, &cmdPool_), "vkCreateCommandPool");
-    VkCommandBufferAllocateInfo ca{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    ca.commandPool = cmdPool_;
-    ca.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    ca.commandBufferCount = 1;
-    check(vkAllocateCommandBuffers(device_, &ca, &frameCmd_), "vkAllocateCommandBuffers");
-    check(vkAllocateCommandBuffers(device_, &ca, &immCmd_), "vkAllocateCommandBuffers");
-    VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    check(vkCreateFence(device_, &fi, nullptr, &fence_), "vkCreateFence");
+  void createCommandObjects() {
+    frameCmd_ = resources_.allocateCommandBuffer();
 
     for (int linear = 0; linear < 2; ++linear) {
       VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
@@ -555,6 +388,7 @@ class VulkanDriver final : public Driver {
   }
 
   // The objects of the driver itself; resources came back through release().
+  // The command pool and fence go with resources_, after this.
   void cleanup() {
     if (device_ == VK_NULL_HANDLE) return;
     vkDeviceWaitIdle(device_);
@@ -567,197 +401,24 @@ class VulkanDriver final : public Driver {
       if (s != VK_NULL_HANDLE) vkDestroySampler(device_, s, nullptr);
       s = VK_NULL_HANDLE;
     }
-    if (fence_ != VK_NULL_HANDLE) vkDestroyFence(device_, fence_, nullptr);
-    if (cmdPool_ != VK_NULL_HANDLE) vkDestroyCommandPool(device_, cmdPool_, nullptr);
-    fence_ = VK_NULL_HANDLE;
-    cmdPool_ = VK_NULL_HANDLE;
-  }
-
-  void destroyObject(DriverObject& object) {
-    if (auto* b = dynamic_cast<BufferRes*>(&object)) destroyBufferRes(*b);
-    if (auto* t = dynamic_cast<TextureRes*>(&object)) destroyTextureRes(*t);
-    if (auto* p = dynamic_cast<PipelineRes*>(&object)) destroyPipelineRes(*p);
-  }
-  VkDeviceMemory allocate(const VkMemoryRequirements& req, bool host, const std::string& what) {
-    const VkMemoryPropertyFlags want =
-        host ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
-             : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
-    uint32_t type = UINT32_MAX;
-    for (uint32_t i = 0; i < memProps_.memoryTypeCount && type == UINT32_MAX; ++i) {
-      if ((req.memoryTypeBits & (1u << i)) != 0 &&
-          (memProps_.memoryTypes[i].propertyFlags & want) == want) {
-        type = i;
-      }
-    }
-    if (type == UINT32_MAX && !host) {  // no device-local type fits: take any
-      for (uint32_t i = 0; i < memProps_.memoryTypeCount && type == UINT32_MAX; ++i) {
-        if ((req.memoryTypeBits & (1u << i)) != 0) type = i;
-      }
-    }
-    if (type == UINT32_MAX) throw DeviceError("vulkan: no memory type for " + what);
-    VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    ai.allocationSize = req.size;
-    ai.memoryTypeIndex = type;
-    VkDeviceMemory mem = VK_NULL_HANDLE;
-    VkResult r = vkAllocateMemory(device_, &ai, nullptr, &mem);
-    if (r != VK_SUCCESS) {
-      throw DeviceError("vulkan: allocating " + std::to_string(req.size) + " bytes for " + what +
-                        " failed: " + resultName(r));
-    }
-    return mem;
-  }
-
-  HostBuffer createHostBuffer(VkDeviceSize bytes) {
-    HostBuffer h;
-    VkBufferCreateInfo ci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
-    ci.size = std::max<VkDeviceSize>(bytes, 4);
-    ci.usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
-    ci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-    check(vkCreateBuffer(device_, &ci, nullptr, &h.buffer), "vkCreateBuffer (staging)");
-    try {
-      VkMemoryRequirements req;
-      vkGetBufferMemoryRequirements(device_, h.buffer, &req);
-      h.memory = allocate(req, true, "staging buffer");
-      check(vkBindBufferMemory(device_, h.buffer, h.memory, 0), "vkBindBufferMemory (staging)");
-      check(vkMapMemory(device_, h.memory, 0, VK_WHOLE_SIZE, 0, &h.mapped), "vkMapMemory");
-    } catch (...) {
-      destroyHostBuffer(h);
-      throw;
-    }
-    return h;
-  }
-
-  void destroyHostBuffer(HostBuffer& h) {
-    if (h.buffer != VK_NULL_HANDLE) vkDestroyBuffer(device_, h.buffer, nullptr);
-    if (h.memory != VK_NULL_HANDLE) vkFreeMemory(device_, h.memory, nullptr);  // unmaps
-    h = HostBuffer{};
-  }
-
-  void destroyBufferRes(BufferRes& b) {
-    if (b.buffer != VK_NULL_HANDLE) vkDestroyBuffer(device_, b.buffer, nullptr);
-    if (b.memory != VK_NULL_HANDLE) vkFreeMemory(device_, b.memory, nullptr);
-    b.buffer = VK_NULL_HANDLE;
-    b.memory = VK_NULL_HANDLE;
-  }
-
-  void destroyTextureRes(TextureRes& t) {
-    for (VkImageView v : t.layerViews)
-      if (v != VK_NULL_HANDLE) vkDestroyImageView(device_, v, nullptr);
-    t.layerViews.clear();
-    if (t.arrayView != VK_NULL_HANDLE) vkDestroyImageView(device_, t.arrayView, nullptr);
-    t.arrayView = VK_NULL_HANDLE;
-    if (t.view != VK_NULL_HANDLE) vkDestroyImageView(device_, t.view, nullptr);
-    if (t.image != VK_NULL_HANDLE) vkDestroyImage(device_, t.image, nullptr);
-    if (t.memory != VK_NULL_HANDLE) vkFreeMemory(device_, t.memory, nullptr);
-    t.view = VK_NULL_HANDLE;
-    t.image = VK_NULL_HANDLE;
-    t.memory = VK_NULL_HANDLE;
-  }
-
-  void destroyPipelineRes(PipelineRes& p) {
-    if (p.pipeline != VK_NULL_HANDLE) vkDestroyPipeline(device_, p.pipeline, nullptr);
-    if (p.layout != VK_NULL_HANDLE) vkDestroyPipelineLayout(device_, p.layout, nullptr);
-    if (p.setLayout != VK_NULL_HANDLE) {
-      vkDestroyDescriptorSetLayout(device_, p.setLayout, nullptr);
-    }
-    p.pipeline = VK_NULL_HANDLE;
-    p.layout = VK_NULL_HANDLE;
-    p.setLayout = VK_NULL_HANDLE;
   }
 
   // Frees what a frame kept alive (staging, destroyed resources) and resets the
   // descriptor pools. Called once the frame's work is complete (or abandoned).
   void finishFrameResources() {
-    for (HostBuffer& h : frameStaging_) destroyHostBuffer(h);
+    for (HostBuffer& h : frameStaging_) resources_.destroyHostBuffer(h);
     frameStaging_.clear();
-    for (auto& object : dead_) destroyObject(*object);
+    for (auto& object : dead_) resources_.destroyObject(*object);
     dead_.clear();
     for (VkDescriptorPool p : descPools_) vkResetDescriptorPool(device_, p, 0);
     descPool_ = 0;
-  }
-  VkImageView makeView(const TextureRes& t, VkImageViewType type, uint32_t first, uint32_t count) {
-    VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-    vi.image = t.image;
-    vi.viewType = type;
-    vi.format = t.format;
-    vi.subresourceRange = {t.aspect, 0, 1, first, count};
-    VkImageView v = VK_NULL_HANDLE;
-    check(vkCreateImageView(device_, &vi, nullptr, &v), "vkCreateImageView");
-    return v;
-  }
-
-  // The view a pass renders into: the texture's own, or its layer's (made once).
-  VkImageView attachmentView(TextureRes& t, uint32_t layer) {
-    if (t.layerViews.empty()) return t.view;
-    VkImageView& v = t.layerViews[layer];
-    if (v == VK_NULL_HANDLE) v = makeView(t, VK_IMAGE_VIEW_TYPE_2D, layer, 1);
-    return v;
-  }
-
-  // ---- recording helpers ----
-  static void fullBarrier(VkCommandBuffer cmd,
-                          const std::vector<VkImageMemoryBarrier>& images = {}) {
-    VkMemoryBarrier mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-    mb.srcAccessMask = VK_ACCESS_MEMORY_WRITE_BIT;
-    mb.dstAccessMask = VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT;
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
-                         VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1, &mb, 0, nullptr,
-                         static_cast<uint32_t>(images.size()), images.data());
-  }
-
-  static void hostReadBarrier(VkCommandBuffer cmd) {
-    VkMemoryBarrier mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-    mb.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-    mb.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &mb,
-                         0, nullptr, 0, nullptr);
-  }
-
-  // Appends a layout transition (if needed) and updates the tracked layout.
-  static void transition(std::vector<VkImageMemoryBarrier>& out, TextureRes& t,
-                         VkImageLayout layout) {
-    if (t.layout == layout) return;
-    VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
-    b.srcAccessMask = VK_ACCESS_MEMORY_WRITE_BIT;
-    b.dstAccessMask = VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT;
-    b.oldLayout = t.layout;
-    b.newLayout = layout;
-    b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    b.image = t.image;
-    b.subresourceRange = {t.aspect, 0, 1, 0, VK_REMAINING_ARRAY_LAYERS};
-    out.push_back(b);
-    t.layout = layout;
-  }
-
-  template <class F>
-  void immediate(F&& record) {
-    check(vkResetCommandBuffer(immCmd_, 0), "vkResetCommandBuffer");
-    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    check(vkBeginCommandBuffer(immCmd_, &bi), "vkBeginCommandBuffer");
-    record(immCmd_);
-    check(vkEndCommandBuffer(immCmd_), "vkEndCommandBuffer");
-    submitAndWait(immCmd_);
-  }
-
-  void submitAndWait(VkCommandBuffer cmd) {
-    VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    si.commandBufferCount = 1;
-    si.pCommandBuffers = &cmd;
-    check(vkQueueSubmit(queue_, 1, &si, fence_), "vkQueueSubmit");
-    check(vkWaitForFences(device_, 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences");
-    check(vkResetFences(device_, 1, &fence_), "vkResetFences");
   }
 
   // CPU-timing mode: submit what is recorded so far, wait, and go on recording.
   void flushFrame() {
     check(vkEndCommandBuffer(frameCmd_), "vkEndCommandBuffer");
-    submitAndWait(frameCmd_);
-    check(vkResetCommandBuffer(frameCmd_, 0), "vkResetCommandBuffer");
-    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    check(vkBeginCommandBuffer(frameCmd_, &bi), "vkBeginCommandBuffer");
+    resources_.submitAndWait(frameCmd_);
+    resetAndBegin(frameCmd_);
   }
 
   void beginTiming(const std::string& name) {
@@ -863,20 +524,15 @@ class VulkanDriver final : public Driver {
 
   // ---- state ----
   std::unique_ptr<VulkanPlatform> platform_;
+  VulkanResources resources_;  // after platform_: destroyed before it
   // Copied from the platform, which outlives every use.
-  VkPhysicalDevice physical_ = VK_NULL_HANDLE;
   VkDevice device_ = VK_NULL_HANDLE;
-  VkQueue queue_ = VK_NULL_HANDLE;
   VkPhysicalDeviceLimits limits_{};
-  VkPhysicalDeviceMemoryProperties memProps_{};
   float timestampPeriod_ = 1.0f;
   uint32_t timestampBits_ = 0;
   bool cpuTiming_ = false;
 
-  VkCommandPool cmdPool_ = VK_NULL_HANDLE;
-  VkCommandBuffer frameCmd_ = VK_NULL_HANDLE;
-  VkCommandBuffer immCmd_ = VK_NULL_HANDLE;
-  VkFence fence_ = VK_NULL_HANDLE;
+  VkCommandBuffer frameCmd_ = VK_NULL_HANDLE;                 // from resources_' pool
   VkSampler samplers_[2] = {VK_NULL_HANDLE, VK_NULL_HANDLE};  // nearest, linear
 
   bool inFrame_ = false;
