@@ -35,24 +35,9 @@ void OpaqueShadow::addPass(FrameGraph& graph, Device& dev) {
              }});
 }
 
-void OpaqueShadow::addDefines(ShaderDefines& defs) const {
-  defs.defines.push_back({"SB_OPAQUE_SHADOW", active() ? "1" : "0"});
-}
-
-void OpaqueShadow::addReads(std::vector<std::string>& reads) const {
-  if (active()) reads.push_back("shadow.opaque");
-}
-
-void OpaqueShadow::addSlots(std::vector<BindingSlot>& slots) const {
-  if (active()) slots.push_back({kBinding, BindingKind::SampledTexture});
-}
-
-void OpaqueShadow::addBindings(std::vector<Binding>& bindings) const {
-  if (active()) bindings.push_back(Binding::tex(kBinding, depth_));
-}
-
-void OpaqueShadow::addTextures(std::vector<Texture>& textures) const {
-  if (active()) textures.push_back(depth_);
+void OpaqueShadow::addTo(ShadowLookup& lookup) const {
+  lookup.defines.defines.push_back({"SB_OPAQUE_SHADOW", active() ? "1" : "0"});
+  if (active()) lookup.read("shadow.opaque").sample(kBinding, depth_);
 }
 
 }  // namespace sb

@@ -18,11 +18,8 @@ class OpaqueShadow {
   void addPass(FrameGraph& graph, Device& dev);
   bool active() const { return bool(depth_); }
   // For the technique's lookup: the define, reads, slots, bindings and textures.
-  void addDefines(ShaderDefines& defs) const;
-  void addReads(std::vector<std::string>& reads) const;
-  void addSlots(std::vector<BindingSlot>& slots) const;
-  void addBindings(std::vector<Binding>& bindings) const;
-  void addTextures(std::vector<Texture>& textures) const;
+  // Adds the mesh's shadow (its define, and the map when there is a mesh) to a lookup.
+  void addTo(ShadowLookup& lookup) const;
 
  private:
   const GpuScene* scene_ = nullptr;

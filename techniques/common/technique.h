@@ -100,6 +100,47 @@ struct Geometry {
                                const RenderSettings& s, const std::string& name);
 };
 
+// What the shading passes need to call a shadow technique's lookup, declared
+// once: each input names its slot and its resource, from which the pipeline's
+// binding slots, the draw's bindings and the pass's sampled textures follow.
+struct ShadowLookup {
+  std::string shader;              // defines float shadowVisibility(vec3 worldPos)
+  ShaderDefines defines;           // e.g. SB_OPAQUE_SHADOW from OpaqueShadow
+  std::vector<std::string> reads;  // graph resources its passes write
+  std::vector<BindingSlot> slots;
+  std::vector<Binding> bindings;
+  std::vector<Texture> textures;  // sampled
+  ShadowLookup& read(const std::string& graphResource) {
+    reads.push_back(graphResource);
+    return *this;
+  }
+  ShadowLookup& uniform(uint32_t slot, Buffer b) {
+    return buffer(slot, b, BindingKind::UniformBuffer);
+  }
+  ShadowLookup& storage(uint32_t slot, Buffer b) {
+    return buffer(slot, b, BindingKind::StorageBuffer);
+  }
+  ShadowLookup& sample(uint32_t slot, Texture t) {
+    return texture(slot, t, BindingKind::SampledTexture);
+  }
+  ShadowLookup& sampleArray(uint32_t slot, Texture t) {
+    return texture(slot, t, BindingKind::SampledTextureArray);
+  }
+
+ private:
+  ShadowLookup& buffer(uint32_t slot, Buffer b, BindingKind kind) {
+    slots.push_back({slot, kind});
+    bindings.push_back(Binding::buf(slot, b));
+    return *this;
+  }
+  ShadowLookup& texture(uint32_t slot, Texture t, BindingKind kind) {
+    slots.push_back({slot, kind});
+    bindings.push_back(Binding::tex(slot, t));
+    textures.push_back(t);
+    return *this;
+  }
+};
+
 // A self-shadowing technique: its own passes (from the light) and a GLSL
 // lookup, `float shadowVisibility(vec3 worldPos)`, that shading passes include
 // as <shadow>. Resources it writes are named "shadow.*" in the frame graph.
@@ -115,13 +156,15 @@ class ShadowTechnique {
   virtual std::optional<DepthComplexity> depthComplexity() const { return std::nullopt; }
   // Problems found while rendering (e.g. a fragment-list overflow, a layer cap hit).
   virtual std::vector<std::string> warnings(Device& /*dev*/) { return {}; }
-  virtual std::string lookupShader() const = 0;
-  // Defines the lookup needs (e.g. SB_OPAQUE_SHADOW from OpaqueShadow).
-  virtual ShaderDefines lookupDefines() const { return {}; }
-  virtual std::vector<std::string> lookupReads() const = 0;
-  virtual std::vector<BindingSlot> lookupSlots() const = 0;
-  virtual std::vector<Binding> lookupBindings() const = 0;
-  virtual std::vector<Texture> lookupTextures() const = 0;
+  // The lookup, declared once: its shader, defines, graph reads and inputs.
+  virtual ShadowLookup lookup() const = 0;
+  // Its parts, as the shading passes use them.
+  std::string lookupShader() const { return lookup().shader; }
+  ShaderDefines lookupDefines() const { return lookup().defines; }
+  std::vector<std::string> lookupReads() const { return lookup().reads; }
+  std::vector<BindingSlot> lookupSlots() const { return lookup().slots; }
+  std::vector<Binding> lookupBindings() const { return lookup().bindings; }
+  std::vector<Texture> lookupTextures() const { return lookup().textures; }
 };
 
 // An order-independent transparency technique: composites the hair over the

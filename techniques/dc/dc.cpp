@@ -20,12 +20,19 @@ DensityClusteringShadow::Options DensityClusteringShadow::readOptions(const Opti
   return opts;
 }
 
-ShaderDefines DensityClusteringShadow::lookupDefines() const {
-  ShaderDefines d;
-  d.defines.push_back({"SB_DC_CLUSTERS", std::to_string(opts_.clusters)});
-  d.defines.push_back({"SB_DC_LAYERS", std::to_string(layers())});
-  opaque_.addDefines(d);
-  return d;
+ShadowLookup DensityClusteringShadow::lookup() const {
+  ShadowLookup l{"techniques/dc/lookup.glsl"};
+  l.defines.defines.push_back({"SB_DC_CLUSTERS", std::to_string(opts_.clusters)});
+  l.defines.defines.push_back({"SB_DC_LAYERS", std::to_string(layers())});
+  l.read("shadow.dc_range")
+      .read("shadow.dc_clusters")
+      .uniform(kParams, params_)
+      .sample(kRange, range_)
+      .sampleArray(kCounts, counts_)
+      .sampleArray(kSums, sums_)
+      .sampleArray(kSquares, squares_);
+  opaque_.addTo(l);
+  return l;
 }
 
 void DensityClusteringShadow::setup(Device& dev, const GpuScene& scene, const RenderSettings& s) {
@@ -141,36 +148,6 @@ void DensityClusteringShadow::addPasses(FrameGraph& graph, Device& dev) {
                  dev.endPass();
                }
              }});
-}
-
-std::vector<std::string> DensityClusteringShadow::lookupReads() const {
-  std::vector<std::string> r = {"shadow.dc_range", "shadow.dc_clusters"};
-  opaque_.addReads(r);
-  return r;
-}
-
-std::vector<BindingSlot> DensityClusteringShadow::lookupSlots() const {
-  std::vector<BindingSlot> s = {{kParams, BindingKind::UniformBuffer},
-                                {kRange, BindingKind::SampledTexture},
-                                {kCounts, BindingKind::SampledTextureArray},
-                                {kSums, BindingKind::SampledTextureArray},
-                                {kSquares, BindingKind::SampledTextureArray}};
-  opaque_.addSlots(s);
-  return s;
-}
-
-std::vector<Binding> DensityClusteringShadow::lookupBindings() const {
-  std::vector<Binding> b = {Binding::buf(kParams, params_), Binding::tex(kRange, range_),
-                            Binding::tex(kCounts, counts_), Binding::tex(kSums, sums_),
-                            Binding::tex(kSquares, squares_)};
-  opaque_.addBindings(b);
-  return b;
-}
-
-std::vector<Texture> DensityClusteringShadow::lookupTextures() const {
-  std::vector<Texture> t = {range_, counts_, sums_, squares_};
-  opaque_.addTextures(t);
-  return t;
 }
 
 }  // namespace sb

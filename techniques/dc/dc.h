@@ -33,12 +33,7 @@ class DensityClusteringShadow : public ShadowTechnique {
   std::string name() const override { return "dc"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s) override;
   void addPasses(FrameGraph& graph, Device& dev) override;
-  std::string lookupShader() const override { return "techniques/dc/lookup.glsl"; }
-  ShaderDefines lookupDefines() const override;
-  std::vector<std::string> lookupReads() const override;
-  std::vector<BindingSlot> lookupSlots() const override;
-  std::vector<Binding> lookupBindings() const override;
-  std::vector<Texture> lookupTextures() const override;
+  ShadowLookup lookup() const override;
 
   // The maps, for tests: range (RG32F), centres, counts, sums, square sums
   // (RGBA32F arrays of layers() layers).

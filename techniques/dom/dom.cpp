@@ -149,35 +149,11 @@ void DeepOpacityMaps::addPasses(FrameGraph& graph, Device& dev) {
              }});
 }
 
-ShaderDefines DeepOpacityMaps::lookupDefines() const {
-  ShaderDefines d;
-  opaque_.addDefines(d);
-  return d;
-}
-
-std::vector<std::string> DeepOpacityMaps::lookupReads() const {
-  std::vector<std::string> r = {"shadow.dom_opacity"};
-  opaque_.addReads(r);
-  return r;
-}
-
-std::vector<BindingSlot> DeepOpacityMaps::lookupSlots() const {
-  std::vector<BindingSlot> s = {{kParams, BindingKind::UniformBuffer},
-                                {kMaps, BindingKind::SampledTextureArray}};
-  opaque_.addSlots(s);
-  return s;
-}
-
-std::vector<Binding> DeepOpacityMaps::lookupBindings() const {
-  std::vector<Binding> b = {Binding::buf(kParams, params_), Binding::tex(kMaps, maps_)};
-  opaque_.addBindings(b);
-  return b;
-}
-
-std::vector<Texture> DeepOpacityMaps::lookupTextures() const {
-  std::vector<Texture> t = {maps_};
-  opaque_.addTextures(t);
-  return t;
+ShadowLookup DeepOpacityMaps::lookup() const {
+  ShadowLookup l{"techniques/dom/lookup.glsl"};
+  l.read("shadow.dom_opacity").uniform(kParams, params_).sampleArray(kMaps, maps_);
+  opaque_.addTo(l);
+  return l;
 }
 
 }  // namespace sb

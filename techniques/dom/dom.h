@@ -34,12 +34,7 @@ class DeepOpacityMaps : public ShadowTechnique {
   std::string name() const override { return "dom"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s) override;
   void addPasses(FrameGraph& graph, Device& dev) override;
-  std::string lookupShader() const override { return "techniques/dom/lookup.glsl"; }
-  ShaderDefines lookupDefines() const override;
-  std::vector<std::string> lookupReads() const override;
-  std::vector<BindingSlot> lookupSlots() const override;
-  std::vector<Binding> lookupBindings() const override;
-  std::vector<Texture> lookupTextures() const override;
+  ShadowLookup lookup() const override;
 
   const std::vector<float>& boundaries() const { return d_; }
   uint32_t targets() const { return (opt_.layers + 4) / 4; }  // layers of the array

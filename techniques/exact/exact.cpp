@@ -44,7 +44,7 @@ void ExactShadow::setup(Device& dev, const GpuScene& scene, const RenderSettings
   d.vertex = &vert;
   d.topology = Geometry::strandTopology(s);
   d.bindings = Geometry::slots();
-  for (const auto& slot : allSlots()) d.bindings.push_back(slot);
+  for (const auto& slot : lists().slots) d.bindings.push_back(slot);
   if (method_ == Method::ABuffer) {
     const ShaderCode frag = loadShader("techniques/exact/fill.frag");
     d.name = "exact.fill";
@@ -55,7 +55,7 @@ void ExactShadow::setup(Device& dev, const GpuScene& scene, const RenderSettings
     c.name = "exact.sort";
     c.technique = "exact";
     c.compute = &comp;
-    c.bindings = allSlots();
+    c.bindings = lists().slots;
     sort_ = dev.createPipeline(c);
   } else {
     for (int pass = 0; pass < 2; ++pass) {
@@ -90,18 +90,18 @@ void ExactShadow::prepare(Device& dev) {
   layers_ = std::min(complexity_.max, maxLayers_);
 }
 
-std::vector<BindingSlot> ExactShadow::allSlots() const {
-  return {{kParams, BindingKind::UniformBuffer},  {kCounts, BindingKind::StorageBuffer},
-          {kOffsets, BindingKind::StorageBuffer}, {kCursor, BindingKind::StorageBuffer},
-          {kNodes, BindingKind::StorageBuffer},   {kState, BindingKind::StorageBuffer},
-          {kStatus, BindingKind::StorageBuffer}};
-}
-
-std::vector<Binding> ExactShadow::allBindings() const {
-  return {Binding::buf(kParams, params_),   Binding::buf(kCounts, counts_),
-          Binding::buf(kOffsets, offsets_), Binding::buf(kCursor, cursor_),
-          Binding::buf(kNodes, nodes_),     Binding::buf(kState, state_),
-          Binding::buf(kStatus, status_)};
+// The fragment lists and their parameters: every pass of the technique and
+// the lookup bind them all.
+ShadowLookup ExactShadow::lists() const {
+  ShadowLookup l;
+  l.uniform(kParams, params_)
+      .storage(kCounts, counts_)
+      .storage(kOffsets, offsets_)
+      .storage(kCursor, cursor_)
+      .storage(kNodes, nodes_)
+      .storage(kState, state_)
+      .storage(kStatus, status_);
+  return l;
 }
 
 PassDesc ExactShadow::listPass(const std::string& name) const {
@@ -120,11 +120,11 @@ void ExactShadow::addPasses(FrameGraph& graph, Device& dev) {
                  dev.fillBuffer(status_, 0);
                  dev.beginPass(listPass("exact.fill"));
                  auto b = Geometry::bindings(*scene_, lightView_);
-                 for (const auto& x : allBindings()) b.push_back(x);
+                 for (const auto& x : lists().bindings) b.push_back(x);
                  dev.draw(fill_, b, vertices);
                  dev.endPass();
                  const glm::uvec2 g = dispatchGroups(size_ * size_);
-                 dev.dispatch("exact.sort", sort_, allBindings(), g.x, g.y);
+                 dev.dispatch("exact.sort", sort_, lists().bindings, g.x, g.y);
                }});
     return;
   }
@@ -132,7 +132,7 @@ void ExactShadow::addPasses(FrameGraph& graph, Device& dev) {
                dev.fillBuffer(cursor_, 0);
                dev.fillBuffer(state_, 0xFFFFFFFFu);
                auto b = Geometry::bindings(*scene_, lightView_);
-               for (const auto& x : allBindings()) b.push_back(x);
+               for (const auto& x : lists().bindings) b.push_back(x);
                const std::vector<Binding> advance = {
                    Binding::buf(0, sizeUbo_), Binding::buf(kState, state_),
                    Binding::buf(kCursor, cursor_), Binding::buf(kOffsets, offsets_),
@@ -150,34 +150,12 @@ void ExactShadow::addPasses(FrameGraph& graph, Device& dev) {
              }});
 }
 
-std::vector<std::string> ExactShadow::lookupReads() const {
-  std::vector<std::string> r = {"shadow.lists"};
-  opaque_.addReads(r);
-  return r;
-}
-
-std::vector<Texture> ExactShadow::lookupTextures() const {
-  std::vector<Texture> t;
-  opaque_.addTextures(t);
-  return t;
-}
-
-ShaderDefines ExactShadow::lookupDefines() const {
-  ShaderDefines d;
-  opaque_.addDefines(d);
-  return d;
-}
-
-std::vector<BindingSlot> ExactShadow::lookupSlots() const {
-  auto s = allSlots();
-  opaque_.addSlots(s);
-  return s;
-}
-
-std::vector<Binding> ExactShadow::lookupBindings() const {
-  auto b = allBindings();
-  opaque_.addBindings(b);
-  return b;
+ShadowLookup ExactShadow::lookup() const {
+  ShadowLookup l = lists();
+  l.shader = "techniques/exact/lookup.glsl";
+  l.read("shadow.lists");
+  opaque_.addTo(l);
+  return l;
 }
 
 ExactShadow::Lists ExactShadow::readLists(Device& dev) {

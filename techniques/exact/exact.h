@@ -20,13 +20,8 @@ class ExactShadow : public ShadowTechnique {
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s) override;
   void prepare(Device& dev) override;
   void addPasses(FrameGraph& graph, Device& dev) override;
+  ShadowLookup lookup() const override;
   std::optional<DepthComplexity> depthComplexity() const override { return complexity_; }
-  std::string lookupShader() const override { return "techniques/exact/lookup.glsl"; }
-  std::vector<std::string> lookupReads() const override;
-  std::vector<BindingSlot> lookupSlots() const override;
-  std::vector<Binding> lookupBindings() const override;
-  std::vector<Texture> lookupTextures() const override;
-  ShaderDefines lookupDefines() const override;
 
   // After a frame: per texel, the number of fragments stored and their keys
   // (for checking the two methods against each other), and problems seen.
@@ -38,8 +33,7 @@ class ExactShadow : public ShadowTechnique {
   std::vector<std::string> warnings(Device& dev) override;
 
  private:
-  std::vector<Binding> allBindings() const;
-  std::vector<BindingSlot> allSlots() const;
+  ShadowLookup lists() const;
   PassDesc listPass(const std::string& name) const;
 
   Method method_;

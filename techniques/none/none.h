@@ -9,11 +9,7 @@ class NoShadow : public ShadowTechnique {
   std::string name() const override { return "none"; }
   void setup(Device&, const GpuScene&, const RenderSettings&) override {}
   void addPasses(FrameGraph&, Device&) override {}
-  std::string lookupShader() const override;
-  std::vector<std::string> lookupReads() const override { return {}; }
-  std::vector<BindingSlot> lookupSlots() const override { return {}; }
-  std::vector<Binding> lookupBindings() const override { return {}; }
-  std::vector<Texture> lookupTextures() const override { return {}; }
+  ShadowLookup lookup() const override { return {"techniques/none/lookup.glsl"}; }
 };
 
 }  // namespace sb

@@ -28,11 +28,14 @@ OccupancyShadow::Options OccupancyShadow::readOptions(const OptionReader& o) {
   return opts;
 }
 
-ShaderDefines OccupancyShadow::lookupDefines() const {
-  ShaderDefines d = maps_.defines();
-  d.defines.push_back({"SB_OCC_JITTER", opts_.jitter ? "1" : "0"});
-  opaque_.addDefines(d);
-  return d;
+ShadowLookup OccupancyShadow::lookup() const {
+  ShadowLookup l{"techniques/occupancy/lookup.glsl", maps_.defines()};
+  l.defines.defines.push_back({"SB_OCC_JITTER", opts_.jitter ? "1" : "0"});
+  l.reads = maps_.reads();
+  l.uniform(kParams, params_).sample(kRange, maps_.range()).sampleArray(kBits, maps_.bits());
+  if (maps_.slabs()) l.sampleArray(kSlabs, maps_.slabs());
+  opaque_.addTo(l);
+  return l;
 }
 
 void OccupancyShadow::setup(Device& dev, const GpuScene& scene, const RenderSettings& s) {
@@ -55,35 +58,6 @@ void OccupancyShadow::setup(Device& dev, const GpuScene& scene, const RenderSett
 void OccupancyShadow::addPasses(FrameGraph& graph, Device& dev) {
   opaque_.addPass(graph, dev);
   maps_.addPasses(graph, dev);
-}
-
-std::vector<std::string> OccupancyShadow::lookupReads() const {
-  std::vector<std::string> r = maps_.reads();
-  opaque_.addReads(r);
-  return r;
-}
-
-std::vector<BindingSlot> OccupancyShadow::lookupSlots() const {
-  std::vector<BindingSlot> s = {{kParams, BindingKind::UniformBuffer},
-                                {kRange, BindingKind::SampledTexture},
-                                {kBits, BindingKind::SampledTextureArray}};
-  if (maps_.slabs()) s.push_back({kSlabs, BindingKind::SampledTextureArray});
-  opaque_.addSlots(s);
-  return s;
-}
-
-std::vector<Binding> OccupancyShadow::lookupBindings() const {
-  std::vector<Binding> b = {Binding::buf(kParams, params_), Binding::tex(kRange, maps_.range()),
-                            Binding::tex(kBits, maps_.bits())};
-  if (maps_.slabs()) b.push_back(Binding::tex(kSlabs, maps_.slabs()));
-  opaque_.addBindings(b);
-  return b;
-}
-
-std::vector<Texture> OccupancyShadow::lookupTextures() const {
-  std::vector<Texture> t = maps_.maps();
-  opaque_.addTextures(t);
-  return t;
 }
 
 }  // namespace sb

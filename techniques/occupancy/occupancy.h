@@ -31,12 +31,7 @@ class OccupancyShadow : public ShadowTechnique {
   std::string name() const override { return "occupancy"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s) override;
   void addPasses(FrameGraph& graph, Device& dev) override;
-  std::string lookupShader() const override { return "techniques/occupancy/lookup.glsl"; }
-  ShaderDefines lookupDefines() const override;
-  std::vector<std::string> lookupReads() const override;
-  std::vector<BindingSlot> lookupSlots() const override;
-  std::vector<Binding> lookupBindings() const override;
-  std::vector<Texture> lookupTextures() const override;
+  ShadowLookup lookup() const override;
 
   // The maps, for tests: depth range (RG32F), occupancy bits (an RGBA32UI
   // array), slab counts (an RGBA32F array; none with slab_map=off).

@@ -209,35 +209,11 @@ void OpacityShadowMaps::addPasses(FrameGraph& graph, Device& dev) {
              }});
 }
 
-ShaderDefines OpacityShadowMaps::lookupDefines() const {
-  ShaderDefines d;
-  opaque_.addDefines(d);
-  return d;
-}
-
-std::vector<std::string> OpacityShadowMaps::lookupReads() const {
-  std::vector<std::string> r = {"shadow.opacity_maps"};
-  opaque_.addReads(r);
-  return r;
-}
-
-std::vector<BindingSlot> OpacityShadowMaps::lookupSlots() const {
-  std::vector<BindingSlot> s = {{kParams, BindingKind::UniformBuffer},
-                                {kAtlases, BindingKind::SampledTextureArray}};
-  opaque_.addSlots(s);
-  return s;
-}
-
-std::vector<Binding> OpacityShadowMaps::lookupBindings() const {
-  std::vector<Binding> b = {Binding::buf(kParams, params_), Binding::tex(kAtlases, atlases_)};
-  opaque_.addBindings(b);
-  return b;
-}
-
-std::vector<Texture> OpacityShadowMaps::lookupTextures() const {
-  std::vector<Texture> t = {atlases_};
-  opaque_.addTextures(t);
-  return t;
+ShadowLookup OpacityShadowMaps::lookup() const {
+  ShadowLookup l{"techniques/osm/lookup.glsl"};
+  l.read("shadow.opacity_maps").uniform(kParams, params_).sampleArray(kAtlases, atlases_);
+  opaque_.addTo(l);
+  return l;
 }
 
 }  // namespace sb

@@ -47,12 +47,7 @@ class OpacityShadowMaps : public ShadowTechnique {
   std::string name() const override { return "osm"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s) override;
   void addPasses(FrameGraph& graph, Device& dev) override;
-  std::string lookupShader() const override { return "techniques/osm/lookup.glsl"; }
-  ShaderDefines lookupDefines() const override;
-  std::vector<std::string> lookupReads() const override;
-  std::vector<BindingSlot> lookupSlots() const override;
-  std::vector<Binding> lookupBindings() const override;
-  std::vector<Texture> lookupTextures() const override;
+  ShadowLookup lookup() const override;
 
   const std::vector<float>& slices() const { return slices_; }
   float weight() const { return weight_; }

@@ -47,14 +47,12 @@ void ShadowMap::addPasses(FrameGraph& graph, Device& dev) {
              }});
 }
 
-std::vector<BindingSlot> ShadowMap::lookupSlots() const {
-  return {{bind::kShadowFirst, BindingKind::SampledTexture},
-          {bind::kShadowFirst + 1, BindingKind::UniformBuffer}};
-}
-
-std::vector<Binding> ShadowMap::lookupBindings() const {
-  return {Binding::tex(bind::kShadowFirst, depth_),
-          Binding::buf(bind::kShadowFirst + 1, paramsUbo_)};
+ShadowLookup ShadowMap::lookup() const {
+  ShadowLookup l{"techniques/shadowmap/lookup.glsl"};
+  l.read("shadow.depth")
+      .sample(bind::kShadowFirst, depth_)
+      .uniform(bind::kShadowFirst + 1, paramsUbo_);
+  return l;
 }
 
 }  // namespace sb

@@ -12,11 +12,7 @@ class ShadowMap : public ShadowTechnique {
   std::string name() const override { return "shadowmap"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s) override;
   void addPasses(FrameGraph& graph, Device& dev) override;
-  std::string lookupShader() const override { return "techniques/shadowmap/lookup.glsl"; }
-  std::vector<std::string> lookupReads() const override { return {"shadow.depth"}; }
-  std::vector<BindingSlot> lookupSlots() const override;
-  std::vector<Binding> lookupBindings() const override;
-  std::vector<Texture> lookupTextures() const override { return {depth_}; }
+  ShadowLookup lookup() const override;
 
  private:
   uint32_t size_;
