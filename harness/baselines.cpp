@@ -22,6 +22,7 @@
 
 #include "harness/commands.h"
 #include "harness/json_keys.h"
+#include "harness/settings.h"
 #include "reports/json_file.h"
 #include "scenes/scene.h"
 
@@ -37,9 +38,24 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // ------------------------------------------------------------------ manifest
 
 const std::vector<std::string> kTopKeys = {"comment", "format", "tolerances", "defaults", "cases"};
-const std::vector<std::string> kCaseKeys = {"comment",  "name",     "scene",     "shadow",
-                                            "oit",      "size",     "primitive", "ribbon_width",
-                                            "backends", "tolerance"};
+// Format 1 (still read): these settings only, "size" a "WxH" string.
+const std::vector<std::string> kFormat1Settings = {"scene",     "shadow",       "oit",     "size",
+                                                   "primitive", "ribbon_width", "backends"};
+// Format 2: every setting of the table (harness/settings.h) and "backends".
+constexpr int kFormat = 2;
+
+// The keys of a case in a manifest of `format`.
+std::vector<std::string> caseKeys(int format) {
+  std::vector<std::string> keys = {"comment", "name"};
+  if (format == 1) {
+    keys.insert(keys.end(), kFormat1Settings.begin(), kFormat1Settings.end());
+  } else {
+    for (const std::string& k : settingKeys()) keys.push_back(k);
+    keys.push_back("backends");
+  }
+  keys.push_back("tolerance");
+  return keys;
+}
 const std::vector<std::string> kToleranceKeys = {"comment", "max_abs", "max_failing_fraction",
                                                  "failing_threshold", "min_psnr"};
 
@@ -60,11 +76,19 @@ struct PartialTolerance {
 };
 
 struct PartialCase {
-  std::optional<std::string> name, scene, shadow, oit, primitive;
-  std::optional<std::pair<std::uint32_t, std::uint32_t>> size;
-  std::optional<float> ribbonWidth;
+  std::optional<std::string> name;
+  RenderRequest request = manifestBase();
+  bool hasScene = false, hasSize = false;
   std::optional<std::vector<std::string>> backends;
   PartialTolerance tolerance;
+
+  // A check renders one frame with no warm-up unless a case says otherwise.
+  static RenderRequest manifestBase() {
+    RenderRequest r;
+    r.repeat = 1;
+    r.warmup = 0;
+    return r;
+  }
 };
 
 class ManifestReader {
@@ -76,9 +100,12 @@ class ManifestReader {
     if (!root.is_object()) fail("", "the manifest must be a JSON object");
     checkKeys(root, kTopKeys, "");
     if (root.contains("comment")) text(root, "comment", "");
-    if (!root.contains("format")) fail("", "missing \"format\": 1");
-    if (!root["format"].is_number_integer() || root["format"].get<long long>() != 1)
-      fail("", "\"format\" must be 1 (the only version this strandbench reads)");
+    if (!root.contains("format")) fail("", "missing \"format\": " + std::to_string(kFormat));
+    if (!root["format"].is_number_integer() || root["format"].get<long long>() < 1 ||
+        root["format"].get<long long>() > kFormat)
+      fail("", "\"format\" must be 1 or 2 (the versions this strandbench reads), got " +
+                   root["format"].dump());
+    format_ = root["format"].get<int>();
 
     if (root.contains("tolerances")) {
       const json& t = root["tolerances"];
@@ -186,7 +213,13 @@ class ManifestReader {
   }
 
   void apply(const json& obj, const std::string& where, PartialCase& p) const {
-    checkKeys(obj, kCaseKeys, where);
+    const std::vector<std::string> keys = caseKeys(format_);
+    if (format_ == 1 && obj.is_object())
+      for (const auto& [key, value] : obj.items())
+        if (std::find(keys.begin(), keys.end(), key) == keys.end() && findSetting(key))
+          fail(where, "key '" + key + "' needs \"format\": 2 (format 1 cases take only " +
+                          joined(kFormat1Settings) + ")");
+    checkKeys(obj, keys, where);
     if (obj.contains("comment")) text(obj, "comment", where);
     if (obj.contains("name")) {
       p.name = text(obj, "name", where);
@@ -195,43 +228,33 @@ class ManifestReader {
         fail(where, "name '" + *p.name +
                         "' must be letters, digits, '_' and '-' only (it names image files)");
     }
-    if (obj.contains("scene")) {
-      p.scene = text(obj, "scene", where);
+    if (obj.contains("backend") && obj.contains("backends"))
+      fail(where, "give \"backend\" or \"backends\", not both");
+    if (format_ == 1 && obj.contains("size") && !obj["size"].is_string())
+      fail(where, "\"size\" " + obj["size"].dump() +
+                      ": format 1 takes a \"WxH\" string (format 2 also a number N for NxN)");
+    for (const Setting& setting : settingsTable()) {
+      if (!obj.contains(setting.key)) continue;
       try {
-        Spec::parse(*p.scene);
+        if (setting.key == "backend") {
+          RenderRequest scratch;
+          setFromJson(scratch, setting, obj[setting.key]);
+          p.backends = std::vector<std::string>{scratch.backend};
+        } else {
+          setFromJson(p.request, setting, obj[setting.key]);
+        }
       } catch (const InputError& e) {
-        fail(where, std::string("scene: ") + e.what());
+        fail(where, e.what());
       }
     }
-    if (obj.contains("shadow")) p.shadow = text(obj, "shadow", where);
-    if (obj.contains("oit")) p.oit = text(obj, "oit", where);
-    if (obj.contains("primitive")) {
-      p.primitive = text(obj, "primitive", where);
-      if (*p.primitive != "lines" && *p.primitive != "ribbons")
-        fail(where, "\"primitive\" must be \"lines\" or \"ribbons\", got '" + *p.primitive + "'");
-    }
-    if (obj.contains("size")) {
-      const std::string s = text(obj, "size", where);
-      try {
-        p.size = parseSize(s);
-      } catch (const InputError&) {
-        fail(where, "\"size\" '" + s + "': expected WIDTHxHEIGHT, e.g. \"96x96\"");
-      }
-    }
-    if (obj.contains("ribbon_width"))
-      p.ribbonWidth = static_cast<float>(number(obj, "ribbon_width", where, 1e-3, 64.0, {}));
+    p.hasScene = p.hasScene || obj.contains("scene");
+    p.hasSize = p.hasSize || obj.contains("size");
     if (obj.contains("backends")) {
-      const json& b = obj["backends"];
-      if (!b.is_array() || b.empty()) fail(where, "\"backends\" must be a non-empty array");
-      std::vector<std::string> v;
-      for (const json& x : b) {
-        if (!x.is_string() || (x != "gl" && x != "vulkan"))
-          fail(where, "\"backends\" entries must be \"gl\" or \"vulkan\", got " + x.dump());
-        if (std::find(v.begin(), v.end(), x.get<std::string>()) != v.end())
-          fail(where, "\"backends\" lists " + x.dump() + " twice");
-        v.push_back(x.get<std::string>());
+      try {
+        p.backends = parseBackendList(obj["backends"]);
+      } catch (const InputError& e) {
+        fail(where, e.what());
       }
-      p.backends = v;
     }
     if (obj.contains("tolerance")) {
       const json& t = obj["tolerance"];
@@ -255,24 +278,28 @@ class ManifestReader {
   BaselineCase finish(const PartialCase& p, const std::string& where) const {
     BaselineCase c;
     if (!p.name) fail(where, "missing \"name\"");
-    if (!p.scene) fail(where, "missing \"scene\"");
-    if (!p.size) fail(where, "missing \"size\" (in the case or in \"defaults\")");
+    if (!p.hasScene) fail(where, "missing \"scene\"");
+    if (!p.hasSize) fail(where, "missing \"size\" (in the case or in \"defaults\")");
     complete(p.tolerance, where);
+    if (!p.request.image) fail(where, "\"image\": false: a baseline case compares its image");
     c.name = *p.name;
-    c.scene = *p.scene;
-    if (p.shadow) c.shadow = *p.shadow;
-    if (p.oit) c.oit = *p.oit;
-    if (p.primitive) c.primitive = *p.primitive;
-    c.width = p.size->first;
-    c.height = p.size->second;
-    if (p.ribbonWidth) c.ribbonWidth = *p.ribbonWidth;
+    c.request = p.request;
     if (p.backends) c.backends = *p.backends;
+    // The rules between settings (a platform of each backend, a reference for invariants).
+    for (const std::string& backend : c.backends) {
+      try {
+        checkRequest(caseRequest(c, backend), Spelling::Json);
+      } catch (const InputError& e) {
+        fail(where, e.what());
+      }
+    }
     c.tolerance = {*p.tolerance.maxAbs, *p.tolerance.maxFailingFraction,
                    *p.tolerance.failingThreshold, *p.tolerance.minPsnr};
     return c;
   }
 
   fs::path file_;
+  int format_ = kFormat;
   std::map<std::string, PartialTolerance> presets_;
 };
 
@@ -310,8 +337,8 @@ auto forCase(const Manifest& m, const BaselineCase& c, const std::string& backen
 }
 
 // Renders a case (its scene from the cache that checkCases filled).
-RenderOutcome renderCase(const Manifest& m, const BaselineCase& c, const std::string& backend,
-                         RenderCache& cache) {
+RenderResult renderCase(const Manifest& m, const BaselineCase& c, const std::string& backend,
+                        RenderCache& cache) {
   return forCase(m, c, backend, [&] { return runRender(caseRequest(c, backend), &cache); });
 }
 
@@ -323,7 +350,8 @@ void checkCases(const Manifest& m, const std::vector<BaselineCase>& cases, Rende
   for (const BaselineCase& c : cases)
     for (const std::string& backend : c.backends) {
       const bool device = devices.insert(backend).second;
-      forCase(m, c, backend, [&] { checkRenderRequest(caseRequest(c, backend), device, &cache); });
+      forCase(m, c, backend,
+              [&] { checkRenderRequest(caseRequest(c, backend), device, &cache, Spelling::Json); });
     }
 }
 
@@ -403,8 +431,9 @@ class Checker {
     writeFailure(c, backend, actual, nullptr, v, file.string(), "rendered on " + backend);
   }
 
-  void unreadable(const BaselineCase& c, const std::string& backend, const Image& actual,
-                  const std::string& message) {
+  // A failure that is not a comparison: an unreadable baseline, a broken invariant.
+  void failed(const BaselineCase& c, const std::string& backend, const Image& actual,
+              const std::string& message) {
     clearStale(c.name, backend);
     ++counts.failed;
     const std::string stem = (outDir_ / (c.name + "." + backend)).string();
@@ -430,13 +459,14 @@ class Checker {
     fs::create_directories(outDir_);
     const std::string stem = (outDir_ / (c.name + "." + label)).string();
     writeImage(actual, stem + ".actual.png", ImageBitDepth::U16);
+    const RenderRequest& r = c.request;
     json j{{"case", c.name},
            {"label", label},
-           {"scene", c.scene},
-           {"shadow", c.shadow},
-           {"oit", c.oit},
-           {"size", std::to_string(c.width) + "x" + std::to_string(c.height)},
-           {"primitive", c.primitive},
+           {"scene", r.scene},
+           {"shadow", r.shadow},
+           {"oit", r.oit},
+           {"size", std::to_string(r.width) + "x" + std::to_string(r.height)},
+           {"primitive", r.primitive},
            {"expected", expectedName},
            {"actual", actualName},
            {"tolerance", toleranceJson(c.tolerance)},
@@ -513,17 +543,8 @@ std::string baselineFileName(const std::string& caseName, const std::string& bac
 }
 
 RenderRequest caseRequest(const BaselineCase& c, const std::string& backend) {
-  RenderRequest r;
-  r.scene = c.scene;
-  r.shadow = c.shadow;
-  r.oit = c.oit;
+  RenderRequest r = c.request;
   r.backend = backend;
-  r.width = c.width;
-  r.height = c.height;
-  r.primitive = c.primitive;
-  r.ribbonWidth = c.ribbonWidth;
-  r.repeat = 1;
-  r.warmup = 0;
   return r;
 }
 
@@ -569,8 +590,17 @@ int runCheck(const fs::path& baselines, const fs::path& outDir, const std::strin
     for (const BaselineCase& c : cases) {
       std::vector<Image> images;
       for (const std::string& backend : c.backends) {
-        const Image actual = quantize16(renderCase(m, c, backend, cache).image);
+        const RenderResult result = renderCase(m, c, backend, cache);
+        const Image actual = quantize16(result.image);
         ++renders;
+        if (result.invariants && !result.invariants->empty()) {
+          std::string what;
+          for (const auto& f : *result.invariants)
+            what += (what.empty() ? "" : "; ") + f.pass + ": " + f.what;
+          checker.failed(c, backend, actual, "invariant failed: " + what);
+          images.push_back(actual);
+          continue;
+        }
         const fs::path file = dir / baselineFileName(c.name, backend);
         if (!fs::exists(file)) {
           checker.missing(c, backend, actual, file);
@@ -579,7 +609,7 @@ int runCheck(const fs::path& baselines, const fs::path& outDir, const std::strin
           try {
             expected = readImage(file.string());
           } catch (const InputError& e) {
-            checker.unreadable(c, backend, actual, std::string("unreadable baseline: ") + e.what());
+            checker.failed(c, backend, actual, std::string("unreadable baseline: ") + e.what());
           }
           if (expected)
             checker.compare(c, backend, actual, *expected, file.string(), "rendered on " + backend);
@@ -667,7 +697,7 @@ int runBless(const fs::path& baselines, const std::string& filter, std::ostream&
     for (const BaselineCase& c : cases) {
       std::vector<Image> images;
       for (const std::string& backend : c.backends) {
-        const RenderOutcome r = renderCase(m, c, backend, cache);
+        const RenderResult r = renderCase(m, c, backend, cache);
         const std::string name = baselineFileName(c.name, backend);
         writeImage(r.image, (staging.path / name).string(), ImageBitDepth::U16);
         ++written;

@@ -3,22 +3,24 @@
 //
 // Manifest (JSON, one object; every object may carry a "comment" string):
 //   {
-//     "format": 1,
+//     "format": 2,
 //     "tolerances": { "<preset>": {"max_abs": .., "max_failing_fraction": ..,
 //                                   "failing_threshold": .., "min_psnr": ..}, ... },
 //     "defaults": { <any case key except name and scene> },
 //     "cases": [ { "name": "straight-lines",          // [A-Za-z0-9_-]+, unique
 //                  "scene": "straight:strands=300",   // --scene spec
-//                  "shadow": "none", "oit": "none",   // technique specs
-//                  "size": "96x96", "primitive": "lines", "ribbon_width": 1.0,
-//                  "backends": ["gl", "vulkan"],
+//                  <any setting of harness/settings.h by its key: "shadow", "size",
+//                   "camera_eye", "light_color", ...>,
+//                  "backends": ["gl", "vulkan"],      // or "backend": "gl"
 //                  "tolerance": "<preset>" or {fields overriding the default's} }, ... ]
 //   }
-// A case key that is absent comes from "defaults", then from the built-in
-// defaults (shadow none, oit none, primitive lines, ribbon_width 1, backends gl
-// and vulkan); name, scene, size and a complete tolerance must be known.
-// Unknown keys are errors. Images are "<case>.<backend>.png", 16-bit PNG, beside
-// the manifest.
+// A case key that is absent comes from "defaults", then from the settings' own
+// defaults, except repeat 1 and warmup 0 (one frame); name, scene, size and a
+// complete tolerance must be known. Unknown keys are errors.
+// Format 1 (the committed manifest's) is still read: its cases take only scene,
+// shadow, oit, size (a "WxH" string), primitive, ribbon_width and backends; a
+// further setting is refused with a message asking for "format": 2.
+// Images are "<case>.<backend>.png", 16-bit PNG, beside the manifest.
 //
 // Tolerance (all comparisons are on RGB as a 16-bit PNG stores it, i.e. values
 // clamped to [0, 1] and rounded to 1/65535): a comparison passes when
@@ -50,13 +52,8 @@ struct Tolerance {
 
 struct BaselineCase {
   std::string name;
-  std::string scene;
-  std::string shadow = "none";
-  std::string oit = "none";
-  std::uint32_t width = 0, height = 0;
-  std::string primitive = "lines";
-  float ribbonWidth = 1.0f;
-  std::vector<std::string> backends{"gl", "vulkan"};
+  RenderRequest request;  // every setting but the backend
+  std::vector<std::string> backends = backendNames();
   Tolerance tolerance;
 };
 
@@ -77,7 +74,7 @@ std::vector<BaselineCase> selectCases(const Manifest& m, const std::string& rege
 // "<case>.<backend>.png"
 std::string baselineFileName(const std::string& caseName, const std::string& backend);
 
-// The render request of one case on one backend (repeat 1, warmup 0).
+// The render request of one case on one backend.
 RenderRequest caseRequest(const BaselineCase& c, const std::string& backend);
 
 // What a 16-bit PNG stores: round(clamp(v, 0, 1) * 65535) / 65535 per sample;

@@ -13,6 +13,7 @@
 #include "harness/image.h"
 #include "harness/metrics.h"
 #include "harness/render.h"
+#include "harness/settings.h"
 #include "scenes/options.h"
 #include "scenes/scene.h"
 #include "techniques/common/technique.h"
@@ -32,9 +33,16 @@ void printOptions(const std::vector<OptionInfo>& options) {
 void registerList(CLI::App& app) {
   auto* cmd = app.add_subcommand("list", "list scenes, techniques, their options and defaults");
   auto json = std::make_shared<bool>(false);
+  auto markdown = std::make_shared<bool>(false);
   cmd->add_flag("--json", *json, "print as JSON");
-  cmd->callback([json] {
+  cmd->add_flag("--settings-markdown", *markdown,
+                "print only the render settings as the Markdown table of the docs");
+  cmd->callback([json, markdown] {
     runGuarded("list", [&] {
+      if (*markdown) {
+        std::cout << settingsMarkdown();
+        return 0;
+      }
       if (*json) {
         nlohmann::json j;
         auto opts = [](const std::vector<OptionInfo>& v) {
@@ -49,9 +57,10 @@ void registerList(CLI::App& app) {
           j["shadow"].push_back({{"name", t.name}, {"help", t.help}, {"options", opts(t.options)}});
         for (const auto& t : oitCatalog())
           j["oit"].push_back({{"name", t.name}, {"help", t.help}, {"options", opts(t.options)}});
-        j["backends"] = {{{"name", "gl"}, {"platforms", {"egl", "osmesa"}}},
-                         {{"name", "vulkan"}, {"platforms", {"headless"}}}};
-        j["primitives"] = {"lines", "ribbons"};
+        for (const auto& b : backendCatalog())
+          j["backends"].push_back({{"name", b.name}, {"platforms", b.platforms}});
+        j["primitives"] = findSetting("primitive")->choices;
+        j["settings"] = settingsJson();
         std::cout << j.dump(2) << "\n";
         return 0;
       }
@@ -70,26 +79,19 @@ void registerList(CLI::App& app) {
         std::cout << "  " << t.name << "  " << t.help << "\n";
         printOptions(t.options);
       }
-      std::cout << "backends (--backend): gl (--platform egl|osmesa), vulkan (headless)\n"
-                << "primitives (--primitive): lines, ribbons (--ribbon-width PIXELS)\n";
+      std::cout << "backends (--backend):";
+      for (const auto& b : backendCatalog()) {
+        std::cout << (&b == &backendCatalog().front() ? " " : ", ") << b.name << " (--platform";
+        for (const auto& p : b.platforms)
+          std::cout << (&p == &b.platforms.front() ? " " : "|") << p;
+        std::cout << ")";
+      }
+      std::cout << "\nprimitives (--primitive): lines, ribbons (--ribbon-width PIXELS)\n"
+                << "render settings (CLI flag / suite and manifest key, type, range, default):\n"
+                << settingsText();
       return 0;
     });
   });
-}
-
-// "gl" or "vulkan", and a platform of that backend; the closest valid name otherwise.
-void checkBackendNames(const RenderRequest& req) {
-  const std::vector<std::string> backends = {"gl", "vulkan"};
-  if (std::find(backends.begin(), backends.end(), req.backend) == backends.end())
-    throw InputError("--backend " + req.backend + ": " +
-                     unknownNameMessage("backend", req.backend, backends));
-  if (req.platform.empty()) return;
-  const std::vector<std::string> platforms = req.backend == "gl"
-                                                 ? std::vector<std::string>{"egl", "osmesa"}
-                                                 : std::vector<std::string>{"headless"};
-  if (std::find(platforms.begin(), platforms.end(), req.platform) == platforms.end())
-    throw InputError("--platform " + req.platform + ": " +
-                     unknownNameMessage(req.backend + " platform", req.platform, platforms));
 }
 
 // Creates and removes a file in `dir`: unlike permission bits, this also holds
@@ -127,48 +129,19 @@ void rejectUnknownArguments(const CLI::App& cmd) {
 void registerRender(CLI::App& app) {
   auto* cmd = app.add_subcommand("render", "render one scene with one technique on one backend");
   auto req = std::make_shared<RenderRequest>();
-  auto size = std::make_shared<std::string>("512x512");
+  auto settings = std::make_shared<CliSettings>(*cmd, std::vector<std::string>{}, *req);
   auto out = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
   auto referenceOut = std::make_shared<std::string>();
   auto heatmap = std::make_shared<std::string>();
-  auto view = std::make_shared<std::map<std::string, std::string>>();
-  cmd->add_option("--scene", req->scene, "scene spec, e.g. curly:strands=20000,points=32,seed=7")
-      ->capture_default_str();
-  cmd->add_option("--shadow", req->shadow, "shadow technique spec, e.g. shadowmap:size=1024")
-      ->capture_default_str();
-  cmd->add_option("--oit", req->oit, "transparency technique spec, e.g. peel, abuffer")
-      ->capture_default_str();
-  cmd->add_flag("--reference", req->reference,
-                "also render the reference (exact shadows + depth peeling) and report the error");
-  cmd->add_flag(
-      "--no-image", [req](std::int64_t) { req->image = false; },
-      "with --reference: measure only the visibility error (no final shading pass)");
   cmd->add_option("--reference-out", *referenceOut, "with --reference: write the reference image");
   cmd->add_option("--heatmap", *heatmap,
                   "with --reference: write a heatmap of |image - reference| (full scale 0.25)");
-  cmd->add_option("--backend", req->backend, "gl | vulkan")->capture_default_str();
-  cmd->add_option("--platform", req->platform, "gl: egl (default) | osmesa; vulkan: headless");
-  cmd->add_option("--size", *size, "image size WIDTHxHEIGHT")->capture_default_str();
-  cmd->add_option("--primitive", req->primitive, "lines | ribbons")->capture_default_str();
-  cmd->add_option("--ribbon-width", req->ribbonWidth, "ribbon width in pixels")
-      ->capture_default_str();
-  cmd->add_option("--repeat", req->repeat, "timed frames")->capture_default_str();
-  cmd->add_option("--warmup", req->warmup, "untimed frames first")->capture_default_str();
   cmd->add_option("--out", *out, "image file (.png 8-bit, .exr float)");
   cmd->add_flag("--json", *json, "print the report as one JSON object on stdout");
-  cmd->add_flag("--validation", req->validation, "Vulkan validation layers on (counts messages)");
-  for (const char* name :
-       {"camera-eye", "camera-target", "camera-up", "fov", "near", "far", "light", "light-position",
-        "light-direction", "light-color", "light-intensity"})
-    cmd->add_option(std::string("--") + name, (*view)[name],
-                    "override (x,y,z for vectors; light: directional|point)");
   cmd->callback([=] {
     runGuarded("render", [&] {
-      auto [w, h] = parseSize(*size);
-      req->width = w;
-      req->height = h;
-      checkBackendNames(*req);
+      settings->apply(*req);
       if (!out->empty()) checkOutputPath("--out", *out, {".png", ".exr"});
       if (!req->image && (!out->empty() || !referenceOut->empty() || !heatmap->empty()))
         throw InputError("--no-image writes no images: drop --out, --reference-out and --heatmap");
@@ -178,66 +151,36 @@ void registerRender(CLI::App& app) {
         if (!req->reference) throw InputError("--reference-out and --heatmap need --reference");
         checkOutputPath(option, *extra, {".png", ".exr"});
       }
-      auto get = [&](const char* k) -> const std::string& { return (*view)[k]; };
-      ViewOverrides& v = req->view;
-      auto num = [&](const char* k) -> std::optional<float> {
-        if (get(k).empty()) return std::nullopt;
-        try {
-          std::size_t used = 0;
-          const float x = std::stof(get(k), &used);
-          if (used == get(k).size() && std::isfinite(x)) return x;
-        } catch (const std::exception&) {
-        }
-        throw InputError(std::string("--") + k + " " + get(k) + ": not a finite number");
-      };
-      auto vec = [&](const char* k) -> std::optional<glm::vec3> {
-        if (get(k).empty()) return std::nullopt;
-        return parseVec3(get(k), std::string("--") + k);
-      };
-      v.cameraEye = vec("camera-eye");
-      v.cameraTarget = vec("camera-target");
-      v.cameraUp = vec("camera-up");
-      v.fov = num("fov");
-      v.nearPlane = num("near");
-      v.farPlane = num("far");
-      if (!get("light").empty()) v.lightType = get("light");
-      v.lightPosition = vec("light-position");
-      v.lightDirection = vec("light-direction");
-      v.lightColor = vec("light-color");
-      v.lightIntensity = num("light-intensity");
-      const RenderOutcome result = runRender(*req);
+      RenderCache cache;  // the scene, built once by the check
+      checkRenderRequest(*req, false, &cache);
+      const RenderResult result = runRender(*req, &cache);
       if (!out->empty()) writeImage(result.image, *out);
-      if (!referenceOut->empty()) writeImage(result.reference, *referenceOut);
+      if (!referenceOut->empty()) writeImage(result.referenceImage, *referenceOut);
       if (!heatmap->empty())
-        writeImage(diffHeatmap(result.image, result.reference, 0.25), *heatmap);
-      nlohmann::json report = result.report;
+        writeImage(diffHeatmap(result.image, result.referenceImage, 0.25), *heatmap);
+      nlohmann::json report = renderJson(result);
       if (!out->empty()) report["image"] = *out;
       if (*json) {
         std::cout << report.dump(2) << "\n";
-      } else {
-        std::cout << req->scene << " | shadow " << req->shadow << " | oit " << req->oit << " | "
-                  << report["backend"].get<std::string>() << "/"
-                  << report["platform"].get<std::string>() << " ("
-                  << report["device"].get<std::string>() << ") | "
-                  << report["scene"]["segments"].get<std::size_t>() << " segments | "
-                  << req->primitive << " | " << *size << "\n";
-        for (const auto& p : report["passes"])
-          std::cout << "  " << p["name"].get<std::string>() << ": median "
-                    << p["ms"]["median"].get<double>() << " ms (min "
-                    << p["ms"]["min"].get<double>() << ", max " << p["ms"]["max"].get<double>()
-                    << ", " << req->repeat << " runs)\n";
-        std::cout << "  frame: median " << report["frame_ms"]["median"].get<double>() << " ms\n";
-        if (report.contains("error"))
-          std::cout << "  error against " << report["reference"]["shadow"].get<std::string>()
-                    << " + " << report["reference"]["oit"].get<std::string>() << ": image "
-                    << report["error"]["image"].dump() << ", visibility "
-                    << report["error"]["visibility"].dump() << "\n";
-        if (report.contains("depth_complexity"))
-          std::cout << "  depth complexity: " << report["depth_complexity"].dump() << "\n";
-        for (const auto& warning : report["warnings"])
-          std::cout << "  warning: " << warning.get<std::string>() << "\n";
-        if (!out->empty()) std::cout << "  wrote " << *out << "\n";
+        return 0;
       }
+      std::cout << req->scene << " | shadow " << req->shadow << " | oit " << req->oit << " | "
+                << result.device.backend << "/" << result.device.platform << " ("
+                << result.device.device << ") | " << result.scene.segments << " segments | "
+                << req->primitive << " | " << req->width << "x" << req->height << "\n";
+      for (const auto& p : report["passes"])
+        std::cout << "  " << p["name"].get<std::string>() << ": median "
+                  << p["ms"]["median"].get<double>() << " ms (min " << p["ms"]["min"].get<double>()
+                  << ", max " << p["ms"]["max"].get<double>() << ", " << req->repeat << " runs)\n";
+      std::cout << "  frame: median " << report["frame_ms"]["median"].get<double>() << " ms\n";
+      if (report.contains("error"))
+        std::cout << "  error against " << result.reference->first << " + "
+                  << result.reference->second << ": image " << report["error"]["image"].dump()
+                  << ", visibility " << report["error"]["visibility"].dump() << "\n";
+      if (report.contains("depth_complexity"))
+        std::cout << "  depth complexity: " << report["depth_complexity"].dump() << "\n";
+      for (const auto& warning : result.warnings) std::cout << "  warning: " << warning << "\n";
+      if (!out->empty()) std::cout << "  wrote " << *out << "\n";
       return 0;
     });
   });
@@ -331,18 +274,26 @@ void checkOutputFolder(const std::string& option, const std::string& path) {
     throw InputError(what + "folder " + existing.string() + " is not writable");
 }
 
-void checkRenderRequest(const RenderRequest& req, bool device, RenderCache* cache) {
-  if (req.repeat < 1) throw InputError("--repeat must be at least 1");
-  if (req.warmup < 0) throw InputError("--warmup must be at least 0");
-  checkBackendNames(req);
+void checkRenderRequest(const RenderRequest& req, bool device, RenderCache* cache,
+                        Spelling spelling) {
+  checkRequest(req, spelling);
+  // Names and options of the specs, each message led by the setting it is in.
+  auto named = [&](const char* key, const std::string& value, const auto& check) {
+    try {
+      check();
+    } catch (const InputError& e) {
+      throw InputError(settingMessage(*findSetting(key), spelling, value, e.what()));
+    }
+  };
   std::shared_ptr<const Scene> scene;
   if (cache && cache->scenes.count(req.scene)) scene = cache->scenes.at(req.scene);
   if (!scene) {
-    scene = std::make_shared<const Scene>(makeScene(Spec::parse(req.scene)));
+    named("scene", req.scene,
+          [&] { scene = std::make_shared<const Scene>(makeScene(Spec::parse(req.scene))); });
     if (cache) cache->scenes[req.scene] = scene;
   }
-  makeShadowTechnique(Spec::parse(req.shadow));
-  makeOitTechnique(Spec::parse(req.oit));
+  named("shadow", req.shadow, [&] { makeShadowTechnique(Spec::parse(req.shadow)); });
+  named("oit", req.oit, [&] { makeOitTechnique(Spec::parse(req.oit)); });
   makeRenderSettings(req, *scene);
   if (device) makeRequestDevice(req);
 }

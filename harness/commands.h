@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "harness/settings.h"
+
 namespace sb {
-struct RenderRequest;
-struct RenderCache;
 
 void registerCommands(CLI::App& app);
 // `check` and `bless` (harness/check_command.cpp).
@@ -38,8 +38,10 @@ void checkOutputPath(const std::string& option, const std::string& path,
 // An output folder made when first needed: the folder, or its nearest existing
 // parent, is a writable folder (nothing is created).
 void checkOutputFolder(const std::string& option, const std::string& path);
-// Everything a render request names, without rendering: counts, backend and
-// platform names, scene (built, and kept in `cache` when given), techniques,
-// primitive and view; with `device`, the backend's device is created once.
-void checkRenderRequest(const RenderRequest& req, bool device, RenderCache* cache = nullptr);
+// Everything a render request names, without rendering: every setting's range
+// (checkRequest), the scene (built, and kept in `cache` when given), the
+// techniques and the view; with `device`, the backend's device is created once.
+// Messages name the setting as `spelling` spells it ("--shadow x: ...").
+void checkRenderRequest(const RenderRequest& req, bool device, RenderCache* cache = nullptr,
+                        Spelling spelling = Spelling::Cli);
 }  // namespace sb

@@ -81,17 +81,27 @@ void registerProbeCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "probe", "exact visibility along one light ray and each technique's reconstruction (CSV)");
   auto p = std::make_shared<ProbeRequest>();
-  cmd->add_option("--scene", p->render.scene, "scene spec")->capture_default_str();
+  // The settings of the scene and the view (the ray is the light's), from the table.
+  auto settings = std::make_shared<CliSettings>(
+      *cmd,
+      std::vector<std::string>{"scene", "backend", "platform", "size", "primitive", "ribbon_width",
+                               "validation", "camera_eye", "camera_target", "camera_up", "fov",
+                               "near", "far", "light", "light_position", "light_direction",
+                               "light_color", "light_intensity"},
+      p->render);
   cmd->add_option("--shadow", p->shadows, "shadow technique spec (repeatable)")
       ->capture_default_str();
   cmd->add_option("--texel", p->texel, "light texel X,Y")->capture_default_str();
   cmd->add_option("--map-size", p->mapSize, "light map size the texel refers to")
       ->capture_default_str();
   cmd->add_option("--samples", p->samples, "points along the ray")->capture_default_str();
-  cmd->add_option("--backend", p->render.backend, "gl | vulkan")->capture_default_str();
-  cmd->add_option("--primitive", p->render.primitive, "lines | ribbons")->capture_default_str();
   cmd->add_option("--out", p->out, "CSV file")->required();
-  cmd->callback([p] { runGuarded("probe", [&] { return runProbe(*p); }); });
+  cmd->callback([p, settings] {
+    runGuarded("probe", [&] {
+      settings->apply(p->render);
+      return runProbe(*p);
+    });
+  });
 }
 
 }  // namespace sb

@@ -11,45 +11,18 @@
 #include "backends/device.h"
 #include "harness/invariants.h"
 #include "harness/metrics.h"
+#include "harness/settings.h"
 #include "reports/stats.h"
 #include "techniques/common/renderer.h"
 
 namespace sb {
 
-std::pair<uint32_t, uint32_t> parseSize(const std::string& text) {
-  unsigned long w = 0, h = 0;
-  char x = 0;
-  std::istringstream in(text);
-  if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || !in.eof() ||
-      text.find('-') != std::string::npos)
-    throw InputError("--size " + text + ": expected WIDTHxHEIGHT, e.g. 512x512");
-  if (w < 1 || h < 1 || w > 16384 || h > 16384)
-    throw InputError("--size " + text + ": width and height must be in 1..16384");
-  return {static_cast<uint32_t>(w), static_cast<uint32_t>(h)};
-}
-
-glm::vec3 parseVec3(const std::string& text, const std::string& option) {
-  glm::vec3 v;
-  char c1 = 0, c2 = 0;
-  std::istringstream in(text);
-  if (!(in >> v.x >> c1 >> v.y >> c2 >> v.z) || c1 != ',' || c2 != ',' || !in.eof() ||
-      !std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
-    throw InputError(option + " " + text + ": expected three finite numbers x,y,z");
-  return v;
-}
-
 RenderSettings makeRenderSettings(const RenderRequest& req, const Scene& scene) {
+  checkRequest(req, Spelling::Cli);  // every value in its range: the checks below are the fit's
   RenderSettings s;
   s.width = req.width;
   s.height = req.height;
-  if (req.primitive == "lines")
-    s.primitive = Primitive::Lines;
-  else if (req.primitive == "ribbons")
-    s.primitive = Primitive::Ribbons;
-  else
-    throw InputError("--primitive " + req.primitive + ": expected lines or ribbons");
-  if (!(req.ribbonWidth > 0.0f && req.ribbonWidth <= 64.0f))
-    throw InputError("--ribbon-width must be in (0, 64] pixels");
+  s.primitive = req.primitive == "ribbons" ? Primitive::Ribbons : Primitive::Lines;
   s.ribbonWidth = req.ribbonWidth;
 
   const Bounds b = scene.bounds();
@@ -62,23 +35,16 @@ RenderSettings makeRenderSettings(const RenderRequest& req, const Scene& scene) 
   if (o.fov) s.camera.fovYDegrees = *o.fov;
   if (o.nearPlane) s.camera.nearPlane = *o.nearPlane;
   if (o.farPlane) s.camera.farPlane = *o.farPlane;
-  if (!(s.camera.fovYDegrees > 0 && s.camera.fovYDegrees < 180))
-    throw InputError("--fov must be in (0, 180) degrees");
-  if (!(s.camera.nearPlane > 0 && s.camera.farPlane > s.camera.nearPlane))
-    throw InputError("camera planes need 0 < near < far");
+  // A plane given beside a fitted one can still cross it.
+  if (!(s.camera.farPlane > s.camera.nearPlane))
+    throw InputError("camera planes need near < far (near " + std::to_string(s.camera.nearPlane) +
+                     ", far " + std::to_string(s.camera.farPlane) + ")");
   if (glm::length(s.camera.target - s.camera.eye) <= 0)
     throw InputError("camera eye and target coincide");
 
-  LightType type = LightType::Directional;
-  if (o.lightType) {
-    if (*o.lightType == "point")
-      type = LightType::Point;
-    else if (*o.lightType != "directional")
-      throw InputError("--light " + *o.lightType + ": expected directional or point");
-  }
+  const LightType type = o.lightType == "point" ? LightType::Point : LightType::Directional;
   s.light = fitLight(b, type);
   if (o.lightDirection) {
-    if (glm::length(*o.lightDirection) <= 0) throw InputError("--light-direction must be non-zero");
     s.light.direction = glm::normalize(*o.lightDirection);
     if (type == LightType::Directional)
       s.light.position = b.center() - s.light.direction * (2.0f * b.radius() + 1e-6f);
@@ -100,14 +66,24 @@ nlohmann::json boundsJson(const Bounds& b) {
   return {{"min", {b.min.x, b.min.y, b.min.z}}, {"max", {b.max.x, b.max.y, b.max.z}}};
 }
 
-nlohmann::json visibilityError(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
+VisibilityError visibilityError(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
   auto floats = [](const std::vector<uint8_t>& bytes) {
     std::vector<float> v(bytes.size() / sizeof(float));
     std::memcpy(v.data(), bytes.data(), v.size() * sizeof(float));
     return v;
   };
-  const VisibilityError e = compareVisibility(floats(a), floats(b));
-  return {{"rmse", e.rmse}, {"max", e.max}, {"pixels", e.pixels}};
+  return compareVisibility(floats(a), floats(b));
+}
+
+// `error` of the report: {image (with an image), visibility}.
+nlohmann::json errorJson(const RenderResult& r) {
+  nlohmann::json error;
+  if (r.imageError) error["image"] = toJson(*r.imageError);
+  if (r.visibilityError) {
+    const VisibilityError& e = *r.visibilityError;
+    error["visibility"] = {{"rmse", e.rmse}, {"max", e.max}, {"pixels", e.pixels}};
+  }
+  return error;
 }
 
 nlohmann::json complexityJson(const std::optional<DepthComplexity>& c) {
@@ -140,14 +116,16 @@ Spec referenceShadowSpec(const Spec& shadow) {
 }  // namespace
 
 std::unique_ptr<Device> makeRequestDevice(const RenderRequest& req) {
+  // checkRequest names a bad backend or platform as the front end spells it;
+  // these are for requests built in code.
+  const std::vector<std::string> platforms = platformNames(req.backend);
+  if (platforms.empty()) throw InputError("unknown backend '" + req.backend + "'");
   DeviceOptions dopts;
   dopts.backend = req.backend;
-  dopts.platform =
-      req.platform.empty() ? (req.backend == "vulkan" ? "headless" : "egl") : req.platform;
+  dopts.platform = req.platform.empty() ? platforms.front() : req.platform;
   dopts.validation = req.validation;
-  if (req.backend == "vulkan" && dopts.platform != "headless")
-    throw InputError("--platform " + dopts.platform +
-                     " is not a Vulkan platform (valid: headless)");
+  if (std::find(platforms.begin(), platforms.end(), dopts.platform) == platforms.end())
+    throw InputError("--platform " + dopts.platform + " is not a " + req.backend + " platform");
   return createDevice(dopts);
 }
 
@@ -166,14 +144,6 @@ std::vector<glm::vec3> probeRay(const Light& light, const ProbeSpec& probe,
 }
 
 namespace {
-
-void checkProbe(const ProbeSpec& p) {
-  if (p.samples < 2 || p.samples > 1000000) throw InputError("probe samples must be in 2..1000000");
-  if (p.mapSize < 1 || p.texel.x >= p.mapSize || p.texel.y >= p.mapSize)
-    throw InputError("probe texel " + std::to_string(p.texel.x) + "," + std::to_string(p.texel.y) +
-                     " is outside the " + std::to_string(p.mapSize) + "x" +
-                     std::to_string(p.mapSize) + " map");
-}
 
 std::shared_ptr<const Scene> sceneFor(const std::string& spec, RenderCache* cache) {
   if (cache) {
@@ -232,16 +202,47 @@ nlohmann::json statsJson(const std::vector<double>& samples) {
           {"mean", s.mean},     {"stddev", s.stddev}, {"samples", samples}};
 }
 
+// The invariants of a finished run (harness/invariants.h), the reported errors included.
+std::vector<InvariantFailure> checkInvariants(const RenderRequest& req, const RenderResult& out,
+                                              const RenderSettings& settings, Renderer& renderer,
+                                              Device& dev, const std::vector<float>& exactProbe) {
+  std::vector<InvariantFailure> failures;
+  if (req.image) {
+    const std::string last = out.graph.empty() ? "" : out.graph.back();
+    checkColor(out.image, KajiyaKayShading::maxRadiance(settings), last, failures);
+  }
+  if (req.reference) {
+    checkVisibility(out.visibility, "visibility", failures);
+    const nlohmann::json errors = errorJson(out);  // named: items() of a temporary dangles
+    for (const auto& [kind, e] : errors.items())
+      for (const auto& [metric, v] : e.items())
+        // PSNR is infinite (null) exactly when the images are identical.
+        if ((v.is_null() && !(metric == "psnr" && e.value("identical", false))) ||
+            (v.is_number_float() && !std::isfinite(v.get<double>())))
+          failures.push_back({"reference", "error " + kind + "." + metric + " is not a number"});
+  }
+  if (req.probe) {
+    checkRay(out.probe->visibility, "probe (" + Spec::parse(req.shadow).name + ")", failures);
+    checkRay(exactProbe, "probe (reference)", failures);
+  }
+  for (Texture t : renderer.shadow().lookupTextures()) {
+    const TextureDesc d = dev.describe(t);
+    checkMap(dev.readTexture(t), d.format, "map " + d.name, failures);
+  }
+  return failures;
+}
+
 }  // namespace
 
-RenderOutcome runRender(const RenderRequest& req, RenderCache* cache) {
-  if (req.repeat < 1) throw InputError("--repeat must be at least 1");
-  if (req.warmup < 0) throw InputError("--warmup must be at least 0");
-  if (!req.image && !req.reference)
-    throw InputError("--no-image measures the visibility error only: it needs --reference");
-  if (req.probe) checkProbe(*req.probe);
-  if (req.invariants && !req.reference)
-    throw InputError("invariants are checked against the reference: they need reference");
+std::size_t RenderResult::bytesOwnedBy(const std::string& owner) const {
+  std::size_t bytes = 0;
+  for (const auto& r : resources)
+    if (r.owner == owner) bytes += r.bytes;
+  return bytes;
+}
+
+RenderResult runRender(const RenderRequest& req, RenderCache* cache) {
+  checkRequest(req, Spelling::Cli);
   const std::shared_ptr<const Scene> scenePtr = sceneFor(req.scene, cache);
   const Scene& scene = *scenePtr;
   const Spec shadowSpec = Spec::parse(req.shadow);
@@ -263,79 +264,52 @@ RenderOutcome runRender(const RenderRequest& req, RenderCache* cache) {
   if (req.probe) outputs.insert("probe");
   Renderer renderer(*dev, scene, settings, std::move(shadow), std::move(oit), outputs);
   for (int i = 0; i < req.warmup; ++i) renderer.renderFrame(timed);
-  std::vector<std::string> order;
-  std::map<std::string, std::vector<double>> times;
-  std::map<std::string, int> executions;
-  std::vector<double> totals;
+
+  RenderResult out;
   for (int i = 0; i < req.repeat; ++i) {
     double total = 0;
     for (const auto& t : renderer.renderFrame(timed)) {
-      if (!times.count(t.name)) order.push_back(t.name);
-      times[t.name].push_back(t.ms);
-      executions[t.name] = t.executions;
+      auto pass = std::find_if(out.passes.begin(), out.passes.end(),
+                               [&](const PassTimes& p) { return p.name == t.name; });
+      if (pass == out.passes.end()) pass = out.passes.insert(out.passes.end(), {t.name, 0, {}});
+      pass->ms.push_back(t.ms);
+      pass->executions = t.executions;
       total += t.ms;
     }
-    totals.push_back(total);
+    out.frameMs.push_back(total);
   }
 
-  RenderOutcome out;
   if (req.image) out.image = colorImage(renderer, settings);
   // Memory of this run's techniques only (before any reference is built).
-  auto allocations = dev->allocations();
-  std::vector<std::string> warnings = scene.warnings;  // the input's, then the techniques'
-  for (const auto& w : renderer.warnings()) warnings.push_back(w);
-
-  const DeviceInfo info = dev->info();
-  nlohmann::json& j = out.report;
-  j["backend"] = info.backend;
-  j["platform"] = info.platform;
-  j["device"] = info.device;
-  j["driver"] = info.driver;
-  j["timing"] = info.timing;
-  j["lines"] = info.lines;
-  j["scene"] = {{"spec", req.scene},
-                {"strands", scene.strands.strandCount()},
-                {"points", scene.strands.points.size()},
-                {"segments", scene.strands.segmentCount()},
-                {"mesh_triangles", scene.mesh.triangleCount()},
-                {"bounds", boundsJson(scene.bounds())}};
-  j["shadow"] = shadowSpec.str();
-  j["oit"] = oitSpec.str();
-  j["primitive"] = req.primitive;
-  j["size"] = {settings.width, settings.height};
-  j["repeat"] = req.repeat;
-  j["warmup"] = req.warmup;
-  j["graph"] = renderer.graphPasses(timed);
-  j["passes"] = nlohmann::json::array();
-  for (const auto& name : order)
-    j["passes"].push_back(
-        {{"name", name}, {"executions", executions[name]}, {"ms", statsJson(times[name])}});
-  j["frame_ms"] = statsJson(totals);
-
-  std::map<std::string, std::size_t> byOwner;
-  std::size_t total = 0;
-  nlohmann::json resources = nlohmann::json::array();
-  std::sort(allocations.begin(), allocations.end(),
+  out.resources = dev->allocations();
+  std::sort(out.resources.begin(), out.resources.end(),
             [](const ResourceBytes& a, const ResourceBytes& b) { return a.name < b.name; });
-  for (const auto& r : allocations) {
-    resources.push_back({{"name", r.name}, {"owner", r.owner}, {"bytes", r.bytes}});
-    byOwner[r.owner] += r.bytes;
-    total += r.bytes;
-  }
-  j["memory"] = {{"shadow_bytes", byOwner["shadow"]},
-                 {"oit_bytes", byOwner["oit"]},
-                 {"scene_bytes", byOwner["scene"]},
-                 {"frame_bytes", byOwner["frame"]},
-                 {"total_bytes", total},
-                 {"resources", resources}};
+  out.warnings = scene.warnings;  // the input's, then the techniques'
+  for (const auto& w : renderer.warnings()) out.warnings.push_back(w);
 
-  std::optional<DepthComplexity> eye = renderer.oit().depthComplexity();
-  std::optional<DepthComplexity> light = renderer.shadow().depthComplexity();
+  out.device = dev->info();
+  out.scene = {req.scene,
+               scene.strands.strandCount(),
+               scene.strands.points.size(),
+               scene.strands.segmentCount(),
+               scene.mesh.triangleCount(),
+               scene.bounds()};
+  out.shadow = shadowSpec.str();
+  out.oit = oitSpec.str();
+  out.primitive = req.primitive;
+  out.width = settings.width;
+  out.height = settings.height;
+  out.repeat = req.repeat;
+  out.warmup = req.warmup;
+  out.graph = renderer.graphPasses(timed);
+
+  out.eyeComplexity = renderer.oit().depthComplexity();
+  out.lightComplexity = renderer.shadow().depthComplexity();
   std::set<std::string> measured;
   if (req.reference && req.image) measured.insert("visibility");  // else the timed frames made it
   if (req.probe) measured.insert("probe");
   if (!measured.empty()) {
-    j["measurement_graph"] = renderer.graphPasses(measured);
+    out.measurementGraph = renderer.graphPasses(measured);
     renderer.renderFrame(measured);
   }
   if (req.reference || req.probe) {
@@ -354,62 +328,88 @@ RenderOutcome runRender(const RenderRequest& req, RenderCache* cache) {
         ref = &fresh;
       }
     }
-    for (const auto& w : ref->warnings) warnings.push_back(w);
-    if (!eye) eye = ref->eye;
-    if (!light) light = ref->light;
-    j["reference"] = {{"shadow", refShadow.str()}, {"oit", kReferenceOit}};
+    for (const auto& w : ref->warnings) out.warnings.push_back(w);
+    if (!out.eyeComplexity) out.eyeComplexity = ref->eye;
+    if (!out.lightComplexity) out.lightComplexity = ref->light;
+    out.reference = {refShadow.str(), kReferenceOit};
     if (req.reference) {
-      nlohmann::json error;
       if (req.image) {
-        out.reference = ref->image;
-        error["image"] = toJson(compareImages(out.image, out.reference));
+        out.referenceImage = ref->image;
+        out.imageError = compareImages(out.image, out.referenceImage);
       }
       out.visibility = renderer.readVisibility();
-      error["visibility"] = visibilityError(out.visibility, ref->visibility);
-      j["error"] = error;
+      out.visibilityError = visibilityError(out.visibility, ref->visibility);
     }
-    if (req.probe) {
-      out.probe = renderer.readProbe();
-      j["probe"] = {{"texel", {req.probe->texel.x, req.probe->texel.y}},
-                    {"map_size", req.probe->mapSize},
-                    {"light_depth", probeDepths},
-                    {"exact", ref->probe},
-                    {"visibility", out.probe}};
-    }
-    if (req.invariants) {
-      std::vector<InvariantFailure> failures;
-      if (req.image) {
-        const std::string last = j["graph"].empty() ? "" : j["graph"].back().get<std::string>();
-        checkColor(out.image, KajiyaKayShading::maxRadiance(settings), last, failures);
-      }
-      if (req.reference) {
-        checkVisibility(out.visibility, "visibility", failures);
-        for (const auto& [kind, e] : j["error"].items())
-          for (const auto& [metric, v] : e.items())
-            // PSNR is infinite (null) exactly when the images are identical.
-            if ((v.is_null() && !(metric == "psnr" && e.value("identical", false))) ||
-                (v.is_number_float() && !std::isfinite(v.get<double>())))
-              failures.push_back(
-                  {"reference", "error " + kind + "." + metric + " is not a number"});
-      }
-      if (req.probe) {
-        checkRay(out.probe, "probe (" + shadowSpec.name + ")", failures);
-        checkRay(ref->probe, "probe (reference)", failures);
-      }
-      for (Texture t : renderer.shadow().lookupTextures()) {
-        const TextureDesc d = dev->describe(t);
-        checkMap(dev->readTexture(t), d.format, "map " + d.name, failures);
-      }
-      nlohmann::json list = nlohmann::json::array();
-      for (const auto& f : failures) list.push_back({{"pass", f.pass}, {"what", f.what}});
-      j["invariants"] = {{"failures", list}};
-    }
+    if (req.probe)
+      out.probe = ProbeResult{req.probe->texel, req.probe->mapSize, probeDepths, ref->probe,
+                              renderer.readProbe()};
+    if (req.invariants)
+      out.invariants = checkInvariants(req, out, settings, renderer, *dev, ref->probe);
   }
-  if (eye || light)
-    j["depth_complexity"] = {{"eye", complexityJson(eye)}, {"light", complexityJson(light)}};
-  j["warnings"] = warnings;
-  if (req.validation) j["validation_messages"] = validationMessageCount();
+  if (req.validation) out.validationMessages = validationMessageCount();
   return out;
+}
+
+nlohmann::json renderJson(const RenderResult& r) {
+  nlohmann::json j;
+  j["backend"] = r.device.backend;
+  j["platform"] = r.device.platform;
+  j["device"] = r.device.device;
+  j["driver"] = r.device.driver;
+  j["timing"] = r.device.timing;
+  j["lines"] = r.device.lines;
+  j["scene"] = {{"spec", r.scene.spec},
+                {"strands", r.scene.strands},
+                {"points", r.scene.points},
+                {"segments", r.scene.segments},
+                {"mesh_triangles", r.scene.meshTriangles},
+                {"bounds", boundsJson(r.scene.bounds)}};
+  j["shadow"] = r.shadow;
+  j["oit"] = r.oit;
+  j["primitive"] = r.primitive;
+  j["size"] = {r.width, r.height};
+  j["repeat"] = r.repeat;
+  j["warmup"] = r.warmup;
+  j["graph"] = r.graph;
+  j["passes"] = nlohmann::json::array();
+  for (const PassTimes& p : r.passes)
+    j["passes"].push_back(
+        {{"name", p.name}, {"executions", p.executions}, {"ms", statsJson(p.ms)}});
+  j["frame_ms"] = statsJson(r.frameMs);
+
+  nlohmann::json resources = nlohmann::json::array();
+  std::size_t total = 0;
+  for (const auto& res : r.resources) {
+    resources.push_back({{"name", res.name}, {"owner", res.owner}, {"bytes", res.bytes}});
+    total += res.bytes;
+  }
+  j["memory"] = {{"shadow_bytes", r.bytesOwnedBy("shadow")},
+                 {"oit_bytes", r.bytesOwnedBy("oit")},
+                 {"scene_bytes", r.bytesOwnedBy("scene")},
+                 {"frame_bytes", r.bytesOwnedBy("frame")},
+                 {"total_bytes", total},
+                 {"resources", resources}};
+
+  if (r.measurementGraph) j["measurement_graph"] = *r.measurementGraph;
+  if (r.reference) j["reference"] = {{"shadow", r.reference->first}, {"oit", r.reference->second}};
+  if (r.visibilityError) j["error"] = errorJson(r);
+  if (r.probe)
+    j["probe"] = {{"texel", {r.probe->texel.x, r.probe->texel.y}},
+                  {"map_size", r.probe->mapSize},
+                  {"light_depth", r.probe->lightDepth},
+                  {"exact", r.probe->exact},
+                  {"visibility", r.probe->visibility}};
+  if (r.invariants) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const auto& f : *r.invariants) list.push_back({{"pass", f.pass}, {"what", f.what}});
+    j["invariants"] = {{"failures", list}};
+  }
+  if (r.eyeComplexity || r.lightComplexity)
+    j["depth_complexity"] = {{"eye", complexityJson(r.eyeComplexity)},
+                             {"light", complexityJson(r.lightComplexity)}};
+  j["warnings"] = r.warnings;
+  if (r.validationMessages) j["validation_messages"] = *r.validationMessages;
+  return j;
 }
 
 }  // namespace sb

@@ -8,12 +8,19 @@
 #include <optional>
 #include <string>
 
+#include "backends/device.h"
+#include "harness/backend_names.h"
 #include "harness/image.h"
+#include "harness/invariants.h"
+#include "harness/metrics.h"
 #include "scenes/scene.h"
 #include "scenes/view.h"
 #include "techniques/common/technique.h"
 
 namespace sb {
+
+// The settings of a request, their CLI flags, suite and manifest keys, ranges and
+// defaults are one table: harness/settings.h.
 
 // Every camera and light value can be overridden; unset ones are fitted to the scene.
 struct ViewOverrides {
@@ -22,6 +29,7 @@ struct ViewOverrides {
   std::optional<std::string> lightType;  // directional | point
   std::optional<glm::vec3> lightPosition, lightDirection, lightColor;
   std::optional<float> lightIntensity;
+  bool operator==(const ViewOverrides&) const = default;
 };
 
 // Visibility along one light ray (the occupancy paper's Fig. 5): the ray through
@@ -31,6 +39,7 @@ struct ProbeSpec {
   glm::uvec2 texel{256, 256};
   uint32_t mapSize = 512;
   int samples = 256;
+  bool operator==(const ProbeSpec&) const = default;
 };
 
 struct RenderRequest {
@@ -41,7 +50,7 @@ struct RenderRequest {
   bool image = true;         // false: no final shading; only the visibility error (needs reference)
   std::optional<ProbeSpec> probe;  // also report visibility along a light ray
   bool invariants = false;         // check the outputs and maps (harness/invariants.h)
-  std::string backend = "gl";
+  std::string backend = defaultBackend();
   std::string platform;  // empty: egl for gl, headless for vulkan
   uint32_t width = 512, height = 512;
   std::string primitive = "lines";  // lines | ribbons
@@ -50,15 +59,65 @@ struct RenderRequest {
   int warmup = 1;
   bool validation = false;
   ViewOverrides view;
+  bool operator==(const RenderRequest&) const = default;
 };
 
-struct RenderOutcome {
-  nlohmann::json report;            // the keys documented for `render --json`
-  Image image;                      // top row first
-  Image reference;                  // the reference image (when requested)
-  std::vector<uint8_t> visibility;  // R32F visibility image (with a reference)
-  std::vector<float> probe;         // visibility along the probe ray (with a probe)
+// One pass's time in each timed frame.
+struct PassTimes {
+  std::string name;
+  int executions = 0;      // times the pass ran in a frame
+  std::vector<double> ms;  // one per timed frame
 };
+
+struct SceneSummary {
+  std::string spec;
+  std::size_t strands = 0, points = 0, segments = 0, meshTriangles = 0;
+  Bounds bounds;
+};
+
+// Visibility along the probe ray: the exact curve and the technique's.
+struct ProbeResult {
+  glm::uvec2 texel{0, 0};
+  uint32_t mapSize = 0;
+  std::vector<float> lightDepth, exact, visibility;
+};
+
+// What runRender measured; renderJson writes it as the `render --json` object
+// (the sweep's case files add their own keys to that).
+struct RenderResult {
+  DeviceInfo device;
+  SceneSummary scene;
+  std::string shadow, oit;  // the technique specs as run
+  std::string primitive;
+  uint32_t width = 0, height = 0;
+  int repeat = 0, warmup = 0;
+  std::vector<std::string> graph;  // the passes of a timed frame
+  // The passes of the untimed frame that measured errors and the probe (when one ran).
+  std::optional<std::vector<std::string>> measurementGraph;
+  std::vector<PassTimes> passes;  // in the order they first ran
+  std::vector<double> frameMs;    // per timed frame: the sum of its passes
+  // This run's own resources (not the reference's), sorted by name.
+  std::vector<ResourceBytes> resources;
+  // The reference's shadow and transparency specs (with a reference or a probe).
+  std::optional<std::pair<std::string, std::string>> reference;
+  std::optional<ImageError> imageError;            // with a reference and an image
+  std::optional<VisibilityError> visibilityError;  // with a reference
+  std::optional<ProbeResult> probe;
+  std::optional<std::vector<InvariantFailure>> invariants;  // when requested
+  std::optional<DepthComplexity> eyeComplexity, lightComplexity;
+  std::vector<std::string> warnings;              // the input's, the techniques', the reference's
+  std::optional<std::size_t> validationMessages;  // with validation
+
+  Image image;                      // top row first (empty without an image)
+  Image referenceImage;             // with a reference and an image
+  std::vector<uint8_t> visibility;  // R32F visibility image (with a reference)
+
+  // Bytes of this run's resources whose owner is `owner` (shadow, oit, scene, frame).
+  std::size_t bytesOwnedBy(const std::string& owner) const;
+};
+
+// The `render --json` object (keys in docs/suites-and-results.md).
+nlohmann::json renderJson(const RenderResult& r);
 
 // What a sweep computes once and reuses across its cases: scenes by spec and
 // references by backend, scene, view, reference technique and probe.
@@ -77,7 +136,7 @@ struct RenderCache {
 
 // Throws InputError (bad scene/technique/options) or DeviceError (backend).
 // With a cache, scenes and references are taken from it or added to it.
-RenderOutcome runRender(const RenderRequest& req, RenderCache* cache = nullptr);
+RenderResult runRender(const RenderRequest& req, RenderCache* cache = nullptr);
 
 // World points along the probe ray and their light depths in [0, 1].
 std::vector<glm::vec3> probeRay(const Light& light, const ProbeSpec& probe,
@@ -87,10 +146,5 @@ std::vector<glm::vec3> probeRay(const Light& light, const ProbeSpec& probe,
 RenderSettings makeRenderSettings(const RenderRequest& req, const Scene& scene);
 // The device a request names (backend, platform, validation).
 std::unique_ptr<Device> makeRequestDevice(const RenderRequest& req);
-
-// "WxH" -> width, height (1..16384 each); throws InputError.
-std::pair<uint32_t, uint32_t> parseSize(const std::string& text);
-// "x,y,z" -> vec3; throws InputError naming the option.
-glm::vec3 parseVec3(const std::string& text, const std::string& option);
 
 }  // namespace sb

@@ -4,6 +4,7 @@
 #include <set>
 
 #include "harness/json_keys.h"
+#include "harness/settings.h"
 #include "reports/files.h"
 #include "reports/json_file.h"
 #include "scenes/options.h"
@@ -18,22 +19,25 @@ using ojson = nlohmann::ordered_json;
 const std::vector<std::string> kSuiteKeys = {"name",    "description", "defaults",
                                              "presets", "groups",      "tables"};
 const std::vector<std::string> kGroupKeys = {"name", "description", "preset", "axes"};
-const std::vector<std::string> kSettings = {
-    "scene",     "shadow", "oit",        "size",           "primitive",       "ribbon_width",
-    "repeat",    "warmup", "reference",  "image",          "backends",        "backend",
-    "platform",  "probe",  "camera_eye", "camera_target",  "camera_up",       "fov",
-    "near",      "far",    "light",      "light_position", "light_direction", "light_intensity",
-    "invariants"};
+// Settings: the table's keys (harness/settings.h), and "backends", a list: one case per backend.
+std::vector<std::string> suiteSettings() {
+  std::vector<std::string> keys = settingKeys();
+  keys.push_back("backends");
+  return keys;
+}
 const std::vector<std::string> kSpecSettings = {"scene", "shadow", "oit"};
 
 // An axis or setting value as text: strings as they are, numbers as JSON writes them.
 std::string valueText(const ojson& v) { return v.is_string() ? v.get<std::string>() : v.dump(); }
 
-// Settings layered in order: later keys win.
+// Settings layered in order: later keys win ("backend" and "backends" replace each other).
 void overlay(ojson& settings, const ojson& layer, const std::string& where) {
+  const std::vector<std::string> keys = suiteSettings();
   for (const auto& [key, value] : layer.items()) {
-    if (std::find(kSettings.begin(), kSettings.end(), key) == kSettings.end())
-      throw InputError(where + ": " + unknownNameMessage("setting", key, kSettings));
+    if (std::find(keys.begin(), keys.end(), key) == keys.end())
+      throw InputError(where + ": " + unknownNameMessage("setting", key, keys));
+    if (key == "backend") settings.erase("backends");
+    if (key == "backends") settings.erase("backend");
     settings[key] = value;
   }
 }
@@ -46,96 +50,44 @@ void setSpecOption(ojson& settings, const std::string& axis, const ojson& value,
   if (std::find(kSpecSettings.begin(), kSpecSettings.end(), setting) == kSpecSettings.end())
     throw InputError(where + ": axis '" + axis + "': only scene., shadow. and oit. options");
   if (option.empty()) throw InputError(where + ": axis '" + axis + "' names no option");
-  const std::string base = settings.contains(setting) ? valueText(settings[setting])
-                           : setting == "scene"       ? "straight"
-                                                      : "none";
+  const std::string base = settings.contains(setting)
+                               ? valueText(settings[setting])
+                               : settingText(RenderRequest{}, *findSetting(setting));
   Spec spec = Spec::parse(base);
   spec.options[option] = valueText(value);
   settings[setting] = spec.str();
 }
 
-template <typename T>
-T get(const ojson& settings, const std::string& key, const std::string& where) {
-  try {
-    return settings.at(key).get<T>();
-  } catch (const nlohmann::json::exception&) {
-    throw InputError(where + ": setting '" + key + "' has the wrong type (" +
-                     settings.at(key).dump() + ")");
-  }
-}
-
 RenderRequest toRequest(const ojson& s, const std::string& where) {
   RenderRequest r;
-  auto text = [&](const char* key) { return valueText(s.at(key)); };
-  if (s.contains("scene")) r.scene = text("scene");
-  if (s.contains("shadow")) r.shadow = text("shadow");
-  if (s.contains("oit")) r.oit = text("oit");
-  if (s.contains("size")) {
-    const std::string size =
-        s["size"].is_number_integer() ? text("size") + "x" + text("size") : text("size");
-    std::tie(r.width, r.height) = parseSize(size);
-  }
-  if (s.contains("primitive")) r.primitive = text("primitive");
-  if (s.contains("ribbon_width")) r.ribbonWidth = get<float>(s, "ribbon_width", where);
-  if (s.contains("repeat")) r.repeat = get<int>(s, "repeat", where);
-  if (s.contains("warmup")) r.warmup = get<int>(s, "warmup", where);
-  if (s.contains("reference")) r.reference = get<bool>(s, "reference", where);
-  if (s.contains("image")) r.image = get<bool>(s, "image", where);
-  if (s.contains("invariants")) r.invariants = get<bool>(s, "invariants", where);
-  r.backend = text("backend");
-  if (r.backend != "gl" && r.backend != "vulkan")
-    throw InputError(where + ": " + unknownNameMessage("backend", r.backend, {"gl", "vulkan"}));
-  if (s.contains("platform")) r.platform = text("platform");
-  if (s.contains("probe")) {
-    const ojson& p = s["probe"];
-    checkKeys(p, {"texel", "map_size", "samples"}, where + ": probe", "probe setting");
-    ProbeSpec probe;
-    try {
-      if (p.contains("texel")) {
-        const auto t = p["texel"].get<std::vector<uint32_t>>();
-        if (t.size() != 2) throw InputError(where + ": probe texel must be [x, y]");
-        probe.texel = {t[0], t[1]};
+  try {
+    // In table order, so that a case's first bad setting is the same whatever the layering.
+    for (const Setting& setting : settingsTable())
+      if (s.contains(setting.key)) setFromJson(r, setting, s.at(setting.key));
+    checkRequest(r, Spelling::Json);
+    // Technique specs are checked now, not half way through a sweep.
+    for (const char* key : {"shadow", "oit"}) {
+      const Setting& setting = *findSetting(key);
+      try {
+        const Spec spec = Spec::parse(settingText(r, setting));
+        if (setting.key == "shadow")
+          makeShadowTechnique(spec);
+        else
+          makeOitTechnique(spec);
+      } catch (const InputError& e) {
+        throw InputError(
+            settingMessage(setting, Spelling::Json, settingText(r, setting), e.what()));
       }
-      if (p.contains("map_size")) probe.mapSize = p["map_size"].get<uint32_t>();
-      if (p.contains("samples")) probe.samples = p["samples"].get<int>();
-    } catch (const nlohmann::json::exception&) {
-      throw InputError(where + ": probe: texel [x, y], map_size and samples are numbers");
     }
-    r.probe = probe;
+    const Spec scene = Spec::parse(r.scene);
+    std::vector<std::string> scenes;
+    for (const auto& info : sceneCatalog()) scenes.push_back(info.name);
+    if (std::find(scenes.begin(), scenes.end(), scene.name) == scenes.end())
+      throw InputError(settingMessage(*findSetting("scene"), Spelling::Json, r.scene,
+                                      unknownNameMessage("scene", scene.name, scenes)));
+  } catch (const InputError& e) {
+    throw InputError(where + ": " + e.what());
   }
-  ViewOverrides& v = r.view;
-  auto vec = [&](const char* key) -> std::optional<glm::vec3> {
-    if (!s.contains(key)) return std::nullopt;
-    return parseVec3(text(key), where + ": " + key);
-  };
-  auto num = [&](const char* key) -> std::optional<float> {
-    if (!s.contains(key)) return std::nullopt;
-    return get<float>(s, key, where);
-  };
-  v.cameraEye = vec("camera_eye");
-  v.cameraTarget = vec("camera_target");
-  v.cameraUp = vec("camera_up");
-  v.fov = num("fov");
-  v.nearPlane = num("near");
-  v.farPlane = num("far");
-  if (s.contains("light")) v.lightType = text("light");
-  v.lightPosition = vec("light_position");
-  v.lightDirection = vec("light_direction");
-  v.lightIntensity = num("light_intensity");
-  if (r.repeat < 1) throw InputError(where + ": repeat must be at least 1");
-  if (r.warmup < 0) throw InputError(where + ": warmup must be at least 0");
-  if (!r.image && !r.reference)
-    throw InputError(where +
-                     ": \"image\": false measures only the visibility error: it needs "
-                     "\"reference\": true");
-  // Technique specs are checked now, not half way through a sweep.
-  makeShadowTechnique(Spec::parse(r.shadow));
-  makeOitTechnique(Spec::parse(r.oit));
-  const Spec scene = Spec::parse(r.scene);
-  std::vector<std::string> scenes;
-  for (const auto& info : sceneCatalog()) scenes.push_back(info.name);
-  if (std::find(scenes.begin(), scenes.end(), scene.name) == scenes.end())
-    throw InputError(where + ": " + unknownNameMessage("scene", scene.name, scenes));
   return r;
 }
 
@@ -185,7 +137,7 @@ Suite parseSuite(const std::string& text, const std::string& file) {
   const ojson presets = d.value("presets", ojson::object());
   if (!presets.is_object()) throw InputError(where + ": \"presets\" must be an object");
 
-  ojson base = {{"backends", {"gl", "vulkan"}}};
+  ojson base = {{"backends", backendNames()}};
   if (d.contains("defaults")) overlay(base, d["defaults"], where + ": defaults");
 
   std::set<std::string> groupNames, ids;
@@ -222,17 +174,26 @@ Suite parseSuite(const std::string& text, const std::string& file) {
 
     ojson axes = g.value("axes", ojson::object());
     if (!axes.is_object()) throw InputError(gwhere + ": \"axes\" must be an object");
+    const std::vector<std::string> axisNames = settingKeys();
     for (const auto& [axis, values] : axes.items()) {
       if (!values.is_array() || values.empty())
         throw InputError(gwhere + ": axis '" + axis + "' needs a non-empty array of values");
       if (axis.find('.') == std::string::npos &&
-          std::find(kSettings.begin(), kSettings.end(), axis) == kSettings.end())
-        throw InputError(gwhere + ": " + unknownNameMessage("axis", axis, kSettings));
+          std::find(axisNames.begin(), axisNames.end(), axis) == axisNames.end())
+        throw InputError(gwhere + ": " + unknownNameMessage("axis", axis, axisNames));
     }
+    // A case per backend: the axis, else the "backend" or "backends" setting.
     if (!axes.contains("backend")) {
-      if (!settings["backends"].is_array() || settings["backends"].empty())
-        throw InputError(gwhere + ": \"backends\" must be a non-empty list");
-      axes["backend"] = settings["backends"];
+      if (settings.contains("backend")) {
+        axes["backend"] = ojson::array({settings["backend"]});
+      } else {
+        try {
+          parseBackendList(settings["backends"]);
+        } catch (const InputError& e) {
+          throw InputError(gwhere + ": " + e.what());
+        }
+        axes["backend"] = settings["backends"];
+      }
     }
     suite.groups.push_back(
         {{"name", name}, {"description", g.value("description", "")}, {"axes", axes}});

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "backends/device.h"
+#include "harness/backend_names.h"
 #include "sb_version.h"
 
 namespace sb {
@@ -12,21 +13,17 @@ std::string versionText() {
   out << "strandbench " << SB_VERSION << "\n";
   out << "commit: " << SB_GIT_COMMIT << (SB_GIT_DIRTY ? " (with uncommitted changes)" : "") << "\n";
   out << "build type: " << SB_BUILD_TYPE << "\n";
-  const struct {
-    const char* label;
-    DeviceOptions opts;
-  } devices[] = {{"gl (egl)", {"gl", "egl", false}},
-                 {"gl (osmesa)", {"gl", "osmesa", false}},
-                 {"vulkan", {"vulkan", "headless", false}}};
-  for (const auto& d : devices) {
-    out << d.label << ": ";
-    try {
-      const DeviceInfo info = createDevice(d.opts)->info();
-      out << info.device << "; " << info.driver << "\n";
-    } catch (const std::exception& e) {
-      out << "unavailable (" << e.what() << ")\n";
+  // Every platform of every backend; the platform is named where a backend has several.
+  for (const auto& b : backendCatalog())
+    for (const auto& platform : b.platforms) {
+      out << b.name << (b.platforms.size() > 1 ? " (" + platform + ")" : "") << ": ";
+      try {
+        const DeviceInfo info = createDevice({b.name, platform, false})->info();
+        out << info.device << "; " << info.driver << "\n";
+      } catch (const std::exception& e) {
+        out << "unavailable (" << e.what() << ")\n";
+      }
     }
-  }
   std::string text = out.str();
   text.pop_back();  // CLI11 ends the message with its own newline
   return text;

@@ -136,14 +136,15 @@ TEST(Baselines, ManifestCoversScenesTechniquesAndPrimitives) {
   std::map<std::string, std::set<std::string>> primitives;  // generator -> primitives
   std::set<std::string> shadows, oits;                      // technique names
   for (const auto& c : m.cases) {
-    const sb::Spec spec = sb::Spec::parse(c.scene);
+    const sb::RenderRequest& r = c.request;
+    const sb::Spec spec = sb::Spec::parse(r.scene);
     EXPECT_EQ(spec.options.count("mesh"), 0u) << c.name << ": only generated meshes";
     EXPECT_EQ(spec.options.count("path"), 0u) << c.name << ": only generated scenes";
-    primitives[spec.name].insert(c.primitive);
-    shadows.insert(sb::Spec::parse(c.shadow).name);
-    oits.insert(sb::Spec::parse(c.oit).name);
+    primitives[spec.name].insert(r.primitive);
+    shadows.insert(sb::Spec::parse(r.shadow).name);
+    oits.insert(sb::Spec::parse(r.oit).name);
     EXPECT_EQ(c.backends, (std::vector<std::string>{"gl", "vulkan"})) << c.name;
-    EXPECT_LE(c.width * c.height, 128u * 128u) << c.name;
+    EXPECT_LE(r.width * r.height, 128u * 128u) << c.name;
     for (const auto& b : c.backends)
       EXPECT_TRUE(fs::exists(kCommitted / (c.name + "." + b + ".png")));
   }
@@ -330,7 +331,10 @@ TEST(Check, MalformedManifestExits2NamingTheFile) {
        {"max_abs"}},
       {[](nlohmann::json& j) { j["cases"][0]["tolerance"] = "no-such-preset"; },
        {"no-such-preset"}},
-      {[](nlohmann::json& j) { j["format"] = 2; }, {"format"}},
+      {[](nlohmann::json& j) { j["format"] = 3; }, {"\"format\" must be 1 or 2", "got 3"}},
+      // Format 1 takes only its own settings: a newer one asks for format 2.
+      {[](nlohmann::json& j) { j["cases"][0]["camera_eye"] = "0,0,5"; },
+       {"'camera_eye' needs \"format\": 2"}},
   };
   for (const Bad& bad : cases) {
     nlohmann::json j = committedManifest();

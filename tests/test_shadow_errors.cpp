@@ -16,11 +16,10 @@ namespace {
 double visibilityRmse(RenderRequest r, const std::string& shadow) {
   r.shadow = shadow;
   r.reference = true;
-  const RenderOutcome out = runRender(r);
-  const double rmse = out.report["error"]["visibility"]["rmse"].get<double>();
+  const RenderResult out = runRender(r);
+  const double rmse = out.visibilityError->rmse;
   std::cout << "[ measured ] " << r.backend << " " << r.scene << " " << shadow
-            << ": visibility RMSE " << rmse << ", image RMSE "
-            << out.report["error"]["image"]["rmse"].get<double>() << "\n";
+            << ": visibility RMSE " << rmse << ", image RMSE " << out.imageError->rmse << "\n";
   return rmse;
 }
 

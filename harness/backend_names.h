@@ -1,0 +1,37 @@
+// The backends and their platforms, named once for the whole harness: the CLI's
+// choices, suites, manifests, `list`, `--version` and the default device.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace sb {
+
+struct BackendNames {
+  std::string name;
+  std::vector<std::string> platforms;  // the first is the backend's default
+};
+
+// gl (egl, osmesa) and vulkan (headless); the first backend is the default.
+inline const std::vector<BackendNames>& backendCatalog() {
+  static const std::vector<BackendNames> catalog = {{"gl", {"egl", "osmesa"}},
+                                                    {"vulkan", {"headless"}}};
+  return catalog;
+}
+
+inline std::vector<std::string> backendNames() {
+  std::vector<std::string> names;
+  for (const auto& b : backendCatalog()) names.push_back(b.name);
+  return names;
+}
+
+inline const std::string& defaultBackend() { return backendCatalog().front().name; }
+
+// The platforms of `backend`; empty for an unknown backend.
+inline std::vector<std::string> platformNames(const std::string& backend) {
+  for (const auto& b : backendCatalog())
+    if (b.name == backend) return b.platforms;
+  return {};
+}
+
+}  // namespace sb
