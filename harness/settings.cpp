@@ -387,13 +387,14 @@ std::vector<Setting> buildTable() {
     Setting& s = add(make("backend", "--backend", T::Enum, defaultBackend(),
                           "graphics API; suites and manifests also take `backends`, a list: one "
                           "case per backend",
-                          "vulkan", "vulcan"));
+                          backendNames().back(), backendNames().back() + "x"));
     s.choices = backendNames();
     plain(s, &RenderRequest::backend);
   }
   {
     Setting& s = add(make("platform", "--platform", T::String, "the backend's first",
-                          "the backend's platform", "osmesa", "osmsa"));
+                          "the backend's platform", platformNames(defaultBackend()).back(),
+                          "no-such-platform"));
     s.get = [](const RenderRequest& r) {
       return r.platform.empty() ? ojson(nullptr) : ojson(r.platform);
     };
