@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <iterator>
 #include <limits>
 #include <sstream>
 
@@ -517,29 +518,23 @@ std::vector<Setting> buildTable() {
 
 }  // namespace
 
-std::string Setting::typeName() const {
-  switch (type) {
-    case SettingType::Spec:
-      return "spec";
-    case SettingType::String:
-      return "string";
-    case SettingType::Enum:
-      return "enum";
-    case SettingType::Int:
-      return "int";
-    case SettingType::Float:
-      return "float";
-    case SettingType::Vec3:
-      return "vec3";
-    case SettingType::Flag:
-      return "flag";
-    case SettingType::Size:
-      return "size";
-    case SettingType::Probe:
-      return "probe";
-  }
-  return "";
-}
+namespace {
+// Per SettingType, in the enum's order: the name in docs and `list`, and the
+// value's shape in --help.
+struct TypeNames {
+  const char* name;
+  const char* cli;
+};
+constexpr TypeNames kTypeNames[] = {
+    {"spec", "SPEC"}, {"string", "NAME"},  {"enum", "NAME"},
+    {"int", "INT"},   {"float", "NUMBER"}, {"vec3", "X,Y,Z"},
+    {"flag", "NAME"}, {"size", "WxH"},     {"probe", "X,Y[,MAP[,SAMPLES]]"},
+};
+static_assert(std::size(kTypeNames) == static_cast<std::size_t>(SettingType::Probe) + 1);
+const TypeNames& typeNames(SettingType t) { return kTypeNames[static_cast<std::size_t>(t)]; }
+}  // namespace
+
+std::string Setting::typeName() const { return typeNames(type).name; }
 
 std::string Setting::rangeText() const {
   switch (type) {
@@ -684,32 +679,7 @@ std::vector<std::string> parseBackendList(const ojson& value) {
 
 // ------------------------------------------------------------------ the CLI
 
-namespace {
-
-// The value's shape in --help.
-std::string cliTypeName(SettingType type) {
-  switch (type) {
-    case SettingType::Spec:
-      return "SPEC";
-    case SettingType::Int:
-      return "INT";
-    case SettingType::Float:
-      return "NUMBER";
-    case SettingType::Vec3:
-      return "X,Y,Z";
-    case SettingType::Size:
-      return "WxH";
-    case SettingType::Probe:
-      return "X,Y[,MAP[,SAMPLES]]";
-    case SettingType::String:
-    case SettingType::Enum:
-    case SettingType::Flag:
-      return "NAME";
-  }
-  return "";
-}
-
-}  // namespace
+namespace {}  // namespace
 
 CliSettings::CliSettings(CLI::App& cmd, const std::vector<std::string>& keys,
                          const RenderRequest& defaults) {
@@ -726,7 +696,7 @@ CliSettings::CliSettings(CLI::App& cmd, const std::vector<std::string>& keys,
       e.option =
           cmd.add_option(s.flag, *e.text, s.help + (range.empty() ? "" : " (" + range + ")"));
       e.option->default_str(shownDefault.empty() ? s.defaultText : shownDefault);
-      e.option->type_name(cliTypeName(s.type));
+      e.option->type_name(typeNames(s.type).cli);
     }
     entries_.push_back(std::move(e));
   }
