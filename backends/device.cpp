@@ -73,32 +73,31 @@ Device::~Device() {
 
 DeviceInfo Device::info() const { return driver_->info(); }
 
-Device::BufferRec& Device::buffer(Buffer b, const std::string& where) {
-  auto it = buffers_.find(b.id);
-  if (it == buffers_.end())
-    throw DeviceError(where + ": unknown buffer handle " + std::to_string(b.id));
+namespace {
+// The record behind a handle, or a DeviceError naming the call and the handle.
+template <class Table>
+auto& record(Table& table, uint32_t id, const char* kind, const std::string& where) {
+  auto it = table.find(id);
+  if (it == table.end())
+    throw DeviceError(where + ": unknown " + kind + " handle " + std::to_string(id));
   return *it->second;
+}
+}  // namespace
+
+Device::BufferRec& Device::buffer(Buffer b, const std::string& where) {
+  return record(buffers_, b.id, "buffer", where);
 }
 
 Device::TextureRec& Device::texture(Texture t, const std::string& where) {
-  auto it = textures_.find(t.id);
-  if (it == textures_.end())
-    throw DeviceError(where + ": unknown texture handle " + std::to_string(t.id));
-  return *it->second;
+  return record(textures_, t.id, "texture", where);
 }
 
 const Device::TextureRec& Device::texture(Texture t, const std::string& where) const {
-  auto it = textures_.find(t.id);
-  if (it == textures_.end())
-    throw DeviceError(where + ": unknown texture handle " + std::to_string(t.id));
-  return *it->second;
+  return record(textures_, t.id, "texture", where);
 }
 
 Device::PipelineRec& Device::pipeline(Pipeline p, const std::string& where) {
-  auto it = pipelines_.find(p.id);
-  if (it == pipelines_.end())
-    throw DeviceError(where + ": unknown pipeline handle " + std::to_string(p.id));
-  return *it->second;
+  return record(pipelines_, p.id, "pipeline", where);
 }
 
 // Resources are declared by create*() and made on the device when a pass, a
