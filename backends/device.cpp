@@ -200,23 +200,19 @@ Pipeline Device::createPipeline(const PipelineDesc& desc) {
   return Pipeline{id};
 }
 
-void Device::destroy(Buffer b) {
-  if (!b) return;
-  BufferRec& r = buffer(b, "destroy");
+template <class Table>
+void Device::destroyIn(Table& table, uint32_t id, const char* kind) {
+  if (id == 0) return;  // a null handle
+  auto& r = record(table, id, kind, "destroy");
   if (inPass_)
     throw DeviceError(quoted("destroy", r.desc.name) + ": inside pass '" + pass_->name + "'");
   if (r.object) driver_->release(std::move(r.object));
-  buffers_.erase(b.id);
+  table.erase(id);
 }
 
-void Device::destroy(Texture t) {
-  if (!t) return;
-  TextureRec& r = texture(t, "destroy");
-  if (inPass_)
-    throw DeviceError(quoted("destroy", r.desc.name) + ": inside pass '" + pass_->name + "'");
-  if (r.object) driver_->release(std::move(r.object));
-  textures_.erase(t.id);
-}
+void Device::destroy(Buffer b) { destroyIn(buffers_, b.id, "buffer"); }
+
+void Device::destroy(Texture t) { destroyIn(textures_, t.id, "texture"); }
 
 void Device::beginFrame() {
   if (inFrame_) throw DeviceError("beginFrame: a frame is already being recorded");

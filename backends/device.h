@@ -293,6 +293,8 @@ class Device {
   const TextureRec& texture(Texture t, const std::string& where) const;
   PipelineRec& pipeline(Pipeline p, const std::string& where);
   void requireFrame(const std::string& where, bool inFrame, bool inPass) const;
+  template <class Table>
+  void destroyIn(Table& table, uint32_t id, const char* kind);
   DriverObject* created(BufferRec& r);
   DriverObject* created(TextureRec& t);
   std::vector<ResourceBytes> resources(bool createdOnly) const;
