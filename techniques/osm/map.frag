@@ -9,8 +9,26 @@ layout(std140, binding = 9) uniform OsmPass {
   vec4 osmTile;   // the tile's pixel rectangle x0, y0, x1, y1
 };
 
-// Target k is layer k of the atlas array.
-layout(location = 0) out vec4 osmOut[SB_OSM_TARGETS];
+// Target k is layer k of the atlas array. One output per target, written by
+// name: llvmpipe runs this pass about 20% slower when an output array is
+// filled in a loop (osm:maps=16 at 128x128: 22.6 vs 18.2 ms; DOM's loop
+// shows no difference).
+layout(location = 0) out vec4 osmOut0;
+#if SB_OSM_TARGETS > 1
+layout(location = 1) out vec4 osmOut1;
+#endif
+#if SB_OSM_TARGETS > 2
+layout(location = 2) out vec4 osmOut2;
+#endif
+#if SB_OSM_TARGETS > 3
+layout(location = 3) out vec4 osmOut3;
+#endif
+#if SB_OSM_TARGETS > 4
+layout(location = 4) out vec4 osmOut4;
+#endif
+#if SB_OSM_TARGETS > 5
+layout(location = 5) out vec4 osmOut5;
+#endif
 
 vec4 osmTarget(int k, float z) {
   vec4 o = vec4(0.0);
@@ -25,5 +43,20 @@ void main() {
   vec2 p = gl_FragCoord.xy;
   if (p.x < osmTile.x || p.y < osmTile.y || p.x >= osmTile.z || p.y >= osmTile.w) discard;
   float z = gl_FragCoord.z;
-  for (int k = 0; k < SB_OSM_TARGETS; ++k) osmOut[k] = osmTarget(k, z);
+  osmOut0 = osmTarget(0, z);
+#if SB_OSM_TARGETS > 1
+  osmOut1 = osmTarget(1, z);
+#endif
+#if SB_OSM_TARGETS > 2
+  osmOut2 = osmTarget(2, z);
+#endif
+#if SB_OSM_TARGETS > 3
+  osmOut3 = osmTarget(3, z);
+#endif
+#if SB_OSM_TARGETS > 4
+  osmOut4 = osmTarget(4, z);
+#endif
+#if SB_OSM_TARGETS > 5
+  osmOut5 = osmTarget(5, z);
+#endif
 }
