@@ -96,6 +96,10 @@ const Device::TextureRec& Device::texture(Texture t, const std::string& where) c
   return record(textures_, t.id, "texture", where);
 }
 
+const Device::BufferRec& Device::buffer(Buffer b, const std::string& where) const {
+  return record(buffers_, b.id, "buffer", where);
+}
+
 Device::PipelineRec& Device::pipeline(Pipeline p, const std::string& where) {
   return record(pipelines_, p.id, "pipeline", where);
 }
@@ -379,6 +383,8 @@ std::vector<uint8_t> Device::readBuffer(Buffer b) {
 }
 
 TextureDesc Device::describe(Texture t) const { return texture(t, "describe").desc; }
+
+BufferDesc Device::describe(Buffer b) const { return buffer(b, "describe").desc; }
 
 std::vector<ResourceBytes> Device::resources(bool createdOnly) const {
   std::vector<std::pair<uint32_t, ResourceBytes>> all;

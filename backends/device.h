@@ -273,8 +273,10 @@ class Device {
   // one after the other (layer 0 first).
   std::vector<uint8_t> readTexture(Texture t);
   std::vector<uint8_t> readBuffer(Buffer b);
-  // What a texture was created with (to interpret its read-back bytes).
+  // What a texture or a buffer was created with (to interpret read-back bytes,
+  // to name it in messages).
   TextureDesc describe(Texture t) const;
+  BufferDesc describe(Buffer b) const;
 
   // Exact logical bytes (width*height*layers*bpp, buffer size) of every resource made
   // on the device, in creation order. A resource is made when first used (by a
@@ -289,6 +291,7 @@ class Device {
   struct PipelineRec;
   struct OpenPass;
   BufferRec& buffer(Buffer b, const std::string& where);
+  const BufferRec& buffer(Buffer b, const std::string& where) const;
   TextureRec& texture(Texture t, const std::string& where);
   const TextureRec& texture(Texture t, const std::string& where) const;
   PipelineRec& pipeline(Pipeline p, const std::string& where);

@@ -225,7 +225,7 @@ std::vector<InvariantFailure> checkInvariants(const RenderRequest& req, const Re
     checkRay(out.probe->visibility, "probe (" + Spec::parse(req.shadow).name + ")", failures);
     checkRay(exactProbe, "probe (reference)", failures);
   }
-  for (Texture t : renderer.shadow().lookupTextures()) {
+  for (Texture t : renderer.shadow().lookup().inputs.sampled()) {
     const TextureDesc d = dev.describe(t);
     checkMap(dev.readTexture(t), d.format, "map " + d.name, failures);
   }

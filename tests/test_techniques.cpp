@@ -1,5 +1,5 @@
-// CPU tests of technique code: the Kajiya-Kay math shared with GLSL, frame
-// graph culling, the shader loader's #include/#line handling, the technique
+// CPU tests of technique code: the Kajiya-Kay math shared with GLSL, the
+// shader loader's #include/#line handling, the technique
 // registry's validation, and a broken shader named in the CLI's message.
 #include <gtest/gtest.h>
 
@@ -7,7 +7,6 @@
 #include <cmath>
 
 #include "backends/shader_source.h"
-#include "techniques/common/frame_graph.h"
 #include "techniques/common/shader_library.h"
 #include "techniques/common/technique.h"
 #include "techniques/kajiya_kay/kajiya_kay.h"
@@ -34,26 +33,6 @@ TEST(KajiyaKay, SpecularPeaksOnTheReflectionCone) {
   // Degenerate: light along the tangent gives no diffuse and no NaN.
   const glm::vec2 d = glsl::kajiyaKay(T, T, T, 50);
   EXPECT_TRUE(std::isfinite(d.x) && std::isfinite(d.y));
-}
-
-TEST(FrameGraph, LeavesOutPassesNoOutputNeeds) {
-  FrameGraph g;
-  std::vector<std::string> ran;
-  auto pass = [&](std::string name, std::vector<std::string> reads,
-                  std::vector<std::string> writes) {
-    g.add({name, reads, writes, [&ran, name] { ran.push_back(name); }});
-  };
-  pass("shadow", {}, {"shadow.map"});
-  pass("unused", {}, {"debug.image"});
-  pass("opaque", {"shadow.map"}, {"color", "depth"});
-  pass("hair", {"shadow.map", "color", "depth"}, {"color", "depth"});
-  std::vector<std::string> names;
-  for (const auto* p : g.compile({"color"})) names.push_back(p->name);
-  EXPECT_EQ(names, (std::vector<std::string>{"shadow", "opaque", "hair"}));
-  names.clear();
-  for (const auto* p : g.compile({"shadow.map"})) names.push_back(p->name);
-  EXPECT_EQ(names, (std::vector<std::string>{"shadow"}));
-  EXPECT_TRUE(g.compile({"nothing"}).empty());
 }
 
 TEST(ShaderLibrary, ResolvesIncludesAndAliasesWithLineDirectives) {

@@ -9,8 +9,6 @@ namespace {
 // As in techniques/abuffer/abuffer.glsl (16 is the accumulation, 17 the counts).
 constexpr uint32_t kOffsets = 18, kCursor = 19, kFragments = 20, kStatus = 21;
 constexpr std::size_t kFragmentBytes = 32;
-const std::vector<uint32_t> kLists = {
-    AccumComposite::kAccumBinding, HairOit::kCountsBinding, kOffsets, kCursor, kFragments, kStatus};
 }  // namespace
 
 void ABufferOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
@@ -21,15 +19,14 @@ void ABufferOit::setup(Device& dev, const GpuScene& scene, const RenderSettings&
   status_ = dev.createBuffer({"abuffer.status", "oit", BufferUsage::Storage, 16});
   const glm::uvec4 size(pixels(), s.width, s.height, 0);
   sizeUbo_ = dev.createBuffer({"abuffer.size", "frame", BufferUsage::Uniform, sizeof size}, &size);
-  fill_ = hairPipeline(dev, "abuffer.fill", "techniques/abuffer/fill.frag", {}, kLists);
+  fill_ = hairPipeline(dev, fillPass(), "techniques/abuffer/fill.frag", {});
 
   const ShaderCode comp = loadShader("techniques/abuffer/resolve.comp");
   PipelineDesc c;
   c.name = "abuffer.resolve";
   c.technique = "abuffer";
   c.compute = &comp;
-  c.bindings = {{0, BindingKind::UniformBuffer}};
-  for (uint32_t b : kLists) c.bindings.push_back({b, BindingKind::StorageBuffer});
+  c.bindings = resolvePass().slots();
   resolve_ = dev.createPipeline(c);
 }
 
@@ -46,30 +43,34 @@ void ABufferOit::prepare(Device& dev) {
                                  std::max<uint64_t>(complexity_.total, 1) * kFragmentBytes});
 }
 
-std::vector<Binding> ABufferOit::listBindings() const {
-  return {Binding::buf(AccumComposite::kAccumBinding, composite_.accum()),
-          Binding::buf(kCountsBinding, counts_),
-          Binding::buf(kOffsets, offsets_),
-          Binding::buf(kCursor, cursor_),
-          Binding::buf(kFragments, fragments_),
-          Binding::buf(kStatus, status_)};
+// The lists: the fill appends to them, the resolve sorts and accumulates them.
+Inputs ABufferOit::lists() const {
+  Inputs in;
+  in.storage(AccumComposite::kAccumBinding, composite_.accum())
+      .storage(kCountsBinding, counts_)
+      .storage(kOffsets, offsets_)
+      .storage(kCursor, cursor_)
+      .storage(kFragments, fragments_)
+      .storage(kStatus, status_);
+  return in;
+}
+
+Pass ABufferOit::fillPass() const { return hairPass("abuffer.fill", true).inputs(lists()); }
+
+Pass ABufferOit::resolvePass() const {
+  return Pass("abuffer.resolve").uniform(0, sizeUbo_).inputs(lists());
 }
 
 void ABufferOit::addPasses(FrameGraph& graph, Device& dev) {
-  graph.add({"abuffer", graphReads(), {"color"}, [this, &dev] {
-               dev.fillBuffer(cursor_, 0);
-               dev.fillBuffer(status_, 0);
-               auto b = shading_->hairBindings();
-               for (const auto& x : listBindings()) b.push_back(x);
-               dev.beginPass(hairPass("abuffer.fill", true));
-               dev.draw(fill_, b, hairVertices());
-               dev.endPass();
-               auto r = listBindings();
-               r.push_back(Binding::buf(0, sizeUbo_));
-               const glm::uvec2 g = dispatchGroups(pixels());
-               dev.dispatch("abuffer.resolve", resolve_, r, g.x, g.y);
-               composite_.record(dev);
-             }});
+  const Pass fill = fillPass(), resolve = resolvePass(), composite = composite_.pass();
+  graph.add("abuffer", {fill, resolve, composite}, [this, &dev, fill, resolve] {
+    dev.fillBuffer(cursor_, 0);
+    dev.fillBuffer(status_, 0);
+    fill.draw(dev, fill_, hairVertices());
+    const glm::uvec2 g = dispatchGroups(pixels());
+    resolve.dispatch(dev, resolve_, g.x, g.y);
+    composite_.record(dev);
+  });
 }
 
 std::vector<std::string> ABufferOit::warnings(Device& dev) {

@@ -20,7 +20,9 @@ class ABufferOit : public HairOit {
   std::vector<std::string> warnings(Device& dev) override;
 
  private:
-  std::vector<Binding> listBindings() const;
+  Inputs lists() const;
+  Pass fillPass() const;
+  Pass resolvePass() const;
 
   uint64_t maxFragments_;
   Buffer offsets_, cursor_, fragments_, status_, sizeUbo_;

@@ -21,22 +21,19 @@ void AccumComposite::setup(Device& dev, const RenderSettings& s, Buffer viewUbo,
   d.colorFormats = {Format::RGBA32F};
   d.blend = {{true, BlendFactor::One, BlendFactor::OneMinusSrcAlpha, BlendOp::Add, BlendFactor::One,
               BlendFactor::OneMinusSrcAlpha, BlendOp::Add}};
-  d.bindings = {{bind::kView, BindingKind::UniformBuffer},
-                {kAccumBinding, BindingKind::StorageBuffer}};
+  d.bindings = pass().slots();
   pipeline_ = dev.createPipeline(d);
 }
 
-void AccumComposite::record(Device& dev) const {
-  PassDesc pass;
-  pass.name = "oit.composite";
+Pass AccumComposite::pass() const {
   const glm::vec3 bg = settings_.background;
-  pass.color = {{targets_.color,
-                 targets_.opaqueDrawn ? LoadOp::Load : LoadOp::Clear,
-                 {bg.r, bg.g, bg.b, 1.0f}}};
-  dev.beginPass(pass);
-  dev.draw(pipeline_, {Binding::buf(bind::kView, viewUbo_), Binding::buf(kAccumBinding, accum_)},
-           3);
-  dev.endPass();
+  return Pass("oit.composite")
+      .color(targets_.color, targets_.opaqueDrawn ? LoadOp::Load : LoadOp::Clear,
+             {bg.r, bg.g, bg.b, 1.0f})
+      .uniform(bind::kView, viewUbo_)
+      .readStorage(kAccumBinding, accum_);
 }
+
+void AccumComposite::record(Device& dev) const { pass().draw(dev, pipeline_, 3); }
 
 }  // namespace sb

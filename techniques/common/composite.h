@@ -12,7 +12,9 @@ class AccumComposite {
   void setup(Device& dev, const RenderSettings& s, Buffer viewUbo, const OitTargets& targets,
              const std::string& technique);
   Buffer accum() const { return accum_; }
-  // Records the composite pass (clearing the target first when nothing opaque was drawn).
+  // The composite pass (clearing the target first when nothing opaque was drawn).
+  Pass pass() const;
+  // Records it.
   void record(Device& dev) const;
 
  private:

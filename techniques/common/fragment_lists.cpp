@@ -26,8 +26,9 @@ ListLayout layoutFromCounts(const std::vector<uint8_t>& countBytes) {
   return l;
 }
 
-Pipeline makeHairCountPipeline(Device& dev, const RenderSettings& s, uint32_t countsBinding,
-                               bool depthTest, const std::string& technique) {
+Pipeline makeHairCountPipeline(Device& dev, const RenderSettings& s, const Pass& pass,
+                               uint32_t countsBinding, bool depthTest,
+                               const std::string& technique) {
   ShaderDefines defs;
   defs.defines.push_back({"COUNTS_BINDING", std::to_string(countsBinding)});
   const ShaderCode vert = Geometry::strandVertexShader(s);
@@ -40,27 +41,22 @@ Pipeline makeHairCountPipeline(Device& dev, const RenderSettings& s, uint32_t co
   d.topology = Geometry::strandTopology(s);
   d.hasDepth = d.depthTest = depthTest;
   d.depthCompare = CompareOp::Less;
-  d.bindings = Geometry::slots();
-  d.bindings.push_back({countsBinding, BindingKind::StorageBuffer});
+  d.bindings = pass.slots();
   return dev.createPipeline(d);
 }
 
-Pipeline makePeelAdvancePipeline(Device& dev, uint32_t stateBinding, uint32_t peeledBinding,
-                                 uint32_t offsetsBinding, uint32_t nodesBinding,
-                                 const std::string& technique) {
+Pipeline makePeelAdvancePipeline(Device& dev, const Pass& pass, uint32_t stateBinding,
+                                 uint32_t peeledBinding, uint32_t offsetsBinding,
+                                 uint32_t nodesBinding, const std::string& technique) {
   ShaderDefines defs;
   defs.defines = {{"STATE_BINDING", std::to_string(stateBinding)},
                   {"PEELED_BINDING", std::to_string(peeledBinding)},
                   {"SIZE_BINDING", "0"}};
   PipelineDesc d;
-  d.bindings = {{0, BindingKind::UniformBuffer},
-                {stateBinding, BindingKind::StorageBuffer},
-                {peeledBinding, BindingKind::StorageBuffer}};
+  d.bindings = pass.slots();
   if (nodesBinding) {
     defs.defines.push_back({"OFFSETS_BINDING", std::to_string(offsetsBinding)});
     defs.defines.push_back({"NODES_BINDING", std::to_string(nodesBinding)});
-    d.bindings.push_back({offsetsBinding, BindingKind::StorageBuffer});
-    d.bindings.push_back({nodesBinding, BindingKind::StorageBuffer});
   }
   const ShaderCode comp = loadShader("techniques/common/peel_advance.comp", defs);
   d.name = technique + ".peel_advance";

@@ -19,16 +19,18 @@ struct ListLayout {
 // From the read-back per-pixel counts (uint32 each).
 ListLayout layoutFromCounts(const std::vector<uint8_t>& countBytes);
 
-// A pipeline that counts the hair fragments of every pixel into the storage
-// buffer at `countsBinding` (depth-tested against an opaque depth when
-// `depthTest`, no colour targets).
-Pipeline makeHairCountPipeline(Device& dev, const RenderSettings& s, uint32_t countsBinding,
-                               bool depthTest, const std::string& technique);
+// A pipeline for `pass` (its slots) that counts the hair fragments of every
+// pixel into the storage buffer at `countsBinding` (depth-tested against an
+// opaque depth when `depthTest`, no colour targets).
+Pipeline makeHairCountPipeline(Device& dev, const RenderSettings& s, const Pass& pass,
+                               uint32_t countsBinding, bool depthTest,
+                               const std::string& technique);
 
-// A compute pipeline finishing one peel layer (techniques/common/peel_advance.comp).
-// nodesBinding/offsetsBinding are 0 when layers are not stored in lists.
-Pipeline makePeelAdvancePipeline(Device& dev, uint32_t stateBinding, uint32_t peeledBinding,
-                                 uint32_t offsetsBinding, uint32_t nodesBinding,
-                                 const std::string& technique);
+// A compute pipeline for `pass` (its slots; the size uniform at 0) finishing
+// one peel layer (techniques/common/peel_advance.comp). nodesBinding and
+// offsetsBinding are 0 when layers are not stored in lists.
+Pipeline makePeelAdvancePipeline(Device& dev, const Pass& pass, uint32_t stateBinding,
+                                 uint32_t peeledBinding, uint32_t offsetsBinding,
+                                 uint32_t nodesBinding, const std::string& technique);
 
 }  // namespace sb

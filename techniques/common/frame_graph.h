@@ -1,8 +1,11 @@
-// A frame as a small graph of passes. Each pass declares the named resources
-// it reads and writes; passes that no requested output depends on are left
-// out, and the report lists the passes that ran. A read that no pass writes is
-// a technique bug (a misspelled name would silently cull its writer), so
-// compile() rejects it, naming the pass and the resource.
+// A frame as a small graph of nodes. A node runs one or more declared passes
+// (techniques/common/pass.h); what it reads and writes follows from their
+// declarations, resource by resource (device handles, not names). Nodes that
+// no requested output depends on are left out, and the report lists the
+// nodes that ran. A texture read that no earlier node writes is a technique
+// bug (textures get contents only from passes), so compile() rejects it,
+// naming the node and the texture; a buffer read that no node writes is an
+// input filled from the CPU.
 #pragma once
 
 #include <functional>
@@ -11,44 +14,43 @@
 #include <string>
 #include <vector>
 
+#include "techniques/common/pass.h"
+
 namespace sb {
 
 struct PassNode {
   std::string name;
-  std::vector<std::string> reads;
-  std::vector<std::string> writes;
-  std::function<void()> execute;  // records the pass on the Device
+  std::vector<GraphResource> reads;
+  std::vector<GraphResource> writes;
+  std::function<void()> execute;  // records the node's passes on the Device
 };
 
 class FrameGraph {
  public:
-  void add(PassNode pass) { passes_.push_back(std::move(pass)); }
-  // The passes needed for the outputs, in submission order. Throws
-  // std::logic_error for a read with no writer earlier in the graph.
-  std::vector<const PassNode*> compile(const std::set<std::string>& outputs) const {
-    std::set<std::string> written;
-    for (const auto& p : passes_) {
-      for (const auto& r : p.reads)
-        if (!written.count(r))
-          throw std::logic_error("frame graph: pass '" + p.name + "' reads '" + r +
-                                 "', which no earlier pass writes");
-      written.insert(p.writes.begin(), p.writes.end());
-    }
-    std::set<std::string> needed = outputs;
-    std::vector<const PassNode*> kept;
-    for (auto it = passes_.rbegin(); it != passes_.rend(); ++it) {
-      bool useful = false;
-      for (const auto& w : it->writes) useful = useful || needed.count(w) > 0;
-      if (!useful) continue;
-      kept.insert(kept.begin(), &*it);
-      needed.insert(it->reads.begin(), it->reads.end());
-    }
-    return kept;
+  // Names resources in messages (e.g. from Device::describe).
+  using Namer = std::function<std::string(GraphResource)>;
+  explicit FrameGraph(Namer namer = {}) : namer_(std::move(namer)) {}
+
+  void add(PassNode node) { nodes_.push_back(std::move(node)); }
+  // A node of one pass, named after it.
+  void add(const Pass& pass, std::function<void()> execute) {
+    add(pass.name(), {pass}, std::move(execute));
   }
-  const std::vector<PassNode>& passes() const { return passes_; }
+  // A node of several passes, run by `execute` in this order (possibly
+  // repeated, e.g. peeling): a read of what an earlier pass of the node
+  // writes stays inside the node.
+  void add(std::string name, const std::vector<Pass>& passes, std::function<void()> execute);
+
+  // The nodes needed for the outputs, in submission order. Throws
+  // std::logic_error for a texture read with no writer earlier in the graph.
+  std::vector<const PassNode*> compile(const std::vector<GraphResource>& outputs) const;
+  const std::vector<PassNode>& nodes() const { return nodes_; }
 
  private:
-  std::vector<PassNode> passes_;
+  std::string name(GraphResource r) const;
+
+  Namer namer_;
+  std::vector<PassNode> nodes_;
 };
 
 }  // namespace sb

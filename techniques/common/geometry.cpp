@@ -54,24 +54,16 @@ uint32_t Geometry::strandVertexCount(const GpuScene& g, const RenderSettings& s)
   return g.segmentCount * (s.primitive == Primitive::Ribbons ? 6u : 2u);
 }
 
-std::vector<BindingSlot> Geometry::slots() {
-  return {{bind::kView, BindingKind::UniformBuffer},
-          {bind::kPoints, BindingKind::StorageBuffer},
-          {bind::kColors, BindingKind::StorageBuffer},
-          {bind::kSegments, BindingKind::StorageBuffer},
-          {bind::kMeshPositions, BindingKind::StorageBuffer},
-          {bind::kMeshNormals, BindingKind::StorageBuffer},
-          {bind::kMeshIndices, BindingKind::StorageBuffer}};
-}
-
-std::vector<Binding> Geometry::bindings(const GpuScene& g, Buffer viewUbo) {
-  return {Binding::buf(bind::kView, viewUbo),
-          Binding::buf(bind::kPoints, g.points),
-          Binding::buf(bind::kColors, g.colors),
-          Binding::buf(bind::kSegments, g.segments),
-          Binding::buf(bind::kMeshPositions, g.meshPositions),
-          Binding::buf(bind::kMeshNormals, g.meshNormals),
-          Binding::buf(bind::kMeshIndices, g.meshIndices)};
+Inputs Geometry::inputs(const GpuScene& g, Buffer viewUbo) {
+  Inputs in;
+  in.uniform(bind::kView, viewUbo)
+      .readStorage(bind::kPoints, g.points)
+      .readStorage(bind::kColors, g.colors)
+      .readStorage(bind::kSegments, g.segments)
+      .readStorage(bind::kMeshPositions, g.meshPositions)
+      .readStorage(bind::kMeshNormals, g.meshNormals)
+      .readStorage(bind::kMeshIndices, g.meshIndices);
+  return in;
 }
 
 Geometry::HairAndMesh Geometry::pipelines(Device& dev, PipelineDesc d, const GpuScene& g,

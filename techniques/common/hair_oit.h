@@ -22,14 +22,14 @@ class HairOit : public OitTechnique {
   void setupCommon(Device& dev, const GpuScene& scene, const RenderSettings& s,
                    const KajiyaKayShading& shading, const OitTargets& targets);
   // A hair pass with no colour target, depth-tested against the opaque depth
-  // (cleared instead when nothing opaque was drawn and `first` is set).
-  PassDesc hairPass(const std::string& name, bool first) const;
-  // A hair pipeline for `fragShader` with the shading and shadow bindings plus `storage`.
-  Pipeline hairPipeline(Device& dev, const std::string& name, const std::string& fragShader,
-                        ShaderDefines defs, const std::vector<uint32_t>& storage) const;
+  // (cleared instead when nothing opaque was drawn and `first` is set), with
+  // the shading inputs (geometry, shading, shadow lookup).
+  Pass hairPass(const std::string& name, bool first) const;
+  // The pipeline of a hair pass, for `fragShader`, named after the pass.
+  Pipeline hairPipeline(Device& dev, const Pass& pass, const std::string& fragShader,
+                        ShaderDefines defs) const;
   // Counts the visible hair fragments of every pixel (one frame).
   ListLayout countFragments(Device& dev);
-  std::vector<std::string> graphReads() const;
   uint32_t hairVertices() const { return Geometry::strandVertexCount(*scene_, settings_); }
   uint32_t pixels() const { return settings_.width * settings_.height; }
 
@@ -41,6 +41,9 @@ class HairOit : public OitTechnique {
   DepthComplexity complexity_;
   Buffer counts_;
   Pipeline count_;
+
+ private:
+  Pass countPass() const;
 };
 
 }  // namespace sb

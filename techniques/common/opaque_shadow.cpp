@@ -18,26 +18,25 @@ void OpaqueShadow::setup(Device& dev, const GpuScene& scene, uint32_t size, Buff
   d.vertex = &vert;
   d.fragment = &frag;
   d.hasDepth = d.depthTest = d.depthWrite = true;
-  d.bindings = Geometry::slots();
+  d.bindings = pass().slots();
   pipeline_ = dev.createPipeline(d);
+}
+
+Pass OpaqueShadow::pass() const {
+  return Pass(technique_ + ".opaque")
+      .depth(depth_, LoadOp::Clear)
+      .inputs(Geometry::inputs(*scene_, lightView_));
 }
 
 void OpaqueShadow::addPass(FrameGraph& graph, Device& dev) {
   if (!active()) return;
-  graph.add({technique_ + ".opaque", {}, {"shadow.opaque"}, [this, &dev] {
-               PassDesc pass;
-               pass.name = technique_ + ".opaque";
-               pass.depth = {depth_, LoadOp::Clear, 1.0f};
-               dev.beginPass(pass);
-               dev.draw(pipeline_, Geometry::bindings(*scene_, lightView_),
-                        scene_->meshTriangles * 3);
-               dev.endPass();
-             }});
+  graph.add(pass(),
+            [this, &dev, p = pass()] { p.draw(dev, pipeline_, scene_->meshTriangles * 3); });
 }
 
 void OpaqueShadow::addTo(ShadowLookup& lookup) const {
   lookup.defines.defines.push_back({"SB_OPAQUE_SHADOW", active() ? "1" : "0"});
-  if (active()) lookup.read("shadow.opaque").sample(kBinding, depth_);
+  if (active()) lookup.inputs.sample(kBinding, depth_);
 }
 
 }  // namespace sb

@@ -1,7 +1,6 @@
 // The opaque mesh seen from the light, for every shadow technique: pass
-// "<technique>.opaque" draws the mesh into a depth map (graph resource
-// "shadow.opaque"); lookups call opaqueVisibility() (opaque_shadow.glsl).
-// Without a mesh it creates nothing and adds no pass.
+// "<technique>.opaque" draws the mesh into a depth map; lookups call opaqueVisibility()
+// (opaque_shadow.glsl). Without a mesh it creates nothing and adds no pass.
 #pragma once
 
 #include "techniques/common/shader_library.h"
@@ -17,11 +16,12 @@ class OpaqueShadow {
              const std::string& technique);
   void addPass(FrameGraph& graph, Device& dev);
   bool active() const { return bool(depth_); }
-  // For the technique's lookup: the define, reads, slots, bindings and textures.
   // Adds the mesh's shadow (its define, and the map when there is a mesh) to a lookup.
   void addTo(ShadowLookup& lookup) const;
 
  private:
+  Pass pass() const;
+
   const GpuScene* scene_ = nullptr;
   std::string technique_;
   Buffer lightView_;

@@ -17,7 +17,13 @@ Buffer makeBuffer(Device& dev, const std::string& name, const void* data, std::s
 Renderer::Renderer(Device& dev, const Scene& scene, const RenderSettings& settings,
                    std::unique_ptr<ShadowTechnique> shadow, std::unique_ptr<OitTechnique> oit,
                    const std::set<std::string>& outputs)
-    : dev_(dev), settings_(settings), shadow_(std::move(shadow)), oit_(std::move(oit)) {
+    : dev_(dev),
+      settings_(settings),
+      shadow_(std::move(shadow)),
+      oit_(std::move(oit)),
+      graph_([&dev](GraphResource r) {
+        return r.texture ? dev.describe(Texture{r.id}).name : dev.describe(Buffer{r.id}).name;
+      }) {
   upload(scene);
   color_ = dev.createTexture(
       {"frame.color", "frame", Format::RGBA32F, settings.width, settings.height, false});
@@ -40,7 +46,7 @@ Renderer::Renderer(Device& dev, const Scene& scene, const RenderSettings& settin
   if (oit_->needsPrepare()) {
     // The transparency technique sizes itself against the opaque depth.
     if (shading_.drawsMesh()) {
-      const auto opaque = graph_.compile({"depth"});
+      const auto opaque = graph_.compile({GraphResource::of(depth_)});
       dev.beginFrame();
       for (const auto* p : opaque) p->execute();
       dev.endFrame();
@@ -50,7 +56,22 @@ Renderer::Renderer(Device& dev, const Scene& scene, const RenderSettings& settin
   oit_->addPasses(graph_, dev);
   if (wantVisibility_) visibility_.addPasses(graph_, dev);
   if (wantProbe_) probe_.addPasses(graph_, dev);
-  passes_ = graph_.compile(outputs);
+  passes_ = graph_.compile(resources(outputs));
+}
+
+std::vector<GraphResource> Renderer::resources(const std::set<std::string>& outputs) const {
+  std::vector<GraphResource> r;
+  for (const auto& o : outputs) {
+    if (o == "color")
+      r.push_back(GraphResource::of(color_));
+    else if (o == "visibility" && wantVisibility_)
+      r.push_back(GraphResource::of(visibility_.image()));
+    else if (o == "probe" && wantProbe_)
+      r.push_back(GraphResource::of(probe_.values()));
+    else
+      throw DeviceError("renderer: output '" + o + "' was not set up");
+  }
+  return r;
 }
 
 void Renderer::upload(const Scene& scene) {
@@ -100,16 +121,14 @@ std::vector<std::string> Renderer::graphPasses() const {
 
 std::vector<std::string> Renderer::graphPasses(const std::set<std::string>& outputs) const {
   std::vector<std::string> names;
-  for (const auto* p : graph_.compile(outputs)) names.push_back(p->name);
+  for (const auto* p : graph_.compile(resources(outputs))) names.push_back(p->name);
   return names;
 }
 
 std::vector<PassTime> Renderer::renderFrame() { return run(passes_); }
 
 std::vector<PassTime> Renderer::renderFrame(const std::set<std::string>& outputs) {
-  if ((outputs.count("visibility") && !wantVisibility_) || (outputs.count("probe") && !wantProbe_))
-    throw DeviceError("renderFrame: an output the renderer was not set up for");
-  return run(graph_.compile(outputs));
+  return run(graph_.compile(resources(outputs)));
 }
 
 std::vector<PassTime> Renderer::run(const std::vector<const PassNode*>& passes) {

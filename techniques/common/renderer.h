@@ -48,6 +48,8 @@ class Renderer {
 
  private:
   void upload(const Scene& scene);
+  // The graph resources behind the outputs "color", "visibility" and "probe".
+  std::vector<GraphResource> resources(const std::set<std::string>& outputs) const;
   std::vector<PassTime> run(const std::vector<const PassNode*>& passes);
 
   Device& dev_;

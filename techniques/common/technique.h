@@ -14,6 +14,7 @@
 #include "scenes/scene.h"
 #include "scenes/view.h"
 #include "techniques/common/frame_graph.h"
+#include "techniques/common/pass.h"
 #include "techniques/common/shader_library.h"
 
 namespace sb {
@@ -88,8 +89,8 @@ struct Geometry {
   static ShaderCode meshVertexShader();
   static Topology strandTopology(const RenderSettings& s);
   static uint32_t strandVertexCount(const GpuScene& g, const RenderSettings& s);
-  static std::vector<BindingSlot> slots();  // view UBO + scene buffers
-  static std::vector<Binding> bindings(const GpuScene& g, Buffer viewUbo);
+  // The view's uniforms and the scene's buffers (read only), bound by every geometry pass.
+  static Inputs inputs(const GpuScene& g, Buffer viewUbo);
   // One fixed state (d: fragment shader, targets, depth, bindings) drawn over the
   // strands and over the mesh: pipelines "<name>.hair" and "<name>.mesh", each
   // made only when the scene has that geometry.
@@ -101,49 +102,17 @@ struct Geometry {
 };
 
 // What the shading passes need to call a shadow technique's lookup, declared
-// once: each input names its slot and its resource, from which the pipeline's
-// binding slots, the draw's bindings and the pass's sampled textures follow.
+// once: its shader, its defines and its inputs (whose slots, bindings, sampled
+// textures and graph reads every pass that shades through it takes).
 struct ShadowLookup {
-  std::string shader;              // defines float shadowVisibility(vec3 worldPos)
-  ShaderDefines defines;           // e.g. SB_OPAQUE_SHADOW from OpaqueShadow
-  std::vector<std::string> reads;  // graph resources its passes write
-  std::vector<BindingSlot> slots;
-  std::vector<Binding> bindings;
-  std::vector<Texture> textures;  // sampled
-  ShadowLookup& read(const std::string& graphResource) {
-    reads.push_back(graphResource);
-    return *this;
-  }
-  ShadowLookup& uniform(uint32_t slot, Buffer b) {
-    return buffer(slot, b, BindingKind::UniformBuffer);
-  }
-  ShadowLookup& storage(uint32_t slot, Buffer b) {
-    return buffer(slot, b, BindingKind::StorageBuffer);
-  }
-  ShadowLookup& sample(uint32_t slot, Texture t) {
-    return texture(slot, t, BindingKind::SampledTexture);
-  }
-  ShadowLookup& sampleArray(uint32_t slot, Texture t) {
-    return texture(slot, t, BindingKind::SampledTextureArray);
-  }
-
- private:
-  ShadowLookup& buffer(uint32_t slot, Buffer b, BindingKind kind) {
-    slots.push_back({slot, kind});
-    bindings.push_back(Binding::buf(slot, b));
-    return *this;
-  }
-  ShadowLookup& texture(uint32_t slot, Texture t, BindingKind kind) {
-    slots.push_back({slot, kind});
-    bindings.push_back(Binding::tex(slot, t));
-    textures.push_back(t);
-    return *this;
-  }
+  std::string shader;     // defines float shadowVisibility(vec3 worldPos)
+  ShaderDefines defines;  // e.g. SB_OPAQUE_SHADOW from OpaqueShadow
+  Inputs inputs;
 };
 
 // A self-shadowing technique: its own passes (from the light) and a GLSL
 // lookup, `float shadowVisibility(vec3 worldPos)`, that shading passes include
-// as <shadow>. Resources it writes are named "shadow.*" in the frame graph.
+// as <shadow>.
 class ShadowTechnique {
  public:
   virtual ~ShadowTechnique() = default;
@@ -156,15 +125,8 @@ class ShadowTechnique {
   virtual std::optional<DepthComplexity> depthComplexity() const { return std::nullopt; }
   // Problems found while rendering (e.g. a fragment-list overflow, a layer cap hit).
   virtual std::vector<std::string> warnings(Device& /*dev*/) { return {}; }
-  // The lookup, declared once: its shader, defines, graph reads and inputs.
+  // The lookup, declared once: its shader, defines and inputs.
   virtual ShadowLookup lookup() const = 0;
-  // Its parts, as the shading passes use them.
-  std::string lookupShader() const { return lookup().shader; }
-  ShaderDefines lookupDefines() const { return lookup().defines; }
-  std::vector<std::string> lookupReads() const { return lookup().reads; }
-  std::vector<BindingSlot> lookupSlots() const { return lookup().slots; }
-  std::vector<Binding> lookupBindings() const { return lookup().bindings; }
-  std::vector<Texture> lookupTextures() const { return lookup().textures; }
 };
 
 // An order-independent transparency technique: composites the hair over the
@@ -187,7 +149,7 @@ class OitTechnique {
   // True when prepare() does work; the renderer then draws the opaque depth first.
   virtual bool needsPrepare() const { return false; }
   virtual void prepare(Device& /*dev*/) {}
-  // Reads "color"/"depth" (the opaque result), writes "color".
+  // Reads the opaque result (targets' color and depth) when one was drawn, writes color.
   virtual void addPasses(FrameGraph& graph, Device& dev) = 0;
   virtual std::optional<DepthComplexity> depthComplexity() const { return std::nullopt; }
   virtual std::vector<std::string> warnings(Device& /*dev*/) { return {}; }

@@ -24,9 +24,7 @@ ShadowLookup DensityClusteringShadow::lookup() const {
   ShadowLookup l{"techniques/dc/lookup.glsl"};
   l.defines.defines.push_back({"SB_DC_CLUSTERS", std::to_string(opts_.clusters)});
   l.defines.defines.push_back({"SB_DC_LAYERS", std::to_string(layers())});
-  l.read("shadow.dc_range")
-      .read("shadow.dc_clusters")
-      .uniform(kParams, params_)
+  l.inputs.uniform(kParams, params_)
       .sample(kRange, range_)
       .sampleArray(kCounts, counts_)
       .sampleArray(kSums, sums_)
@@ -52,24 +50,20 @@ void DensityClusteringShadow::setup(Device& dev, const GpuScene& scene, const Re
   squares_ = map("square_sums", Format::RGBA32F, layers());
   opaque_.setup(dev, scene, size, lightView_, "dc");
 
-  const ShaderDefines defs = lookupDefines();
+  const ShaderDefines defs = lookup().defines;
   {  // The centres: a full-map triangle (also needed without hair: it clears).
     const ShaderCode vert = loadShader("techniques/common/composite.vert");
     PipelineDesc d;
     d.technique = "dc";
     d.vertex = &vert;
     d.colorFormats.assign(layers(), Format::RGBA32F);
-    d.bindings = {{kRange, BindingKind::SampledTexture}};
     for (int first = 1; first >= 0; --first) {
       ShaderDefines md = defs;
       md.defines.push_back({"SB_DC_FIRST", std::to_string(first)});
       const ShaderCode frag = loadShader("techniques/dc/means.frag", md);
       d.name = first ? "dc.means.first" : "dc.means";
       d.fragment = &frag;
-      if (!first) {
-        d.bindings.push_back({kCounts, BindingKind::SampledTextureArray});
-        d.bindings.push_back({kSums, BindingKind::SampledTextureArray});
-      }
+      d.bindings = meansPass(first).slots();
       (first ? firstMeansPipeline_ : meansPipeline_) = dev.createPipeline(d);
     }
   }
@@ -80,7 +74,7 @@ void DensityClusteringShadow::setup(Device& dev, const GpuScene& scene, const Re
   d.technique = "dc";
   d.vertex = &vert;
   d.topology = Geometry::strandTopology(s);
-  d.bindings = Geometry::slots();
+  d.bindings = initPass().slots();
   const ShaderCode rangeFrag = loadShader("techniques/common/depth_range.frag", defs);
   d.name = "dc.init";
   d.fragment = &rangeFrag;
@@ -91,63 +85,55 @@ void DensityClusteringShadow::setup(Device& dev, const GpuScene& scene, const Re
   const ShaderCode iterateFrag = loadShader("techniques/dc/iterate.frag", defs);
   d.name = "dc.iterate";
   d.fragment = &iterateFrag;
-  d.bindings.push_back({kRange, BindingKind::SampledTexture});
-  d.bindings.push_back({kCentres, BindingKind::SampledTextureArray});
+  d.bindings = iteratePass().slots();
   d.colorFormats.assign(3 * layers(), Format::RGBA32F);
   d.blend.assign(3 * layers(), BlendState::additive());
   iteratePipeline_ = dev.createPipeline(d);
 }
 
+// The hair's depth range per texel (min blending of near and -far).
+Pass DensityClusteringShadow::initPass() const {
+  return Pass("dc.init")
+      .color(range_, LoadOp::Clear, {2.0f, 2.0f, 0.0f, 0.0f})  // nearest 2, furthest -2: empty
+      .inputs(Geometry::inputs(*scene_, lightView_));
+}
+
+// The cluster centres: spread over the range at first, then the means of the
+// previous iteration's clusters.
+Pass DensityClusteringShadow::meansPass(bool first) const {
+  Pass p("dc.means");
+  for (uint32_t l = 0; l < layers(); ++l) p.color(centres_, LoadOp::Clear, {}, l);
+  p.sample(kRange, range_);
+  if (!first) p.sampleArray(kCounts, counts_).sampleArray(kSums, sums_);
+  return p;
+}
+
+// Every fragment joins its nearest centre's count, sum and sum of squares.
+Pass DensityClusteringShadow::iteratePass() const {
+  Pass p("dc.iterate");
+  for (Texture t : {counts_, sums_, squares_})
+    for (uint32_t l = 0; l < layers(); ++l) p.color(t, LoadOp::Clear, {}, l);
+  return p.inputs(Geometry::inputs(*scene_, lightView_))
+      .sample(kRange, range_)
+      .sampleArray(kCentres, centres_);
+}
+
 void DensityClusteringShadow::addPasses(FrameGraph& graph, Device& dev) {
   opaque_.addPass(graph, dev);
-  graph.add({"dc.init", {}, {"shadow.dc_range"}, [this, &dev] {
-               PassDesc pass;
-               pass.name = "dc.init";
-               ColorAttachment a;
-               a.texture = range_;
-               a.clear = {2.0f, 2.0f, 0.0f, 0.0f};  // nearest 2, furthest -2: empty
-               pass.color = {a};
-               dev.beginPass(pass);
-               if (rangePipeline_)
-                 dev.draw(rangePipeline_, Geometry::bindings(*scene_, lightView_),
-                          Geometry::strandVertexCount(*scene_, settings_));
-               dev.endPass();
-             }});
+  const uint32_t vertices = Geometry::strandVertexCount(*scene_, settings_);
+  graph.add(initPass(),
+            [this, &dev, vertices, p = initPass()] { p.draw(dev, rangePipeline_, vertices); });
   // k-means: centres, then every fragment joins its nearest centre's sums.
-  graph.add({"dc.iterate", {"shadow.dc_range"}, {"shadow.dc_clusters"}, [this, &dev] {
-               for (uint32_t i = 0; i < opts_.iterations; ++i) {
-                 PassDesc means;
-                 means.name = "dc.means";
-                 for (uint32_t l = 0; l < layers(); ++l)
-                   means.color.push_back({centres_, LoadOp::Clear, {}, {}, l});
-                 means.sampledTextures = {range_};
-                 std::vector<Binding> mb = {Binding::tex(kRange, range_)};
-                 if (i > 0) {
-                   means.sampledTextures.push_back(counts_);
-                   means.sampledTextures.push_back(sums_);
-                   mb.push_back(Binding::tex(kCounts, counts_));
-                   mb.push_back(Binding::tex(kSums, sums_));
-                 }
-                 dev.beginPass(means);
-                 dev.draw(i == 0 ? firstMeansPipeline_ : meansPipeline_, mb, 3);
-                 dev.endPass();
-
-                 PassDesc iterate;
-                 iterate.name = "dc.iterate";
-                 for (Texture t : {counts_, sums_, squares_})
-                   for (uint32_t l = 0; l < layers(); ++l)
-                     iterate.color.push_back({t, LoadOp::Clear, {}, {}, l});
-                 iterate.sampledTextures = {range_, centres_};
-                 dev.beginPass(iterate);
-                 if (iteratePipeline_) {
-                   auto b = Geometry::bindings(*scene_, lightView_);
-                   b.push_back(Binding::tex(kRange, range_));
-                   b.push_back(Binding::tex(kCentres, centres_));
-                   dev.draw(iteratePipeline_, b, Geometry::strandVertexCount(*scene_, settings_));
-                 }
-                 dev.endPass();
-               }
-             }});
+  const Pass first = meansPass(true), means = meansPass(false), iterate = iteratePass();
+  graph.add("dc.iterate", {first, iterate, means}, [this, &dev, vertices, first, means, iterate] {
+    for (uint32_t i = 0; i < opts_.iterations; ++i) {
+      if (i == 0)
+        first.draw(dev, firstMeansPipeline_, 3);
+      else
+        means.draw(dev, meansPipeline_, 3);
+      iterate.draw(dev, iteratePipeline_, vertices);
+    }
+  });
 }
 
 }  // namespace sb

@@ -45,6 +45,10 @@ class DensityClusteringShadow : public ShadowTechnique {
   Texture squareMap() const { return squares_; }
 
  private:
+  Pass initPass() const;
+  Pass meansPass(bool first) const;
+  Pass iteratePass() const;
+
   Options opts_;
   const GpuScene* scene_ = nullptr;
   RenderSettings settings_;

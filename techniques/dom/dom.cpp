@@ -95,14 +95,13 @@ void DeepOpacityMaps::setup(Device& dev, const GpuScene& scene, const RenderSett
   d.technique = "dom";
   d.vertex = &vert;
   d.topology = Geometry::strandTopology(s);
-  d.bindings = Geometry::slots();
-  d.bindings.push_back({kParams, BindingKind::UniformBuffer});
   {
     const ShaderCode frag = loadShader("techniques/dom/depth.frag");
     d.name = "dom.depth";
     d.fragment = &frag;
     d.colorFormats = {Format::R32F, Format::RGBA32F};
     d.blend = {BlendState::min(), BlendState::min()};
+    d.bindings = depthPass().slots();
     depthPipeline_ = dev.createPipeline(d);
   }
   ShaderDefines defs;
@@ -112,46 +111,42 @@ void DeepOpacityMaps::setup(Device& dev, const GpuScene& scene, const RenderSett
   d.fragment = &frag;
   d.colorFormats.assign(targets(), Format::RGBA32F);
   d.blend.assign(targets(), BlendState::additive());
-  d.bindings.push_back({kDepth, BindingKind::SampledTexture});
+  d.bindings = opacityPass().slots();
   opacityPipeline_ = dev.createPipeline(d);
+}
+
+// The nearest hair depth z0 per texel (min blending), also into the first
+// channel of layer 0 of the maps (depth.frag).
+Pass DeepOpacityMaps::depthPass() const {
+  return Pass("dom.depth")
+      .color(depth_, LoadOp::Clear, {1, 0, 0, 0})
+      .color(maps_, LoadOp::Clear, {1, 0, 0, 0}, 0)
+      .inputs(Geometry::inputs(*scene_, lightView_))
+      .uniform(kParams, params_);
+}
+
+// Each fragment adds its opacity to the layers behind it (z - z0 against d_k).
+Pass DeepOpacityMaps::opacityPass() const {
+  Pass p("dom.opacity");
+  for (uint32_t t = 0; t < targets(); ++t)
+    p.color(maps_, t == 0 ? LoadOp::Load : LoadOp::Clear, {0, 0, 0, 0}, t);
+  return p.inputs(Geometry::inputs(*scene_, lightView_))
+      .uniform(kParams, params_)
+      .sample(kDepth, depth_);
 }
 
 void DeepOpacityMaps::addPasses(FrameGraph& graph, Device& dev) {
   opaque_.addPass(graph, dev);
-  graph.add({"dom.depth", {}, {"shadow.dom_depth"}, [this, &dev] {
-               PassDesc pass;
-               pass.name = "dom.depth";
-               pass.color.push_back({depth_, LoadOp::Clear, {1, 0, 0, 0}, {}});
-               pass.color.push_back({maps_, LoadOp::Clear, {1, 0, 0, 0}, {}, 0});
-               dev.beginPass(pass);
-               if (depthPipeline_) {
-                 auto b = Geometry::bindings(*scene_, lightView_);
-                 b.push_back(Binding::buf(kParams, params_));
-                 dev.draw(depthPipeline_, b, Geometry::strandVertexCount(*scene_, settings_));
-               }
-               dev.endPass();
-             }});
-  graph.add({"dom.opacity", {"shadow.dom_depth"}, {"shadow.dom_opacity"}, [this, &dev] {
-               PassDesc pass;
-               pass.name = "dom.opacity";
-               for (uint32_t t = 0; t < targets(); ++t)
-                 pass.color.push_back(
-                     {maps_, t == 0 ? LoadOp::Load : LoadOp::Clear, {0, 0, 0, 0}, {}, t});
-               pass.sampledTextures = {depth_};
-               dev.beginPass(pass);
-               if (opacityPipeline_) {
-                 auto b = Geometry::bindings(*scene_, lightView_);
-                 b.push_back(Binding::buf(kParams, params_));
-                 b.push_back(Binding::tex(kDepth, depth_));
-                 dev.draw(opacityPipeline_, b, Geometry::strandVertexCount(*scene_, settings_));
-               }
-               dev.endPass();
-             }});
+  const uint32_t vertices = Geometry::strandVertexCount(*scene_, settings_);
+  graph.add(depthPass(),
+            [this, &dev, vertices, p = depthPass()] { p.draw(dev, depthPipeline_, vertices); });
+  graph.add(opacityPass(),
+            [this, &dev, vertices, p = opacityPass()] { p.draw(dev, opacityPipeline_, vertices); });
 }
 
 ShadowLookup DeepOpacityMaps::lookup() const {
   ShadowLookup l{"techniques/dom/lookup.glsl"};
-  l.read("shadow.dom_opacity").uniform(kParams, params_).sampleArray(kMaps, maps_);
+  l.inputs.uniform(kParams, params_).sampleArray(kMaps, maps_);
   opaque_.addTo(l);
   return l;
 }

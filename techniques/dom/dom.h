@@ -40,6 +40,9 @@ class DeepOpacityMaps : public ShadowTechnique {
   uint32_t targets() const { return (opt_.layers + 4) / 4; }  // layers of the array
 
  private:
+  Pass depthPass() const;
+  Pass opacityPass() const;
+
   Options opt_;
   const GpuScene* scene_ = nullptr;
   RenderSettings settings_;

@@ -37,14 +37,13 @@ void ExactShadow::setup(Device& dev, const GpuScene& scene, const RenderSettings
     state_ = dev.createBuffer({"exact.peel_state", "shadow", BufferUsage::Storage, 16});
   opaque_.setup(dev, scene, size_, lightView_, "exact");
 
-  count_ = makeHairCountPipeline(dev, s, kCounts, false, "exact");
+  count_ = makeHairCountPipeline(dev, s, countPass(), kCounts, false, "exact");
   const ShaderCode vert = Geometry::strandVertexShader(s);
   PipelineDesc d;
   d.technique = "exact";
   d.vertex = &vert;
   d.topology = Geometry::strandTopology(s);
-  d.bindings = Geometry::slots();
-  for (const auto& slot : lists().slots) d.bindings.push_back(slot);
+  d.bindings = listPass("exact.fill").slots();
   if (method_ == Method::ABuffer) {
     const ShaderCode frag = loadShader("techniques/exact/fill.frag");
     d.name = "exact.fill";
@@ -55,7 +54,7 @@ void ExactShadow::setup(Device& dev, const GpuScene& scene, const RenderSettings
     c.name = "exact.sort";
     c.technique = "exact";
     c.compute = &comp;
-    c.bindings = lists().slots;
+    c.bindings = sortPass().slots();
     sort_ = dev.createPipeline(c);
   } else {
     for (int pass = 0; pass < 2; ++pass) {
@@ -66,7 +65,8 @@ void ExactShadow::setup(Device& dev, const GpuScene& scene, const RenderSettings
       d.fragment = &frag;
       (pass == 0 ? peel0_ : peel1_) = dev.createPipeline(d);
     }
-    advance_ = makePeelAdvancePipeline(dev, kState, kCursor, kOffsets, kNodes, "exact");
+    advance_ =
+        makePeelAdvancePipeline(dev, advancePass(), kState, kCursor, kOffsets, kNodes, "exact");
   }
 }
 
@@ -75,12 +75,7 @@ void ExactShadow::prepare(Device& dev) {
   // number of peel layers (in place of an occlusion query per layer).
   dev.fillBuffer(counts_, 0);
   dev.beginFrame();
-  PassDesc pass = listPass("exact.count");
-  dev.beginPass(pass);
-  auto b = Geometry::bindings(*scene_, lightView_);
-  b.push_back(Binding::buf(kCounts, counts_));
-  dev.draw(count_, b, Geometry::strandVertexCount(*scene_, settings_));
-  dev.endPass();
+  countPass().draw(dev, count_, Geometry::strandVertexCount(*scene_, settings_));
   dev.endFrame();
   const ListLayout layout = layoutFromCounts(dev.readBuffer(counts_));
   complexity_ = layout.complexity;
@@ -90,70 +85,81 @@ void ExactShadow::prepare(Device& dev) {
   layers_ = std::min(complexity_.max, maxLayers_);
 }
 
-// The fragment lists and their parameters: every pass of the technique and
-// the lookup bind them all.
-ShadowLookup ExactShadow::lists() const {
-  ShadowLookup l;
-  l.uniform(kParams, params_)
-      .storage(kCounts, counts_)
-      .storage(kOffsets, offsets_)
-      .storage(kCursor, cursor_)
-      .storage(kNodes, nodes_)
-      .storage(kState, state_)
-      .storage(kStatus, status_);
-  return l;
+// The fragment lists and their parameters: every pass of the technique binds
+// them all (and writes them); the lookup reads them.
+Inputs ExactShadow::lists(bool written) const {
+  Inputs in;
+  auto storage = [&](uint32_t slot, Buffer b) {
+    written ? in.storage(slot, b) : in.readStorage(slot, b);
+  };
+  in.uniform(kParams, params_);
+  storage(kCounts, counts_);
+  storage(kOffsets, offsets_);
+  storage(kCursor, cursor_);
+  storage(kNodes, nodes_);
+  storage(kState, state_);
+  storage(kStatus, status_);
+  return in;
 }
 
-PassDesc ExactShadow::listPass(const std::string& name) const {
-  PassDesc pass;
-  pass.name = name;
-  pass.width = pass.height = size_;
-  return pass;
+// A hair pass from the light into the lists (no attachments: the light map's size).
+Pass ExactShadow::listPass(const std::string& name) const {
+  return Pass(name)
+      .size(size_, size_)
+      .inputs(Geometry::inputs(*scene_, lightView_))
+      .inputs(lists(true));
+}
+
+Pass ExactShadow::countPass() const {
+  return Pass("exact.count")
+      .size(size_, size_)
+      .inputs(Geometry::inputs(*scene_, lightView_))
+      .storage(kCounts, counts_);
+}
+
+Pass ExactShadow::sortPass() const { return Pass("exact.sort").inputs(lists(true)); }
+
+Pass ExactShadow::advancePass() const {
+  return Pass("exact.peel.advance")
+      .uniform(0, sizeUbo_)
+      .storage(kState, state_)
+      .storage(kCursor, cursor_)
+      .storage(kOffsets, offsets_)
+      .storage(kNodes, nodes_);
 }
 
 void ExactShadow::addPasses(FrameGraph& graph, Device& dev) {
   const uint32_t vertices = Geometry::strandVertexCount(*scene_, settings_);
+  const uint32_t texels = size_ * size_;
   opaque_.addPass(graph, dev);
   if (method_ == Method::ABuffer) {
-    graph.add({"exact.fill", {}, {"shadow.lists"}, [this, &dev, vertices] {
-                 dev.fillBuffer(cursor_, 0);
-                 dev.fillBuffer(status_, 0);
-                 dev.beginPass(listPass("exact.fill"));
-                 auto b = Geometry::bindings(*scene_, lightView_);
-                 for (const auto& x : lists().bindings) b.push_back(x);
-                 dev.draw(fill_, b, vertices);
-                 dev.endPass();
-                 const glm::uvec2 g = dispatchGroups(size_ * size_);
-                 dev.dispatch("exact.sort", sort_, lists().bindings, g.x, g.y);
-               }});
+    const Pass fill = listPass("exact.fill"), sort = sortPass();
+    graph.add("exact.fill", {fill, sort}, [this, &dev, vertices, texels, fill, sort] {
+      dev.fillBuffer(cursor_, 0);
+      dev.fillBuffer(status_, 0);
+      fill.draw(dev, fill_, vertices);
+      const glm::uvec2 g = dispatchGroups(texels);
+      sort.dispatch(dev, sort_, g.x, g.y);
+    });
     return;
   }
-  graph.add({"exact.peel", {}, {"shadow.lists"}, [this, &dev, vertices] {
-               dev.fillBuffer(cursor_, 0);
-               dev.fillBuffer(state_, 0xFFFFFFFFu);
-               auto b = Geometry::bindings(*scene_, lightView_);
-               for (const auto& x : lists().bindings) b.push_back(x);
-               const std::vector<Binding> advance = {
-                   Binding::buf(0, sizeUbo_), Binding::buf(kState, state_),
-                   Binding::buf(kCursor, cursor_), Binding::buf(kOffsets, offsets_),
-                   Binding::buf(kNodes, nodes_)};
-               for (uint32_t layer = 0; layer < layers_; ++layer) {
-                 dev.beginPass(listPass("exact.peel.depth"));
-                 dev.draw(peel0_, b, vertices);
-                 dev.endPass();
-                 dev.beginPass(listPass("exact.peel.id"));
-                 dev.draw(peel1_, b, vertices);
-                 dev.endPass();
-                 const glm::uvec2 g = dispatchGroups(size_ * size_);
-                 dev.dispatch("exact.peel.advance", advance_, advance, g.x, g.y);
-               }
-             }});
+  const Pass depth = listPass("exact.peel.depth"), id = listPass("exact.peel.id"),
+             advance = advancePass();
+  graph.add("exact.peel", {depth, id, advance}, [this, &dev, vertices, texels, depth, id, advance] {
+    dev.fillBuffer(cursor_, 0);
+    dev.fillBuffer(state_, 0xFFFFFFFFu);
+    for (uint32_t layer = 0; layer < layers_; ++layer) {
+      depth.draw(dev, peel0_, vertices);
+      id.draw(dev, peel1_, vertices);
+      const glm::uvec2 g = dispatchGroups(texels);
+      advance.dispatch(dev, advance_, g.x, g.y);
+    }
+  });
 }
 
 ShadowLookup ExactShadow::lookup() const {
-  ShadowLookup l = lists();
-  l.shader = "techniques/exact/lookup.glsl";
-  l.read("shadow.lists");
+  ShadowLookup l{"techniques/exact/lookup.glsl"};
+  l.inputs = lists(false);
   opaque_.addTo(l);
   return l;
 }

@@ -33,8 +33,11 @@ class ExactShadow : public ShadowTechnique {
   std::vector<std::string> warnings(Device& dev) override;
 
  private:
-  ShadowLookup lists() const;
-  PassDesc listPass(const std::string& name) const;
+  Inputs lists(bool written) const;
+  Pass listPass(const std::string& name) const;
+  Pass countPass() const;
+  Pass sortPass() const;
+  Pass advancePass() const;
 
   Method method_;
   uint32_t size_;

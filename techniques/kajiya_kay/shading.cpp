@@ -45,44 +45,37 @@ void KajiyaKayShading::setup(Device& dev, const GpuScene& scene, const RenderSet
     d.colorFormats = {Format::RGBA32F};
     d.hasDepth = d.depthTest = d.depthWrite = true;
     d.depthCompare = CompareOp::Less;
-    d.bindings = hairSlots();
+    d.bindings = meshPass().slots();
     meshPipeline_ = dev.createPipeline(d);
   }
 }
 
 ShaderDefines KajiyaKayShading::hairDefines() const {
-  ShaderDefines defs = shadow_->lookupDefines();
-  defs.aliases["shadow"] = shadow_->lookupShader();
+  const ShadowLookup lookup = shadow_->lookup();
+  ShaderDefines defs = lookup.defines;
+  defs.aliases["shadow"] = lookup.shader;
   return defs;
 }
 
-std::vector<BindingSlot> KajiyaKayShading::hairSlots() const {
-  auto slots = Geometry::slots();
-  slots.push_back({bind::kShading, BindingKind::UniformBuffer});
-  for (const auto& slot : shadow_->lookupSlots()) slots.push_back(slot);
-  return slots;
+Inputs KajiyaKayShading::hairInputs() const {
+  Inputs in = Geometry::inputs(*scene_, viewUbo_);
+  in.uniform(bind::kShading, shadingUbo_).add(shadow_->lookup().inputs);
+  return in;
 }
 
-std::vector<Binding> KajiyaKayShading::hairBindings() const {
-  auto b = Geometry::bindings(*scene_, viewUbo_);
-  b.push_back(Binding::buf(bind::kShading, shadingUbo_));
-  for (const auto& x : shadow_->lookupBindings()) b.push_back(x);
-  return b;
+Pass KajiyaKayShading::meshPass() const {
+  const glm::vec3 bg = settings_.background;
+  return Pass("shading.mesh")
+      .color(color_, LoadOp::Clear, {bg.r, bg.g, bg.b, 1.0f})
+      .depth(depth_, LoadOp::Clear)
+      .inputs(hairInputs());
 }
 
 void KajiyaKayShading::addMeshPass(FrameGraph& graph, Device& dev) {
   if (!meshPipeline_) return;
-  graph.add({"shading.mesh", shadowReads(), {"color", "depth"}, [this, &dev] {
-               PassDesc pass;
-               pass.name = "shading.mesh";
-               const glm::vec3 bg = settings_.background;
-               pass.color = {{color_, LoadOp::Clear, {bg.r, bg.g, bg.b, 1.0f}}};
-               pass.depth = {depth_, LoadOp::Clear, 1.0f};
-               pass.sampledTextures = sampledTextures();
-               dev.beginPass(pass);
-               dev.draw(meshPipeline_, hairBindings(), scene_->meshTriangles * 3);
-               dev.endPass();
-             }});
+  graph.add(meshPass(), [this, &dev, p = meshPass()] {
+    p.draw(dev, meshPipeline_, scene_->meshTriangles * 3);
+  });
 }
 
 }  // namespace sb

@@ -28,22 +28,20 @@ class KajiyaKayShading {
 
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
              const ShadowTechnique& shadow, Texture color, Texture depth);
-  // Writes "color" and "depth" (clearing them); only when the scene has a mesh.
+  // Writes the colour and depth targets (clearing them); only when the scene has a mesh.
   void addMeshPass(FrameGraph& graph, Device& dev);
   bool drawsMesh() const { return bool(meshPipeline_); }
 
-  // For hair passes: the shader defines (<shadow> bound), binding slots and
-  // bindings (geometry, shading uniforms, shadow lookup), the graph resources
-  // the lookup reads and the textures a pass must declare as sampled.
+  // For hair passes: the shader defines (<shadow> bound) and the inputs
+  // (geometry, shading uniforms, the shadow lookup's inputs).
   ShaderDefines hairDefines() const;
-  std::vector<BindingSlot> hairSlots() const;
-  std::vector<Binding> hairBindings() const;
-  std::vector<std::string> shadowReads() const { return shadow_->lookupReads(); }
-  std::vector<Texture> sampledTextures() const { return shadow_->lookupTextures(); }
+  Inputs hairInputs() const;
   Buffer viewUbo() const { return viewUbo_; }
   const ShadowTechnique& shadow() const { return *shadow_; }
 
  private:
+  Pass meshPass() const;
+
   const GpuScene* scene_ = nullptr;
   const ShadowTechnique* shadow_ = nullptr;
   RenderSettings settings_;

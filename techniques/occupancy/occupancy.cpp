@@ -31,9 +31,8 @@ OccupancyShadow::Options OccupancyShadow::readOptions(const OptionReader& o) {
 ShadowLookup OccupancyShadow::lookup() const {
   ShadowLookup l{"techniques/occupancy/lookup.glsl", maps_.defines()};
   l.defines.defines.push_back({"SB_OCC_JITTER", opts_.jitter ? "1" : "0"});
-  l.reads = maps_.reads();
-  l.uniform(kParams, params_).sample(kRange, maps_.range()).sampleArray(kBits, maps_.bits());
-  if (maps_.slabs()) l.sampleArray(kSlabs, maps_.slabs());
+  l.inputs.uniform(kParams, params_).sample(kRange, maps_.range()).sampleArray(kBits, maps_.bits());
+  if (maps_.slabs()) l.inputs.sampleArray(kSlabs, maps_.slabs());
   opaque_.addTo(l);
   return l;
 }
@@ -46,7 +45,6 @@ void OccupancyShadow::setup(Device& dev, const GpuScene& scene, const RenderSett
   OccupancyMaps::Config c;
   c.prefix = "occupancy";
   c.owner = "shadow";
-  c.graph = "shadow.occupancy";
   c.width = c.height = size;
   c.slices = opts_.slices;
   c.slabs = opts_.slabs;

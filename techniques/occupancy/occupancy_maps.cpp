@@ -35,7 +35,7 @@ void OccupancyMaps::setup(Device& dev, const GpuScene& scene, const RenderSettin
   d.topology = Geometry::strandTopology(s);
   d.hasDepth = d.depthTest = bool(config.depth);  // hair behind the opaque mesh is left out
   d.depthCompare = CompareOp::Less;
-  d.bindings = Geometry::slots();
+  d.bindings = rangePass().slots();
 
   const ShaderCode rangeFrag = loadShader("techniques/common/depth_range.frag", defs);
   d.name = config.prefix + ".depth_range";
@@ -44,7 +44,7 @@ void OccupancyMaps::setup(Device& dev, const GpuScene& scene, const RenderSettin
   d.blend = {BlendState::min()};
   rangePipeline_ = dev.createPipeline(d);
 
-  d.bindings.push_back({kRangeBinding, BindingKind::SampledTexture});
+  d.bindings = bitsPass().slots();
   const ShaderCode bitsFrag = loadShader("techniques/occupancy/occupancy.frag", defs);
   d.name = config.prefix + ".occupancy";
   d.fragment = &bitsFrag;
@@ -56,6 +56,7 @@ void OccupancyMaps::setup(Device& dev, const GpuScene& scene, const RenderSettin
   if (!config.slabMap) return;
   const ShaderCode slabsFrag = loadShader("techniques/occupancy/slabs.frag", defs);
   d.name = config.prefix + ".slabs";
+  d.bindings = slabsPass().slots();
   d.fragment = &slabsFrag;
   d.colorFormats.assign(slabTargets(), Format::RGBA32F);
   d.blend.assign(slabTargets(), BlendState::additive());
@@ -63,12 +64,33 @@ void OccupancyMaps::setup(Device& dev, const GpuScene& scene, const RenderSettin
   slabsPipeline_ = dev.createPipeline(d);
 }
 
-PassDesc OccupancyMaps::pass(const std::string& step, bool first) const {
-  PassDesc p;
-  p.name = config_.prefix + "." + step;
-  if (config_.depth)
-    p.depth = {config_.depth, first && config_.clearDepth ? LoadOp::Clear : LoadOp::Load, 1.0f};
-  if (!first) p.sampledTextures = {range_};
+// A hair pass of the maps. From the eye the passes test against the opaque
+// depth, and the first clears it when nothing opaque was drawn.
+Pass OccupancyMaps::hairPass(const std::string& step, bool first) const {
+  Pass p(config_.prefix + "." + step);
+  if (config_.depth && first && config_.clearDepth)
+    p.depth(config_.depth, LoadOp::Clear);
+  else if (config_.depth)
+    p.depthReadOnly(config_.depth);
+  p.inputs(Geometry::inputs(*scene_, viewUbo_));
+  if (!first) p.sample(kRangeBinding, range_);
+  return p;
+}
+
+Pass OccupancyMaps::rangePass() const {
+  return hairPass("depth_range", true)
+      .color(range_, LoadOp::Clear, {2.0f, 2.0f, 0.0f, 0.0f});  // nearest 2, furthest -2: empty
+}
+
+Pass OccupancyMaps::bitsPass() const {
+  Pass p = hairPass("occupancy", false);
+  for (uint32_t k = 0; k < wordTargets(); ++k) p.colorUint(bits_, LoadOp::Clear, {}, k);
+  return p;
+}
+
+Pass OccupancyMaps::slabsPass() const {
+  Pass p = hairPass("slabs", false);
+  for (uint32_t m = 0; m < slabTargets(); ++m) p.color(slabs_, LoadOp::Clear, {}, m);
   return p;
 }
 
@@ -78,57 +100,15 @@ std::vector<Texture> OccupancyMaps::maps() const {
   return t;
 }
 
-std::vector<std::string> OccupancyMaps::reads() const {
-  std::vector<std::string> r = {config_.graph + "_range", config_.graph + "_bits"};
-  if (config_.slabMap) r.push_back(config_.graph + "_slabs");
-  return r;
-}
-
 void OccupancyMaps::addPasses(FrameGraph& graph, Device& dev) {
-  // Draws the hair into the pass's targets (nothing when the scene has none).
-  auto drawHair = [this, &dev](Pipeline p, bool readsRange) {
-    if (!p) return;
-    auto b = Geometry::bindings(*scene_, viewUbo_);
-    if (readsRange) b.push_back(Binding::tex(kRangeBinding, range_));
-    dev.draw(p, b, Geometry::strandVertexCount(*scene_, settings_));
-  };
-  // From the eye the passes test against the opaque depth (and the first clears it).
-  std::vector<std::string> firstReads, mapReads = {config_.graph + "_range"};
-  std::vector<std::string> firstWrites = {config_.graph + "_range"};
-  if (config_.depth) {
-    if (!config_.clearDepth) firstReads.push_back("depth");
-    firstWrites.push_back("depth");
-    mapReads.push_back("depth");
-  }
-  graph.add({config_.prefix + ".depth_range", firstReads, firstWrites, [this, drawHair, &dev] {
-               PassDesc p = pass("depth_range", true);
-               ColorAttachment a;
-               a.texture = range_;
-               a.clear = {2.0f, 2.0f, 0.0f, 0.0f};  // nearest 2, furthest -2: empty
-               p.color = {a};
-               dev.beginPass(p);
-               drawHair(rangePipeline_, false);
-               dev.endPass();
-             }});
-  graph.add(
-      {config_.prefix + ".occupancy", mapReads, {config_.graph + "_bits"}, [this, drawHair, &dev] {
-         PassDesc p = pass("occupancy", false);
-         for (uint32_t k = 0; k < wordTargets(); ++k)
-           p.color.push_back({bits_, LoadOp::Clear, {}, {}, k});
-         dev.beginPass(p);
-         drawHair(bitsPipeline_, true);
-         dev.endPass();
-       }});
+  const uint32_t vertices = scene_->hasHair() ? Geometry::strandVertexCount(*scene_, settings_) : 0;
+  graph.add(rangePass(),
+            [this, &dev, vertices, p = rangePass()] { p.draw(dev, rangePipeline_, vertices); });
+  graph.add(bitsPass(),
+            [this, &dev, vertices, p = bitsPass()] { p.draw(dev, bitsPipeline_, vertices); });
   if (!config_.slabMap) return;
-  graph.add(
-      {config_.prefix + ".slabs", mapReads, {config_.graph + "_slabs"}, [this, drawHair, &dev] {
-         PassDesc p = pass("slabs", false);
-         for (uint32_t m = 0; m < slabTargets(); ++m)
-           p.color.push_back({slabs_, LoadOp::Clear, {}, {}, m});
-         dev.beginPass(p);
-         drawHair(slabsPipeline_, true);
-         dev.endPass();
-       }});
+  graph.add(slabsPass(),
+            [this, &dev, vertices, p = slabsPass()] { p.draw(dev, slabsPipeline_, vertices); });
 }
 
 }  // namespace sb

@@ -18,7 +18,6 @@ class OccupancyMaps {
   struct Config {
     std::string prefix;  // names of passes and textures
     std::string owner;   // memory owner of the textures
-    std::string graph;   // graph resource names: <graph>_range, _bits, _slabs
     uint32_t width = 0, height = 0;
     uint32_t slices = 128, slabs = 4;  // at most kMaxSlices, kMaxSlabs
     bool slabMap = true;
@@ -44,10 +43,12 @@ class OccupancyMaps {
   Texture bits() const { return bits_; }    // RGBA32UI, wordTargets() layers
   Texture slabs() const { return slabs_; }  // RGBA32F, slabTargets() layers; none without
   std::vector<Texture> maps() const;        // range, bits and slabs (if any)
-  std::vector<std::string> reads() const;   // the graph resources the maps are
 
  private:
-  PassDesc pass(const std::string& step, bool first) const;
+  Pass hairPass(const std::string& step, bool first) const;
+  Pass rangePass() const;
+  Pass bitsPass() const;
+  Pass slabsPass() const;
 
   Config config_;
   const GpuScene* scene_ = nullptr;

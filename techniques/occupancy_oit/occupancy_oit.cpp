@@ -10,6 +10,8 @@ namespace {
 // The accumulation pass (which also binds the shadow lookup, 8..15) reads the
 // maps at 20, 21, 25 (techniques/occupancy_oit/accumulate.frag).
 constexpr uint32_t kRange = 20, kBits = 21, kSlabs = 25;
+// The resolve reads the sums at 0 and 1 (techniques/occupancy_oit/resolve.frag).
+constexpr uint32_t kResolveAccum = 0, kResolveLog2T = 1;
 }  // namespace
 
 OccupancyOit::Options OccupancyOit::readOptions(const OptionReader& o) {
@@ -38,7 +40,6 @@ void OccupancyOit::setup(Device& dev, const GpuScene& scene, const RenderSetting
   OccupancyMaps::Config c;
   c.prefix = "occupancy_oit";
   c.owner = "oit";
-  c.graph = "oit.occ";
   c.width = w;
   c.height = h;
   c.slices = opts_.slices;
@@ -65,7 +66,7 @@ void OccupancyOit::setup(Device& dev, const GpuScene& scene, const RenderSetting
     d.colorFormats = {Format::RGBA32F};
     d.blend = {{true, BlendFactor::One, BlendFactor::OneMinusSrcAlpha, BlendOp::Add,
                 BlendFactor::One, BlendFactor::OneMinusSrcAlpha, BlendOp::Add}};
-    d.bindings = {{0, BindingKind::SampledTexture}, {1, BindingKind::SampledTexture}};
+    d.bindings = resolvePass().slots();
     resolvePipeline_ = dev.createPipeline(d);
   }
   if (!scene.hasHair()) return;  // the hair passes only clear their targets
@@ -94,51 +95,41 @@ void OccupancyOit::setup(Device& dev, const GpuScene& scene, const RenderSetting
   d.fragment = &accumFrag;
   d.colorFormats = {Format::RGBA32F, Format::R32F};
   d.blend.assign(2, BlendState::additive());
-  d.bindings = shading.hairSlots();
-  d.bindings.push_back({kRange, BindingKind::SampledTexture});
-  d.bindings.push_back({kBits, BindingKind::SampledTextureArray});
-  d.bindings.push_back({kSlabs, BindingKind::SampledTextureArray});
+  d.bindings = accumulatePass().slots();
   accumPipeline_ = dev.createPipeline(d);
+}
+
+// Shaded hair weighted by its occupancy-ordered transmittance, summed; the
+// depth range pass has cleared the depth when nothing opaque was drawn.
+Pass OccupancyOit::accumulatePass() const {
+  Pass p("occupancy_oit.accumulate");
+  p.depthReadOnly(targets_.depth)
+      .color(accum_, LoadOp::Clear)
+      .color(log2T_, LoadOp::Clear)
+      .inputs(shading_->hairInputs())
+      .sample(kRange, maps_.range())
+      .sampleArray(kBits, maps_.bits())
+      .sampleArray(kSlabs, maps_.slabs());
+  return p;
+}
+
+// The sum over the opaque result (or the background).
+Pass OccupancyOit::resolvePass() const {
+  const glm::vec3 bg = settings_.background;
+  return Pass("occupancy_oit.resolve")
+      .color(targets_.color, targets_.opaqueDrawn ? LoadOp::Load : LoadOp::Clear,
+             {bg.r, bg.g, bg.b, 1.0f})
+      .sample(kResolveAccum, accum_)
+      .sample(kResolveLog2T, log2T_);
 }
 
 void OccupancyOit::addPasses(FrameGraph& graph, Device& dev) {
   const uint32_t vertices = scene_->hasHair() ? Geometry::strandVertexCount(*scene_, settings_) : 0;
   maps_.addPasses(graph, dev);
-  auto accumReads = shading_->shadowReads();
-  for (const auto& r : maps_.reads()) accumReads.push_back(r);
-  accumReads.push_back("depth");
-  graph.add({"occupancy_oit.accumulate", accumReads, {"oit.occ_accum"}, [this, &dev, vertices] {
-               PassDesc pass;
-               pass.name = "occupancy_oit.accumulate";
-               // The depth range pass has cleared the depth when nothing opaque was drawn.
-               pass.depth = {targets_.depth, LoadOp::Load, 1.0f};
-               pass.color = {{accum_, LoadOp::Clear, {}, {}}, {log2T_, LoadOp::Clear, {}, {}}};
-               pass.sampledTextures = shading_->sampledTextures();
-               for (Texture t : maps_.maps()) pass.sampledTextures.push_back(t);
-               dev.beginPass(pass);
-               if (accumPipeline_) {
-                 auto b = shading_->hairBindings();
-                 b.push_back(Binding::tex(kRange, maps_.range()));
-                 b.push_back(Binding::tex(kBits, maps_.bits()));
-                 b.push_back(Binding::tex(kSlabs, maps_.slabs()));
-                 dev.draw(accumPipeline_, b, vertices);
-               }
-               dev.endPass();
-             }});
-  std::vector<std::string> resolveReads = {"oit.occ_accum"};
-  if (targets_.opaqueDrawn) resolveReads.push_back("color");
-  graph.add({"occupancy_oit.resolve", resolveReads, {"color"}, [this, &dev] {
-               PassDesc pass;
-               pass.name = "occupancy_oit.resolve";
-               const glm::vec3 bg = settings_.background;
-               pass.color = {{targets_.color,
-                              targets_.opaqueDrawn ? LoadOp::Load : LoadOp::Clear,
-                              {bg.r, bg.g, bg.b, 1.0f}}};
-               pass.sampledTextures = {accum_, log2T_};
-               dev.beginPass(pass);
-               dev.draw(resolvePipeline_, {Binding::tex(0, accum_), Binding::tex(1, log2T_)}, 3);
-               dev.endPass();
-             }});
+  graph.add(accumulatePass(), [this, &dev, vertices, p = accumulatePass()] {
+    p.draw(dev, accumPipeline_, vertices);
+  });
+  graph.add(resolvePass(), [this, &dev, p = resolvePass()] { p.draw(dev, resolvePipeline_, 3); });
 }
 
 }  // namespace sb

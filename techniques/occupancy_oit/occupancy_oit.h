@@ -43,6 +43,9 @@ class OccupancyOit : public OitTechnique {
   Texture log2Transmittance() const { return log2T_; }
 
  private:
+  Pass accumulatePass() const;
+  Pass resolvePass() const;
+
   Options opts_;
   const GpuScene* scene_ = nullptr;
   const KajiyaKayShading* shading_ = nullptr;

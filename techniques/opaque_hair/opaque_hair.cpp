@@ -22,29 +22,24 @@ void OpaqueHair::setup(Device& dev, const GpuScene& scene, const RenderSettings&
   d.colorFormats = {Format::RGBA32F};
   d.hasDepth = d.depthTest = d.depthWrite = true;
   d.depthCompare = CompareOp::Less;
-  d.bindings = shading.hairSlots();
+  d.bindings = pass().slots();
   pipeline_ = dev.createPipeline(d);
 }
 
+// Over the opaque result when one was drawn, else clearing the targets.
+Pass OpaqueHair::pass() const {
+  const LoadOp load = targets_.opaqueDrawn ? LoadOp::Load : LoadOp::Clear;
+  const glm::vec3 bg = settings_.background;
+  return Pass("shading.hair")
+      .color(targets_.color, load, {bg.r, bg.g, bg.b, 1.0f})
+      .depth(targets_.depth, load)
+      .inputs(shading_->hairInputs());
+}
+
 void OpaqueHair::addPasses(FrameGraph& graph, Device& dev) {
-  auto reads = shading_->shadowReads();
-  if (targets_.opaqueDrawn) {
-    reads.push_back("color");
-    reads.push_back("depth");
-  }
-  graph.add({"shading.hair", reads, {"color", "depth"}, [this, &dev] {
-               const LoadOp load = targets_.opaqueDrawn ? LoadOp::Load : LoadOp::Clear;
-               PassDesc pass;
-               pass.name = "shading.hair";
-               const glm::vec3 bg = settings_.background;
-               pass.color = {{targets_.color, load, {bg.r, bg.g, bg.b, 1.0f}}};
-               pass.depth = {targets_.depth, load, 1.0f};
-               pass.sampledTextures = shading_->sampledTextures();
-               dev.beginPass(pass);
-               dev.draw(pipeline_, shading_->hairBindings(),
-                        Geometry::strandVertexCount(*scene_, settings_));
-               dev.endPass();
-             }});
+  graph.add(pass(), [this, &dev, p = pass()] {
+    p.draw(dev, pipeline_, Geometry::strandVertexCount(*scene_, settings_));
+  });
 }
 
 }  // namespace sb

@@ -14,6 +14,8 @@ class OpaqueHair : public OitTechnique {
   void addPasses(FrameGraph& graph, Device& dev) override;
 
  private:
+  Pass pass() const;
+
   const GpuScene* scene_ = nullptr;
   const KajiyaKayShading* shading_ = nullptr;
   RenderSettings settings_;

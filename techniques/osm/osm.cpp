@@ -180,38 +180,37 @@ void OpacityShadowMaps::setup(Device& dev, const GpuScene& scene, const RenderSe
     d.topology = Geometry::strandTopology(s);
     d.colorFormats.assign(mp.targets, format);
     d.blend.assign(mp.targets, BlendState::additive());
-    d.bindings = Geometry::slots();
-    d.bindings.push_back({kParams, BindingKind::UniformBuffer});
-    d.bindings.push_back({kPass, BindingKind::UniformBuffer});
+    d.bindings = mapPass(mp).slots();
     pipe = dev.createPipeline(d);
   }
 }
 
+// One map pass: its targets (atlas layers), the light pointed at its tile.
+Pass OpacityShadowMaps::mapPass(const MapPass& mp) const {
+  Pass p("osm.map");
+  for (uint32_t k = 0; k < mp.targets; ++k)
+    p.color(atlases_, mp.clear ? LoadOp::Clear : LoadOp::Load, {0, 0, 0, 0}, k);
+  return p.inputs(Geometry::inputs(*scene_, tileViews_[mp.tile]))
+      .uniform(kParams, params_)
+      .uniform(kPass, mp.params);
+}
+
 void OpacityShadowMaps::addPasses(FrameGraph& graph, Device& dev) {
   opaque_.addPass(graph, dev);
-  graph.add({"osm.map", {}, {"shadow.opacity_maps"}, [this, &dev] {
-               const uint32_t vertices = Geometry::strandVertexCount(*scene_, settings_);
-               for (const MapPass& mp : passes_) {
-                 PassDesc pass;
-                 pass.name = "osm.map";
-                 for (uint32_t k = 0; k < mp.targets; ++k)
-                   pass.color.push_back(
-                       {atlases_, mp.clear ? LoadOp::Clear : LoadOp::Load, {0, 0, 0, 0}, {}, k});
-                 dev.beginPass(pass);
-                 if (scene_->hasHair()) {
-                   auto b = Geometry::bindings(*scene_, tileViews_[mp.tile]);
-                   b.push_back(Binding::buf(kParams, params_));
-                   b.push_back(Binding::buf(kPass, mp.params));
-                   dev.draw(pipelines_[mp.targets - 1], b, vertices);
-                 }
-                 dev.endPass();
-               }
-             }});
+  std::vector<Pass> passes;
+  for (const MapPass& mp : passes_) passes.push_back(mapPass(mp));
+  graph.add("osm.map", passes, [this, &dev, passes] {
+    const uint32_t vertices = Geometry::strandVertexCount(*scene_, settings_);
+    for (std::size_t i = 0; i < passes.size(); ++i) {
+      const uint32_t targets = passes_[i].targets;
+      passes[i].draw(dev, scene_->hasHair() ? pipelines_[targets - 1] : Pipeline{}, vertices);
+    }
+  });
 }
 
 ShadowLookup OpacityShadowMaps::lookup() const {
   ShadowLookup l{"techniques/osm/lookup.glsl"};
-  l.read("shadow.opacity_maps").uniform(kParams, params_).sampleArray(kAtlases, atlases_);
+  l.inputs.uniform(kParams, params_).sampleArray(kAtlases, atlases_);
   opaque_.addTo(l);
   return l;
 }

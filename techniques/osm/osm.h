@@ -59,6 +59,7 @@ class OpacityShadowMaps : public ShadowTechnique {
     bool clear = false;
     Buffer params;
   };
+  Pass mapPass(const MapPass& mp) const;
 
   Options opt_;
   Layout layout_;

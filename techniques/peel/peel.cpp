@@ -16,14 +16,12 @@ void PeelOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
   peeled_ = dev.createBuffer({"peel.layers", "oit", BufferUsage::Storage, pixels() * 4ull});
   const glm::uvec4 size(pixels(), s.width, s.height, 0);
   sizeUbo_ = dev.createBuffer({"peel.size", "frame", BufferUsage::Uniform, sizeof size}, &size);
-  const char* names[3] = {"peel.depth", "peel.id", "peel.shade"};
-  for (int pass = 0; pass < 3; ++pass) {
+  for (int step = 0; step < 3; ++step) {
     ShaderDefines defs;
-    defs.defines.push_back({"SB_PEEL_PASS", std::to_string(pass)});
-    step_[pass] = hairPipeline(dev, names[pass], "techniques/peel/peel.frag", defs,
-                               {AccumComposite::kAccumBinding, kState, kPeeled});
+    defs.defines.push_back({"SB_PEEL_PASS", std::to_string(step)});
+    step_[step] = hairPipeline(dev, stepPass(step, false), "techniques/peel/peel.frag", defs);
   }
-  advance_ = makePeelAdvancePipeline(dev, kState, kPeeled, 0, 0, "peel");
+  advance_ = makePeelAdvancePipeline(dev, advancePass(), kState, kPeeled, 0, 0, "peel");
 }
 
 void PeelOit::prepare(Device& dev) {
@@ -31,34 +29,44 @@ void PeelOit::prepare(Device& dev) {
   layers_ = std::min(complexity_.max, maxLayers_);
 }
 
+// One of a layer's three hair draws: smallest depth, smallest primitive id at
+// that depth, shade and accumulate.
+Pass PeelOit::stepPass(int step, bool first) const {
+  const char* names[3] = {"peel.depth", "peel.id", "peel.shade"};
+  return hairPass(names[step], first)
+      .storage(AccumComposite::kAccumBinding, composite_.accum())
+      .storage(kState, state_)
+      .storage(kPeeled, peeled_);
+}
+
+Pass PeelOit::advancePass() const {
+  return Pass("peel.advance")
+      .uniform(0, sizeUbo_)
+      .storage(kState, state_)
+      .storage(kPeeled, peeled_);
+}
+
 void PeelOit::addPasses(FrameGraph& graph, Device& dev) {
-  graph.add({"peel", graphReads(), {"color"}, [this, &dev] {
-               dev.fillBuffer(composite_.accum(), 0);
-               dev.fillBuffer(peeled_, 0);
-               dev.fillBuffer(state_, 0xFFFFFFFFu);
-               auto b = shading_->hairBindings();
-               b.push_back(Binding::buf(AccumComposite::kAccumBinding, composite_.accum()));
-               b.push_back(Binding::buf(kState, state_));
-               b.push_back(Binding::buf(kPeeled, peeled_));
-               const std::vector<Binding> advance = {Binding::buf(0, sizeUbo_),
-                                                     Binding::buf(kState, state_),
-                                                     Binding::buf(kPeeled, peeled_)};
-               const char* names[3] = {"peel.depth", "peel.id", "peel.shade"};
-               for (uint32_t layer = 0; layer < layers_; ++layer) {
-                 for (int pass = 0; pass < 3; ++pass) {
-                   dev.beginPass(hairPass(names[pass], layer == 0 && pass == 0));
-                   dev.draw(step_[pass], b, hairVertices());
-                   dev.endPass();
-                 }
-                 const glm::uvec2 g = dispatchGroups(pixels());
-                 dev.dispatch("peel.advance", advance_, advance, g.x, g.y);
-               }
-               if (layers_ == 0 && !targets_.opaqueDrawn) {  // still clear the depth
-                 dev.beginPass(hairPass("peel.depth", true));
-                 dev.endPass();
-               }
-               composite_.record(dev);
-             }});
+  // The first draw clears the depth when nothing opaque was drawn.
+  const std::vector<Pass> steps = {stepPass(0, true), stepPass(0, false), stepPass(1, false),
+                                   stepPass(2, false)};
+  const Pass advance = advancePass(), composite = composite_.pass();
+  graph.add("peel", {steps[0], steps[2], steps[3], advance, composite},
+            [this, &dev, steps, advance] {
+              dev.fillBuffer(composite_.accum(), 0);
+              dev.fillBuffer(peeled_, 0);
+              dev.fillBuffer(state_, 0xFFFFFFFFu);
+              for (uint32_t layer = 0; layer < layers_; ++layer) {
+                steps[layer == 0 ? 0 : 1].draw(dev, step_[0], hairVertices());
+                steps[2].draw(dev, step_[1], hairVertices());
+                steps[3].draw(dev, step_[2], hairVertices());
+                const glm::uvec2 g = dispatchGroups(pixels());
+                advance.dispatch(dev, advance_, g.x, g.y);
+              }
+              if (layers_ == 0 && !targets_.opaqueDrawn)  // no layer: still clear the depth
+                steps[0].draw(dev, Pipeline{}, 0);
+              composite_.record(dev);
+            });
 }
 
 std::vector<std::string> PeelOit::warnings(Device&) {

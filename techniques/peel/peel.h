@@ -20,6 +20,9 @@ class PeelOit : public HairOit {
   std::vector<std::string> warnings(Device& dev) override;
 
  private:
+  Pass stepPass(int step, bool first) const;
+  Pass advancePass() const;
+
   uint32_t maxLayers_;
   uint32_t layers_ = 0;
   Buffer state_, peeled_, sizeUbo_;

@@ -24,20 +24,22 @@ void ProbeOutput::setup(Device& dev, const std::vector<glm::vec3>& points,
   d.name = "probe";
   d.technique = "probe+" + shading.shadow().name();
   d.compute = &comp;
-  d.bindings = shading.shadow().lookupSlots();
-  d.bindings.push_back({kPoints, BindingKind::StorageBuffer});
-  d.bindings.push_back({kValues, BindingKind::StorageBuffer});
+  d.bindings = pass().slots();
   pipeline_ = dev.createPipeline(d);
 }
 
+Pass ProbeOutput::pass() const {
+  return Pass("probe")
+      .inputs(shading_->shadow().lookup().inputs)
+      .readStorage(kPoints, points_)
+      .storage(kValues, values_);
+}
+
 void ProbeOutput::addPasses(FrameGraph& graph, Device& dev) {
-  graph.add({"probe", shading_->shadowReads(), {"probe"}, [this, &dev] {
-               auto b = shading_->shadow().lookupBindings();
-               b.push_back(Binding::buf(kPoints, points_));
-               b.push_back(Binding::buf(kValues, values_));
-               const glm::uvec2 g = dispatchGroups(count_);
-               dev.dispatch("probe", pipeline_, b, g.x, g.y);
-             }});
+  graph.add(pass(), [this, &dev, p = pass()] {
+    const glm::uvec2 g = dispatchGroups(count_);
+    p.dispatch(dev, pipeline_, g.x, g.y);
+  });
 }
 
 std::vector<float> ProbeOutput::read(Device& dev) const {

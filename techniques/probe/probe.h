@@ -13,8 +13,11 @@ class ProbeOutput {
   void setup(Device& dev, const std::vector<glm::vec3>& points, const KajiyaKayShading& shading);
   void addPasses(FrameGraph& graph, Device& dev);
   std::vector<float> read(Device& dev) const;
+  Buffer values() const { return values_; }  // the graph output
 
  private:
+  Pass pass() const;
+
   const KajiyaKayShading* shading_ = nullptr;
   uint32_t count_ = 0;
   Buffer points_, values_;

@@ -26,32 +26,32 @@ void ShadowMap::setup(Device& dev, const GpuScene& scene, const RenderSettings& 
   d.fragment = &frag;
   d.hasDepth = d.depthTest = d.depthWrite = true;
   d.depthCompare = CompareOp::Less;
-  d.bindings = Geometry::slots();
+  d.bindings = pass().slots();
   const auto pipelines = Geometry::pipelines(dev, d, scene, s, "shadowmap");
   hairPipeline_ = pipelines.hair;
   meshPipeline_ = pipelines.mesh;
 }
 
+// One pass: mesh and hair both occlude, so both go into the same depth map.
+Pass ShadowMap::pass() const {
+  return Pass("shadowmap.depth")
+      .depth(depth_, LoadOp::Clear)
+      .inputs(Geometry::inputs(*scene_, lightViewUbo_));
+}
+
 void ShadowMap::addPasses(FrameGraph& graph, Device& dev) {
-  // One pass: mesh and hair both occlude, so both go into the same depth map.
-  graph.add({"shadowmap.depth", {}, {"shadow.depth"}, [this, &dev] {
-               PassDesc pass;
-               pass.name = "shadowmap.depth";
-               pass.depth = {depth_, LoadOp::Clear, 1.0f};
-               dev.beginPass(pass);
-               const auto b = Geometry::bindings(*scene_, lightViewUbo_);
-               if (meshPipeline_) dev.draw(meshPipeline_, b, scene_->meshTriangles * 3);
-               if (hairPipeline_)
-                 dev.draw(hairPipeline_, b, Geometry::strandVertexCount(*scene_, settings_));
-               dev.endPass();
-             }});
+  graph.add(pass(), [this, &dev, p = pass()] {
+    dev.beginPass(p.desc());
+    const auto b = p.bindings();
+    if (meshPipeline_) dev.draw(meshPipeline_, b, scene_->meshTriangles * 3);
+    if (hairPipeline_) dev.draw(hairPipeline_, b, Geometry::strandVertexCount(*scene_, settings_));
+    dev.endPass();
+  });
 }
 
 ShadowLookup ShadowMap::lookup() const {
   ShadowLookup l{"techniques/shadowmap/lookup.glsl"};
-  l.read("shadow.depth")
-      .sample(bind::kShadowFirst, depth_)
-      .uniform(bind::kShadowFirst + 1, paramsUbo_);
+  l.inputs.sample(bind::kShadowFirst, depth_).uniform(bind::kShadowFirst + 1, paramsUbo_);
   return l;
 }
 

@@ -15,6 +15,8 @@ class ShadowMap : public ShadowTechnique {
   ShadowLookup lookup() const override;
 
  private:
+  Pass pass() const;
+
   uint32_t size_;
   float bias_;
   const GpuScene* scene_ = nullptr;

@@ -21,25 +21,27 @@ void VisibilityOutput::setup(Device& dev, const GpuScene& scene, const RenderSet
   d.colorFormats = {Format::R32F};
   d.hasDepth = d.depthTest = d.depthWrite = true;
   d.depthCompare = CompareOp::Less;
-  d.bindings = shading.hairSlots();
+  d.bindings = pass().slots();
   const auto pipelines = Geometry::pipelines(dev, d, scene, s, "visibility");
   hair_ = pipelines.hair;
   mesh_ = pipelines.mesh;
 }
 
+Pass VisibilityOutput::pass() const {
+  return Pass("visibility")
+      .color(image_, LoadOp::Clear, {-1.0f, 0, 0, 0})
+      .depth(depth_, LoadOp::Clear)
+      .inputs(shading_->hairInputs());
+}
+
 void VisibilityOutput::addPasses(FrameGraph& graph, Device& dev) {
-  graph.add({"visibility", shading_->shadowReads(), {"visibility"}, [this, &dev] {
-               PassDesc pass;
-               pass.name = "visibility";
-               pass.color = {{image_, LoadOp::Clear, {-1.0f, 0, 0, 0}}};
-               pass.depth = {depth_, LoadOp::Clear, 1.0f};
-               pass.sampledTextures = shading_->sampledTextures();
-               dev.beginPass(pass);
-               const auto b = shading_->hairBindings();
-               if (mesh_) dev.draw(mesh_, b, scene_->meshTriangles * 3);
-               if (hair_) dev.draw(hair_, b, Geometry::strandVertexCount(*scene_, settings_));
-               dev.endPass();
-             }});
+  graph.add(pass(), [this, &dev, p = pass()] {
+    dev.beginPass(p.desc());
+    const auto b = p.bindings();
+    if (mesh_) dev.draw(mesh_, b, scene_->meshTriangles * 3);
+    if (hair_) dev.draw(hair_, b, Geometry::strandVertexCount(*scene_, settings_));
+    dev.endPass();
+  });
 }
 
 }  // namespace sb

@@ -17,6 +17,8 @@ class VisibilityOutput {
   Texture image() const { return image_; }
 
  private:
+  Pass pass() const;
+
   const GpuScene* scene_ = nullptr;
   const KajiyaKayShading* shading_ = nullptr;
   RenderSettings settings_;

@@ -42,7 +42,7 @@ void BlendedOitBase::setup(Device& dev, const GpuScene& scene, const RenderSetti
   d.hasDepth = d.depthTest = true;
   d.depthWrite = false;
   d.depthCompare = CompareOp::Less;
-  d.bindings = shading.hairSlots();
+  d.bindings = accumulatePass().slots();
   accumulate_ = dev.createPipeline(d);
 
   // Resolve: (hair, T) over the opaque colour, C = hair + T * C_dst; the
@@ -57,45 +57,37 @@ void BlendedOitBase::setup(Device& dev, const GpuScene& scene, const RenderSetti
   r.colorFormats = {Format::RGBA32F};
   r.blend = {{true, BlendFactor::One, BlendFactor::SrcAlpha, BlendOp::Add, BlendFactor::Zero,
               BlendFactor::One, BlendOp::Add}};
-  for (uint32_t i = 0; i < cfg.targets.size(); ++i)
-    r.bindings.push_back({kFirstTarget + i, BindingKind::SampledTexture});
+  r.bindings = resolvePass().slots();
   resolve_ = dev.createPipeline(r);
 }
 
-void BlendedOitBase::addPasses(FrameGraph& graph, Device& dev) {
-  auto reads = shading_->shadowReads();
-  if (targets_.opaqueDrawn) {  // otherwise the accumulation clears the depth itself
-    reads.push_back("depth");
-    reads.push_back("color");
-  }
-  graph.add(
-      {name(), reads, {"color"}, [this, &dev] {
-         PassDesc acc;
-         acc.name = name() + ".accumulate";
-         for (std::size_t i = 0; i < textures_.size(); ++i)
-           acc.color.push_back({textures_[i], LoadOp::Clear, targetDescs_[i].clear});
-         // Nothing opaque drawn: this first pass clears the depth to 1.
-         acc.depth = {targets_.depth, targets_.opaqueDrawn ? LoadOp::Load : LoadOp::Clear, 1.0f};
-         acc.sampledTextures = shading_->sampledTextures();
-         dev.beginPass(acc);
-         dev.draw(accumulate_, shading_->hairBindings(),
-                  Geometry::strandVertexCount(*scene_, settings_));
-         dev.endPass();
+// Nothing opaque drawn: the accumulation, the first pass, clears the depth to 1.
+Pass BlendedOitBase::accumulatePass() const {
+  Pass p(name() + ".accumulate");
+  for (std::size_t i = 0; i < textures_.size(); ++i)
+    p.color(textures_[i], LoadOp::Clear, targetDescs_[i].clear);
+  if (targets_.opaqueDrawn)
+    p.depthReadOnly(targets_.depth);
+  else
+    p.depth(targets_.depth, LoadOp::Clear);
+  return p.inputs(shading_->hairInputs());
+}
 
-         PassDesc res;
-         res.name = name() + ".resolve";
-         const glm::vec3 bg = settings_.background;
-         res.color = {{targets_.color,
-                       targets_.opaqueDrawn ? LoadOp::Load : LoadOp::Clear,
-                       {bg.r, bg.g, bg.b, 1.0f}}};
-         res.sampledTextures = textures_;
-         std::vector<Binding> b;
-         for (uint32_t i = 0; i < textures_.size(); ++i)
-           b.push_back(Binding::tex(kFirstTarget + i, textures_[i]));
-         dev.beginPass(res);
-         dev.draw(resolve_, b, 3);
-         dev.endPass();
-       }});
+Pass BlendedOitBase::resolvePass() const {
+  const glm::vec3 bg = settings_.background;
+  Pass p(name() + ".resolve");
+  p.color(targets_.color, targets_.opaqueDrawn ? LoadOp::Load : LoadOp::Clear,
+          {bg.r, bg.g, bg.b, 1.0f});
+  for (uint32_t i = 0; i < textures_.size(); ++i) p.sample(kFirstTarget + i, textures_[i]);
+  return p;
+}
+
+void BlendedOitBase::addPasses(FrameGraph& graph, Device& dev) {
+  const Pass accumulate = accumulatePass(), resolve = resolvePass();
+  graph.add(name(), {accumulate, resolve}, [this, &dev, accumulate, resolve] {
+    accumulate.draw(dev, accumulate_, Geometry::strandVertexCount(*scene_, settings_));
+    resolve.draw(dev, resolve_, 3);
+  });
 }
 
 BlendedOitBase::Config WeightedOit::config() const {

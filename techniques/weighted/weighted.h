@@ -38,6 +38,9 @@ class BlendedOitBase : public OitTechnique {
   virtual Config config() const = 0;
 
  private:
+  Pass accumulatePass() const;
+  Pass resolvePass() const;
+
   const GpuScene* scene_ = nullptr;
   const KajiyaKayShading* shading_ = nullptr;
   RenderSettings settings_;

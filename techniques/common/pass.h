@@ -1,0 +1,99 @@
+// A pass declared once. A technique says what each pass writes (attachments,
+// storage), samples and binds, by slot; from that one declaration follow the
+// pipeline's binding slots (slots()), the draw's bindings (bindings()), the
+// device pass (desc(), with the textures it samples) and the frame graph's
+// edges (reads(), writes()). A technique builds the declaration in one member
+// function and calls it both when it makes the pipeline (slots only: handles
+// made later may still be empty) and when it adds the pass to the graph.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "backends/device.h"
+
+namespace sb {
+
+// A device resource as the frame graph sees it: textures and buffers share one
+// id space on the Device.
+struct GraphResource {
+  uint32_t id = 0;
+  bool texture = false;
+  static GraphResource of(Texture t) { return {t.id, true}; }
+  static GraphResource of(Buffer b) { return {b.id, false}; }
+  bool operator==(const GraphResource& o) const { return id == o.id; }
+  bool operator<(const GraphResource& o) const { return id < o.id; }
+};
+
+// What a pass's shaders bind, by slot.
+class Inputs {
+ public:
+  Inputs& uniform(uint32_t slot, Buffer b);
+  Inputs& readStorage(uint32_t slot, Buffer b);   // a storage buffer only read
+  Inputs& storage(uint32_t slot, Buffer b);       // a storage buffer read and written
+  Inputs& sample(uint32_t slot, Texture t);       // sampler2D
+  Inputs& sampleArray(uint32_t slot, Texture t);  // sampler2DArray
+  Inputs& add(const Inputs& more);
+
+  std::vector<BindingSlot> slots() const;
+  std::vector<Binding> bindings() const;
+  std::vector<Texture> sampled() const;
+  std::vector<GraphResource> reads() const;
+  std::vector<GraphResource> writes() const;
+
+ private:
+  struct Input {
+    BindingSlot slot;
+    Buffer buffer;
+    Texture texture;
+    bool written = false;
+  };
+  std::vector<Input> inputs_;
+};
+
+class Pass {
+ public:
+  explicit Pass(std::string name) : name_(std::move(name)) {}
+
+  // What it writes. An attachment loaded (LoadOp::Load) is also read.
+  Pass& color(Texture t, LoadOp load, std::array<float, 4> clear = {}, uint32_t layer = 0);
+  Pass& colorUint(Texture t, LoadOp load, std::array<uint32_t, 4> clear = {}, uint32_t layer = 0);
+  Pass& depth(Texture t, LoadOp load, float clear = 1.0f);
+  // A depth attachment only tested against (loaded, never written): a read.
+  Pass& depthReadOnly(Texture t);
+  Pass& size(uint32_t width, uint32_t height);  // a pass without attachments
+
+  // What its shaders bind (see Inputs).
+  Pass& uniform(uint32_t slot, Buffer b) { return with(inputs_.uniform(slot, b)); }
+  Pass& readStorage(uint32_t slot, Buffer b) { return with(inputs_.readStorage(slot, b)); }
+  Pass& storage(uint32_t slot, Buffer b) { return with(inputs_.storage(slot, b)); }
+  Pass& sample(uint32_t slot, Texture t) { return with(inputs_.sample(slot, t)); }
+  Pass& sampleArray(uint32_t slot, Texture t) { return with(inputs_.sampleArray(slot, t)); }
+  Pass& inputs(const Inputs& more) { return with(inputs_.add(more)); }
+
+  const std::string& name() const { return name_; }
+  const Inputs& inputs() const { return inputs_; }
+  std::vector<BindingSlot> slots() const { return inputs_.slots(); }
+  std::vector<Binding> bindings() const { return inputs_.bindings(); }
+  PassDesc desc() const;
+  std::vector<GraphResource> reads() const;
+  std::vector<GraphResource> writes() const;
+
+  // Records it: a render pass with one draw (none when the pipeline is empty,
+  // e.g. a scene without hair: the pass then only clears its targets) ...
+  void draw(Device& dev, Pipeline p, uint32_t vertexCount, uint32_t instanceCount = 1) const;
+  // ... or a compute dispatch.
+  void dispatch(Device& dev, Pipeline p, uint32_t x, uint32_t y = 1, uint32_t z = 1) const;
+
+ private:
+  Pass& with(Inputs&) { return *this; }
+
+  std::string name_;
+  PassDesc desc_;
+  bool depthWritten_ = false;
+  Inputs inputs_;
+};
+
+}  // namespace sb
