@@ -122,6 +122,14 @@ void Pass::draw(Device& dev, Pipeline p, uint32_t vertexCount, uint32_t instance
   dev.endPass();
 }
 
+void Pass::draw(Device& dev, const std::vector<Draw>& draws) const {
+  dev.beginPass(desc());
+  const std::vector<Binding> b = bindings();
+  for (const Draw& d : draws)
+    if (d.pipeline) dev.draw(d.pipeline, b, d.vertexCount);
+  dev.endPass();
+}
+
 void Pass::dispatch(Device& dev, Pipeline p, uint32_t x, uint32_t y, uint32_t z) const {
   dev.dispatch(name_, p, bindings(), x, y, z);
 }

@@ -84,6 +84,12 @@ class Pass {
   // Records it: a render pass with one draw (none when the pipeline is empty,
   // e.g. a scene without hair: the pass then only clears its targets) ...
   void draw(Device& dev, Pipeline p, uint32_t vertexCount, uint32_t instanceCount = 1) const;
+  // ... or several (e.g. the mesh and the hair into one target) ...
+  struct Draw {
+    Pipeline pipeline;
+    uint32_t vertexCount = 0;
+  };
+  void draw(Device& dev, const std::vector<Draw>& draws) const;
   // ... or a compute dispatch.
   void dispatch(Device& dev, Pipeline p, uint32_t x, uint32_t y = 1, uint32_t z = 1) const;
 

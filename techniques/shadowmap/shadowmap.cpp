@@ -41,11 +41,8 @@ Pass ShadowMap::pass() const {
 
 void ShadowMap::addPasses(FrameGraph& graph, Device& dev) {
   graph.add(pass(), [this, &dev, p = pass()] {
-    dev.beginPass(p.desc());
-    const auto b = p.bindings();
-    if (meshPipeline_) dev.draw(meshPipeline_, b, scene_->meshTriangles * 3);
-    if (hairPipeline_) dev.draw(hairPipeline_, b, Geometry::strandVertexCount(*scene_, settings_));
-    dev.endPass();
+    p.draw(dev, {{meshPipeline_, scene_->meshTriangles * 3},
+                 {hairPipeline_, Geometry::strandVertexCount(*scene_, settings_)}});
   });
 }
 

@@ -36,11 +36,8 @@ Pass VisibilityOutput::pass() const {
 
 void VisibilityOutput::addPasses(FrameGraph& graph, Device& dev) {
   graph.add(pass(), [this, &dev, p = pass()] {
-    dev.beginPass(p.desc());
-    const auto b = p.bindings();
-    if (mesh_) dev.draw(mesh_, b, scene_->meshTriangles * 3);
-    if (hair_) dev.draw(hair_, b, Geometry::strandVertexCount(*scene_, settings_));
-    dev.endPass();
+    p.draw(dev, {{mesh_, scene_->meshTriangles * 3},
+                 {hair_, Geometry::strandVertexCount(*scene_, settings_)}});
   });
 }
 
