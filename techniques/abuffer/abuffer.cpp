@@ -7,7 +7,9 @@ namespace sb {
 
 namespace {
 // As in techniques/abuffer/abuffer.glsl (16 is the accumulation, 17 the counts).
-constexpr uint32_t kOffsets = 18, kCursor = 19, kFragments = 20, kStatus = 21;
+constexpr uint32_t kOffsets = SB_SLOT_ABUFFER_OFFSETS, kCursor = SB_SLOT_ABUFFER_CURSOR,
+                   kFragments = SB_SLOT_ABUFFER_FRAGMENTS, kStatus = SB_SLOT_ABUFFER_STATUS;
+constexpr uint32_t kSize = SB_SLOT_ABUFFER_SIZE;  // the resolve's size uniform
 constexpr std::size_t kFragmentBytes = 32;
 const std::vector<uint32_t> kLists = {
     AccumComposite::kAccumBinding, HairOit::kCountsBinding, kOffsets, kCursor, kFragments, kStatus};
@@ -28,7 +30,7 @@ void ABufferOit::setup(Device& dev, const GpuScene& scene, const RenderSettings&
   c.name = "abuffer.resolve";
   c.technique = "abuffer";
   c.compute = &comp;
-  c.bindings = {{0, BindingKind::UniformBuffer}};
+  c.bindings = {{kSize, BindingKind::UniformBuffer}};
   for (uint32_t b : kLists) c.bindings.push_back({b, BindingKind::StorageBuffer});
   resolve_ = dev.createPipeline(c);
 }
@@ -65,7 +67,7 @@ void ABufferOit::addPasses(FrameGraph& graph, Device& dev) {
                dev.draw(fill_, b, hairVertices());
                dev.endPass();
                auto r = listBindings();
-               r.push_back(Binding::buf(0, sizeUbo_));
+               r.push_back(Binding::buf(kSize, sizeUbo_));
                const glm::uvec2 g = dispatchGroups(pixels());
                dev.dispatch("abuffer.resolve", resolve_, r, g.x, g.y);
                composite_.record(dev);

@@ -9,8 +9,11 @@ namespace sb {
 namespace {
 // Binding numbers, as in techniques/exact/exact.glsl.
 // 15 is the opaque mesh's depth map (OpaqueShadow).
-constexpr uint32_t kParams = 8, kCounts = 9, kOffsets = 10, kCursor = 11, kNodes = 12, kState = 13,
-                   kStatus = 14;
+constexpr uint32_t kParams = SB_SLOT_EXACT_PARAMS, kCounts = SB_SLOT_EXACT_COUNTS,
+                   kOffsets = SB_SLOT_EXACT_OFFSETS, kCursor = SB_SLOT_EXACT_CURSOR,
+                   kNodes = SB_SLOT_EXACT_NODES, kState = SB_SLOT_EXACT_STATE,
+                   kStatus = SB_SLOT_EXACT_STATUS;
+constexpr uint32_t kSize = SB_SLOT_PEEL_ADVANCE_SIZE;  // peel_advance.comp's size uniform
 
 }  // namespace
 
@@ -134,7 +137,7 @@ void ExactShadow::addPasses(FrameGraph& graph, Device& dev) {
                auto b = Geometry::bindings(*scene_, lightView_);
                for (const auto& x : lists().bindings) b.push_back(x);
                const std::vector<Binding> advance = {
-                   Binding::buf(0, sizeUbo_), Binding::buf(kState, state_),
+                   Binding::buf(kSize, sizeUbo_), Binding::buf(kState, state_),
                    Binding::buf(kCursor, cursor_), Binding::buf(kOffsets, offsets_),
                    Binding::buf(kNodes, nodes_)};
                for (uint32_t layer = 0; layer < layers_; ++layer) {

@@ -9,7 +9,10 @@ namespace sb {
 namespace {
 // The accumulation pass (which also binds the shadow lookup, 8..15) reads the
 // maps at 20, 21, 25 (techniques/occupancy_oit/accumulate.frag).
-constexpr uint32_t kRange = 20, kBits = 21, kSlabs = 25;
+constexpr uint32_t kRange = SB_SLOT_OOIT_RANGE, kBits = SB_SLOT_OOIT_BITS,
+                   kSlabs = SB_SLOT_OOIT_SLABS;
+// The resolve (a full-screen pass) samples the accumulation and log2 T.
+constexpr uint32_t kAccum = SB_SLOT_OOIT_ACCUM, kLog2T = SB_SLOT_OOIT_LOG2T;
 }  // namespace
 
 OccupancyOit::Options OccupancyOit::readOptions(const OptionReader& o) {
@@ -65,7 +68,7 @@ void OccupancyOit::setup(Device& dev, const GpuScene& scene, const RenderSetting
     d.colorFormats = {Format::RGBA32F};
     d.blend = {{true, BlendFactor::One, BlendFactor::OneMinusSrcAlpha, BlendOp::Add,
                 BlendFactor::One, BlendFactor::OneMinusSrcAlpha, BlendOp::Add}};
-    d.bindings = {{0, BindingKind::SampledTexture}, {1, BindingKind::SampledTexture}};
+    d.bindings = {{kAccum, BindingKind::SampledTexture}, {kLog2T, BindingKind::SampledTexture}};
     resolvePipeline_ = dev.createPipeline(d);
   }
   if (!scene.hasHair()) return;  // the hair passes only clear their targets
@@ -136,7 +139,8 @@ void OccupancyOit::addPasses(FrameGraph& graph, Device& dev) {
                               {bg.r, bg.g, bg.b, 1.0f}}};
                pass.sampledTextures = {accum_, log2T_};
                dev.beginPass(pass);
-               dev.draw(resolvePipeline_, {Binding::tex(0, accum_), Binding::tex(1, log2T_)}, 3);
+               dev.draw(resolvePipeline_,
+                        {Binding::tex(kAccum, accum_), Binding::tex(kLog2T, log2T_)}, 3);
                dev.endPass();
              }});
 }

@@ -6,7 +6,8 @@ namespace sb {
 
 namespace {
 // As in techniques/peel/peel.frag (16 is the accumulation, 17 the counts).
-constexpr uint32_t kState = 18, kPeeled = 19;
+constexpr uint32_t kState = SB_SLOT_PEEL_STATE, kPeeled = SB_SLOT_PEEL_PEELED;
+constexpr uint32_t kSize = SB_SLOT_PEEL_ADVANCE_SIZE;  // peel_advance.comp's size uniform
 }  // namespace
 
 void PeelOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
@@ -40,7 +41,7 @@ void PeelOit::addPasses(FrameGraph& graph, Device& dev) {
                b.push_back(Binding::buf(AccumComposite::kAccumBinding, composite_.accum()));
                b.push_back(Binding::buf(kState, state_));
                b.push_back(Binding::buf(kPeeled, peeled_));
-               const std::vector<Binding> advance = {Binding::buf(0, sizeUbo_),
+               const std::vector<Binding> advance = {Binding::buf(kSize, sizeUbo_),
                                                      Binding::buf(kState, state_),
                                                      Binding::buf(kPeeled, peeled_)};
                const char* names[3] = {"peel.depth", "peel.id", "peel.shade"};
