@@ -7,7 +7,9 @@ namespace sb {
 
 namespace {
 // As in techniques/abuffer/abuffer.glsl (16 is the accumulation, 17 the counts).
-constexpr uint32_t kOffsets = 18, kCursor = 19, kFragments = 20, kStatus = 21;
+constexpr uint32_t kOffsets = SB_SLOT_ABUFFER_OFFSETS, kCursor = SB_SLOT_ABUFFER_CURSOR,
+                   kFragments = SB_SLOT_ABUFFER_FRAGMENTS, kStatus = SB_SLOT_ABUFFER_STATUS;
+constexpr uint32_t kSize = SB_SLOT_ABUFFER_SIZE;  // the resolve's size uniform
 constexpr std::size_t kFragmentBytes = 32;
 }  // namespace
 
@@ -58,7 +60,7 @@ Inputs ABufferOit::lists() const {
 Pass ABufferOit::fillPass() const { return hairPass("abuffer.fill", true).inputs(lists()); }
 
 Pass ABufferOit::resolvePass() const {
-  return Pass("abuffer.resolve").uniform(0, sizeUbo_).inputs(lists());
+  return Pass("abuffer.resolve").uniform(kSize, sizeUbo_).inputs(lists());
 }
 
 void ABufferOit::addPasses(FrameGraph& graph, Device& dev) {

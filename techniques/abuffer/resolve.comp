@@ -3,8 +3,9 @@
 #include "../common/key_order.glsl"
 #include "abuffer.glsl"
 #include "../common/invocation.glsl"
+#include "../common/slots.h"
 layout(local_size_x = 64) in;
-layout(std140, binding = 0) uniform Size { uvec4 size; };  // x: pixel count
+layout(std140, binding = SB_SLOT_ABUFFER_SIZE) uniform Size { uvec4 size; };  // x: pixel count
 
 void main() {
   uint p = linearInvocation();

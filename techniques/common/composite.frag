@@ -2,8 +2,9 @@
 // in the target (blend One, OneMinusSrcAlpha): c = acc.rgb + (1 - acc.a) * dst.
 #include "view.glsl"
 #include "fragment_key.glsl"
+#include "slots.h"
 
-layout(std430, binding = 16) readonly buffer Accum { vec4 accum[]; };
+layout(std430, binding = SB_SLOT_OIT_ACCUM) readonly buffer Accum { vec4 accum[]; };
 layout(location = 0) out vec4 outColor;
 
 void main() { outColor = accum[pixelIndex(viewViewport.x)]; }

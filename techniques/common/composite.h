@@ -8,7 +8,7 @@ namespace sb {
 
 class AccumComposite {
  public:
-  static constexpr uint32_t kAccumBinding = 16;  // vec4 per pixel, premultiplied
+  static constexpr uint32_t kAccumBinding = SB_SLOT_OIT_ACCUM;  // vec4 per pixel, premultiplied
   void setup(Device& dev, const RenderSettings& s, Buffer viewUbo, const OitTargets& targets,
              const std::string& technique);
   Buffer accum() const { return accum_; }

@@ -6,6 +6,10 @@
 
 namespace sb {
 
+namespace {
+constexpr uint32_t kSizeBinding = SB_SLOT_PEEL_ADVANCE_SIZE;  // peel_advance.comp's SIZE_BINDING
+}  // namespace
+
 ListLayout layoutFromCounts(const std::vector<uint8_t>& countBytes) {
   ListLayout l;
   const std::size_t n = countBytes.size() / sizeof(uint32_t);
@@ -51,7 +55,7 @@ Pipeline makePeelAdvancePipeline(Device& dev, const Pass& pass, uint32_t stateBi
   ShaderDefines defs;
   defs.defines = {{"STATE_BINDING", std::to_string(stateBinding)},
                   {"PEELED_BINDING", std::to_string(peeledBinding)},
-                  {"SIZE_BINDING", "0"}};
+                  {"SIZE_BINDING", std::to_string(kSizeBinding)}};
   PipelineDesc d;
   d.bindings = pass.slots();
   if (nodesBinding) {

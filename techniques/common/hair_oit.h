@@ -12,7 +12,7 @@ namespace sb {
 
 class HairOit : public OitTechnique {
  public:
-  static constexpr uint32_t kCountsBinding = 17;
+  static constexpr uint32_t kCountsBinding = SB_SLOT_OIT_COUNTS;
   bool needsPrepare() const override { return true; }  // the counting pass
   std::optional<DepthComplexity> depthComplexity() const override { return complexity_; }
 

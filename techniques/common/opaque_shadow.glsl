@@ -2,8 +2,9 @@
 // map of the mesh from the light (binding 15). Compiled out (SB_OPAQUE_SHADOW 0)
 // when the scene has no mesh, so such a scene allocates and runs nothing for it.
 #include "light_space.glsl"
+#include "slots.h"
 #if SB_OPAQUE_SHADOW
-layout(binding = 15) uniform sampler2D opaqueShadowDepth;
+layout(binding = SB_SLOT_OPAQUE_SHADOW) uniform sampler2D opaqueShadowDepth;
 #endif
 
 // ndc: the point in the light's normalized device coordinates, inside the map.

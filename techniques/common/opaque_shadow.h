@@ -10,7 +10,7 @@ namespace sb {
 
 class OpaqueShadow {
  public:
-  static constexpr uint32_t kBinding = 15;
+  static constexpr uint32_t kBinding = SB_SLOT_OPAQUE_SHADOW;
   // lightViewUbo: the light's ViewUniforms for the same size.
   void setup(Device& dev, const GpuScene& scene, uint32_t size, Buffer lightViewUbo,
              const std::string& technique);

@@ -1,5 +1,6 @@
 // Lighting parameters of the final shading passes (binding 1).
-layout(std140, binding = 1) uniform Shading {
+#include "slots.h"
+layout(std140, binding = SB_SLOT_SHADING) uniform Shading {
   vec4 eyePos;      // xyz
   vec4 lightPos;    // w=1: point light position; w=0: direction towards the light
   vec4 lightColor;  // rgb * intensity

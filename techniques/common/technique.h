@@ -16,6 +16,7 @@
 #include "techniques/common/frame_graph.h"
 #include "techniques/common/pass.h"
 #include "techniques/common/shader_library.h"
+#include "techniques/common/slots.h"
 
 namespace sb {
 
@@ -76,11 +77,14 @@ struct LightLookupParams {
 Buffer createLightLookupParams(Device& dev, const ViewUniforms& view, float bias, uint32_t size,
                                float shadowAlpha, const std::string& technique);
 
-// Binding numbers shared by every shader (see techniques/common/bindings.glsl).
+// Binding numbers shared by every shader, named in techniques/common/slots.h
+// (which the GLSL includes too; techniques/common/bindings.glsl).
 namespace bind {
-constexpr uint32_t kView = 0, kShading = 1, kPoints = 2, kColors = 3, kSegments = 4,
-                   kMeshPositions = 5, kMeshNormals = 6, kMeshIndices = 7,
-                   kShadowFirst = 8;  // 8..15 belong to the shadow technique
+constexpr uint32_t kView = SB_SLOT_VIEW, kShading = SB_SLOT_SHADING, kPoints = SB_SLOT_POINTS,
+                   kColors = SB_SLOT_COLORS, kSegments = SB_SLOT_SEGMENTS,
+                   kMeshPositions = SB_SLOT_MESH_POSITIONS, kMeshNormals = SB_SLOT_MESH_NORMALS,
+                   kMeshIndices = SB_SLOT_MESH_INDICES,
+                   kShadowFirst = SB_SLOT_SHADOW_FIRST;  // 8..15 belong to the shadow technique
 }
 
 // Drawing strands and the mesh: the shared vertex shaders and their bindings.

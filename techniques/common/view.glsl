@@ -1,7 +1,8 @@
 // The current view (binding 0): camera or light. Kept apart from the scene's
 // storage buffers because GL counts every std430 block a fragment shader
 // declares against its limit (16 on llvmpipe), used or not.
-layout(std140, binding = 0) uniform View {
+#include "slots.h"
+layout(std140, binding = SB_SLOT_VIEW) uniform View {
   mat4 viewProj;
   vec4 viewEye;       // xyz position; w: 1 perspective, 0 orthographic
   vec4 viewForward;   // view direction (orthographic views)

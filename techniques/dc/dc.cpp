@@ -7,7 +7,9 @@ namespace sb {
 
 namespace {
 // Binding numbers, as in techniques/dc/*.frag and lookup.glsl (15: OpaqueShadow).
-constexpr uint32_t kParams = 8, kRange = 9, kCounts = 10, kSums = 11, kSquares = 12, kCentres = 13;
+constexpr uint32_t kParams = SB_SLOT_DC_PARAMS, kRange = SB_SLOT_DC_RANGE,
+                   kCounts = SB_SLOT_DC_COUNTS, kSums = SB_SLOT_DC_SUMS,
+                   kSquares = SB_SLOT_DC_SQUARES, kCentres = SB_SLOT_DC_CENTRES;
 
 }  // namespace
 

@@ -3,9 +3,10 @@
 // cluster's channel of the count, sum and square-sum targets (additive); the
 // targets are the layers of the three arrays, 4 clusters per layer.
 #include "dc_math.glsl"
+#include "../common/slots.h"
 
-layout(binding = 9) uniform sampler2D dcRange;          // x: nearest depth, y: -furthest depth
-layout(binding = 13) uniform sampler2DArray dcCentres;  // one channel per cluster
+layout(binding = SB_SLOT_DC_RANGE) uniform sampler2D dcRange;  // x: nearest, y: -furthest depth
+layout(binding = SB_SLOT_DC_CENTRES) uniform sampler2DArray dcCentres;  // one channel per cluster
 
 // Counts at 0.., sums at SB_DC_LAYERS.., square sums at 2 * SB_DC_LAYERS...
 layout(location = 0) out vec4 outMaps[3 * SB_DC_LAYERS];

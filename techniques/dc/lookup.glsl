@@ -5,16 +5,17 @@
 // shadow. Textures only, fetched without derivatives.
 #include "../common/opaque_shadow.glsl"
 #include "dc_math.glsl"
+#include "../common/slots.h"
 
-layout(std140, binding = 8) uniform DcParams {
+layout(std140, binding = SB_SLOT_DC_PARAMS) uniform DcParams {
   mat4 dcViewProj;
   vec4 dcParams;  // x: bias (light depth units), y: map size, z: shadow alpha
 };
-layout(binding = 9) uniform sampler2D dcRange;    // x: nearest depth, y: -furthest depth
-// 4 clusters per layer:
-layout(binding = 10) uniform sampler2DArray dcCounts;   // fragments per cluster
-layout(binding = 11) uniform sampler2DArray dcSums;     // sum of (z - nearest) per cluster
-layout(binding = 12) uniform sampler2DArray dcSquares;  // sum of (z - nearest)^2 per cluster
+layout(binding = SB_SLOT_DC_RANGE) uniform sampler2D dcRange;  // x: nearest, y: -furthest depth
+// 4 clusters per layer: fragments, sum of (z - nearest), sum of (z - nearest)^2
+layout(binding = SB_SLOT_DC_COUNTS) uniform sampler2DArray dcCounts;
+layout(binding = SB_SLOT_DC_SUMS) uniform sampler2DArray dcSums;
+layout(binding = SB_SLOT_DC_SQUARES) uniform sampler2DArray dcSquares;
 
 float shadowVisibility(vec3 worldPos) {
   vec3 ndc;

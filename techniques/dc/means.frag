@@ -3,11 +3,13 @@
 // (SB_DC_FIRST), then the mean depth of each cluster's fragments (k-means
 // update).
 #include "dc_math.glsl"
+#include "../common/slots.h"
 
-layout(binding = 9) uniform sampler2D dcRange;  // x: nearest depth, y: -furthest depth
+layout(binding = SB_SLOT_DC_RANGE) uniform sampler2D dcRange;  // x: nearest, y: -furthest depth
 #if !SB_DC_FIRST
-layout(binding = 10) uniform sampler2DArray dcCounts;  // fragments per cluster
-layout(binding = 11) uniform sampler2DArray dcSums;    // sum of (z - nearest) per cluster
+// Per cluster: fragments, sum of (z - nearest)
+layout(binding = SB_SLOT_DC_COUNTS) uniform sampler2DArray dcCounts;
+layout(binding = SB_SLOT_DC_SUMS) uniform sampler2DArray dcSums;
 #endif
 
 layout(location = 0) out vec4 outCentres[SB_DC_LAYERS];

@@ -9,7 +9,8 @@
 namespace sb {
 
 namespace {
-constexpr uint32_t kParams = 8, kDepth = 9, kMaps = 9;
+constexpr uint32_t kParams = SB_SLOT_DOM_PARAMS, kDepth = SB_SLOT_DOM_DEPTH,
+                   kMaps = SB_SLOT_DOM_MAPS;
 
 struct Params {
   glm::mat4 viewProj;

@@ -1,5 +1,6 @@
 // Parameters of deep opacity maps (binding 8), for the passes and the lookup.
-layout(std140, binding = 8) uniform DomParams {
+#include "../common/slots.h"
+layout(std140, binding = SB_SLOT_DOM_PARAMS) uniform DomParams {
   mat4 domViewProj;
   vec4 domParams;   // bias (light depth units), map size, shadow alpha, depth bits
   ivec4 domLayout;  // layers K, targets, beyond (opacity.glsl kDom*), 0

@@ -3,8 +3,9 @@
 // (1 - alpha_s)^opacity; 0 behind the opaque mesh.
 #include "../common/opaque_shadow.glsl"
 #include "dom.glsl"
+#include "../common/slots.h"
 
-layout(binding = 9) uniform sampler2DArray domMaps;  // the opacity layers, 4 channels each
+layout(binding = SB_SLOT_DOM_MAPS) uniform sampler2DArray domMaps;  // the layers, 4 channels each
 
 ivec2 domTexel;
 

@@ -2,8 +2,9 @@
 // layer behind it (additive blending); channel 0 of target 0 (z0) gets 0.
 #include "dom.glsl"
 #include "../common/opacity.glsl"
+#include "../common/slots.h"
 
-layout(binding = 9) uniform sampler2D domDepth;
+layout(binding = SB_SLOT_DOM_DEPTH) uniform sampler2D domDepth;
 
 // Target t is layer t of the opacity array.
 layout(location = 0) out vec4 domOut[SB_DOM_TARGETS];

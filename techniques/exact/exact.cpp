@@ -9,8 +9,11 @@ namespace sb {
 namespace {
 // Binding numbers, as in techniques/exact/exact.glsl.
 // 15 is the opaque mesh's depth map (OpaqueShadow).
-constexpr uint32_t kParams = 8, kCounts = 9, kOffsets = 10, kCursor = 11, kNodes = 12, kState = 13,
-                   kStatus = 14;
+constexpr uint32_t kParams = SB_SLOT_EXACT_PARAMS, kCounts = SB_SLOT_EXACT_COUNTS,
+                   kOffsets = SB_SLOT_EXACT_OFFSETS, kCursor = SB_SLOT_EXACT_CURSOR,
+                   kNodes = SB_SLOT_EXACT_NODES, kState = SB_SLOT_EXACT_STATE,
+                   kStatus = SB_SLOT_EXACT_STATUS;
+constexpr uint32_t kSize = SB_SLOT_PEEL_ADVANCE_SIZE;  // peel_advance.comp's size uniform
 
 }  // namespace
 
@@ -121,7 +124,7 @@ Pass ExactShadow::sortPass() const { return Pass("exact.sort").inputs(lists(true
 
 Pass ExactShadow::advancePass() const {
   return Pass("exact.peel.advance")
-      .uniform(0, sizeUbo_)
+      .uniform(kSize, sizeUbo_)
       .storage(kState, state_)
       .storage(kCursor, cursor_)
       .storage(kOffsets, offsets_)

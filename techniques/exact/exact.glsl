@@ -1,11 +1,14 @@
 // Bindings of the exact shadow technique (8..15, the shadow range).
-layout(std140, binding = 8) uniform ExactShadowParams {
+#include "../common/slots.h"
+layout(std140, binding = SB_SLOT_EXACT_PARAMS) uniform ExactShadowParams {
   mat4 exactViewProj;
   vec4 exactParams;  // x: bias (light depth units), y: map size, z: shadow alpha, w: 1 = opaque map
 };
-layout(std430, binding = 9) buffer ExactCounts { uint exactCounts[]; };    // fragments per texel
-layout(std430, binding = 10) buffer ExactOffsets { uint exactOffsets[]; };  // prefix sum of counts
-layout(std430, binding = 11) buffer ExactCursor { uint exactCursor[]; };    // fill / layers peeled
-layout(std430, binding = 12) buffer ExactNodes { uvec2 exactNodes[]; };     // sorted keys per texel
-layout(std430, binding = 13) buffer ExactState { uvec4 exactState[]; };     // peeling state
-layout(std430, binding = 14) buffer ExactStatus { uint exactOverflow; };
+// Counts: fragments per texel; offsets: their prefix sum; cursor: fill / layers
+// peeled; nodes: sorted keys per texel; state: peeling state.
+layout(std430, binding = SB_SLOT_EXACT_COUNTS) buffer ExactCounts { uint exactCounts[]; };
+layout(std430, binding = SB_SLOT_EXACT_OFFSETS) buffer ExactOffsets { uint exactOffsets[]; };
+layout(std430, binding = SB_SLOT_EXACT_CURSOR) buffer ExactCursor { uint exactCursor[]; };
+layout(std430, binding = SB_SLOT_EXACT_NODES) buffer ExactNodes { uvec2 exactNodes[]; };
+layout(std430, binding = SB_SLOT_EXACT_STATE) buffer ExactState { uvec4 exactState[]; };
+layout(std430, binding = SB_SLOT_EXACT_STATUS) buffer ExactStatus { uint exactOverflow; };

@@ -3,15 +3,18 @@
 // it in its light texel, found by binary search in the texel's sorted list;
 // times 0 when the opaque mesh is in front (hard shadow).
 #include "../common/opaque_shadow.glsl"
+#include "../common/slots.h"
 
 // Only the blocks the lookup reads (GL counts declared blocks per stage).
-layout(std140, binding = 8) uniform ExactShadowParams {
+layout(std140, binding = SB_SLOT_EXACT_PARAMS) uniform ExactShadowParams {
   mat4 exactViewProj;
   vec4 exactParams;  // x: bias (light depth units), y: map size, z: shadow alpha
 };
-layout(std430, binding = 9) readonly buffer ExactCounts { uint exactCounts[]; };
-layout(std430, binding = 10) readonly buffer ExactOffsets { uint exactOffsets[]; };
-layout(std430, binding = 12) readonly buffer ExactNodes { uvec2 exactNodes[]; };
+layout(std430, binding = SB_SLOT_EXACT_COUNTS) readonly buffer ExactCounts { uint exactCounts[]; };
+layout(std430, binding = SB_SLOT_EXACT_OFFSETS) readonly buffer ExactOffsets {
+  uint exactOffsets[];
+};
+layout(std430, binding = SB_SLOT_EXACT_NODES) readonly buffer ExactNodes { uvec2 exactNodes[]; };
 
 float shadowVisibility(vec3 worldPos) {
   vec3 ndc;

@@ -5,15 +5,16 @@
 // storage blocks), fetched without derivatives.
 #include "../common/opaque_shadow.glsl"
 #include "occupancy_math.glsl"
+#include "../common/slots.h"
 
-layout(std140, binding = 8) uniform OccupancyParams {
+layout(std140, binding = SB_SLOT_OCC_PARAMS) uniform OccupancyParams {
   mat4 occViewProj;
   vec4 occParams;  // x: bias (light depth units), y: map size, z: shadow alpha
 };
-layout(binding = 9) uniform sampler2D occRange;  // x: nearest depth, y: -furthest depth
-layout(binding = 10) uniform usampler2DArray occBits;  // 128 slices per layer
+layout(binding = SB_SLOT_OCC_RANGE) uniform sampler2D occRange;  // x: nearest, y: -furthest depth
+layout(binding = SB_SLOT_OCC_BITS) uniform usampler2DArray occBits;  // 128 slices per layer
 #if SB_OCC_SLAB_TARGETS > 0
-layout(binding = 11) uniform sampler2DArray occSlabs;  // 4 slabs per layer
+layout(binding = SB_SLOT_OCC_SLABS) uniform sampler2DArray occSlabs;  // 4 slabs per layer
 #endif
 
 // The paper's anti-aliasing: the lookup moves by up to half a texel. The

@@ -7,7 +7,8 @@ namespace sb {
 
 namespace {
 // Binding numbers, as in techniques/occupancy/lookup.glsl (15: OpaqueShadow).
-constexpr uint32_t kParams = 8, kRange = 9, kBits = 10, kSlabs = 11;
+constexpr uint32_t kParams = SB_SLOT_OCC_PARAMS, kRange = SB_SLOT_OCC_RANGE,
+                   kBits = SB_SLOT_OCC_BITS, kSlabs = SB_SLOT_OCC_SLABS;
 }  // namespace
 
 OccupancyShadow::Options OccupancyShadow::readOptions(const OptionReader& o) {

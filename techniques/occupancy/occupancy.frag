@@ -2,8 +2,9 @@
 // depth range; the targets (layers of one array) are OR-ed (logic op), 128
 // slices per RGBA32UI.
 #include "occupancy_math.glsl"
+#include "../common/slots.h"
 
-layout(binding = 9) uniform sampler2D occRange;  // x: nearest depth, y: -furthest depth
+layout(binding = SB_SLOT_OCC_RANGE) uniform sampler2D occRange;  // x: nearest, y: -furthest depth
 
 layout(location = 0) out uvec4 outBits[SB_OCC_WORD_TARGETS];
 

@@ -26,7 +26,8 @@ class OccupancyMaps {
     Texture depth;
     bool clearDepth = false;
   };
-  static constexpr uint32_t kRangeBinding = 9;  // where occupancy.frag/slabs.frag read the range
+  // Where occupancy.frag/slabs.frag read the range.
+  static constexpr uint32_t kRangeBinding = SB_SLOT_OCC_RANGE;
   // One colour attachment per layer, and a pass may have 8 (the least GL
   // guarantees): 8 RGBA32UI layers of 128 slices, 8 RGBA32F layers of 4 slabs.
   static constexpr uint32_t kMaxSlices = 1024, kMaxSlabs = 32;

@@ -2,8 +2,9 @@
 // slices), additive blending into RGBA32F targets (layers of one array), 4
 // slabs per target.
 #include "occupancy_math.glsl"
+#include "../common/slots.h"
 
-layout(binding = 9) uniform sampler2D occRange;  // x: nearest depth, y: -furthest depth
+layout(binding = SB_SLOT_OCC_RANGE) uniform sampler2D occRange;  // x: nearest, y: -furthest depth
 
 layout(location = 0) out vec4 outSlabs[SB_OCC_SLAB_TARGETS];
 

@@ -16,10 +16,11 @@
 #include "../occupancy/occupancy_math.glsl"
 #endif
 #include "occupancy_oit_math.glsl"
+#include "../common/slots.h"
 
-layout(binding = 20) uniform sampler2D oitRange;  // x: nearest depth, y: -furthest depth
-layout(binding = 21) uniform usampler2DArray oitBits;  // 128 slices per layer
-layout(binding = 25) uniform sampler2DArray oitSlabs;  // 4 slabs per layer
+layout(binding = SB_SLOT_OOIT_RANGE) uniform sampler2D oitRange;  // x: nearest, y: -furthest depth
+layout(binding = SB_SLOT_OOIT_BITS) uniform usampler2DArray oitBits;  // 128 slices per layer
+layout(binding = SB_SLOT_OOIT_SLABS) uniform sampler2DArray oitSlabs;  // 4 slabs per layer
 
 layout(location = 0) in vec3 vWorldPos;
 layout(location = 1) in vec3 vTangent;

@@ -7,11 +7,11 @@
 namespace sb {
 
 namespace {
-// The accumulation pass (which also binds the shadow lookup, 8..15) reads the
-// maps at 20, 21, 25 (techniques/occupancy_oit/accumulate.frag).
-constexpr uint32_t kRange = 20, kBits = 21, kSlabs = 25;
-// The resolve reads the sums at 0 and 1 (techniques/occupancy_oit/resolve.frag).
-constexpr uint32_t kResolveAccum = 0, kResolveLog2T = 1;
+// The accumulation pass also binds the shadow lookup (8..15); the resolve
+// binds only the sums.
+constexpr uint32_t kRange = SB_SLOT_OOIT_RANGE, kBits = SB_SLOT_OOIT_BITS,
+                   kSlabs = SB_SLOT_OOIT_SLABS;
+constexpr uint32_t kResolveAccum = SB_SLOT_OOIT_ACCUM, kResolveLog2T = SB_SLOT_OOIT_LOG2T;
 }  // namespace
 
 OccupancyOit::Options OccupancyOit::readOptions(const OptionReader& o) {

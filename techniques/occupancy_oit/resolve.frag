@@ -5,9 +5,10 @@
 // (occupancy_oit_math.glsl).
 #include "../occupancy/occupancy_math.glsl"
 #include "occupancy_oit_math.glsl"
+#include "../common/slots.h"
 
-layout(binding = 0) uniform sampler2D oitAccum;
-layout(binding = 1) uniform sampler2D oitLog2T;
+layout(binding = SB_SLOT_OOIT_ACCUM) uniform sampler2D oitAccum;
+layout(binding = SB_SLOT_OOIT_LOG2T) uniform sampler2D oitLog2T;
 layout(location = 0) out vec4 outColor;
 
 void main() {

@@ -3,8 +3,9 @@
 // (1 - alpha_s)^(opacity / weight); 0 behind the opaque mesh.
 #include "../common/opaque_shadow.glsl"
 #include "osm.glsl"
+#include "../common/slots.h"
 
-layout(binding = 9) uniform sampler2DArray osmAtlases;  // one atlas per layer
+layout(binding = SB_SLOT_OSM_ATLASES) uniform sampler2DArray osmAtlases;  // one atlas per layer
 
 ivec2 osmTexel;  // the point's texel within a tile
 

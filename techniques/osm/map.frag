@@ -3,8 +3,9 @@
 // of slab [D_(i-1), D_i) added to the previous map, since addition commutes).
 // Fragments outside this pass's atlas tile are discarded.
 #include "osm.glsl"
+#include "../common/slots.h"
 
-layout(std140, binding = 9) uniform OsmPass {
+layout(std140, binding = SB_SLOT_OSM_PASS) uniform OsmPass {
   ivec4 osmPass;  // first texel group of target 0, first map, end map, 0
   vec4 osmTile;   // the tile's pixel rectangle x0, y0, x1, y1
 };

@@ -9,7 +9,8 @@
 namespace sb {
 
 namespace {
-constexpr uint32_t kParams = 8, kPass = 9, kAtlases = 9;
+constexpr uint32_t kParams = SB_SLOT_OSM_PARAMS, kPass = SB_SLOT_OSM_PASS,
+                   kAtlases = SB_SLOT_OSM_ATLASES;
 
 struct Params {
   glm::mat4 viewProj;

@@ -6,7 +6,8 @@ namespace sb {
 
 namespace {
 // As in techniques/peel/peel.frag (16 is the accumulation, 17 the counts).
-constexpr uint32_t kState = 18, kPeeled = 19;
+constexpr uint32_t kState = SB_SLOT_PEEL_STATE, kPeeled = SB_SLOT_PEEL_PEELED;
+constexpr uint32_t kSize = SB_SLOT_PEEL_ADVANCE_SIZE;  // peel_advance.comp's size uniform
 }  // namespace
 
 void PeelOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
@@ -41,7 +42,7 @@ Pass PeelOit::stepPass(int step, bool first) const {
 
 Pass PeelOit::advancePass() const {
   return Pass("peel.advance")
-      .uniform(0, sizeUbo_)
+      .uniform(kSize, sizeUbo_)
       .storage(kState, state_)
       .storage(kPeeled, peeled_);
 }

@@ -9,10 +9,11 @@ layout(early_fragment_tests) in;
 #include <shadow>
 #include "../kajiya_kay/hair_shading.glsl"
 #include "../common/fragment_key.glsl"
+#include "../common/slots.h"
 
-layout(std430, binding = 16) buffer Accum { vec4 accum[]; };
-layout(std430, binding = 18) buffer PeelState { uvec4 peelState[]; };
-layout(std430, binding = 19) buffer Peeled { uint peeled[]; };
+layout(std430, binding = SB_SLOT_OIT_ACCUM) buffer Accum { vec4 accum[]; };
+layout(std430, binding = SB_SLOT_PEEL_STATE) buffer PeelState { uvec4 peelState[]; };
+layout(std430, binding = SB_SLOT_PEEL_PEELED) buffer Peeled { uint peeled[]; };
 #include "../common/peel_step.glsl"
 
 layout(location = 0) in vec3 vWorldPos;

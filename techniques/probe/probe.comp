@@ -2,9 +2,14 @@
 // a light ray, for the occupancy paper's Fig. 5 style plots).
 #include <shadow>
 #include "../common/invocation.glsl"
+#include "../common/slots.h"
 layout(local_size_x = 64) in;
-layout(std430, binding = 16) readonly buffer ProbePoints { vec4 probePoints[]; };  // w unused
-layout(std430, binding = 17) writeonly buffer ProbeValues { float probeValues[]; };
+layout(std430, binding = SB_SLOT_PROBE_POINTS) readonly buffer ProbePoints {
+  vec4 probePoints[];  // w unused
+};
+layout(std430, binding = SB_SLOT_PROBE_VALUES) writeonly buffer ProbeValues {
+  float probeValues[];
+};
 
 void main() {
   uint i = linearInvocation();

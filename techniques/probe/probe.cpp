@@ -7,7 +7,7 @@
 namespace sb {
 
 namespace {
-constexpr uint32_t kPoints = 16, kValues = 17;
+constexpr uint32_t kPoints = SB_SLOT_PROBE_POINTS, kValues = SB_SLOT_PROBE_VALUES;
 }
 
 void ProbeOutput::setup(Device& dev, const std::vector<glm::vec3>& points,

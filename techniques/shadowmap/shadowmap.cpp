@@ -5,6 +5,8 @@
 namespace sb {
 
 namespace {
+constexpr uint32_t kDepth = SB_SLOT_SHADOWMAP_DEPTH, kParams = SB_SLOT_SHADOWMAP_PARAMS;
+
 struct Params {
   glm::mat4 lightViewProj;
   glm::vec4 params;
@@ -48,7 +50,7 @@ void ShadowMap::addPasses(FrameGraph& graph, Device& dev) {
 
 ShadowLookup ShadowMap::lookup() const {
   ShadowLookup l{"techniques/shadowmap/lookup.glsl"};
-  l.inputs.sample(bind::kShadowFirst, depth_).uniform(bind::kShadowFirst + 1, paramsUbo_);
+  l.inputs.sample(kDepth, depth_).uniform(kParams, paramsUbo_);
   return l;
 }
 

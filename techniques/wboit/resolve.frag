@@ -1,9 +1,10 @@
 // Weighted blended OIT resolve: writes (hair, T) with blending One, SrcAlpha
 // over the opaque colour (wboit_math.glsl).
 #include "wboit_math.glsl"
+#include "../common/slots.h"
 
-layout(binding = 16) uniform sampler2D accumTex;
-layout(binding = 17) uniform sampler2D revealageTex;
+layout(binding = SB_SLOT_WBOIT_ACCUM) uniform sampler2D accumTex;
+layout(binding = SB_SLOT_WBOIT_REVEALAGE) uniform sampler2D revealageTex;
 layout(location = 0) out vec4 outColor;
 
 void main() {

@@ -1,10 +1,11 @@
 // Weighted sum / weighted average resolve: a full-screen pass that writes
 // (hair, T) with blending One, SrcAlpha over the opaque colour (weighted_math.glsl).
 #include "weighted_math.glsl"
+#include "../common/slots.h"
 
-layout(binding = 16) uniform sampler2D accumTex;
+layout(binding = SB_SLOT_WEIGHTED_ACCUM) uniform sampler2D accumTex;
 #ifdef SB_WEIGHTED_COUNT
-layout(binding = 17) uniform sampler2D countTex;
+layout(binding = SB_SLOT_WEIGHTED_COUNT) uniform sampler2D countTex;
 #endif
 layout(location = 0) out vec4 outColor;
 

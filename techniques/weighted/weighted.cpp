@@ -5,7 +5,7 @@
 namespace sb {
 
 namespace {
-constexpr uint32_t kFirstTarget = 16;  // resolve: sampler bindings 16, 17, ...
+constexpr uint32_t kFirstTarget = SB_SLOT_BLENDED_TARGETS;  // resolve: sampler bindings 16, 17, ...
 }  // namespace
 
 void BlendedOitBase::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
