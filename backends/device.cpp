@@ -55,9 +55,18 @@ namespace {
 std::string quoted(const std::string& op, const std::string& name) {
   return op + "('" + name + "')";
 }
+
+// A pass or a pipeline has at most the device's colour targets.
+void checkColorCount(const std::string& where, std::size_t count, uint32_t limit) {
+  if (count > limit)
+    throw DeviceError(where + ": " + std::to_string(count) +
+                      " colour targets; the device allows at most " + std::to_string(limit) +
+                      " (Device::maxColorAttachments)");
+}
 }  // namespace
 
-Device::Device(std::unique_ptr<Driver> driver) : driver_(std::move(driver)) {}
+Device::Device(std::unique_ptr<Driver> driver)
+    : driver_(std::move(driver)), maxColorAttachments_(driver_->info().maxColorAttachments) {}
 
 Device::~Device() {
   // Native objects go back to the driver that made them, before it goes.
@@ -186,6 +195,7 @@ Pipeline Device::createPipeline(const PipelineDesc& desc) {
   if (graphics && desc.hasDepth && !isDepthFormat(desc.depthFormat))
     throw DeviceError(where + ": depthFormat " + formatName(desc.depthFormat) +
                       " is not a depth format");
+  checkColorCount(where, desc.colorFormats.size(), maxColorAttachments_);
   for (Format f : desc.colorFormats)
     if (isDepthFormat(f)) throw DeviceError(where + ": depth format as colour target");
   if (desc.blend.size() > desc.colorFormats.size())
@@ -227,6 +237,7 @@ void Device::beginFrame() {
 void Device::beginPass(const PassDesc& pd) {
   const std::string where = quoted("beginPass", pd.name);
   requireFrame(where, true, false);
+  checkColorCount(where, pd.color.size(), maxColorAttachments_);
   auto open = std::make_unique<OpenPass>();
   open->name = pd.name;
   DriverPass dp;

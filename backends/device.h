@@ -224,6 +224,10 @@ struct DeviceInfo {
   std::string driver;    // version string / driverInfo
   std::string timing;    // how pass times are measured
   std::string lines;     // how Lines topology is rasterized
+  // The most colour attachments a pass or a pipeline may have (GL: the lesser
+  // of GL_MAX_DRAW_BUFFERS and GL_MAX_COLOR_ATTACHMENTS, 8 or more; Vulkan:
+  // maxColorAttachments, 4 or more).
+  uint32_t maxColorAttachments = 0;
 };
 
 class Driver;
@@ -242,6 +246,10 @@ class Device {
   Device& operator=(const Device&) = delete;
 
   DeviceInfo info() const;
+  // The most colour targets a pass (PassDesc::color) or a pipeline
+  // (PipelineDesc::colorFormats) may have on this device: techniques size
+  // their passes by it (at least 4, the least Vulkan guarantees).
+  uint32_t maxColorAttachments() const { return maxColorAttachments_; }
 
   // A buffer of zero bytes is an error. Contents are zero unless data is given.
   Buffer createBuffer(const BufferDesc& desc, const void* data = nullptr);
@@ -305,6 +313,7 @@ class Device {
                                      const std::string& where, bool inPass);
 
   std::unique_ptr<Driver> driver_;
+  uint32_t maxColorAttachments_ = 0;
   uint32_t nextId_ = 1;  // shared by all kinds: ids give creation order
   std::map<uint32_t, std::unique_ptr<BufferRec>> buffers_;
   std::map<uint32_t, std::unique_ptr<TextureRec>> textures_;

@@ -1,8 +1,9 @@
 // The narrow per-API layer under the Device front end (backends/device.cpp).
 // The front end has already checked every call against the device contract
-// (handles, frame and pass state, sizes, formats, bindings), so a driver only
-// translates: it creates native objects, records passes and reads back. It
-// never sees a handle id; it gets back the objects it made.
+// (handles, frame and pass state, sizes, formats, colour target counts,
+// bindings), so a driver only translates: it creates native objects, records
+// passes and reads back. It never sees a handle id; it gets back the objects
+// it made.
 #pragma once
 
 #include <array>
@@ -37,8 +38,9 @@ struct DriverColorTarget {
 
 // A pass as checked by the front end: attachments share one size (width x
 // height, also for a pass without attachments), no attachment is sampled, no
-// layer is attached twice (several layers of one array may be), and the depth
-// attachment has one layer.
+// layer is attached twice (several layers of one array may be), the depth
+// attachment has one layer, and there are at most info().maxColorAttachments
+// colour targets (likewise in a pipeline's colorFormats).
 struct DriverPass {
   std::string name;
   std::vector<DriverColorTarget> color;
@@ -69,6 +71,8 @@ constexpr T byEnum(const T (&table)[N], E e) {
 class Driver {
  public:
   virtual ~Driver() = default;
+  // Includes the API's colour attachment limit (maxColorAttachments), which
+  // the front end enforces.
   virtual DeviceInfo info() const = 0;
 
   // desc.bytes > 0; contents zero unless data is given.

@@ -6,9 +6,11 @@
 #include <cctype>
 #include <cstring>
 #include <functional>
+#include <iostream>
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "backends/device.h"
@@ -82,6 +84,25 @@ struct World {
   }
   std::vector<Binding> goodBindings() const {
     return {Binding::buf(0, data), Binding::tex(1, other)};
+  }
+  // A pass onto `targets` layers of one array, and a pipeline with as many targets.
+  PassDesc widePass(uint32_t targets) const {
+    const Texture wide = dev.createTexture({"wide", "test", Format::RGBA8, 8, 8, false, targets});
+    PassDesc p;
+    p.name = "contract.wide";
+    for (uint32_t i = 0; i < targets; ++i) p.color.push_back({wide, LoadOp::Clear, {}, {}, i});
+    p.sampledTextures = {other};
+    return p;
+  }
+  Pipeline widePipeline(uint32_t targets) const {
+    PipelineDesc d;
+    d.name = "contract.wide";
+    d.technique = "tests";
+    d.vertex = &kVert;
+    d.fragment = &kFrag;
+    d.colorFormats.assign(targets, Format::RGBA8);
+    d.bindings = {{0, BindingKind::StorageBuffer}, {1, BindingKind::SampledTexture}};
+    return dev.createPipeline(d);
   }
 };
 
@@ -158,6 +179,16 @@ std::vector<Rule> rules() {
          d.blend = {BlendState::additive(), BlendState::additive()};
          w.dev.createPipeline(d);
        }},
+      // The count and the limit are the device's (9 and 8 on llvmpipe and
+      // lavapipe): the whole message is checked in
+      // DeviceContract.ColourTargetsUpToTheDeviceLimit below.
+      {"too many colour attachments in a pass", "colour targets; the device allows at most",
+       [](World& w) {
+         w.dev.beginFrame();
+         w.dev.beginPass(w.widePass(w.dev.maxColorAttachments() + 1));
+       }},
+      {"too many colour targets in a pipeline", "colour targets; the device allows at most",
+       [](World& w) { w.widePipeline(w.dev.maxColorAttachments() + 1); }},
       {"pass outside a frame", "beginPass('contract.pass'): outside a frame",
        [](World& w) { w.dev.beginPass(w.pass(w.color)); }},
       {"pass inside a pass", "inside pass 'contract.pass'",
@@ -426,6 +457,57 @@ TEST(DeviceContract, TheUnbrokenWorldRendersOnBothApis) {
   const auto got = messages(valid);
   if (got.empty()) GTEST_SKIP() << "no backend available";
   for (const auto& [backend, message] : got) EXPECT_EQ(message, "") << backend;
+}
+
+// Passes and pipelines with as many colour targets as the device allows render;
+// one more is refused with a message naming the call, the count and the limit.
+TEST(DeviceContract, ColourTargetsUpToTheDeviceLimit) {
+  std::map<std::string, uint32_t> limits;
+  for (const std::string backend : {"gl", "vulkan"}) {
+    std::unique_ptr<Device> dev;
+    try {
+      dev = createDevice({backend, backend == "gl" ? "egl" : "headless", false});
+    } catch (const DeviceError&) {
+      continue;
+    }
+    const uint32_t limit = dev->maxColorAttachments();
+    limits[backend] = limit;
+    EXPECT_EQ(dev->info().maxColorAttachments, limit) << backend;
+    // What each API guarantees (GL 4.5: 8 draw buffers; Vulkan: 4).
+    EXPECT_GE(limit, backend == "gl" ? 8u : 4u) << backend;
+    World w(*dev);
+    try {
+      const Pipeline wide = w.widePipeline(limit);
+      w.dev.beginFrame();
+      w.dev.beginPass(w.widePass(limit));
+      w.dev.draw(wide, w.goodBindings(), 3);
+      w.dev.endPass();
+      w.dev.endFrame();
+    } catch (const DeviceError& e) {
+      ADD_FAILURE() << backend << ": " << limit << " colour targets refused: " << e.what();
+    }
+    const std::string over = std::to_string(limit + 1) +
+                             " colour targets; the device allows at most " + std::to_string(limit) +
+                             " (Device::maxColorAttachments)";
+    for (const auto& [call, breakIt] : std::vector<std::pair<std::string, std::function<void()>>>{
+             {"createPipeline('contract.wide', technique 'tests'): ",
+              [&] { w.widePipeline(limit + 1); }},
+             {"beginPass('contract.wide'): ", [&] {
+                w.dev.beginFrame();
+                w.dev.beginPass(w.widePass(limit + 1));
+              }}}) {
+      try {
+        breakIt();
+        ADD_FAILURE() << backend << ": " << call << "accepted " << limit + 1 << " colour targets";
+      } catch (const DeviceError& e) {
+        EXPECT_EQ(e.what(), call + over) << backend;
+      }
+    }
+  }
+  if (limits.empty()) GTEST_SKIP() << "no backend available";
+  std::cout << "[          ] maxColorAttachments:";
+  for (const auto& [backend, limit] : limits) std::cout << " " << backend << " " << limit;
+  std::cout << "\n";
 }
 
 // Fresh resources read back as zero (colour, buffers) and 1 (depth) on both APIs.

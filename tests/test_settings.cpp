@@ -6,14 +6,18 @@
 #include <gtest/gtest.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "harness/baselines.h"
+#include "harness/commands.h"
 #include "harness/settings.h"
 #include "harness/suite.h"
 #include "test_util.h"
@@ -205,23 +209,75 @@ TEST(Settings, EveryFrontEndGivesTheSameRequest) {
   EXPECT_EQ(fromManifest({{"backend", "vulkan"}}).backend, "vulkan");
 }
 
-// A bad value through the binary: render (CLI), sweep (suite) and check (manifest)
-// each exit 2 naming the setting.
+// The strandbench command line run in this process: main()'s parse and exit
+// status (harness/main.cpp) over the commands it registers, stdout and stderr
+// captured. The same code as the binary without the start of a process that
+// loads some 260 shared libraries (0.5-1 s each, the most of this test's time
+// when each refusal below spawned the binary).
+sbtest::CliResult runInProcess(std::vector<std::string> args) {
+  CLI::App app{"strandbench"};
+  app.require_subcommand(1);
+  sb::registerCommands(app);
+  sb::runGuarded("reset", [] { return 0; });  // no status left from an earlier command
+  std::ostringstream out, err;
+  struct Capture {
+    std::ostream& stream;
+    std::streambuf* old;
+    ~Capture() { stream.rdbuf(old); }
+  } captureOut{std::cout, std::cout.rdbuf(out.rdbuf())},
+      captureErr{std::cerr, std::cerr.rdbuf(err.rdbuf())};
+  sbtest::CliResult r;
+  std::reverse(args.begin(), args.end());  // CLI11 takes them last first
+  try {
+    app.parse(args);
+    r.status = sb::lastCommandStatus();
+  } catch (const CLI::ParseError& e) {  // as main() handles it
+    std::cerr << "strandbench: " << e.what() << "\n";
+    r.status = 2;
+  }
+  r.out = out.str();
+  r.err = err.str();
+  return r;
+}
+
+// The binary's result for the same arguments (each quoted for the shell).
+sbtest::CliResult runBinary(const std::vector<std::string>& args) {
+  std::string line;
+  for (const auto& a : args) line += (line.empty() ? "'" : " '") + a + "'";
+  return sbtest::runCli(line);
+}
+
+// A bad value of every setting through the three front ends: render (CLI flags),
+// sweep (suite keys) and check (manifest keys) each give exit status 2 naming the
+// setting, before they render or write anything. In process (runInProcess); the
+// binary gives the same for the first setting.
 TEST(Settings, EveryFrontEndRefusesABadValue) {
   const fs::path dir = sbtest::tempDir("settings-bad");
+  bool first = true;
   for (const Setting& s : sb::settingsTable()) {
     SCOPED_TRACE(s.key + " = " + s.badExample);
-    std::string extra;
+    std::vector<std::string> extra;
     ojson keys = {{s.key, jsonValue(s, s.badExample)}};
     if (kNeeds.count(s.key)) {
       const auto& [key, value] = kNeeds.at(s.key);
-      extra = " --" + std::string(key);
+      extra = {"--" + std::string(key)};
       keys[key] = true;
     }
-    std::string args;
-    for (const auto& a : cliArgs(s, s.badExample)) args += " '" + a + "'";
-    const sbtest::CliResult cli =
-        sbtest::runCli(std::string("render --scene ") + kScene + " --size 16x16" + extra + args);
+    // Each front end in process, and for the first setting also as the binary.
+    auto run = [&](const std::vector<std::string>& args) {
+      const sbtest::CliResult r = runInProcess(args);
+      if (first) {
+        const sbtest::CliResult binary = runBinary(args);
+        EXPECT_EQ(binary.status, r.status) << binary.err;
+        EXPECT_EQ(binary.err, r.err);
+      }
+      return r;
+    };
+
+    std::vector<std::string> render = {"render", "--scene", kScene, "--size", "16x16"};
+    render.insert(render.end(), extra.begin(), extra.end());
+    for (const auto& a : cliArgs(s, s.badExample)) render.push_back(a);
+    const sbtest::CliResult cli = run(render);
     EXPECT_EQ(cli.status, 2) << cli.err;
     EXPECT_NE(cli.err.find(s.flag), std::string::npos) << cli.err;
 
@@ -233,7 +289,7 @@ TEST(Settings, EveryFrontEndRefusesABadValue) {
                          {"groups", {group}}};
     std::ofstream(dir / "suite.json") << suite.dump(2);
     const sbtest::CliResult sweep =
-        sbtest::runCli("sweep " + (dir / "suite.json").string() + " --out " + (dir / "o").string());
+        run({"sweep", (dir / "suite.json").string(), "--out", (dir / "o").string()});
     EXPECT_EQ(sweep.status, 2) << sweep.err;
     EXPECT_NE(sweep.err.find(quoted), std::string::npos) << sweep.err;
     EXPECT_FALSE(fs::exists(dir / "o"));
@@ -242,11 +298,15 @@ TEST(Settings, EveryFrontEndRefusesABadValue) {
     ojson c = {{"name", "c"}, {"scene", kScene}};
     for (const auto& [k, v] : keys.items()) c[k] = v;
     std::ofstream(dir / "b" / "manifest.json") << manifest(ojson::array({c})).dump(2);
-    const sbtest::CliResult check = sbtest::runCli("check --baselines " + (dir / "b").string() +
-                                                   " --out " + (dir / "out").string());
+    const sbtest::CliResult check =
+        run({"check", "--baselines", (dir / "b").string(), "--out", (dir / "out").string()});
     EXPECT_EQ(check.status, 2) << check.err;
     EXPECT_NE(check.err.find(quoted), std::string::npos) << check.err;
     EXPECT_NE(check.err.find("manifest.json"), std::string::npos) << check.err;
+    EXPECT_FALSE(fs::exists(dir / "out"));
+    fs::remove_all(dir / "o");  // what a front end that took the value wrote: one failure each
+    fs::remove_all(dir / "out");
+    first = false;
   }
   fs::remove_all(dir);
 }

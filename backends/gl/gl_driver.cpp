@@ -1,6 +1,7 @@
 // The driver under the Device front end on OpenGL 4.5 core (direct state access).
 #include "backends/gl/gl_driver.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstring>
 #include <iterator>
@@ -103,6 +104,12 @@ class GLDriver final : public Driver {
     info_.driver = reinterpret_cast<const char*>(gl_.GetString(GL_VERSION));
     info_.timing = "cpu clock per pass (glFinish before and after)";
     info_.lines = "aliased (diamond exit)";
+    // Draw buffers and framebuffer attachments both bound a pass's targets.
+    GLint drawBuffers = 0, colorAttachments = 0;
+    gl_.GetIntegerv(GL_MAX_DRAW_BUFFERS, &drawBuffers);
+    gl_.GetIntegerv(GL_MAX_COLOR_ATTACHMENTS, &colorAttachments);
+    info_.maxColorAttachments =
+        static_cast<uint32_t>(std::max(0, std::min(drawBuffers, colorAttachments)));
     // Same conventions as Vulkan: NDC y=-1 at row 0, depth in [0,1].
     gl_.ClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
     gl_.CreateVertexArrays(1, &vao_);  // core profile needs one bound, even if empty

@@ -227,6 +227,7 @@ void VulkanPlatform::pickPhysicalDevice() {
   info.backend = "vulkan";
   info.timing = cpuTiming ? "cpu clock per pass (submit and wait)" : "gpu timestamps";
   info.platform = "headless";
+  info.maxColorAttachments = pick->props.limits.maxColorAttachments;
   info.device = pick->props.deviceName;
   if (drv.driverName[0] != '\0') {
     info.driver = std::string(drv.driverName) + " " + drv.driverInfo;
