@@ -93,6 +93,36 @@ Pass& Pass::size(uint32_t width, uint32_t height) {
   return *this;
 }
 
+Pass& Pass::uniform(uint32_t slot, Buffer b) {
+  inputs_.uniform(slot, b);
+  return *this;
+}
+
+Pass& Pass::readStorage(uint32_t slot, Buffer b) {
+  inputs_.readStorage(slot, b);
+  return *this;
+}
+
+Pass& Pass::storage(uint32_t slot, Buffer b) {
+  inputs_.storage(slot, b);
+  return *this;
+}
+
+Pass& Pass::sample(uint32_t slot, Texture t) {
+  inputs_.sample(slot, t);
+  return *this;
+}
+
+Pass& Pass::sampleArray(uint32_t slot, Texture t) {
+  inputs_.sampleArray(slot, t);
+  return *this;
+}
+
+Pass& Pass::inputs(const Inputs& more) {
+  inputs_.add(more);
+  return *this;
+}
+
 PassDesc Pass::desc() const {
   PassDesc d = desc_;
   d.name = name_;

@@ -66,12 +66,12 @@ class Pass {
   Pass& size(uint32_t width, uint32_t height);  // a pass without attachments
 
   // What its shaders bind (see Inputs).
-  Pass& uniform(uint32_t slot, Buffer b) { return with(inputs_.uniform(slot, b)); }
-  Pass& readStorage(uint32_t slot, Buffer b) { return with(inputs_.readStorage(slot, b)); }
-  Pass& storage(uint32_t slot, Buffer b) { return with(inputs_.storage(slot, b)); }
-  Pass& sample(uint32_t slot, Texture t) { return with(inputs_.sample(slot, t)); }
-  Pass& sampleArray(uint32_t slot, Texture t) { return with(inputs_.sampleArray(slot, t)); }
-  Pass& inputs(const Inputs& more) { return with(inputs_.add(more)); }
+  Pass& uniform(uint32_t slot, Buffer b);
+  Pass& readStorage(uint32_t slot, Buffer b);
+  Pass& storage(uint32_t slot, Buffer b);
+  Pass& sample(uint32_t slot, Texture t);
+  Pass& sampleArray(uint32_t slot, Texture t);
+  Pass& inputs(const Inputs& more);
 
   const std::string& name() const { return name_; }
   const Inputs& inputs() const { return inputs_; }
@@ -94,8 +94,6 @@ class Pass {
   void dispatch(Device& dev, Pipeline p, uint32_t x, uint32_t y = 1, uint32_t z = 1) const;
 
  private:
-  Pass& with(Inputs&) { return *this; }
-
   std::string name_;
   PassDesc desc_;
   bool depthWritten_ = false;
