@@ -8,6 +8,9 @@ ShaderDefines OccupancyMaps::defines() const {
   d.defines.push_back({"SB_OCC_SLABS", std::to_string(config_.slabMap ? config_.slabs : 1)});
   d.defines.push_back({"SB_OCC_WORD_TARGETS", std::to_string(wordTargets())});
   d.defines.push_back({"SB_OCC_SLAB_TARGETS", std::to_string(slabTargets())});
+  // The arrays of occupancy_math.glsl, sized to these maps.
+  d.defines.push_back({"SB_OCC_MAX_WORDS", std::to_string(maxWords())});
+  d.defines.push_back({"SB_OCC_MAX_SLABS", std::to_string(maxSlabs())});
   return d;
 }
 

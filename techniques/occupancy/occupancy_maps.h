@@ -9,6 +9,8 @@
 //                         slabs; additive); optional
 #pragma once
 
+#include <algorithm>
+
 #include "techniques/common/technique.h"
 
 namespace sb {
@@ -39,7 +41,11 @@ class OccupancyMaps {
 
   uint32_t wordTargets() const { return (config_.slices + 127) / 128; }  // layers of bits()
   uint32_t slabTargets() const { return config_.slabMap ? (config_.slabs + 3) / 4 : 0; }
-  ShaderDefines defines() const;  // SB_OCC_SLICES, _SLABS, _WORD_TARGETS, _SLAB_TARGETS
+  // SB_OCC_SLICES, _SLABS, _WORD_TARGETS, _SLAB_TARGETS, _MAX_WORDS, _MAX_SLABS
+  ShaderDefines defines() const;
+  // What the shaders read from the layers: 4 words (128 slices) and 4 slabs per texel.
+  uint32_t maxWords() const { return 4 * wordTargets(); }
+  uint32_t maxSlabs() const { return std::max(4 * slabTargets(), 1u); }
   Texture range() const { return range_; }
   Texture bits() const { return bits_; }    // RGBA32UI, wordTargets() layers
   Texture slabs() const { return slabs_; }  // RGBA32F, slabTargets() layers; none without

@@ -11,10 +11,7 @@
 #include "../common/shading.glsl"
 #include <shadow>
 #include "../kajiya_kay/hair_shading.glsl"
-// Also included by the occupancy shadow's lookup (<shadow>): only once.
-#ifndef SB_OCC_MAX_WORDS
-#include "../occupancy/occupancy_math.glsl"
-#endif
+#include "../occupancy/occupancy_math.glsl"  // once, with the occupancy shadow's lookup
 #include "occupancy_oit_math.glsl"
 #include "../common/slots.h"
 

@@ -1,5 +1,7 @@
 #include "techniques/occupancy_oit/occupancy_oit.h"
 
+#include <algorithm>
+
 #include "scenes/options.h"
 #include "techniques/common/shader_library.h"
 #include "techniques/kajiya_kay/shading.h"
@@ -88,7 +90,19 @@ void OccupancyOit::setup(Device& dev, const GpuScene& scene, const RenderSetting
                        {"SB_OOIT_SLAB_TARGETS", std::to_string(maps_.slabTargets())}};
   const ShaderDefines hair = shading.hairDefines();
   for (const auto& [alias, file] : hair.aliases) accumDefs.aliases[alias] = file;
-  accumDefs.defines.insert(accumDefs.defines.end(), hair.defines.begin(), hair.defines.end());
+  // One size for occupancy_math.glsl's arrays, which the occupancy shadow's
+  // lookup may size too: the larger of the two.
+  uint32_t words = maps_.maxWords(), slabs = maps_.maxSlabs();
+  for (const auto& [name, value] : hair.defines) {
+    if (name == "SB_OCC_MAX_WORDS")
+      words = std::max<uint32_t>(words, std::stoul(value));
+    else if (name == "SB_OCC_MAX_SLABS")
+      slabs = std::max<uint32_t>(slabs, std::stoul(value));
+    else
+      accumDefs.defines.push_back({name, value});
+  }
+  accumDefs.defines.push_back({"SB_OCC_MAX_WORDS", std::to_string(words)});
+  accumDefs.defines.push_back({"SB_OCC_MAX_SLABS", std::to_string(slabs)});
   const ShaderCode accumFrag = loadShader("techniques/occupancy_oit/accumulate.frag", accumDefs);
   d.name = "occupancy_oit.accumulate";
   d.technique = "occupancy_oit+" + shading.shadow().name();
