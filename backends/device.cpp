@@ -397,13 +397,14 @@ TextureDesc Device::describe(Texture t) const { return texture(t, "describe").de
 
 BufferDesc Device::describe(Buffer b) const { return buffer(b, "describe").desc; }
 
-std::vector<ResourceBytes> Device::resources(bool createdOnly) const {
+std::vector<ResourceBytes> Device::resources(bool createdOnly,
+                                             const std::set<uint32_t>& alsoIds) const {
   std::vector<std::pair<uint32_t, ResourceBytes>> all;
   for (const auto& [id, r] : buffers_)
-    if (r->object || !createdOnly)
+    if (r->object || !createdOnly || alsoIds.count(id))
       all.push_back({id, {r->desc.name, r->desc.owner, r->desc.bytes}});
   for (const auto& [id, t] : textures_)
-    if (t->object || !createdOnly)
+    if (t->object || !createdOnly || alsoIds.count(id))
       all.push_back({id,
                      {t->desc.name, t->desc.owner,
                       std::size_t{t->desc.width} * t->desc.height * t->desc.layers *
@@ -414,8 +415,12 @@ std::vector<ResourceBytes> Device::resources(bool createdOnly) const {
   return out;
 }
 
-std::vector<ResourceBytes> Device::allocations() const { return resources(true); }
+std::vector<ResourceBytes> Device::allocations() const { return resources(true, {}); }
 
-std::vector<ResourceBytes> Device::declared() const { return resources(false); }
+std::vector<ResourceBytes> Device::allocationsAfterUsing(const std::set<uint32_t>& ids) const {
+  return resources(true, ids);
+}
+
+std::vector<ResourceBytes> Device::declared() const { return resources(false, {}); }
 
 }  // namespace sb

@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -290,6 +291,9 @@ class Device {
   // on the device, in creation order. A resource is made when first used (by a
   // pass, a binding, an update or a read), or at once when created with data.
   std::vector<ResourceBytes> allocations() const;
+  // What allocations() will be once the resources with these ids (buffer and
+  // texture handle ids) have been used: known before any of them is made.
+  std::vector<ResourceBytes> allocationsAfterUsing(const std::set<uint32_t>& ids) const;
   // The same for every live resource declared, made or not.
   std::vector<ResourceBytes> declared() const;
 
@@ -308,7 +312,7 @@ class Device {
   void destroyIn(Table& table, uint32_t id, const char* kind);
   DriverObject* created(BufferRec& r);
   DriverObject* created(TextureRec& t);
-  std::vector<ResourceBytes> resources(bool createdOnly) const;
+  std::vector<ResourceBytes> resources(bool createdOnly, const std::set<uint32_t>& alsoIds) const;
   std::vector<DriverBinding> resolve(const PipelineRec& p, const std::vector<Binding>& given,
                                      const std::string& where, bool inPass);
 

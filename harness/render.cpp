@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <map>
 #include <optional>
@@ -234,6 +235,27 @@ std::vector<InvariantFailure> checkInvariants(const RenderRequest& req, const Re
 
 }  // namespace
 
+namespace {
+// The refusal of a run over --memory-limit: the largest resources first.
+std::string overMemoryLimit(std::vector<ResourceBytes> planned, std::size_t total,
+                            long long limit) {
+  std::sort(planned.begin(), planned.end(),
+            [](const ResourceBytes& a, const ResourceBytes& b) { return a.bytes > b.bytes; });
+  auto mib = [](std::size_t b) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2f MiB", double(b) / (1 << 20));
+    return std::string(text);
+  };
+  std::string m = "memory limit: this run needs " + std::to_string(total) + " bytes (" +
+                  mib(total) + "), over --memory-limit " + std::to_string(limit) +
+                  "; nothing was rendered. Largest resources:";
+  for (std::size_t i = 0; i < planned.size() && i < 8; ++i)
+    m += "\n  " + planned[i].name + " (" + planned[i].owner + "): " + mib(planned[i].bytes);
+  m += "\nA smaller --size, a smaller map size= or fewer layers/maps/slices make it fit.";
+  return m;
+}
+}  // namespace
+
 std::size_t RenderResult::bytesOwnedBy(const std::string& owner) const {
   std::size_t bytes = 0;
   for (const auto& r : resources)
@@ -263,9 +285,14 @@ RenderResult runRender(const RenderRequest& req, RenderCache* cache) {
   if (req.reference) outputs.insert("visibility");
   if (req.probe) outputs.insert("probe");
   Renderer renderer(*dev, scene, settings, std::move(shadow), std::move(oit), outputs);
+  // What the timed frames will hold, known before their resources are made.
+  RenderResult out;
+  const auto planned = dev->allocationsAfterUsing(renderer.graphResources(timed));
+  for (const auto& r : planned) out.estimatedBytes += r.bytes;
+  if (req.memoryLimit > 0 && out.estimatedBytes > static_cast<std::size_t>(req.memoryLimit))
+    throw InputError(overMemoryLimit(planned, out.estimatedBytes, req.memoryLimit));
   for (int i = 0; i < req.warmup; ++i) renderer.renderFrame(timed);
 
-  RenderResult out;
   for (int i = 0; i < req.repeat; ++i) {
     double total = 0;
     for (const auto& t : renderer.renderFrame(timed)) {
@@ -388,6 +415,7 @@ nlohmann::json renderJson(const RenderResult& r) {
                  {"scene_bytes", r.bytesOwnedBy("scene")},
                  {"frame_bytes", r.bytesOwnedBy("frame")},
                  {"total_bytes", total},
+                 {"estimated_bytes", r.estimatedBytes},
                  {"resources", resources}};
 
   if (r.measurementGraph) j["measurement_graph"] = *r.measurementGraph;

@@ -58,6 +58,9 @@ struct RenderRequest {
   int repeat = 1;
   int warmup = 1;
   bool validation = false;
+  // Refuse the run (InputError) when the resources its timed frames need
+  // would take more bytes than this, before they are made; 0: no limit.
+  long long memoryLimit = 0;
   ViewOverrides view;
   bool operator==(const RenderRequest&) const = default;
 };
@@ -98,6 +101,8 @@ struct RenderResult {
   std::vector<double> frameMs;    // per timed frame: the sum of its passes
   // This run's own resources (not the reference's), sorted by name.
   std::vector<ResourceBytes> resources;
+  // Their bytes as known before the first frame (from the culled graph).
+  std::size_t estimatedBytes = 0;
   // The reference's shadow and transparency specs (with a reference or a probe).
   std::optional<std::pair<std::string, std::string>> reference;
   std::optional<ImageError> imageError;            // with a reference and an image

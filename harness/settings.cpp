@@ -463,6 +463,17 @@ std::vector<Setting> buildTable() {
   plain(add(make("validation", "--validation", T::Flag, "false",
                  "Vulkan validation layers on (messages counted)", "true", "maybe")),
         &RenderRequest::validation);
+  {
+    Setting& s = add(ranged(make("memory_limit", "--memory-limit", T::Int, "none",
+                                 "refuse the run, before its resources are made, when they would "
+                                 "take more bytes than this",
+                                 "1000000000", "0"),
+                            kAtLeast1));
+    s.get = [](const RenderRequest& r) {
+      return r.memoryLimit > 0 ? ojson(r.memoryLimit) : ojson(nullptr);
+    };
+    s.set = [](RenderRequest& r, const ojson& v) { r.memoryLimit = v.get<long long>(); };
+  }
   viewVec3(add(make("camera_eye", "--camera-eye", T::Vec3, "fitted to the scene",
                     "camera position x,y,z", "0.3,1.2,4", "1,2")),
            &ViewOverrides::cameraEye);

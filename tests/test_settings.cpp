@@ -147,17 +147,35 @@ TEST(Settings, TableIsComplete) {
     EXPECT_NE(s.get(r), s.get(RenderRequest{})) << s.key;
   }
   // Camera and light among them, and every other field of RenderRequest.
-  for (const char* k : {"scene",       "shadow",         "oit",
-                        "backend",     "platform",       "size",
-                        "primitive",   "ribbon_width",   "repeat",
-                        "warmup",      "reference",      "image",
-                        "probe",       "invariants",     "validation",
-                        "camera_eye",  "camera_target",  "camera_up",
-                        "fov",         "near",           "far",
-                        "light",       "light_position", "light_direction",
-                        "light_color", "light_intensity"})
+  for (const char* k : {"scene",
+                        "shadow",
+                        "oit",
+                        "backend",
+                        "platform",
+                        "size",
+                        "primitive",
+                        "ribbon_width",
+                        "repeat",
+                        "warmup",
+                        "reference",
+                        "image",
+                        "probe",
+                        "invariants",
+                        "validation",
+                        "memory_limit",
+                        "camera_eye",
+                        "camera_target",
+                        "camera_up",
+                        "fov",
+                        "near",
+                        "far",
+                        "light",
+                        "light_position",
+                        "light_direction",
+                        "light_color",
+                        "light_intensity"})
     EXPECT_EQ(keys.count(k), 1u) << k;
-  EXPECT_EQ(keys.size(), 26u);
+  EXPECT_EQ(keys.size(), 27u);
 }
 
 // Every setting through the three front ends: the same value lands in the same

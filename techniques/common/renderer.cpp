@@ -125,6 +125,15 @@ std::vector<std::string> Renderer::graphPasses(const std::set<std::string>& outp
   return names;
 }
 
+std::set<uint32_t> Renderer::graphResources(const std::set<std::string>& outputs) const {
+  std::set<uint32_t> ids;
+  for (const auto* p : graph_.compile(resources(outputs))) {
+    for (const auto& r : p->reads) ids.insert(r.id);
+    for (const auto& r : p->writes) ids.insert(r.id);
+  }
+  return ids;
+}
+
 std::vector<PassTime> Renderer::renderFrame() { return run(passes_); }
 
 std::vector<PassTime> Renderer::renderFrame(const std::set<std::string>& outputs) {

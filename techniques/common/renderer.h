@@ -35,6 +35,9 @@ class Renderer {
   // to measure an error without shading or timing the measurement).
   std::vector<PassTime> renderFrame(const std::set<std::string>& outputs);
   std::vector<std::string> graphPasses(const std::set<std::string>& outputs) const;
+  // The ids of the resources a frame for `outputs` uses (what its kept passes
+  // read and write): with Device::allocationsAfterUsing, its memory before it runs.
+  std::set<uint32_t> graphResources(const std::set<std::string>& outputs) const;
   // RGBA32F, rows bottom-up (row 0 = NDC y=-1).
   std::vector<uint8_t> readColor();
   // R32F, rows bottom-up; -1 where no surface.
