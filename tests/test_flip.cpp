@@ -1,6 +1,6 @@
 // FLIP (harness/flip.h): its stages, its properties on synthetic strand
 // images, agreement with NVIDIA's reference implementation on a committed
-// rendered pair.
+// rendered pair, and `strandbench compare`'s FLIP fields.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -18,6 +18,7 @@
 #include "harness/errors.h"
 #include "harness/flip.h"
 #include "harness/image.h"
+#include "harness/metrics.h"
 
 namespace fs = std::filesystem;
 
@@ -431,6 +432,66 @@ TEST(Flip, AgreesWithNvidiasReferenceImplementation) {
       EXPECT_EQ(r.exposures, ref.exposures);
     }
   }
+}
+
+// ------------------------------------------------------------------ compare
+
+class FlipCompareTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("sb_test_flip_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
+  std::string file(const std::string& name) const { return (dir_ / name).string(); }
+  nlohmann::json compare(const std::string& a, const std::string& b, double ppd,
+                         const std::string& map = "") {
+    std::ostringstream out, err;
+    EXPECT_EQ(sb::runCompareCommand(a, b, out, err, 1.0 / 255.0, ppd, map), 0) << err.str();
+    return nlohmann::json::parse(out.str());
+  }
+  fs::path dir_;
+};
+
+TEST_F(FlipCompareTest, JsonHasFlipAndTheMapIsWritten) {
+  sb::writeImage(withoutFirst(3).image(), file("a.png"));
+  sb::writeImage(withoutFirst(0).image(), file("b.png"));
+  const nlohmann::json j = compare(file("a.png"), file("b.png"), 67.0, file("map.png"));
+  ASSERT_TRUE(j.contains("flip")) << j.dump();
+  for (const char* k : {"mean", "weighted_median", "weighted_q1", "weighted_q3", "min", "max",
+                        "nan_pixels", "ppd", "input"})
+    EXPECT_TRUE(j["flip"].contains(k)) << k;
+  EXPECT_EQ(j["flip"]["input"], "ldr");
+  EXPECT_EQ(j["flip"]["ppd"], 67.0);
+  const double mean = j["flip"]["mean"].get<double>();
+  EXPECT_GT(mean, 0.0);
+  EXPECT_LE(j["flip"]["weighted_q1"].get<double>(), j["flip"]["weighted_median"].get<double>());
+  EXPECT_LE(j["flip"]["weighted_median"].get<double>(), j["flip"]["weighted_q3"].get<double>());
+  // The map: magma of the error, the same size; black where nothing differs.
+  const sb::Image map = sb::readImage(file("map.png"));
+  EXPECT_EQ(map.width, 128);
+  EXPECT_NEAR(map.at(0, 0, 0), sb::magma(0.0)[0], 1.0 / 255.0);
+  // Another viewing distance: fewer pixels per degree.
+  const nlohmann::json far = compare(file("a.png"), file("b.png"), 20.0);
+  EXPECT_EQ(far["flip"]["ppd"], 20.0);
+  EXPECT_NE(far["flip"]["mean"].get<double>(), mean);
+  // Identical files: 0.
+  EXPECT_EQ(compare(file("b.png"), file("b.png"), 67.0)["flip"]["mean"], 0.0);
+}
+
+TEST_F(FlipCompareTest, ExrIsHdrFlip) {
+  sb::writeImage(scaled(withoutFirst(3).image(), 5.0f), file("a.exr"));
+  sb::writeImage(scaled(withoutFirst(0).image(), 5.0f), file("b.exr"));
+  const nlohmann::json j = compare(file("a.exr"), file("b.exr"), 67.0);
+  EXPECT_EQ(j["flip"]["input"], "hdr");
+  ASSERT_TRUE(j["flip"].contains("exposures")) << j.dump();
+  EXPECT_GE(j["flip"]["exposures"]["count"].get<int>(), 2);
+  EXPECT_LT(j["flip"]["exposures"]["start"].get<double>(),
+            j["flip"]["exposures"]["stop"].get<double>());
+  EXPECT_GT(j["flip"]["mean"].get<double>(), 0.0);
 }
 
 // The cost that `render --reference` adds per image: a 512x512 pair.
