@@ -106,8 +106,10 @@ void expectFailureFiles(const fs::path& out, const std::string& c, const std::st
   EXPECT_FALSE(j["failures"].empty());
   for (const char* k : {"max_abs", "psnr", "ssim", "fraction_over", "pixels_over"})
     EXPECT_TRUE(j["metrics"].contains(k)) << k;
-  for (const char* k : {"max_abs", "max_failing_fraction", "failing_threshold", "min_psnr"})
+  for (const char* k :
+       {"max_abs", "max_failing_fraction", "failing_threshold", "min_psnr", "max_flip_mean"})
     EXPECT_TRUE(j["tolerance"].contains(k)) << k;
+  EXPECT_TRUE(j["metrics"].contains("flip")) << "the committed tolerance has max_flip_mean";
   const sb::Image heat = sb::readImage(stem + ".diff.png");
   EXPECT_EQ(heat.width, sb::readImage(stem + ".actual.png").width);
 }
@@ -157,7 +159,7 @@ TEST(Baselines, MaxFlipMeanIsAnOptionalTolerance) {
   EXPECT_EQ(m.cases[0].tolerance.maxFlipMean, 0.01);
   EXPECT_EQ(m.cases[1].tolerance.maxFlipMean, 0.001);
   EXPECT_TRUE(std::isinf(m.cases[2].tolerance.maxFlipMean));
-  // Left out: no limit (the committed manifest has none).
+  // Left out: no limit.
   j["tolerances"]["t"].erase("max_flip_mean");
   std::ofstream(dir / "manifest.json") << j.dump(2);
   EXPECT_TRUE(std::isinf(sb::loadManifest(dir / "manifest.json").cases[0].tolerance.maxFlipMean));
@@ -294,6 +296,8 @@ TEST(Check, OneStrandRemovedFails) {
   EXPECT_TRUE(hasLine(r.out, "FAILED one-strand vulkan:")) << r.out;
   EXPECT_TRUE(hasLine(r.out, "OK one-strand gl-vs-vulkan:")) << r.out;
   EXPECT_TRUE(hasLine(r.out, "1 passed, 2 failed, 0 missing")) << r.out;
+  // The committed max_flip_mean catches it too (mean FLIP 2.1e-4 measured).
+  EXPECT_NE(r.out.find("flip mean "), std::string::npos) << r.out;
   expectFailureFiles(s.out, "one-strand", "gl");
   expectFailureFiles(s.out, "one-strand", "vulkan");
 }
