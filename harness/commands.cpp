@@ -219,8 +219,9 @@ void registerCompare(CLI::App& app) {
         if (!(*scale > 0)) throw InputError("--heatmap-scale must be positive");
         checkOutputPath("--heatmap", *heatmap, {".png", ".exr"});
       }
-      if (!(*ppd > 0) || !std::isfinite(*ppd))
-        throw InputError("--ppd must be a positive number of pixels per degree");
+      if (!(*ppd > 0 && *ppd <= kFlipMaxPpd))
+        throw InputError("--ppd " + std::to_string(*ppd) +
+                         ": pixels per degree must be positive, at most 1000");
       if (!flipMap->empty()) checkOutputPath("--flip-map", *flipMap, {".png", ".exr"});
       const int status =
           runCompareCommand(*a, *b, std::cout, std::cerr, 1.0 / 255.0, *ppd, *flipMap);

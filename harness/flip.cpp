@@ -300,8 +300,11 @@ FeatureFilters featureFilters(double ppd) {
   }
   for (std::size_t i = 0; i < n; ++i) {
     f.g.push_back(static_cast<float>(g[i] / sumG));
-    f.dg.push_back(static_cast<float>(dg[i] / (dg[i] > 0 ? posD : negD)));
-    f.ddg.push_back(static_cast<float>(ddg[i] / (ddg[i] > 0 ? posDD : negDD)));
+    // At a very low ppd the Gaussian is one tap and a part of a derivative is
+    // all zeros: those taps stay 0.
+    const double dSum = dg[i] > 0 ? posD : negD, ddSum = ddg[i] > 0 ? posDD : negDD;
+    f.dg.push_back(dSum > 0 ? static_cast<float>(dg[i] / dSum) : 0.0f);
+    f.ddg.push_back(ddSum > 0 ? static_cast<float>(ddg[i] / ddSum) : 0.0f);
   }
   return f;
 }
@@ -437,9 +440,9 @@ namespace {
 using flip::Planes;
 
 void checkFlipInputs(const Image& test, const Image& reference, double ppd) {
-  if (!(ppd > 0.0) || !std::isfinite(ppd))
-    throw std::invalid_argument("FLIP: pixels per degree must be positive and finite, got " +
-                                std::to_string(ppd));
+  if (!(ppd > 0.0 && ppd <= kFlipMaxPpd))
+    throw std::invalid_argument("FLIP: pixels per degree must be in (0, " +
+                                std::to_string(kFlipMaxPpd) + "], got " + std::to_string(ppd));
   for (const Image* img : {&test, &reference}) {
     const std::size_t expected = static_cast<std::size_t>(std::max(img->width, 0)) *
                                  static_cast<std::size_t>(std::max(img->height, 0)) *

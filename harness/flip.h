@@ -62,6 +62,8 @@ namespace sb {
 // The papers' viewing condition: 0.7 m from a 0.7 m wide 3840-pixel display
 // gives 67 pixels per degree.
 constexpr double kFlipDefaultPpd = 67.0;
+// The largest ppd accepted (filters 2 * 3 sigma wide: 273 taps at 1000).
+constexpr double kFlipMaxPpd = 1000.0;
 
 enum class FlipInput {
   Ldr,  // display (sRGB-encoded) values in [0, 1]: LDR-FLIP
@@ -69,7 +71,7 @@ enum class FlipInput {
 };
 
 struct FlipOptions {
-  double ppd = kFlipDefaultPpd;  // observer's pixels per degree of visual angle, > 0
+  double ppd = kFlipDefaultPpd;  // observer's pixels per degree of visual angle, (0, 1000]
   FlipInput input = FlipInput::Ldr;
 };
 
@@ -91,7 +93,7 @@ struct FlipResult {
 
 // FLIP of `test` against `reference` (the HDR exposure range comes from the
 // reference). Throws InputError when the sizes differ or an image has fewer than
-// 3 channels; std::invalid_argument unless ppd is positive and finite or when an
+// 3 channels; std::invalid_argument unless 0 < ppd <= kFlipMaxPpd or when an
 // image's pixel count does not match its size. Empty images give an empty map
 // and 0 everywhere.
 FlipResult computeFlip(const Image& test, const Image& reference, const FlipOptions& options = {});

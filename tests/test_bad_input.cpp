@@ -190,6 +190,7 @@ TEST(BadInput, OutOfRangeValues) {
   s.expectRejected("render --size 0x0 --out {dir}/x.png", {"--size 0x0", "1..16384"});
   s.expectRejected(render + "--warmup -1", {"--warmup", "at least 0"});
   s.expectRejected("compare {dir}/a.png {dir}/b.png --ppd 0", {"--ppd", "positive"});
+  s.expectRejected("compare {dir}/a.png {dir}/b.png --ppd 1e9", {"--ppd", "at most 1000"});
   s.expectRejected("probe --samples -1 --out {dir}/p.csv", {"--samples", "2..1000000"});
   s.expectRejected("probe --map-size 0 --out {dir}/p.csv", {"--map-size 0", "1..16384"});
   s.expectRejected("probe --map-size -1 --out {dir}/p.csv", {"--map-size -1", "1..16384"});

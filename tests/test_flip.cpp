@@ -385,8 +385,34 @@ TEST(Flip, RefusesMismatchedImages) {
   sb::FlipOptions bad;
   bad.ppd = 0.0;
   EXPECT_THROW(sb::computeFlip(sb::Image(4, 4), sb::Image(4, 4), bad), std::invalid_argument);
+  bad.ppd = 1e9;  // filters of a billion taps
+  EXPECT_THROW(sb::computeFlip(sb::Image(4, 4), sb::Image(4, 4), bad), std::invalid_argument);
   const sb::FlipResult empty = sb::computeFlip(sb::Image(0, 0), sb::Image(0, 0));
   EXPECT_TRUE(empty.map.empty());
+}
+
+// Images smaller than the filters, and the extremes of the ppd range.
+TEST(Flip, TinyImagesAndExtremePixelsPerDegree) {
+  const sb::Image pic = StrandPicture{}.image();
+  sb::Image other = withoutFirst(6).image();
+  for (const auto& [w, h] : {std::pair{1, 1}, std::pair{3, 2}, std::pair{2, 17}}) {
+    sb::Image a(w, h), b(w, h);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        for (int c = 0; c < 4; ++c) {
+          a.at(x, y, c) = pic.at(x + 20, y, c);
+          b.at(x, y, c) = 1.0f - pic.at(x + 20, y, c);
+        }
+    expectInUnitInterval(sb::computeFlip(a, b), std::to_string(w) + "x" + std::to_string(h));
+    expectInUnitInterval(sb::computeFlip(a, b, hdr()), "hdr " + std::to_string(w));
+  }
+  for (double ppd : {0.01, 1.0, 1000.0}) {
+    sb::FlipOptions o;
+    o.ppd = ppd;
+    const sb::FlipResult r = sb::computeFlip(other, pic, o);
+    expectInUnitInterval(r, "ppd " + std::to_string(ppd));
+    EXPECT_GT(r.mean, 0.0) << ppd;
+  }
 }
 
 // ------------------------------------------------------------------ the reference implementation
