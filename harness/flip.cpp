@@ -421,9 +421,12 @@ std::vector<float> hdrFlip(const Planes& testRgb, const Planes& referenceRgb, do
   for (int i = 0; i < exposures.count; ++i) {
     const float scale = static_cast<float>(std::exp2(exposures.start + i * step));
     const auto exposeAndToneMap = [scale](const Planes& p) {
+      // The tone mapper passes 1 at 12.1 (and tends to 1.03): clamping its
+      // input to +-1e6 changes nothing but keeps x^2 finite.
       Planes o(p.width, p.height);
       for (int c = 0; c < 3; ++c)
-        for (std::size_t j = 0; j < p.size(); ++j) o.c[c][j] = clamp01(toneMap(p.c[c][j] * scale));
+        for (std::size_t j = 0; j < p.size(); ++j)
+          o.c[c][j] = clamp01(toneMap(std::clamp(p.c[c][j] * scale, -1e6f, 1e6f)));
       return o;
     };
     const std::vector<float> e =

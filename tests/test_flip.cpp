@@ -288,6 +288,11 @@ TEST(Flip, EveryValueIsInZeroToOne) {
   expectInUnitInterval(sb::computeFlip(scaled(noiseA, 1e4f), noiseB, hdr()), "hdr noise");
   expectInUnitInterval(sb::computeFlip(scaled(strands, 50.0f), strands, hdr()), "hdr strands");
   expectInUnitInterval(sb::computeFlip(black, scaled(noiseB, 3.0f), hdr()), "hdr black");
+  sb::Image huge = noiseA;  // finite, but its square is not
+  huge.at(2, 2, 0) = 1e30f;
+  huge.at(3, 2, 1) = -1e30f;
+  expectInUnitInterval(sb::computeFlip(huge, noiseB, hdr()), "hdr huge");
+  expectInUnitInterval(sb::computeFlip(noiseB, huge, hdr()), "hdr huge reference");
   // Green against blue is the largest difference: 1 everywhere.
   const sb::FlipResult gb = sb::computeFlip(green, blue);
   expectInUnitInterval(gb, "green/blue");
