@@ -56,8 +56,8 @@ std::vector<std::string> caseKeys(int format) {
   keys.push_back("tolerance");
   return keys;
 }
-const std::vector<std::string> kToleranceKeys = {"comment", "max_abs", "max_failing_fraction",
-                                                 "failing_threshold", "min_psnr"};
+const std::vector<std::string> kToleranceKeys = {
+    "comment", "max_abs", "max_failing_fraction", "failing_threshold", "min_psnr", "max_flip_mean"};
 
 std::string joined(const std::vector<std::string>& v) {
   std::string s;
@@ -67,11 +67,13 @@ std::string joined(const std::vector<std::string>& v) {
 
 struct PartialTolerance {
   std::optional<double> maxAbs, maxFailingFraction, failingThreshold, minPsnr;
+  std::optional<double> maxFlipMean;  // optional: absent is no limit
   void overlay(const PartialTolerance& o) {
     if (o.maxAbs) maxAbs = o.maxAbs;
     if (o.maxFailingFraction) maxFailingFraction = o.maxFailingFraction;
     if (o.failingThreshold) failingThreshold = o.failingThreshold;
     if (o.minPsnr) minPsnr = o.minPsnr;
+    if (o.maxFlipMean) maxFlipMean = o.maxFlipMean;
   }
 };
 
@@ -200,6 +202,8 @@ class ManifestReader {
     if (obj.contains("failing_threshold"))
       t.failingThreshold = number(obj, "failing_threshold", where, 0.0, 1e9, std::nullopt);
     if (obj.contains("min_psnr")) t.minPsnr = number(obj, "min_psnr", where, -1e9, 1e9, -kInf);
+    if (obj.contains("max_flip_mean"))
+      t.maxFlipMean = number(obj, "max_flip_mean", where, 0.0, 1.0, kInf);
     return t;
   }
 
@@ -294,7 +298,8 @@ class ManifestReader {
       }
     }
     c.tolerance = {*p.tolerance.maxAbs, *p.tolerance.maxFailingFraction,
-                   *p.tolerance.failingThreshold, *p.tolerance.minPsnr};
+                   *p.tolerance.failingThreshold, *p.tolerance.minPsnr,
+                   p.tolerance.maxFlipMean.value_or(kInf)};
     return c;
   }
 
@@ -322,7 +327,8 @@ json toleranceJson(const Tolerance& t) {
   return json{{"max_abs", num(t.maxAbs)},
               {"max_failing_fraction", t.maxFailingFraction},
               {"failing_threshold", t.failingThreshold},
-              {"min_psnr", num(t.minPsnr)}};
+              {"min_psnr", num(t.minPsnr)},
+              {"max_flip_mean", num(t.maxFlipMean)}};
 }
 
 // Runs f; bad scene or technique specs name the manifest and the case.
@@ -405,8 +411,9 @@ class Checker {
     if (v.ok()) {
       ++counts.passed;
       out_ << "OK " << c.name << " " << label << ": max_abs " << fmt(e.maxAbs) << ", failing "
-           << fmt(e.fractionOver) << ", psnr " << fmt(e.psnr) << " dB, ssim " << fmt(e.ssim, 6)
-           << "\n";
+           << fmt(e.fractionOver) << ", psnr " << fmt(e.psnr) << " dB, ssim " << fmt(e.ssim, 6);
+      if (v.flip) out_ << ", flip " << fmt(v.flip->mean);
+      out_ << "\n";
       return;
     }
     ++counts.failed;
@@ -483,6 +490,7 @@ class Checker {
         j["heatmap_scale"] = scale;
         j["metrics"] = toJson(v.error);
         j["metrics"]["failing_threshold"] = c.tolerance.failingThreshold;
+        if (v.flip) j["metrics"]["flip"] = toJson(*v.flip);
       }
     }
     std::ofstream f(stem + ".json");
@@ -572,6 +580,11 @@ Verdict judge(const Image& actual, const Image& expected, const Tolerance& t) {
                          fmt(t.maxFailingFraction));
   if (!(e.psnr >= t.minPsnr))
     v.failures.push_back("psnr " + fmt(e.psnr) + " dB < " + fmt(t.minPsnr) + " dB");
+  if (std::isfinite(t.maxFlipMean)) {
+    v.flip = computeFlip(actual, expected);
+    if (!(v.flip->mean <= t.maxFlipMean))
+      v.failures.push_back("flip mean " + fmt(v.flip->mean) + " > " + fmt(t.maxFlipMean));
+  }
   return v;
 }
 

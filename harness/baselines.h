@@ -5,7 +5,8 @@
 //   {
 //     "format": 2,
 //     "tolerances": { "<preset>": {"max_abs": .., "max_failing_fraction": ..,
-//                                   "failing_threshold": .., "min_psnr": ..}, ... },
+//                                   "failing_threshold": .., "min_psnr": ..,
+//                                   "max_flip_mean": .. (optional)}, ... },
 //     "defaults": { <any case key except name and scene> },
 //     "cases": [ { "name": "straight-lines",          // [A-Za-z0-9_-]+, unique
 //                  "scene": "straight:strands=300",   // --scene spec
@@ -27,13 +28,17 @@
 //   max |a - b| <= max_abs, and
 //   the fraction of pixels whose largest channel difference exceeds
 //     failing_threshold is <= max_failing_fraction, and
-//   PSNR >= min_psnr (dB; identical images have PSNR +inf).
-// max_abs and min_psnr may be null (no limit).
+//   PSNR >= min_psnr (dB; identical images have PSNR +inf), and
+//   mean FLIP (LDR-FLIP at 67 ppd, harness/flip.h) <= max_flip_mean.
+// max_abs, min_psnr and max_flip_mean may be null (no limit); max_flip_mean may
+// also be left out (no limit, and FLIP is not computed).
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
 #include <iosfwd>
+#include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,10 +49,11 @@
 namespace sb {
 
 struct Tolerance {
-  double maxAbs = 0.0;              // +inf: no limit
-  double maxFailingFraction = 0.0;  // 0..1
-  double failingThreshold = 0.0;    // >= 0
-  double minPsnr = 0.0;             // dB; -inf: no limit
+  double maxAbs = 0.0;                                           // +inf: no limit
+  double maxFailingFraction = 0.0;                               // 0..1
+  double failingThreshold = 0.0;                                 // >= 0
+  double minPsnr = 0.0;                                          // dB; -inf: no limit
+  double maxFlipMean = std::numeric_limits<double>::infinity();  // 0..1; +inf: no limit
 };
 
 struct BaselineCase {
@@ -84,6 +90,7 @@ Image quantize16(const Image& img);
 // The result of comparing an image against a reference under a tolerance.
 struct Verdict {
   ImageError error;                   // compareImages(actual, expected, failingThreshold)
+  std::optional<FlipResult> flip;     // computeFlip(actual, expected), with a max_flip_mean
   std::vector<std::string> failures;  // one human-readable reason per violated limit
   bool ok() const { return failures.empty(); }
 };

@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "backends/device.h"
+#include "harness/flip.h"
 #include "harness/image.h"
 #include "harness/metrics.h"
 #include "harness/render.h"
@@ -134,21 +135,28 @@ void registerRender(CLI::App& app) {
   auto json = std::make_shared<bool>(false);
   auto referenceOut = std::make_shared<std::string>();
   auto heatmap = std::make_shared<std::string>();
+  auto flipMap = std::make_shared<std::string>();
   cmd->add_option("--reference-out", *referenceOut, "with --reference: write the reference image");
   cmd->add_option("--heatmap", *heatmap,
                   "with --reference: write a heatmap of |image - reference| (full scale 0.25)");
+  cmd->add_option("--flip-map", *flipMap,
+                  "with --reference: write FLIP's error map of the image (magma)");
   cmd->add_option("--out", *out, "image file (.png 8-bit, .exr float)");
   cmd->add_flag("--json", *json, "print the report as one JSON object on stdout");
   cmd->callback([=] {
     runGuarded("render", [&] {
       settings->apply(*req);
       if (!out->empty()) checkOutputPath("--out", *out, {".png", ".exr"});
-      if (!req->image && (!out->empty() || !referenceOut->empty() || !heatmap->empty()))
-        throw InputError("--no-image writes no images: drop --out, --reference-out and --heatmap");
-      for (const auto& [option, extra] : {std::pair{"--reference-out", referenceOut.get()},
-                                          std::pair{"--heatmap", heatmap.get()}}) {
+      if (!req->image &&
+          (!out->empty() || !referenceOut->empty() || !heatmap->empty() || !flipMap->empty()))
+        throw InputError(
+            "--no-image writes no images: drop --out, --reference-out, --heatmap and --flip-map");
+      for (const auto& [option, extra] :
+           {std::pair{"--reference-out", referenceOut.get()}, std::pair{"--heatmap", heatmap.get()},
+            std::pair{"--flip-map", flipMap.get()}}) {
         if (extra->empty()) continue;
-        if (!req->reference) throw InputError("--reference-out and --heatmap need --reference");
+        if (!req->reference)
+          throw InputError("--reference-out, --heatmap and --flip-map need --reference");
         checkOutputPath(option, *extra, {".png", ".exr"});
       }
       RenderCache cache;  // the scene, built once by the check
@@ -158,6 +166,7 @@ void registerRender(CLI::App& app) {
       if (!referenceOut->empty()) writeImage(result.referenceImage, *referenceOut);
       if (!heatmap->empty())
         writeImage(diffHeatmap(result.image, result.referenceImage, 0.25), *heatmap);
+      if (!flipMap->empty()) writeImage(flipErrorImage(*result.flip), *flipMap);
       nlohmann::json report = renderJson(result);
       if (!out->empty()) report["image"] = *out;
       if (*json) {
@@ -187,15 +196,22 @@ void registerRender(CLI::App& app) {
 }
 
 void registerCompare(CLI::App& app) {
-  auto* cmd = app.add_subcommand("compare", "image error between two files (RMSE, PSNR, max abs)");
+  auto* cmd =
+      app.add_subcommand("compare", "image error between two files (RMSE, PSNR, SSIM, FLIP)");
   auto a = std::make_shared<std::string>();
   auto b = std::make_shared<std::string>();
   cmd->add_option("A", *a, "first image")->required();
   cmd->add_option("B", *b, "second image")->required();
   auto heatmap = std::make_shared<std::string>();
   auto scale = std::make_shared<double>(0.25);
+  auto flipMap = std::make_shared<std::string>();
+  auto ppd = std::make_shared<double>(kFlipDefaultPpd);
   cmd->add_option("--heatmap", *heatmap, "write a viridis heatmap of |A - B| (PNG or EXR)");
   cmd->add_option("--heatmap-scale", *scale, "difference shown as the top colour")
+      ->capture_default_str();
+  cmd->add_option("--flip-map", *flipMap,
+                  "write FLIP's error map of A against the reference B (magma, PNG or EXR)");
+  cmd->add_option("--ppd", *ppd, "FLIP: the observer's pixels per degree of visual angle")
       ->capture_default_str();
   cmd->callback([=] {
     runGuarded("compare", [&] {
@@ -203,7 +219,12 @@ void registerCompare(CLI::App& app) {
         if (!(*scale > 0)) throw InputError("--heatmap-scale must be positive");
         checkOutputPath("--heatmap", *heatmap, {".png", ".exr"});
       }
-      const int status = runCompareCommand(*a, *b, std::cout, std::cerr);
+      if (!(*ppd > 0 && *ppd <= kFlipMaxPpd))
+        throw InputError("--ppd " + std::to_string(*ppd) +
+                         ": pixels per degree must be positive, at most 1000");
+      if (!flipMap->empty()) checkOutputPath("--flip-map", *flipMap, {".png", ".exr"});
+      const int status =
+          runCompareCommand(*a, *b, std::cout, std::cerr, 1.0 / 255.0, *ppd, *flipMap);
       if (status == 0 && !heatmap->empty())
         writeImage(diffHeatmap(readImage(*a), readImage(*b), *scale), *heatmap);
       return status;

@@ -1,6 +1,7 @@
 #include "harness/metrics.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -8,6 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "harness/flip.h"
 #include "scenes/scene.h"
 
 namespace sb {
@@ -177,6 +179,14 @@ double meanSsim(const Image& a, const Image& b, int channels) {
   return sum / channels;
 }
 
+// A file FLIP reads as linear HDR values (OpenEXR), by its extension.
+bool isExr(const std::string& path) {
+  std::string ext = path.size() >= 4 ? path.substr(path.size() - 4) : "";
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+  return ext == ".exr";
+}
+
 }  // namespace
 
 ImageError compareImages(const Image& a, const Image& b, double threshold, int channels) {
@@ -279,7 +289,7 @@ Image diffHeatmap(const Image& a, const Image& b, double scale, int channels) {
 }
 
 int runCompareCommand(const std::string& a, const std::string& b, std::ostream& out,
-                      std::ostream& err, double threshold) {
+                      std::ostream& err, double threshold, double ppd, const std::string& flipMap) {
   try {
     const Image ia = readImage(a);
     const Image ib = readImage(b);
@@ -288,8 +298,14 @@ int runCompareCommand(const std::string& a, const std::string& b, std::ostream& 
                        sizeText(ib));
     }
     const ImageError e = compareImages(ia, ib, threshold, 3);
+    FlipOptions flipOptions;
+    flipOptions.ppd = ppd;
+    flipOptions.input = isExr(b) ? FlipInput::Hdr : FlipInput::Ldr;
+    const FlipResult flip = computeFlip(ia, ib, flipOptions);
+    if (!flipMap.empty()) writeImage(flipErrorImage(flip), flipMap);
     nlohmann::json j{{"a", a}, {"b", b}, {"threshold", threshold}};
     j.update(toJson(e));
+    j["flip"] = toJson(flip);
     out << j.dump(2) << "\n";
     return 0;
   } catch (const InputError& ex) {

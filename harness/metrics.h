@@ -22,6 +22,7 @@
 #include <nlohmann/json_fwd.hpp>
 #include <string>
 
+#include "harness/flip.h"
 #include "harness/image.h"
 
 namespace sb {
@@ -79,11 +80,16 @@ Image diffHeatmap(const Image& a, const Image& b, double scale, int channels = 3
 // `strandbench compare A B`: reads both images (readImage), compares RGB, prints
 // one JSON object to `out`:
 //   {"a", "b", "width", "height", "channels", "threshold", "rmse", "psnr",
-//    "max_abs", "ssim", "fraction_over", "pixels_over", "nan_pixels", "identical"}
-// and returns 0. On InputError (unreadable file, size mismatch) prints
+//    "max_abs", "ssim", "fraction_over", "pixels_over", "nan_pixels", "identical",
+//    "flip": {FLIP of A against B at `ppd`, harness/flip.h toJson}}
+// and returns 0. B is FLIP's reference; FLIP is HDR-FLIP when B is an EXR file
+// (linear values), else LDR-FLIP (display values, as a PNG holds). With a
+// `flipMap` path, also writes FLIP's magma error map there. On InputError
+// (unreadable file, size mismatch, unwritable map) prints
 // "strandbench compare: <message>" to `err` and returns 2.
 int runCompareCommand(const std::string& a, const std::string& b, std::ostream& out,
-                      std::ostream& err, double threshold = 1.0 / 255.0);
+                      std::ostream& err, double threshold = 1.0 / 255.0,
+                      double ppd = kFlipDefaultPpd, const std::string& flipMap = "");
 
 // Visibility error: technique against exact light visibility, per pixel, over
 // the pixels where both images see a surface (values >= 0; -1 marks none).

@@ -80,6 +80,7 @@ VisibilityError visibilityError(const std::vector<uint8_t>& a, const std::vector
 nlohmann::json errorJson(const RenderResult& r) {
   nlohmann::json error;
   if (r.imageError) error["image"] = toJson(*r.imageError);
+  if (r.flip) error["image"]["flip"] = toJson(*r.flip);
   if (r.visibilityError) {
     const VisibilityError& e = *r.visibilityError;
     error["visibility"] = {{"rmse", e.rmse}, {"max", e.max}, {"pixels", e.pixels}};
@@ -221,6 +222,8 @@ std::vector<InvariantFailure> checkInvariants(const RenderRequest& req, const Re
         if ((v.is_null() && !(metric == "psnr" && e.value("identical", false))) ||
             (v.is_number_float() && !std::isfinite(v.get<double>())))
           failures.push_back({"reference", "error " + kind + "." + metric + " is not a number"});
+    if (out.flip && !(out.flip->min >= 0.0 && out.flip->max <= 1.0))
+      failures.push_back({"reference", "error image.flip outside [0, 1]"});
   }
   if (req.probe) {
     checkRay(out.probe->visibility, "probe (" + Spec::parse(req.shadow).name + ")", failures);
@@ -363,6 +366,8 @@ RenderResult runRender(const RenderRequest& req, RenderCache* cache) {
       if (req.image) {
         out.referenceImage = ref->image;
         out.imageError = compareImages(out.image, out.referenceImage);
+        // The image as its PNG shows it: display values (harness/flip.h).
+        out.flip = computeFlip(out.image, out.referenceImage);
       }
       out.visibility = renderer.readVisibility();
       out.visibilityError = visibilityError(out.visibility, ref->visibility);

@@ -10,6 +10,7 @@
 
 #include "backends/device.h"
 #include "harness/backend_names.h"
+#include "harness/flip.h"
 #include "harness/image.h"
 #include "harness/invariants.h"
 #include "harness/metrics.h"
@@ -105,7 +106,8 @@ struct RenderResult {
   std::size_t estimatedBytes = 0;
   // The reference's shadow and transparency specs (with a reference or a probe).
   std::optional<std::pair<std::string, std::string>> reference;
-  std::optional<ImageError> imageError;            // with a reference and an image
+  std::optional<ImageError> imageError;  // with a reference and an image
+  std::optional<FlipResult> flip;  // LDR-FLIP of the image against the reference, 67 ppd (same)
   std::optional<VisibilityError> visibilityError;  // with a reference
   std::optional<ProbeResult> probe;
   std::optional<std::vector<InvariantFailure>> invariants;  // when requested

@@ -115,8 +115,10 @@ ojson runCase(const fs::path& dir, const SweepCase& c, RenderCache& cache) {
       writeImage(out.referenceImage, (dir / (base + ".reference.png")).string());
       writeImage(diffHeatmap(out.image, out.referenceImage, 0.25),
                  (dir / (base + ".heatmap.png")).string());
+      writeImage(flipErrorImage(*out.flip), (dir / (base + ".flip.png")).string());
       images["reference"] = base + ".reference.png";
       images["heatmap"] = base + ".heatmap.png";
+      images["flip"] = base + ".flip.png";
     }
   }
   if (c.request.invariants) {
@@ -161,6 +163,9 @@ std::string caseSummary(const ojson& r) {
     s << std::setprecision(4);
     if (r["error"].contains("image") && r["error"]["image"]["rmse"].is_number())
       s << "  rmse " << r["error"]["image"]["rmse"].get<double>();
+    if (r["error"].contains("image") && r["error"]["image"].contains("flip") &&
+        r["error"]["image"]["flip"]["mean"].is_number())
+      s << "  flip " << r["error"]["image"]["flip"]["mean"].get<double>();
     if (r["error"]["visibility"]["rmse"].is_number())
       s << "  vis " << r["error"]["visibility"]["rmse"].get<double>();
   }

@@ -216,8 +216,8 @@ Group buildGroup(const std::string& name, const json* jgroup,
   if (keys.count("backend")) g.params.push_back("backend");
 
   g.table.header = g.params;
-  for (const char* h :
-       {"Frame ms (median ± sd)", "Memory MiB", "Image RMSE", "PSNR dB", "Visibility RMSE"})
+  for (const char* h : {"Frame ms (median ± sd)", "Memory MiB", "Image RMSE", "PSNR dB",
+                        "FLIP mean", "Visibility RMSE"})
     g.table.header.push_back(h);
   for (const json* r : g.results) {
     std::vector<Cell> cells;
@@ -232,6 +232,7 @@ Group buildGroup(const std::string& name, const json* jgroup,
     cells.push_back(num(memoryMiB(*r)));
     cells.push_back(num(number(find(*r, {"error", "image", "rmse"}))));
     cells.push_back(num(number(find(*r, {"error", "image", "psnr"}))));
+    cells.push_back(num(number(find(*r, {"error", "image", "flip", "mean"}))));
     cells.push_back(num(number(find(*r, {"error", "visibility", "rmse"}))));
     g.table.rows.push_back(std::move(cells));
   }

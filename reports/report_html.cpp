@@ -236,15 +236,18 @@ std::string imageGrid(const Group& g, const fs::path& dir) {
     if (!images || !images->is_object() || images->empty()) continue;
     o << "<figure>";
     std::string kinds;
-    for (const char* kind : {"image", "reference", "heatmap"}) {
+    for (const char* kind : {"image", "reference", "heatmap", "flip"}) {
       if (const json* rel = find(*images, {kind}); rel && rel->is_string()) {
         o << embeddedImage(dir, rel->get<std::string>(), kind);
         kinds += (kinds.empty() ? "" : " / ") + std::string(kind);
       }
     }
     std::string caption = caseId(*r);
-    if (const auto rmse = number(find(*r, {"error", "image", "rmse"})))
-      caption += " (image RMSE " + formatSig(*rmse) + ")";
+    const auto rmse = number(find(*r, {"error", "image", "rmse"}));
+    const auto flip = number(find(*r, {"error", "image", "flip", "mean"}));
+    if (rmse || flip)
+      caption += std::string(" (image") + (rmse ? " RMSE " + formatSig(*rmse) : "") +
+                 (rmse && flip ? "," : "") + (flip ? " FLIP " + formatSig(*flip) : "") + ")";
     o << "<figcaption>" << h(caption) << "<br>" << h(kinds) << "</figcaption></figure>\n";
   }
   const std::string grid = o.str();

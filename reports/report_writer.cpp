@@ -62,7 +62,7 @@ std::string renderCsv(const ReportData& d) {
   std::ostringstream o;
   o << "case_id,group,backend,scene,segments,shadow,oit,size,frame_ms_median,frame_ms_min,"
        "frame_ms_max,frame_ms_stddev,memory_total_bytes,memory_shadow_bytes,memory_oit_bytes,"
-       "image_rmse,image_psnr,image_ssim,visibility_rmse,visibility_max,"
+       "image_rmse,image_psnr,image_ssim,image_flip_mean,visibility_rmse,visibility_max,"
        "depth_complexity_eye_max,depth_complexity_light_max\n";
   for (const json* r : d.results) {
     // Numbers in full precision; null (NaN, Inf) and missing values as empty cells.
@@ -89,6 +89,7 @@ std::string renderCsv(const ReportData& d) {
         n({"error", "image", "rmse"}),
         n({"error", "image", "psnr"}),
         n({"error", "image", "ssim"}),
+        n({"error", "image", "flip", "mean"}),
         n({"error", "visibility", "rmse"}),
         n({"error", "visibility", "max"}),
         n({"depth_complexity", "eye", "max"}),

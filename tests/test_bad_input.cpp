@@ -189,6 +189,8 @@ TEST(BadInput, OutOfRangeValues) {
                    {"shadow technique 'osm'", "maps=-3", "out of range [1, 256]"});
   s.expectRejected("render --size 0x0 --out {dir}/x.png", {"--size 0x0", "1..16384"});
   s.expectRejected(render + "--warmup -1", {"--warmup", "at least 0"});
+  s.expectRejected("compare {dir}/a.png {dir}/b.png --ppd 0", {"--ppd", "positive"});
+  s.expectRejected("compare {dir}/a.png {dir}/b.png --ppd 1e9", {"--ppd", "at most 1000"});
   s.expectRejected("probe --samples -1 --out {dir}/p.csv", {"--samples", "2..1000000"});
   s.expectRejected("probe --map-size 0 --out {dir}/p.csv", {"--map-size 0", "1..16384"});
   s.expectRejected("probe --map-size -1 --out {dir}/p.csv", {"--map-size -1", "1..16384"});
@@ -231,6 +233,9 @@ TEST(BadInput, UnwritableOutputFolder) {
                    {"--out /proc/p.csv", "/proc is not writable"});
   s.expectRejected("compare {dir}/a.png {dir}/b.png --heatmap {dir}/file/h.png",
                    {"--heatmap {dir}/file/h.png", "not a folder"});
+  s.expectRejected("compare {dir}/a.png {dir}/b.png --flip-map {dir}/file/f.png",
+                   {"--flip-map {dir}/file/f.png", "not a folder"});
+  s.expectRejected(render + "--flip-map {dir}/f.png", {"--flip-map need --reference"});
   // check writes failures to --out (made when first needed): refused up front,
   // even when every comparison would pass.
   s.expectRejected("check " + kCommittedCase + " --out {dir}/file/out",

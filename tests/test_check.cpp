@@ -106,8 +106,10 @@ void expectFailureFiles(const fs::path& out, const std::string& c, const std::st
   EXPECT_FALSE(j["failures"].empty());
   for (const char* k : {"max_abs", "psnr", "ssim", "fraction_over", "pixels_over"})
     EXPECT_TRUE(j["metrics"].contains(k)) << k;
-  for (const char* k : {"max_abs", "max_failing_fraction", "failing_threshold", "min_psnr"})
+  for (const char* k :
+       {"max_abs", "max_failing_fraction", "failing_threshold", "min_psnr", "max_flip_mean"})
     EXPECT_TRUE(j["tolerance"].contains(k)) << k;
+  EXPECT_TRUE(j["metrics"].contains("flip")) << "the committed tolerance has max_flip_mean";
   const sb::Image heat = sb::readImage(stem + ".diff.png");
   EXPECT_EQ(heat.width, sb::readImage(stem + ".actual.png").width);
 }
@@ -130,6 +132,39 @@ struct EnvVar {
 }  // namespace
 
 // ------------------------------------------------------------------ committed set
+
+// max_flip_mean: optional in a preset, overridden by a case, null for no limit.
+TEST(Baselines, MaxFlipMeanIsAnOptionalTolerance) {
+  const fs::path dir = sbtest::tempDir("flip-manifest");
+  nlohmann::json j = {{"format", 2},
+                      {"tolerances",
+                       {{"t",
+                         {{"max_abs", 0.002},
+                          {"max_failing_fraction", 0.0005},
+                          {"failing_threshold", 0.0001},
+                          {"min_psnr", 80},
+                          {"max_flip_mean", 0.01}}}}},
+                      {"defaults", {{"size", "24x24"}, {"tolerance", "t"}, {"backends", {"gl"}}}},
+                      {"cases",
+                       {{{"name", "preset"}, {"scene", "straight:strands=10"}},
+                        {{"name", "tighter"},
+                         {"scene", "straight:strands=10"},
+                         {"tolerance", {{"max_flip_mean", 0.001}}}},
+                        {{"name", "none"},
+                         {"scene", "straight:strands=10"},
+                         {"tolerance", {{"max_flip_mean", nullptr}}}}}}};
+  std::ofstream(dir / "manifest.json") << j.dump(2);
+  const sb::Manifest m = sb::loadManifest(dir / "manifest.json");
+  ASSERT_EQ(m.cases.size(), 3u);
+  EXPECT_EQ(m.cases[0].tolerance.maxFlipMean, 0.01);
+  EXPECT_EQ(m.cases[1].tolerance.maxFlipMean, 0.001);
+  EXPECT_TRUE(std::isinf(m.cases[2].tolerance.maxFlipMean));
+  // Left out: no limit.
+  j["tolerances"]["t"].erase("max_flip_mean");
+  std::ofstream(dir / "manifest.json") << j.dump(2);
+  EXPECT_TRUE(std::isinf(sb::loadManifest(dir / "manifest.json").cases[0].tolerance.maxFlipMean));
+  fs::remove_all(dir);
+}
 
 TEST(Baselines, ManifestCoversScenesTechniquesAndPrimitives) {
   const sb::Manifest m = sb::loadManifest(kCommitted / "manifest.json");
@@ -261,6 +296,8 @@ TEST(Check, OneStrandRemovedFails) {
   EXPECT_TRUE(hasLine(r.out, "FAILED one-strand vulkan:")) << r.out;
   EXPECT_TRUE(hasLine(r.out, "OK one-strand gl-vs-vulkan:")) << r.out;
   EXPECT_TRUE(hasLine(r.out, "1 passed, 2 failed, 0 missing")) << r.out;
+  // The committed max_flip_mean catches it too (mean FLIP 2.1e-4 measured).
+  EXPECT_NE(r.out.find("flip mean "), std::string::npos) << r.out;
   expectFailureFiles(s.out, "one-strand", "gl");
   expectFailureFiles(s.out, "one-strand", "vulkan");
 }
@@ -286,6 +323,16 @@ TEST(Check, JudgeAppliesEveryLimit) {
   b.at(0, 0, 2) = std::numeric_limits<float>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
   EXPECT_FALSE(sb::judge(a, b, {inf, 1.0, 0.0, -inf}).ok());
+  // max_flip_mean: FLIP is computed only with a limit.
+  b = a;
+  for (int y = 0; y < 10; ++y) b.at(7, y, 0) = 0.9f;  // a bright red line
+  EXPECT_FALSE(sb::judge(a, b, {inf, 1.0, 1.0, -inf}).flip);
+  const sb::Verdict flip = sb::judge(a, b, {inf, 1.0, 1.0, -inf, 0.01});
+  ASSERT_TRUE(flip.flip);
+  EXPECT_GT(flip.flip->mean, 0.01);
+  ASSERT_EQ(flip.failures.size(), 1u);
+  EXPECT_NE(flip.failures[0].find("flip mean"), std::string::npos) << flip.failures[0];
+  EXPECT_TRUE(sb::judge(a, b, {inf, 1.0, 1.0, -inf, 0.5}).ok());
 }
 
 // ------------------------------------------------------------------ bad input
@@ -331,6 +378,10 @@ TEST(Check, MalformedManifestExits2NamingTheFile) {
        {"max_abs"}},
       {[](nlohmann::json& j) { j["cases"][0]["tolerance"] = "no-such-preset"; },
        {"no-such-preset"}},
+      {[](nlohmann::json& j) {
+         j["cases"][0]["tolerance"] = {{"max_flip_mean", 2}};
+       },
+       {"\"max_flip_mean\" = 2 is out of range [0, 1]"}},
       {[](nlohmann::json& j) { j["format"] = 3; }, {"\"format\" must be 1 or 2", "got 3"}},
       // Format 1 takes only its own settings: a newer one asks for format 2.
       {[](nlohmann::json& j) { j["cases"][0]["camera_eye"] = "0,0,5"; },

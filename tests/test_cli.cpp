@@ -30,8 +30,8 @@ std::string render(const std::string& backend, const std::string& out,
 TEST(Cli, VersionNamesBuildAndDrivers) {
   auto r = runCli("--version");
   ASSERT_EQ(r.status, 0) << r.err;
-  for (const char* part : {"strandbench ", "commit: ", "build type: ", "gl (egl): ",
-                           "gl (osmesa): ", "vulkan: "})
+  for (const char* part :
+       {"strandbench ", "commit: ", "build type: ", "gl (egl): ", "gl (osmesa): ", "vulkan: "})
     EXPECT_NE(r.out.find(part), std::string::npos) << part << " in\n" << r.out;
   // On these machines both backends are Mesa's CPU drivers: their versions are named.
   EXPECT_NE(r.out.find("Mesa "), std::string::npos) << r.out;
@@ -90,6 +90,13 @@ TEST(Cli, ReferenceReportsErrorsAndDepthComplexity) {
     for (const char* k : {"rmse", "psnr", "ssim", "max_abs"})
       EXPECT_TRUE(j["error"]["image"].contains(k)) << k;
     EXPECT_GT(j["error"]["image"]["rmse"].get<double>(), 0.0);  // opaque hair is not the truth
+    // FLIP of the image as its PNG shows it (harness/flip.h).
+    const auto& flip = j["error"]["image"]["flip"];
+    for (const char* k : {"mean", "weighted_median", "weighted_q1", "weighted_q3", "max"})
+      EXPECT_TRUE(flip.contains(k)) << k;
+    EXPECT_GT(flip["mean"].get<double>(), 0.0);
+    EXPECT_LE(flip["max"].get<double>(), 1.0);
+    EXPECT_EQ(flip["input"], "ldr");
     EXPECT_GT(j["error"]["visibility"]["rmse"].get<double>(), 0.0);
     EXPECT_LE(j["error"]["visibility"]["max"].get<double>(), 1.0);
     for (const char* side : {"eye", "light"}) {
@@ -103,6 +110,7 @@ TEST(Cli, ReferenceReportsErrorsAndDepthComplexity) {
     ASSERT_EQ(self.status, 0) << self.err;
     const auto k = nlohmann::json::parse(self.out);
     EXPECT_EQ(k["error"]["image"]["max_abs"].get<double>(), 0.0);
+    EXPECT_EQ(k["error"]["image"]["flip"]["mean"].get<double>(), 0.0);
     EXPECT_EQ(k["error"]["visibility"]["max"].get<double>(), 0.0);
     // Only the run's own techniques are counted in memory, not the reference's.
     for (const auto& res : j["memory"]["resources"])
@@ -229,6 +237,13 @@ TEST(Cli, CompareReportsErrors) {
   ASSERT_EQ(heat.status, 0) << heat.err;
   const sb::Image h = sb::readImage((dir / "heat.png").string());
   EXPECT_EQ(h.width, 96);
+  auto flip = runCli("compare " + a.string() + " " + b.string() + " --ppd 40 --flip-map " +
+                     (dir / "flip.png").string());
+  ASSERT_EQ(flip.status, 0) << flip.err;
+  const auto fj = nlohmann::json::parse(flip.out);
+  EXPECT_EQ(fj["flip"]["ppd"], 40.0);
+  EXPECT_GT(fj["flip"]["mean"].get<double>(), 0.0);
+  EXPECT_EQ(sb::readImage((dir / "flip.png").string()).width, 96);
   auto missing = runCli("compare " + a.string() + " " + (dir / "none.png").string());
   EXPECT_EQ(missing.status, 2);
   EXPECT_NE(missing.err.find("none.png"), std::string::npos);

@@ -62,7 +62,11 @@ json makeResult(const std::string& group, const json& params, int index, double 
         {"oit_bytes", 0},
         {"total_bytes", shadowBytes + 4 * 1024 * 1024}}},
       {"error",
-       {{"image", {{"rmse", 0.05 / ms}, {"psnr", 40.0 - ms}, {"ssim", 0.99}}},
+       {{"image",
+         {{"rmse", 0.05 / ms},
+          {"psnr", 40.0 - ms},
+          {"ssim", 0.99},
+          {"flip", {{"mean", 0.02 / ms}}}}},
         {"visibility", {{"rmse", 0.1 / ms}, {"max", 0.5}}}}},
       {"depth_complexity", {{"eye", {{"max", 12}}}, {"light", nullptr}}},
       {"warnings", json::array()},
@@ -230,6 +234,8 @@ TEST_F(ReportWriter, CsvHasOneQuotedRowPerResult) {
   EXPECT_EQ(rows[2][col("image_psnr")], "");                // infinity
   EXPECT_EQ(rows[5][col("frame_ms_stddev")], "");           // NaN
   EXPECT_DOUBLE_EQ(std::stod(rows[3][col("frame_ms_median")]), 4.0);
+  EXPECT_DOUBLE_EQ(std::stod(rows[3][col("image_flip_mean")]), 0.02 / 4.0);
+  EXPECT_EQ(rows[1][col("image_flip_mean")], "");  // no error
   EXPECT_EQ(rows[3][col("memory_shadow_bytes")], std::to_string(2 * 1024 * 1024));
   EXPECT_EQ(rows[3][col("depth_complexity_eye_max")], "12");
   for (const auto& e : fs::directory_iterator(dir_))
@@ -242,6 +248,7 @@ TEST_F(ReportWriter, MarkdownHasTablesRatiosAndWarnings) {
   EXPECT_NE(md.find("a test \\| suite"), std::string::npos);  // escaped pipe
   EXPECT_NE(md.find("### shadows"), std::string::npos);
   EXPECT_NE(md.find("### osm-maps"), std::string::npos);
+  EXPECT_NE(md.find("| PSNR dB | FLIP mean | Visibility RMSE |"), std::string::npos) << md;
   EXPECT_NE(md.find("### DOM paper, Fig. 1"), std::string::npos);
 
   // OSM 16 on gl: 4 ms against the 2 ms baseline; the paper's 81 fps against 154 fps.
@@ -282,6 +289,8 @@ TEST_F(ReportWriter, HtmlIsSelfContainedWithChartsAndImages) {
   EXPECT_NE(html.find("memory vs shadow.maps"), std::string::npos);
   EXPECT_NE(html.find("visibility along a light ray"), std::string::npos);
   EXPECT_NE(html.find("images/gone.png is missing"), std::string::npos);
+  EXPECT_NE(html.find("<th>FLIP mean</th>"), std::string::npos);
+  EXPECT_NE(html.find("FLIP 0.005"), std::string::npos);  // in a thumbnail caption
   EXPECT_NE(html.find("quick &amp; dirty"), std::string::npos);
   EXPECT_NE(html.find("&lt;tag&gt;"), std::string::npos);
   EXPECT_EQ(html.find("<tag>"), std::string::npos);
