@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "harness/errors.h"
+#include "harness/metrics.h"
 
 namespace sb {
 namespace flip {
@@ -589,19 +590,7 @@ nlohmann::json toJson(const FlipResult& r) {
   return j;
 }
 
-std::array<float, 3> magma(double t) {
-  if (std::isnan(t)) t = 0.0;
-  t = std::clamp(t, 0.0, 1.0);
-  const double x = t * (kMagmaPoints - 1);
-  const int i = std::min(static_cast<int>(x), kMagmaPoints - 2);
-  const double f = x - i;
-  std::array<float, 3> rgb{};
-  for (int c = 0; c < 3; ++c) {
-    const double lo = kMagma[i][c], hi = kMagma[i + 1][c];
-    rgb[static_cast<std::size_t>(c)] = static_cast<float>(lo + (hi - lo) * f);
-  }
-  return rgb;
-}
+std::array<float, 3> magma(double t) { return colourMap(kMagma, kMagmaPoints, t); }
 
 Image flipErrorImage(const FlipResult& r) {
   Image out(r.width, r.height, 4, 1.0f);

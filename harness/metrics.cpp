@@ -248,19 +248,21 @@ nlohmann::json toJson(const ImageError& e) {
                         {"identical", e.identical()}};
 }
 
-std::array<float, 3> viridis(double t) {
+std::array<float, 3> colourMap(const float (*points)[3], int count, double t) {
   if (std::isnan(t)) t = 0.0;
   t = std::clamp(t, 0.0, 1.0);
-  const double x = t * (kViridisPoints - 1);
-  const int i = std::min(static_cast<int>(x), kViridisPoints - 2);
+  const double x = t * (count - 1);
+  const int i = std::min(static_cast<int>(x), count - 2);
   const double f = x - i;
   std::array<float, 3> rgb{};
   for (int c = 0; c < 3; ++c) {
-    const double lo = kViridis[i][c], hi = kViridis[i + 1][c];
+    const double lo = points[i][c], hi = points[i + 1][c];
     rgb[static_cast<std::size_t>(c)] = static_cast<float>(lo + (hi - lo) * f);
   }
   return rgb;
 }
+
+std::array<float, 3> viridis(double t) { return colourMap(kViridis, kViridisPoints, t); }
 
 Image diffHeatmap(const Image& a, const Image& b, double scale, int channels) {
   if (!(scale > 0.0) || !std::isfinite(scale)) {
