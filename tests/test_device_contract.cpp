@@ -384,17 +384,24 @@ std::vector<Rule> rules() {
   };
 }
 
+// A device per backend that starts on this machine (none for one that does not).
+std::vector<std::pair<std::string, std::unique_ptr<Device>>> availableDevices() {
+  std::vector<std::pair<std::string, std::unique_ptr<Device>>> out;
+  for (const std::string backend : {"gl", "vulkan"}) {
+    try {
+      out.emplace_back(backend,
+                       createDevice({backend, backend == "gl" ? "egl" : "headless", false}));
+    } catch (const DeviceError&) {
+    }
+  }
+  return out;
+}
+
 // The message each backend gives for a rule; "" when it did not throw, and
 // no entry when the backend is unavailable here.
 std::map<std::string, std::string> messages(const Rule& rule) {
   std::map<std::string, std::string> out;
-  for (const std::string backend : {"gl", "vulkan"}) {
-    std::unique_ptr<Device> dev;
-    try {
-      dev = createDevice({backend, backend == "gl" ? "egl" : "headless", false});
-    } catch (const DeviceError&) {
-      continue;
-    }
+  for (auto& [backend, dev] : availableDevices()) {
     World w(*dev);
     try {
       rule.breakIt(w);
@@ -463,13 +470,7 @@ TEST(DeviceContract, TheUnbrokenWorldRendersOnBothApis) {
 // one more is refused with a message naming the call, the count and the limit.
 TEST(DeviceContract, ColourTargetsUpToTheDeviceLimit) {
   std::map<std::string, uint32_t> limits;
-  for (const std::string backend : {"gl", "vulkan"}) {
-    std::unique_ptr<Device> dev;
-    try {
-      dev = createDevice({backend, backend == "gl" ? "egl" : "headless", false});
-    } catch (const DeviceError&) {
-      continue;
-    }
+  for (auto& [backend, dev] : availableDevices()) {
     const uint32_t limit = dev->maxColorAttachments();
     limits[backend] = limit;
     EXPECT_EQ(dev->info().maxColorAttachments, limit) << backend;
@@ -512,13 +513,7 @@ TEST(DeviceContract, ColourTargetsUpToTheDeviceLimit) {
 
 // Fresh resources read back as zero (colour, buffers) and 1 (depth) on both APIs.
 TEST(DeviceContract, FreshResourcesHaveDefinedContents) {
-  for (const std::string backend : {"gl", "vulkan"}) {
-    std::unique_ptr<Device> dev;
-    try {
-      dev = createDevice({backend, backend == "gl" ? "egl" : "headless", false});
-    } catch (const DeviceError& e) {
-      continue;
-    }
+  for (auto& [backend, dev] : availableDevices()) {
     const Texture c = dev->createTexture({"c", "test", Format::RGBA32F, 4, 4, false});
     const Texture d = dev->createTexture({"d", "test", Format::Depth32F, 4, 4, false});
     const Buffer b = dev->createBuffer({"b", "test", BufferUsage::Storage, 40});
