@@ -3,12 +3,32 @@
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <iostream>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 #include "backends/device.h"
 #include "harness/commands.h"
 #include "harness/version.h"
 
+namespace {
+// The CPU drivers (llvmpipe, lavapipe) allocate and free large buffers on
+// every draw. With glibc's defaults, whether those frees go back to the
+// system (and the next draw page-faults them in again) depends on the heap's
+// layout, which any unrelated change in this program moves: the same peeling
+// frame took 208 or 285 ms in two builds issuing identical GL calls and
+// shaders. Fixed thresholds keep the memory in the process, so timings
+// measure rendering, not the allocator.
+void pinAllocator() {
+#if defined(__GLIBC__)
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);   // glibc's largest allowed value
+  mallopt(M_TRIM_THRESHOLD, 512 << 20);  // keep up to 512 MiB of freed heap
+#endif
+}
+}  // namespace
+
 int main(int argc, char** argv) {
+  pinAllocator();
   CLI::App app{"strandbench: benchmark and visual-regression harness for strand rendering"};
   app.require_subcommand(1);
   app.set_version_flag(
