@@ -7,10 +7,18 @@ both binaries back to back, alternating which goes first, and prints the
 median new/old ratio of the frame median and of each pass, with quartiles.
 
   scripts/paired-compare.py OLD_BINARY NEW_BINARY [--rounds N] [--case 'NAME=render args'] ...
+  scripts/paired-compare.py OLD_BINARY NEW_BINARY --suite suites/quick.json [--rounds N]
 
-Without --case, a fixed set of cases from the quick suite is used.
+Without --case or --suite, a fixed set of cases from the quick suite is used.
+With --suite, each round sweeps the whole suite with both binaries (alternating
+which goes first) and each case's frame median is paired within the round; a
+case is SLOWER when its median ratio exceeds 1 + threshold and a one-sided exact
+Wilcoxon signed-rank test of the log ratios over rounds gives p < alpha. Two
+sweeps of one binary a minute apart differ by up to 2x per case here, so only
+pairs taken within a round are compared (compare-runs on two sweeps judges the
+drift, not the build).
 """
-import argparse, json, shlex, statistics, subprocess, sys
+import argparse, itertools, json, math, os, shlex, statistics, subprocess, sys, tempfile
 
 DEFAULT_CASES = {
     "osm16-gl": "--scene straight:strands=1000,points=16,head=0 --shadow osm:maps=16 --backend gl",
@@ -34,15 +42,73 @@ def render(binary, args):
     return d["frame_ms"]["median"], {p["name"]: p["ms"]["median"] for p in d["passes"]}
 
 
+def signed_rank_p(logs):
+    """One-sided exact Wilcoxon signed-rank p-value for 'logs are > 0'."""
+    d = [x for x in logs if x != 0.0]
+    if not d:
+        return 1.0
+    order = sorted(range(len(d)), key=lambda i: abs(d[i]))
+    ranks = [0.0] * len(d)
+    i = 0
+    while i < len(order):  # average ranks over ties
+        j = i
+        while j + 1 < len(order) and abs(d[order[j + 1]]) == abs(d[order[i]]):
+            j += 1
+        for k in range(i, j + 1):
+            ranks[order[k]] = (i + j) / 2 + 1
+        i = j + 1
+    w = sum(r for r, x in zip(ranks, d) if x > 0)
+    hits = sum(1 for signs in itertools.product((0, 1), repeat=len(d))
+               if sum(r for r, s in zip(ranks, signs) if s) >= w - 1e-9)
+    return hits / 2 ** len(d)
+
+
+def sweep(binary, suite, out):
+    res = subprocess.run([binary, "sweep", suite, "--out", out], capture_output=True, text=True)
+    if res.returncode != 0:
+        sys.exit(f"{binary} sweep {suite}: exit {res.returncode}\n{res.stderr}")
+    with open(os.path.join(out, "results.json")) as f:
+        return {r["case"]["id"]: r["frame_ms"]["median"] for r in json.load(f)["results"]}
+
+
+def compare_suite(a):
+    ratios = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        for r in range(a.rounds):
+            first, second = (a.old, a.new) if r % 2 == 0 else (a.new, a.old)
+            got = {b: sweep(b, a.suite, os.path.join(tmp, f"{r}-{i}"))
+                   for i, b in enumerate((first, second))}
+            for case, old_ms in got[a.old].items():
+                if case in got[a.new] and old_ms > 0:
+                    ratios.setdefault(case, []).append(got[a.new][case] / old_ms)
+    slower = 0
+    for case, v in ratios.items():
+        med = statistics.median(v)
+        q = statistics.quantiles(v, n=4) if len(v) >= 2 else [med, med, med]
+        p = signed_rank_p([math.log(x) for x in v])
+        verdict = "SLOWER" if med > 1 + a.threshold / 100 and p < a.alpha else "ok"
+        slower += verdict == "SLOWER"
+        print(f"{case:52s} new/old {med:.3f} (quartiles {q[0]:.3f}..{q[2]:.3f}) "
+              f"p(slower) {p:.3f}  {verdict}", flush=True)
+    print(f"{len(ratios)} cases, {slower} slower ({a.rounds} rounds, threshold "
+          f"{a.threshold}%, alpha {a.alpha})")
+    return 1 if slower else 0
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("old")
     ap.add_argument("new")
     ap.add_argument("--rounds", type=int, default=5)
     ap.add_argument("--case", action="append", default=[], help="NAME=render arguments")
+    ap.add_argument("--suite", help="pair whole sweeps of this suite, round by round")
+    ap.add_argument("--threshold", type=float, default=5.0, help="percent (with --suite)")
+    ap.add_argument("--alpha", type=float, default=0.05, help="significance (with --suite)")
     a = ap.parse_args()
     if a.rounds < 2:
         sys.exit("--rounds: at least 2")
+    if a.suite:
+        sys.exit(compare_suite(a))
     cases = dict(c.split("=", 1) for c in a.case) if a.case else DEFAULT_CASES
     for name, args in cases.items():
         frame, passes = [], {}
