@@ -483,29 +483,6 @@ Planes linearPlanes(const Image& img, FlipInput input, std::vector<char>& bad) {
   return p;
 }
 
-// The 18 control points of magma: matplotlib's table at entries 0, 15, ..., 255.
-constexpr int kMagmaPoints = 18;
-constexpr float kMagma[kMagmaPoints][3] = {
-    {0.001462f, 0.000466f, 0.013866f},  // 0
-    {0.035520f, 0.028397f, 0.125209f},  // 15
-    {0.102815f, 0.063010f, 0.257854f},  // 30
-    {0.191460f, 0.064818f, 0.396152f},  // 45
-    {0.291366f, 0.064553f, 0.475462f},  // 60
-    {0.384299f, 0.097855f, 0.501002f},  // 75
-    {0.475780f, 0.134577f, 0.507921f},  // 90
-    {0.569172f, 0.167454f, 0.504105f},  // 105
-    {0.664915f, 0.198075f, 0.488836f},  // 120
-    {0.761077f, 0.231214f, 0.460162f},  // 135
-    {0.852126f, 0.276106f, 0.418573f},  // 150
-    {0.925937f, 0.346844f, 0.374959f},  // 165
-    {0.969680f, 0.446936f, 0.360311f},  // 180
-    {0.989363f, 0.557873f, 0.391671f},  // 195
-    {0.996580f, 0.668256f, 0.456192f},  // 210
-    {0.996727f, 0.776795f, 0.541039f},  // 225
-    {0.992440f, 0.884330f, 0.640099f},  // 240
-    {0.987053f, 0.991438f, 0.749504f},  // 255
-};
-
 // flipWeightedPercentile of values sorted ascending.
 double weightedPercentileOfSorted(const std::vector<float>& sorted, double p) {
   double total = 0.0;
@@ -590,7 +567,7 @@ nlohmann::json toJson(const FlipResult& r) {
   return j;
 }
 
-std::array<float, 3> magma(double t) { return colourMap(kMagma, kMagmaPoints, t); }
+std::array<float, 3> magma(double t) { return colourMap(ColourMap::Magma, t); }
 
 Image flipErrorImage(const FlipResult& r) {
   Image out(r.width, r.height, 4, 1.0f);

@@ -67,28 +67,51 @@ nlohmann::json number(double v) {
   return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
 }
 
-// The viridis colour map: matplotlib's 256-entry table (CC0, van der Walt & Smith)
-// sampled at entries 0, 15, 30, ..., 255.
-constexpr int kViridisPoints = 18;
-constexpr float kViridis[kViridisPoints][3] = {
-    {0.267004f, 0.004874f, 0.329415f},  // 0
-    {0.281924f, 0.089666f, 0.412415f},  // 15
-    {0.280255f, 0.165693f, 0.476498f},  // 30
-    {0.263663f, 0.237631f, 0.518762f},  // 45
-    {0.237441f, 0.305202f, 0.541921f},  // 60
-    {0.208623f, 0.367752f, 0.552675f},  // 75
-    {0.182256f, 0.426184f, 0.557120f},  // 90
-    {0.159194f, 0.482237f, 0.558073f},  // 105
-    {0.137770f, 0.537492f, 0.554906f},  // 120
-    {0.121148f, 0.592739f, 0.544641f},  // 135
-    {0.128087f, 0.647749f, 0.523491f},  // 150
-    {0.180653f, 0.701402f, 0.488189f},  // 165
-    {0.274149f, 0.751988f, 0.436601f},  // 180
-    {0.395174f, 0.797475f, 0.367757f},  // 195
-    {0.535621f, 0.835785f, 0.281908f},  // 210
-    {0.688944f, 0.865448f, 0.182725f},  // 225
-    {0.845561f, 0.887322f, 0.099702f},  // 240
-    {0.993248f, 0.906157f, 0.143936f},  // 255
+// The colour maps, each 18 control points of matplotlib's 256-entry table
+// (CC0, van der Walt & Smith) at entries 0, 15, 30, ..., 255, in the order of
+// ColourMap: viridis, then magma (FLIP's error map).
+constexpr int kColourMapPoints = 18;
+constexpr float kColourMaps[2][kColourMapPoints][3] = {
+    {
+        {0.267004f, 0.004874f, 0.329415f},  // 0
+        {0.281924f, 0.089666f, 0.412415f},  // 15
+        {0.280255f, 0.165693f, 0.476498f},  // 30
+        {0.263663f, 0.237631f, 0.518762f},  // 45
+        {0.237441f, 0.305202f, 0.541921f},  // 60
+        {0.208623f, 0.367752f, 0.552675f},  // 75
+        {0.182256f, 0.426184f, 0.557120f},  // 90
+        {0.159194f, 0.482237f, 0.558073f},  // 105
+        {0.137770f, 0.537492f, 0.554906f},  // 120
+        {0.121148f, 0.592739f, 0.544641f},  // 135
+        {0.128087f, 0.647749f, 0.523491f},  // 150
+        {0.180653f, 0.701402f, 0.488189f},  // 165
+        {0.274149f, 0.751988f, 0.436601f},  // 180
+        {0.395174f, 0.797475f, 0.367757f},  // 195
+        {0.535621f, 0.835785f, 0.281908f},  // 210
+        {0.688944f, 0.865448f, 0.182725f},  // 225
+        {0.845561f, 0.887322f, 0.099702f},  // 240
+        {0.993248f, 0.906157f, 0.143936f},  // 255
+    },
+    {
+        {0.001462f, 0.000466f, 0.013866f},  // 0
+        {0.035520f, 0.028397f, 0.125209f},  // 15
+        {0.102815f, 0.063010f, 0.257854f},  // 30
+        {0.191460f, 0.064818f, 0.396152f},  // 45
+        {0.291366f, 0.064553f, 0.475462f},  // 60
+        {0.384299f, 0.097855f, 0.501002f},  // 75
+        {0.475780f, 0.134577f, 0.507921f},  // 90
+        {0.569172f, 0.167454f, 0.504105f},  // 105
+        {0.664915f, 0.198075f, 0.488836f},  // 120
+        {0.761077f, 0.231214f, 0.460162f},  // 135
+        {0.852126f, 0.276106f, 0.418573f},  // 150
+        {0.925937f, 0.346844f, 0.374959f},  // 165
+        {0.969680f, 0.446936f, 0.360311f},  // 180
+        {0.989363f, 0.557873f, 0.391671f},  // 195
+        {0.996580f, 0.668256f, 0.456192f},  // 210
+        {0.996727f, 0.776795f, 0.541039f},  // 225
+        {0.992440f, 0.884330f, 0.640099f},  // 240
+        {0.987053f, 0.991438f, 0.749504f},  // 255
+    },
 };
 
 // Normalized 1-D Gaussian weights, sigma 1.5, `size` taps (odd) centred.
@@ -248,11 +271,12 @@ nlohmann::json toJson(const ImageError& e) {
                         {"identical", e.identical()}};
 }
 
-std::array<float, 3> colourMap(const float (*points)[3], int count, double t) {
+std::array<float, 3> colourMap(ColourMap map, double t) {
+  const auto& points = kColourMaps[static_cast<int>(map)];
   if (std::isnan(t)) t = 0.0;
   t = std::clamp(t, 0.0, 1.0);
-  const double x = t * (count - 1);
-  const int i = std::min(static_cast<int>(x), count - 2);
+  const double x = t * (kColourMapPoints - 1);
+  const int i = std::min(static_cast<int>(x), kColourMapPoints - 2);
   const double f = x - i;
   std::array<float, 3> rgb{};
   for (int c = 0; c < 3; ++c) {
@@ -262,7 +286,7 @@ std::array<float, 3> colourMap(const float (*points)[3], int count, double t) {
   return rgb;
 }
 
-std::array<float, 3> viridis(double t) { return colourMap(kViridis, kViridisPoints, t); }
+std::array<float, 3> viridis(double t) { return colourMap(ColourMap::Viridis, t); }
 
 Image diffHeatmap(const Image& a, const Image& b, double scale, int channels) {
   if (!(scale > 0.0) || !std::isfinite(scale)) {

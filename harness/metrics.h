@@ -64,9 +64,10 @@ ImageError compareImages(const Image& a, const Image& b, double threshold = 1.0 
 // numbers -> null.
 nlohmann::json toJson(const ImageError& e);
 
-// A colour map given by `count` evenly spaced RGB control points, linearly
-// interpolated; t is clamped to [0, 1] (NaN -> 0). viridis and FLIP's magma.
-std::array<float, 3> colourMap(const float (*points)[3], int count, double t);
+// A colour map of evenly spaced RGB control points, linearly interpolated; t
+// is clamped to [0, 1] (NaN -> 0). viridis below and FLIP's magma (flip.h).
+enum class ColourMap { Viridis, Magma };
+std::array<float, 3> colourMap(ColourMap map, double t);
 
 // The viridis colour map (matplotlib's, 18 control points from its 256-entry
 // table, linearly interpolated). t is clamped to [0, 1]; viridis(0) is dark
