@@ -5,6 +5,7 @@
 // without linking another (the fuzz build compiles scenes/ alone).
 #pragma once
 
+#include <csignal>
 #include <stdexcept>
 
 namespace sb {
@@ -34,7 +35,8 @@ struct OutOfMemoryError : DeviceError {
 // error of the run: the CLI exits with 128 + the signal number.
 struct Interrupted : std::runtime_error {
   explicit Interrupted(int sig)
-      : std::runtime_error(sig == 2 ? "stopped by SIGINT" : "stopped by SIGTERM"), signal(sig) {}
+      : std::runtime_error(sig == SIGINT ? "stopped by SIGINT" : "stopped by SIGTERM"),
+        signal(sig) {}
   int signal;
 };
 

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <new>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -94,11 +95,24 @@ nlohmann::json complexityJson(const std::optional<DepthComplexity>& c) {
   return {{"max", c->max}, {"mean", c->mean}, {"fragments", c->total}};
 }
 
+// The host memory the final image takes after the frames: the RGBA32F rows
+// read back and the image made of them, both held at once.
+std::size_t imageHostBytes(const RenderSettings& s) {
+  return std::size_t{s.width} * s.height * 4 * sizeof(float) * 2;
+}
+
 Image colorImage(Renderer& r, const RenderSettings& s) {
-  Image img = imageFromRows(r.readColor(), static_cast<int>(s.width), static_cast<int>(s.height),
-                            PixelType::Float32, 4);
-  for (std::size_t i = 3; i < img.pixels.size(); i += 4) img.pixels[i] = 1.0f;
-  return img;
+  const std::vector<uint8_t> rows = r.readColor();  // names itself when out of memory
+  try {
+    Image img = imageFromRows(rows, static_cast<int>(s.width), static_cast<int>(s.height),
+                              PixelType::Float32, 4);
+    for (std::size_t i = 3; i < img.pixels.size(); i += 4) img.pixels[i] = 1.0f;
+    return img;
+  } catch (const std::bad_alloc&) {
+    throw OutOfMemoryError("out of memory making the " + std::to_string(s.width) + "x" +
+                           std::to_string(s.height) + " RGBA float image from the read back, " +
+                           std::to_string(rows.size()) + " bytes: a host allocation failed");
+  }
 }
 
 // The reference for a technique: exact shadows at the technique's light-map
@@ -190,25 +204,33 @@ std::string mib(std::size_t b) {
 // --memory-limit (`limit`, all of the timed frames' resources) or over the
 // device's budget (what is left of it for the resources not made yet). The
 // message lists the largest resources and what would make the run fit.
+// `host`: host memory the run takes besides its resources (the image read
+// back), counted against the budget only: --memory-limit and the reported
+// estimate are the device's bytes.
 void checkMemory(const std::vector<ResourceBytes>& planned, const std::vector<ResourceBytes>& made,
-                 long long limit, const MemoryBudget& budget, const std::string& what) {
+                 long long limit, const MemoryBudget& budget, const std::string& what,
+                 std::size_t host = 0) {
   std::size_t total = 0, already = 0;
   for (const auto& r : planned) total += r.bytes;
   for (const auto& r : made) already += r.bytes;
-  const std::size_t toMake = total > already ? total - already : 0;
+  const std::size_t toMake = (total > already ? total - already : 0) + host;
   std::string over;
-  std::size_t fit = 0;  // the bytes the run would have to fit in
+  std::size_t fit = 0, need = total;  // the bytes the run would have to fit in, and needs
   if (limit > 0 && total > static_cast<std::size_t>(limit)) {
     over = "over the memory limit (--memory-limit " + std::to_string(limit) + ")";
     fit = static_cast<std::size_t>(limit);
   } else if (budget.bytes && toMake > budget.bytes) {
     over = "over the device's budget: " + std::to_string(budget.bytes) + " bytes (" +
            mib(budget.bytes) + ") left, from " + budget.source;
+    if (host) over += "; with " + mib(host) + " of host memory for the image read back";
     fit = budget.bytes + already;
+    need = total + host;
   } else {
     return;
   }
   std::vector<ResourceBytes> largest = planned;
+  if (need > total)  // over the budget, which counts the host's image
+    largest.push_back({"image read back", "host", host});
   std::sort(largest.begin(), largest.end(),
             [](const ResourceBytes& a, const ResourceBytes& b) { return a.bytes > b.bytes; });
   std::string m = "memory: " + what + " needs " + std::to_string(total) + " bytes (" + mib(total) +
@@ -217,7 +239,7 @@ void checkMemory(const std::vector<ResourceBytes>& planned, const std::vector<Re
                   " bytes), nothing written. Largest resources:";
   for (std::size_t i = 0; i < largest.size() && i < 8; ++i)
     m += "\n  " + largest[i].name + " (" + largest[i].owner + "): " + mib(largest[i].bytes);
-  const double shrink = fit ? double(total) / double(fit) : 0.0;
+  const double shrink = double(need) / double(fit);
   char factor[64] = "";
   if (shrink > 1.0) std::snprintf(factor, sizeof factor, " (%.1fx less memory)", shrink);
   m += std::string("\nTo fit") + factor +
@@ -280,7 +302,7 @@ RenderCache::Reference renderReference(Device& dev, const Scene& scene,
   Renderer ref(dev, scene, settings, makeShadowTechnique(refShadow),
                makeOitTechnique(Spec::parse(kReferenceOit)), outputs);
   checkMemory(dev.allocationsAfterUsing(ref.graphResources(outputs)), dev.allocations(), 0,
-              dev.memoryBudget(), "the reference");
+              dev.memoryBudget(), "the reference", req.image ? imageHostBytes(settings) : 0);
   ref.renderFrame();
   RenderCache::Reference r;
   if (req.image) r.image = colorImage(ref, settings);
@@ -366,7 +388,8 @@ RenderResult runRender(const RenderRequest& req, RenderCache* cache) {
   RenderResult out;
   const auto planned = dev->allocationsAfterUsing(renderer.graphResources(timed));
   for (const auto& r : planned) out.estimatedBytes += r.bytes;
-  checkMemory(planned, dev->allocations(), req.memoryLimit, dev->memoryBudget(), "this run");
+  checkMemory(planned, dev->allocations(), req.memoryLimit, dev->memoryBudget(), "this run",
+              req.image ? imageHostBytes(settings) : 0);
   const uint32_t layers = std::max(peelLayers(renderer.oit().depthComplexity()),
                                    peelLayers(renderer.shadow().depthComplexity()));
   for (int i = 0; i < req.warmup; ++i) {

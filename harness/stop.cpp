@@ -11,6 +11,7 @@ namespace sb {
 namespace {
 
 volatile std::sig_atomic_t gStop = 0;
+bool gProgressLines = true;
 
 extern "C" void onStopSignal(int sig) { gStop = sig; }
 
@@ -35,9 +36,11 @@ void throwIfStopped() {
 
 void clearStop() { gStop = 0; }
 
+void ProgressLine::enable(bool on) { gProgressLines = on; }
+
 ProgressLine::ProgressLine(std::string what)
     : what_(std::move(what)),
-      enabled_(::isatty(STDERR_FILENO) != 0),
+      enabled_(gProgressLines && ::isatty(STDERR_FILENO) != 0),
       start_(std::chrono::steady_clock::now()),
       last_(start_) {}
 

@@ -24,6 +24,9 @@ void clearStop();
 // prints nothing, so stdout's JSON and logs stay clean). Cleared when done.
 class ProgressLine {
  public:
+  // Off while a caller draws its own line on the terminal (the sweep's bar).
+  static void enable(bool on);
+
   explicit ProgressLine(std::string what);
   ~ProgressLine();
   ProgressLine(const ProgressLine&) = delete;

@@ -299,6 +299,7 @@ int runSweep(const SweepOptions& o) {
 
   RenderCache cache;
   std::vector<std::string> failures;
+  ProgressLine::enable(!o.progressBar);  // the bar is the sweep's one line
   const auto start = std::chrono::steady_clock::now();
   const int startDone = done;
   for (const auto* c : todo) {
