@@ -281,7 +281,7 @@ class RenderProgress {
       text += ", layer " + std::to_string(layer_);
       if (layers_) text += " of up to " + std::to_string(layers_);
     }
-    line_.update(text + " (" + pass + ")");
+    line_.update(text + ": " + pass);
   }
 
   Device& dev_;

@@ -56,7 +56,7 @@ void ProgressLine::update(const std::string& text) {
   if (elapsed < 2.0 || (shown_ && now - last_ < std::chrono::milliseconds(200))) return;
   last_ = now;
   shown_ = true;
-  std::fprintf(stderr, "\r\033[K%s: %s (%.0f s)", what_.c_str(), text.c_str(), elapsed);
+  std::fprintf(stderr, "\r\033[K%s: %s, %.0f s", what_.c_str(), text.c_str(), elapsed);
   std::fflush(stderr);
 }
 

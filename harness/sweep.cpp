@@ -329,7 +329,11 @@ int runSweep(const SweepOptions& o) {
     if (!failed.empty()) {
       result = failedCase(dir, *c, failed);
       if (o.progressBar) std::cout << "\n";
-      const std::string line = "case " + c->id + " failed: " + failed;
+      // One line here; the whole message (resources, hint) is in the case file.
+      const std::string line = "case " + c->id + " failed: " + failed.substr(0, failed.find('\n')) +
+                               (failed.find('\n') != std::string::npos
+                                    ? " (the rest in " + caseFile(dir, *c).string() + ")"
+                                    : "");
       std::cout << line << "\n" << std::flush;
       failures.push_back(line);
       if (o.failFast) {
