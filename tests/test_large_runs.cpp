@@ -84,9 +84,8 @@ TEST(LargeRuns, AHostAllocationThatFailsUnderAnAddressSpaceLimitExitsTwoOnBothBa
         1500000, "render --scene straight:strands=1000000,points=100 --backend " + backend +
                      " --size 16x16 --warmup 0 --out " + (dir / "big.png").string());
     EXPECT_EQ(r.status, 2) << backend << ": " << r.err;
-    EXPECT_NE(r.err.find("out of memory building scene straight:strands=1000000"),
-              std::string::npos)
-        << r.err;
+    EXPECT_NE(r.err.find("out of memory building scene straight:"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("strands=1000000"), std::string::npos) << r.err;
     EXPECT_EQ(r.err.find("terminate"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(dir / "big.png"));
     // The same limit takes a scene that fits.
