@@ -74,7 +74,8 @@ TEST(MemoryPlan, ARunOverTheLimitIsRefusedWithItsLargestResources) {
   // Refused before they were made: what the device had made by then (the
   // scene, the counting passes) leaves out the maps.
   std::size_t maps = 0;
-  for (const auto& r : nlohmann::json::parse(ok.out)["memory"]["resources"])
+  const nlohmann::json okReport = nlohmann::json::parse(ok.out);
+  for (const auto& r : okReport["memory"]["resources"])
     if (r["name"] == "osm.maps") maps = r["bytes"].get<std::size_t>();
   ASSERT_GT(maps, 0u);
   std::smatch made;
