@@ -1,7 +1,9 @@
 #include "backends/device.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <iterator>
+#include <new>
 
 #include "backends/driver.h"
 
@@ -83,6 +85,31 @@ Device::~Device() {
 DeviceInfo Device::info() const { return driver_->info(); }
 
 namespace {
+std::size_t textureBytes(const TextureDesc& d) {
+  return std::size_t{d.width} * d.height * d.layers * bytesPerPixel(d.format);
+}
+
+std::string mib(std::size_t bytes) {
+  char text[48];
+  std::snprintf(text, sizeof text, "%zu bytes (%.2f MiB)", bytes, double(bytes) / (1 << 20));
+  return text;
+}
+
+// Runs an allocation; a failed one (the host's std::bad_alloc, or the API's
+// out-of-memory error that the driver threw as OutOfMemoryError) becomes one
+// OutOfMemoryError that names what was being allocated and its size.
+template <class F>
+auto namingAllocation(const std::string& what, std::size_t bytes, F&& allocate) {
+  const std::string size = bytes ? ", " + mib(bytes) : "";
+  try {
+    return allocate();
+  } catch (const std::bad_alloc&) {
+    throw OutOfMemoryError("out of memory " + what + size + ": a host allocation failed");
+  } catch (const OutOfMemoryError& e) {
+    throw OutOfMemoryError("out of memory " + what + size + ": " + e.what());
+  }
+}
+
 // The record behind a handle, or a DeviceError naming the call and the handle.
 template <class Table>
 auto& record(Table& table, uint32_t id, const char* kind, const std::string& where) {
@@ -117,12 +144,20 @@ Device::PipelineRec& Device::pipeline(Pipeline p, const std::string& where) {
 // binding, an update or a read first uses them: what only culled passes use is
 // never allocated, and allocations() counts exactly what was made.
 DriverObject* Device::created(BufferRec& r) {
-  if (!r.object) r.object = driver_->createBuffer(r.desc, nullptr);
+  if (!r.object)
+    r.object =
+        namingAllocation("making buffer '" + r.desc.name + "' (" + r.desc.owner + ")", r.desc.bytes,
+                         [&] { return driver_->createBuffer(r.desc, nullptr); });
   return r.object.get();
 }
 
 DriverObject* Device::created(TextureRec& t) {
-  if (!t.object) t.object = driver_->createTexture(t.desc);
+  if (!t.object)
+    t.object = namingAllocation(
+        "making texture '" + t.desc.name + "' (" + t.desc.owner + ", " + formatName(t.desc.format) +
+            " " + std::to_string(t.desc.width) + "x" + std::to_string(t.desc.height) + "x" +
+            std::to_string(t.desc.layers) + ")",
+        textureBytes(t.desc), [&] { return driver_->createTexture(t.desc); });
   return t.object.get();
 }
 
@@ -139,8 +174,10 @@ Buffer Device::createBuffer(const BufferDesc& desc, const void* data) {
   const std::string where = quoted("createBuffer", desc.name);
   if (desc.bytes == 0) throw DeviceError(where + ": zero size");
   // Created now only when it has contents to take; otherwise when first used.
-  auto rec = std::make_unique<BufferRec>(
-      BufferRec{desc, data ? driver_->createBuffer(desc, data) : nullptr});
+  auto rec = std::make_unique<BufferRec>(BufferRec{
+      desc, data ? namingAllocation("making buffer '" + desc.name + "' (" + desc.owner + ")",
+                                    desc.bytes, [&] { return driver_->createBuffer(desc, data); })
+                 : nullptr});
   const uint32_t id = nextId_++;
   buffers_.emplace(id, std::move(rec));
   return Buffer{id};
@@ -235,6 +272,7 @@ void Device::beginFrame() {
 }
 
 void Device::beginPass(const PassDesc& pd) {
+  if (passObserver_) passObserver_(pd.name);
   const std::string where = quoted("beginPass", pd.name);
   requireFrame(where, true, false);
   checkColorCount(where, pd.color.size(), maxColorAttachments_);
@@ -364,6 +402,7 @@ void Device::endPass() {
 
 void Device::dispatch(const std::string& passName, Pipeline pipe,
                       const std::vector<Binding>& bindings, uint32_t x, uint32_t y, uint32_t z) {
+  if (passObserver_) passObserver_(passName);
   const std::string where = quoted("dispatch", passName);
   requireFrame(where, true, false);
   PipelineRec& p = pipeline(pipe, where);
@@ -376,7 +415,10 @@ void Device::endFrame() {
   if (!inFrame_) throw DeviceError("endFrame: no frame is being recorded");
   if (inPass_) throw DeviceError("endFrame: pass '" + pass_->name + "' is still open");
   inFrame_ = false;  // whatever happens below, the frame is over
-  driver_->endFrame();
+  namingAllocation("running the frame's work", 0, [&] {
+    driver_->endFrame();
+    return 0;
+  });
 }
 
 std::vector<PassTiming> Device::lastFrameTimings() const { return driver_->lastFrameTimings(); }
@@ -384,13 +426,17 @@ std::vector<PassTiming> Device::lastFrameTimings() const { return driver_->lastF
 std::vector<uint8_t> Device::readTexture(Texture t) {
   TextureRec& r = texture(t, "readTexture");
   requireFrame(quoted("readTexture", r.desc.name), false, false);
-  return driver_->readTexture(*created(r), r.desc);
+  DriverObject* object = created(r);
+  return namingAllocation("reading back texture '" + r.desc.name + "'", textureBytes(r.desc),
+                          [&] { return driver_->readTexture(*object, r.desc); });
 }
 
 std::vector<uint8_t> Device::readBuffer(Buffer b) {
   BufferRec& r = buffer(b, "readBuffer");
   requireFrame(quoted("readBuffer", r.desc.name), false, false);
-  return driver_->readBuffer(*created(r), r.desc);
+  DriverObject* object = created(r);
+  return namingAllocation("reading back buffer '" + r.desc.name + "'", r.desc.bytes,
+                          [&] { return driver_->readBuffer(*object, r.desc); });
 }
 
 TextureDesc Device::describe(Texture t) const { return texture(t, "describe").desc; }
@@ -405,10 +451,7 @@ std::vector<ResourceBytes> Device::resources(bool createdOnly,
       all.push_back({id, {r->desc.name, r->desc.owner, r->desc.bytes}});
   for (const auto& [id, t] : textures_)
     if (t->object || !createdOnly || alsoIds.count(id))
-      all.push_back({id,
-                     {t->desc.name, t->desc.owner,
-                      std::size_t{t->desc.width} * t->desc.height * t->desc.layers *
-                          bytesPerPixel(t->desc.format)}});
+      all.push_back({id, {t->desc.name, t->desc.owner, textureBytes(t->desc)}});
   std::sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   std::vector<ResourceBytes> out;
   for (auto& [id, r] : all) out.push_back(std::move(r));
@@ -422,5 +465,7 @@ std::vector<ResourceBytes> Device::allocationsAfterUsing(const std::set<uint32_t
 }
 
 std::vector<ResourceBytes> Device::declared() const { return resources(false, {}); }
+
+MemoryBudget Device::memoryBudget() const { return driver_->memoryBudget(); }
 
 }  // namespace sb

@@ -15,6 +15,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <set>
@@ -231,6 +232,13 @@ struct DeviceInfo {
   uint32_t maxColorAttachments = 0;
 };
 
+// The memory a run may still take on a device, and where that figure came from
+// (in messages). bytes 0: not known (no query the device answers).
+struct MemoryBudget {
+  std::size_t bytes = 0;
+  std::string source;  // e.g. "VK_EXT_memory_budget", "host MemAvailable"
+};
+
 class Driver;
 struct DriverObject;
 struct DriverBinding;
@@ -297,6 +305,19 @@ class Device {
   // The same for every live resource declared, made or not.
   std::vector<ResourceBytes> declared() const;
 
+  // What the device can still give (Vulkan: VK_EXT_memory_budget, else the
+  // device-local heap; GL: GL_NVX_gpu_memory_info or GL_ATI_meminfo; the CPU
+  // drivers: host memory, hostMemoryBudget()). Asked once per run, before its
+  // resources are made.
+  MemoryBudget memoryBudget() const;
+
+  // Called with a pass's name before it is recorded (beginPass, dispatch): the
+  // harness counts passes for its progress line and stops a run there
+  // (whatever it throws leaves the device to be destroyed, not reused).
+  void setPassObserver(std::function<void(const std::string& pass)> observer) {
+    passObserver_ = std::move(observer);
+  }
+
  private:
   struct BufferRec;
   struct TextureRec;
@@ -324,6 +345,7 @@ class Device {
   std::map<uint32_t, std::unique_ptr<PipelineRec>> pipelines_;
   bool inFrame_ = false, inPass_ = false;
   std::unique_ptr<OpenPass> pass_;
+  std::function<void(const std::string&)> passObserver_;
 };
 
 struct DeviceOptions {
@@ -334,6 +356,11 @@ struct DeviceOptions {
 
 // Throws DeviceError with a clear message when the backend is unavailable.
 std::unique_ptr<Device> createDevice(const DeviceOptions& opts);
+
+// The host memory this process can still take: /proc/meminfo's MemAvailable,
+// and under an address-space limit (RLIMIT_AS) what is left of it. The budget
+// of the CPU drivers (llvmpipe, lavapipe), whose device memory is host memory.
+MemoryBudget hostMemoryBudget();
 
 // Validation messages seen by Vulkan devices in this process (0 for GL).
 std::size_t validationMessageCount();

@@ -75,6 +75,9 @@ class Driver {
   // the front end enforces.
   virtual DeviceInfo info() const = 0;
 
+  // Device::memoryBudget(): what the API reports, or the host's for a CPU device.
+  virtual MemoryBudget memoryBudget() const = 0;
+
   // desc.bytes > 0; contents zero unless data is given.
   virtual std::unique_ptr<DriverObject> createBuffer(const BufferDesc& desc, const void* data) = 0;
   // desc.width, desc.height > 0, desc.layers in 1..kMaxTextureLayers (1 for

@@ -23,6 +23,7 @@
 #include "harness/commands.h"
 #include "harness/json_keys.h"
 #include "harness/settings.h"
+#include "harness/stop.h"
 #include "reports/json_file.h"
 #include "scenes/scene.h"
 
@@ -345,6 +346,7 @@ auto forCase(const Manifest& m, const BaselineCase& c, const std::string& backen
 // Renders a case (its scene from the cache that checkCases filled).
 RenderResult renderCase(const Manifest& m, const BaselineCase& c, const std::string& backend,
                         RenderCache& cache) {
+  throwIfStopped();  // between cases; runRender checks between passes
   return forCase(m, c, backend, [&] { return runRender(caseRequest(c, backend), &cache); });
 }
 
@@ -733,6 +735,7 @@ int runBless(const fs::path& baselines, const std::string& filter, std::ostream&
         }
       }
     }
+    throwIfStopped();  // the last moment a stop leaves the baselines as they were
     const fs::path old = swapDirectories(staging.path, dir, parent / (prefix + "old-" + pid));
     staging.active = false;
     fs::remove_all(old);

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <new>
 
 #include "backends/device.h"
 #include "harness/flip.h"
@@ -15,6 +16,7 @@
 #include "harness/metrics.h"
 #include "harness/render.h"
 #include "harness/settings.h"
+#include "harness/stop.h"
 #include "scenes/options.h"
 #include "scenes/scene.h"
 #include "techniques/common/technique.h"
@@ -162,11 +164,26 @@ void registerRender(CLI::App& app) {
       RenderCache cache;  // the scene, built once by the check
       checkRenderRequest(*req, false, &cache);
       const RenderResult result = runRender(*req, &cache);
-      if (!out->empty()) writeImage(result.image, *out);
-      if (!referenceOut->empty()) writeImage(result.referenceImage, *referenceOut);
-      if (!heatmap->empty())
-        writeImage(diffHeatmap(result.image, result.referenceImage, 0.25), *heatmap);
-      if (!flipMap->empty()) writeImage(flipErrorImage(*result.flip), *flipMap);
+      // The run's files all or none: one that fails (out of memory) or a stop
+      // between them takes back those already written.
+      std::vector<std::string> written;
+      auto write = [&](const std::string& path, const auto& makeImage) {
+        if (path.empty()) return;
+        throwIfStopped();
+        writeImage(makeImage(), path);  // atomic: a temporary file renamed into place
+        written.push_back(path);
+      };
+      try {
+        write(*out, [&]() -> const Image& { return result.image; });
+        write(*referenceOut, [&]() -> const Image& { return result.referenceImage; });
+        write(*heatmap, [&] { return diffHeatmap(result.image, result.referenceImage, 0.25); });
+        write(*flipMap, [&] { return flipErrorImage(*result.flip); });
+        throwIfStopped();
+      } catch (...) {
+        std::error_code ec;
+        for (const auto& path : written) fs::remove(path, ec);
+        throw;
+      }
       nlohmann::json report = renderJson(result);
       if (!out->empty()) report["image"] = *out;
       if (*json) {
@@ -251,14 +268,25 @@ void registerCommands(CLI::App& app) {
 int lastCommandStatus() { return gStatus; }
 
 void runGuarded(const char* command, const std::function<int()>& body) {
+  auto fail = [&](const std::string& message, int status) {
+    std::cerr << "strandbench " << command << ": " << message << "\n";
+    gStatus = status;
+  };
+  // Every exception ends here, never in std::terminate.
   try {
     gStatus = body();
   } catch (const InputError& e) {
-    std::cerr << "strandbench " << command << ": " << e.what() << "\n";
-    gStatus = 2;
-  } catch (const DeviceError& e) {
-    std::cerr << "strandbench " << command << ": " << e.what() << "\n";
-    gStatus = 2;
+    fail(e.what(), 2);
+  } catch (const DeviceError& e) {  // OutOfMemoryError included
+    fail(e.what(), 2);
+  } catch (const Interrupted& e) {
+    fail(std::string(e.what()) + "; no partial file was left", 128 + e.signal);
+  } catch (const std::bad_alloc&) {
+    // Allocations the device and the image writer know name themselves
+    // (OutOfMemoryError); this is any other host allocation.
+    fail("out of memory: a host allocation failed (no size known here); nothing was written", 2);
+  } catch (const std::exception& e) {
+    fail(std::string("internal error: ") + e.what(), 2);
   }
 }
 

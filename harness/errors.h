@@ -5,6 +5,7 @@
 // without linking another (the fuzz build compiles scenes/ alone).
 #pragma once
 
+#include <csignal>
 #include <stdexcept>
 
 namespace sb {
@@ -18,6 +19,25 @@ struct InputError : std::runtime_error {
 // Any failure of a backend (no device, shader compile error, API error).
 struct DeviceError : std::runtime_error {
   using std::runtime_error::runtime_error;
+};
+
+// Memory that is not there: a run over --memory-limit or the device's budget
+// (refused before its resources are made), or an allocation that failed anyway
+// (host std::bad_alloc, VK_ERROR_OUT_OF_*_MEMORY, GL_OUT_OF_MEMORY). The message
+// names what was being allocated and its size. A DeviceError, so that every
+// caller that handles device failures (exit 2, a sweep's failed case) handles it.
+struct OutOfMemoryError : DeviceError {
+  using DeviceError::DeviceError;
+};
+
+// A stop asked for by SIGINT or SIGTERM (harness/stop.h), thrown between
+// passes, frames and cases so that destructors remove partial files. Not an
+// error of the run: the CLI exits with 128 + the signal number.
+struct Interrupted : std::runtime_error {
+  explicit Interrupted(int sig)
+      : std::runtime_error(sig == SIGINT ? "stopped by SIGINT" : "stopped by SIGTERM"),
+        signal(sig) {}
+  int signal;
 };
 
 }  // namespace sb

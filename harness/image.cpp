@@ -11,9 +11,11 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <new>
 #include <stdexcept>
 #include <system_error>
 
+#include "harness/errors.h"
 #include "scenes/scene.h"
 
 namespace sb {
@@ -122,7 +124,8 @@ struct TempFile {
 
 }  // namespace
 
-void writeImage(const Image& img, const std::string& path, ImageBitDepth depth) {
+namespace {
+void writeImageFile(const Image& img, const std::string& path, ImageBitDepth depth) {
   if (img.width <= 0 || img.height <= 0 || img.channels <= 0 ||
       img.pixels.size() != static_cast<std::size_t>(img.width) *
                                static_cast<std::size_t>(img.height) *
@@ -253,6 +256,20 @@ void writeImage(const Image& img, const std::string& path, ImageBitDepth depth) 
   fs::rename(tmp.path, target, ec);
   if (ec) fail(path, "cannot rename " + inQuotes(tmp.path) + " into place: " + ec.message());
   tmp.keep = true;
+}
+}  // namespace
+
+void writeImage(const Image& img, const std::string& path, ImageBitDepth depth) {
+  try {
+    writeImageFile(img, path, depth);
+  } catch (const std::bad_alloc&) {
+    // The temporary file is already gone (TempFile); the target is untouched.
+    throw OutOfMemoryError("out of memory writing image " + path + " (" +
+                           std::to_string(img.width) + "x" + std::to_string(img.height) + "x" +
+                           std::to_string(img.channels) + ", " +
+                           std::to_string(img.pixels.size() * sizeof(float)) +
+                           " bytes of samples): a host allocation failed; nothing was written");
+  }
 }
 
 Image readImage(const std::string& path) {

@@ -1,5 +1,6 @@
 // strandbench: the command line. Exit status 0 on success, 1 for a failed
-// check, 2 for bad input or an unavailable backend.
+// check (or a sweep with failed cases), 2 for bad input, an unavailable backend
+// or memory that is not there, 130 / 143 when stopped by SIGINT / SIGTERM.
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <iostream>
@@ -9,6 +10,7 @@
 
 #include "backends/device.h"
 #include "harness/commands.h"
+#include "harness/stop.h"
 #include "harness/version.h"
 
 namespace {
@@ -29,6 +31,7 @@ void pinAllocator() {
 
 int main(int argc, char** argv) {
   pinAllocator();
+  sb::installStopHandlers();
   CLI::App app{"strandbench: benchmark and visual-regression harness for strand rendering"};
   app.require_subcommand(1);
   app.set_version_flag(

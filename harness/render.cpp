@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <new>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -13,6 +14,7 @@
 #include "harness/invariants.h"
 #include "harness/metrics.h"
 #include "harness/settings.h"
+#include "harness/stop.h"
 #include "reports/stats.h"
 #include "techniques/common/renderer.h"
 
@@ -93,11 +95,24 @@ nlohmann::json complexityJson(const std::optional<DepthComplexity>& c) {
   return {{"max", c->max}, {"mean", c->mean}, {"fragments", c->total}};
 }
 
+// The host memory the final image takes after the frames: the RGBA32F rows
+// read back and the image made of them, both held at once.
+std::size_t imageHostBytes(const RenderSettings& s) {
+  return std::size_t{s.width} * s.height * 4 * sizeof(float) * 2;
+}
+
 Image colorImage(Renderer& r, const RenderSettings& s) {
-  Image img = imageFromRows(r.readColor(), static_cast<int>(s.width), static_cast<int>(s.height),
-                            PixelType::Float32, 4);
-  for (std::size_t i = 3; i < img.pixels.size(); i += 4) img.pixels[i] = 1.0f;
-  return img;
+  const std::vector<uint8_t> rows = r.readColor();  // names itself when out of memory
+  try {
+    Image img = imageFromRows(rows, static_cast<int>(s.width), static_cast<int>(s.height),
+                              PixelType::Float32, 4);
+    for (std::size_t i = 3; i < img.pixels.size(); i += 4) img.pixels[i] = 1.0f;
+    return img;
+  } catch (const std::bad_alloc&) {
+    throw OutOfMemoryError("out of memory making the " + std::to_string(s.width) + "x" +
+                           std::to_string(s.height) + " RGBA float image from the read back, " +
+                           std::to_string(rows.size()) + " bytes: a host allocation failed");
+  }
 }
 
 // The reference for a technique: exact shadows at the technique's light-map
@@ -179,6 +194,105 @@ std::string referenceKey(const RenderRequest& req, const RenderSettings& s, cons
   return k.str();
 }
 
+std::string mib(std::size_t b) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2f MiB", double(b) / (1 << 20));
+  return text;
+}
+
+// Refuses a run whose resources would not fit, before they are made: over
+// --memory-limit (`limit`, all of the timed frames' resources) or over the
+// device's budget (what is left of it for the resources not made yet). The
+// message lists the largest resources and what would make the run fit.
+// `host`: host memory the run takes besides its resources (the image read
+// back), counted against the budget only: --memory-limit and the reported
+// estimate are the device's bytes.
+void checkMemory(const std::vector<ResourceBytes>& planned, const std::vector<ResourceBytes>& made,
+                 long long limit, const MemoryBudget& budget, const std::string& what,
+                 std::size_t host = 0) {
+  std::size_t total = 0, already = 0;
+  for (const auto& r : planned) total += r.bytes;
+  for (const auto& r : made) already += r.bytes;
+  const std::size_t toMake = (total > already ? total - already : 0) + host;
+  std::string over;
+  std::size_t fit = 0, need = total;  // the bytes the run would have to fit in, and needs
+  if (limit > 0 && total > static_cast<std::size_t>(limit)) {
+    over = "over the memory limit (--memory-limit " + std::to_string(limit) + ")";
+    fit = static_cast<std::size_t>(limit);
+  } else if (budget.bytes && toMake > budget.bytes) {
+    over = "over the device's budget: " + std::to_string(budget.bytes) + " bytes (" +
+           mib(budget.bytes) + ") left, from " + budget.source;
+    if (host) over += "; with " + mib(host) + " of host memory for the image read back";
+    fit = budget.bytes + already;
+    need = total + host;
+  } else {
+    return;
+  }
+  std::vector<ResourceBytes> largest = planned;
+  if (need > total)  // over the budget, which counts the host's image
+    largest.push_back({"image read back", "host", host});
+  std::sort(largest.begin(), largest.end(),
+            [](const ResourceBytes& a, const ResourceBytes& b) { return a.bytes > b.bytes; });
+  std::string m = "memory: " + what + " needs " + std::to_string(total) + " bytes (" + mib(total) +
+                  "), " + over +
+                  "; refused before they were made (made so far: " + std::to_string(already) +
+                  " bytes), nothing written. Largest resources:";
+  for (std::size_t i = 0; i < largest.size() && i < 8; ++i)
+    m += "\n  " + largest[i].name + " (" + largest[i].owner + "): " + mib(largest[i].bytes);
+  const double shrink = double(need) / double(fit);
+  char factor[64] = "";
+  if (shrink > 1.0) std::snprintf(factor, sizeof factor, " (%.1fx less memory)", shrink);
+  m += std::string("\nTo fit") + factor +
+       ": a smaller --size (frame and fragment lists scale with its pixels), a smaller map "
+       "size= (light maps and lists scale with its texels), or fewer layers=, maps=, slices=.";
+  throw OutOfMemoryError(m);
+}
+
+// The progress line of a render and the stop check, between the device's
+// passes: a frame of depth peeling is hundreds of passes and can take minutes.
+class RenderProgress {
+ public:
+  explicit RenderProgress(Device& dev) : dev_(dev), line_("render") {
+    dev_.setPassObserver([this](const std::string& pass) { onPass(pass); });
+  }
+  ~RenderProgress() { dev_.setPassObserver(nullptr); }
+  RenderProgress(const RenderProgress&) = delete;
+  RenderProgress& operator=(const RenderProgress&) = delete;
+
+  // A new piece of work ("frame 3/10"); `layers` from the counting pass (0: none).
+  void phase(std::string text, uint32_t layers = 0) {
+    if (passes_) lastPasses_ = passes_;
+    phase_ = std::move(text);
+    layers_ = layers;
+    passes_ = layer_ = 0;
+    throwIfStopped();
+  }
+
+ private:
+  void onPass(const std::string& pass) {
+    throwIfStopped();
+    ++passes_;
+    // Both peeling loops (peel, exact method=peel) end a layer with their
+    // ".advance" dispatch.
+    if (pass.size() > 8 && pass.compare(pass.size() - 8, 8, ".advance") == 0) ++layer_;
+    std::string text = phase_ + ", pass " + std::to_string(passes_);
+    if (lastPasses_) text += "/" + std::to_string(lastPasses_);
+    if (layer_) {
+      text += ", layer " + std::to_string(layer_);
+      if (layers_) text += " of up to " + std::to_string(layers_);
+    }
+    line_.update(text + ": " + pass);
+  }
+
+  Device& dev_;
+  ProgressLine line_;
+  std::string phase_ = "setup";
+  uint32_t layers_ = 0, layer_ = 0;
+  std::size_t passes_ = 0, lastPasses_ = 0;
+};
+
+uint32_t peelLayers(const std::optional<DepthComplexity>& c) { return c ? c->max : 0; }
+
 RenderCache::Reference renderReference(Device& dev, const Scene& scene,
                                        const RenderSettings& settings, const Spec& refShadow,
                                        const RenderRequest& req) {
@@ -187,6 +301,8 @@ RenderCache::Reference renderReference(Device& dev, const Scene& scene,
   if (req.probe) outputs.insert("probe");
   Renderer ref(dev, scene, settings, makeShadowTechnique(refShadow),
                makeOitTechnique(Spec::parse(kReferenceOit)), outputs);
+  checkMemory(dev.allocationsAfterUsing(ref.graphResources(outputs)), dev.allocations(), 0,
+              dev.memoryBudget(), "the reference", req.image ? imageHostBytes(settings) : 0);
   ref.renderFrame();
   RenderCache::Reference r;
   if (req.image) r.image = colorImage(ref, settings);
@@ -238,27 +354,6 @@ std::vector<InvariantFailure> checkInvariants(const RenderRequest& req, const Re
 
 }  // namespace
 
-namespace {
-// The refusal of a run over --memory-limit: the largest resources first.
-std::string overMemoryLimit(std::vector<ResourceBytes> planned, std::size_t total,
-                            long long limit) {
-  std::sort(planned.begin(), planned.end(),
-            [](const ResourceBytes& a, const ResourceBytes& b) { return a.bytes > b.bytes; });
-  auto mib = [](std::size_t b) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.2f MiB", double(b) / (1 << 20));
-    return std::string(text);
-  };
-  std::string m = "memory limit: this run needs " + std::to_string(total) + " bytes (" +
-                  mib(total) + "), over --memory-limit " + std::to_string(limit) +
-                  "; nothing was rendered. Largest resources:";
-  for (std::size_t i = 0; i < planned.size() && i < 8; ++i)
-    m += "\n  " + planned[i].name + " (" + planned[i].owner + "): " + mib(planned[i].bytes);
-  m += "\nA smaller --size, a smaller map size= or fewer layers/maps/slices make it fit.";
-  return m;
-}
-}  // namespace
-
 std::size_t RenderResult::bytesOwnedBy(const std::string& owner) const {
   std::size_t bytes = 0;
   for (const auto& r : resources)
@@ -279,6 +374,7 @@ RenderResult runRender(const RenderRequest& req, RenderCache* cache) {
   if (req.probe) settings.probePoints = probeRay(settings.light, *req.probe, probeDepths);
 
   auto dev = makeRequestDevice(req);
+  RenderProgress progress(*dev);
 
   // The timed frames produce what the run is for: the shaded image, or (for a
   // visibility-only run) the visibility image. Error measurements run after
@@ -292,11 +388,18 @@ RenderResult runRender(const RenderRequest& req, RenderCache* cache) {
   RenderResult out;
   const auto planned = dev->allocationsAfterUsing(renderer.graphResources(timed));
   for (const auto& r : planned) out.estimatedBytes += r.bytes;
-  if (req.memoryLimit > 0 && out.estimatedBytes > static_cast<std::size_t>(req.memoryLimit))
-    throw InputError(overMemoryLimit(planned, out.estimatedBytes, req.memoryLimit));
-  for (int i = 0; i < req.warmup; ++i) renderer.renderFrame(timed);
+  checkMemory(planned, dev->allocations(), req.memoryLimit, dev->memoryBudget(), "this run",
+              req.image ? imageHostBytes(settings) : 0);
+  const uint32_t layers = std::max(peelLayers(renderer.oit().depthComplexity()),
+                                   peelLayers(renderer.shadow().depthComplexity()));
+  for (int i = 0; i < req.warmup; ++i) {
+    progress.phase("warm-up frame " + std::to_string(i + 1) + "/" + std::to_string(req.warmup),
+                   layers);
+    renderer.renderFrame(timed);
+  }
 
   for (int i = 0; i < req.repeat; ++i) {
+    progress.phase("frame " + std::to_string(i + 1) + "/" + std::to_string(req.repeat), layers);
     double total = 0;
     for (const auto& t : renderer.renderFrame(timed)) {
       auto pass = std::find_if(out.passes.begin(), out.passes.end(),
@@ -340,6 +443,7 @@ RenderResult runRender(const RenderRequest& req, RenderCache* cache) {
   if (req.probe) measured.insert("probe");
   if (!measured.empty()) {
     out.measurementGraph = renderer.graphPasses(measured);
+    progress.phase("measurement frame", layers);
     renderer.renderFrame(measured);
   }
   if (req.reference || req.probe) {
@@ -350,6 +454,7 @@ RenderResult runRender(const RenderRequest& req, RenderCache* cache) {
     if (cache && cache->references.count(key)) {
       ref = &cache->references.at(key);
     } else {
+      progress.phase("reference");
       fresh = renderReference(*dev, scene, settings, refShadow, req);
       if (cache) {
         ++cache->referenceRenders;

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <new>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -15,6 +16,7 @@
 
 #include "harness/image.h"
 #include "harness/metrics.h"
+#include "harness/stop.h"
 #include "reports/files.h"
 #include "reports/json_file.h"
 #include "reports/report_writer.h"
@@ -87,12 +89,12 @@ void addDevices(ojson& context, const std::vector<ojson>& results) {
   context["mesa"] = mesa.empty() ? ojson(nullptr) : ojson(mesa);
 }
 
-// A case file that parses is a finished case (they are written by rename).
+// A case file that parses is a finished case (they are written by rename);
+// a failed case is run again by --resume (out of memory may not last).
 bool caseDone(const fs::path& file) {
   if (!fs::is_regular_file(file)) return false;
   try {
-    readJsonFile<ojson>(file);
-    return true;
+    return !readJsonFile<ojson>(file).contains("failed");
   } catch (const InputError&) {
     return false;
   }
@@ -138,6 +140,19 @@ ojson runCase(const fs::path& dir, const SweepCase& c, RenderCache& cache) {
   ojson result = ojson::parse(renderJson(out).dump());
   result["case"] = {{"id", c.id}, {"group", c.group}, {"index", c.index}, {"params", c.params}};
   result["images"] = images;
+  writeFileAtomic(caseFile(dir, c), result.dump(1) + "\n");
+  return result;
+}
+
+// The result file of a case that failed: what it was and why, so the reports
+// count it and --resume runs it again.
+ojson failedCase(const fs::path& dir, const SweepCase& c, const std::string& reason) {
+  const RenderRequest& q = c.request;
+  ojson result = {{"backend", q.backend},        {"scene", {{"spec", q.scene}}},
+                  {"shadow", q.shadow},          {"oit", q.oit},
+                  {"size", {q.width, q.height}}, {"failed", {{"reason", reason}}}};
+  result["case"] = {{"id", c.id}, {"group", c.group}, {"index", c.index}, {"params", c.params}};
+  result["images"] = ojson::object();
   writeFileAtomic(caseFile(dir, c), result.dump(1) + "\n");
   return result;
 }
@@ -284,6 +299,7 @@ int runSweep(const SweepOptions& o) {
 
   RenderCache cache;
   std::vector<std::string> failures;
+  ProgressLine::enable(!o.progressBar);  // the bar is the sweep's one line
   const auto start = std::chrono::steady_clock::now();
   const int startDone = done;
   for (const auto* c : todo) {
@@ -291,14 +307,41 @@ int runSweep(const SweepOptions& o) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (o.progressBar) progressLine(done - startDone, total - startDone, c->id, elapsed);
     const auto t0 = std::chrono::steady_clock::now();
+    throwIfStopped();
     ojson result;
+    std::string failed;
     try {
       result = runCase(dir, *c, cache);
     } catch (const InputError& e) {
       if (o.progressBar) std::cout << "\n";
       throw InputError("case " + c->id + ": " + e.what());
+    } catch (const DeviceError& e) {  // out of memory included
+      failed = e.what();
+    } catch (const std::bad_alloc&) {
+      failed = "out of memory: a host allocation failed";
+    } catch (const Interrupted&) {
+      if (o.progressBar) std::cout << "\n";
+      std::cout << "stopped after " << done << " of " << total
+                << " cases; continue with --resume\n";
+      throw;
     }
     ++done;
+    if (!failed.empty()) {
+      result = failedCase(dir, *c, failed);
+      if (o.progressBar) std::cout << "\n";
+      // One line here; the whole message (resources, hint) is in the case file.
+      const std::string line = "case " + c->id + " failed: " + failed.substr(0, failed.find('\n')) +
+                               (failed.find('\n') != std::string::npos
+                                    ? " (the rest in " + caseFile(dir, *c).string() + ")"
+                                    : "");
+      std::cout << line << "\n" << std::flush;
+      failures.push_back(line);
+      if (o.failFast) {
+        std::cout << "--fail-fast: stopping at the first failed case\n";
+        break;
+      }
+      continue;
+    }
     for (const auto& line : invariantFailures(result)) {
       if (o.progressBar) std::cout << "\n";
       std::cout << line << "\n";
@@ -328,7 +371,7 @@ int runSweep(const SweepOptions& o) {
       failures.push_back(line);
   }
   if (!failures.empty()) {
-    std::cout << failures.size() << " invariant failures:\n";
+    std::cout << failures.size() << " failures (failed cases, invariants):\n";
     for (const auto& line : failures) std::cout << "  " << line << "\n";
     return 1;
   }

@@ -18,11 +18,15 @@ struct SweepOptions {
   bool resume = false;
   int shardIndex = 1, shardCount = 1;  // --shard I/N, I in 1..N
   bool progressBar = false;            // a terminal: one updating line
+  bool failFast = false;               // stop at the first failed case (else record it, go on)
 };
 
 // Runs the cases and writes the reports; returns the exit status: 0, or 1
-// when an invariant failed (cases with "invariants": true).
-// Throws InputError for a bad suite, filter, shard or folder.
+// when an invariant failed (cases with "invariants": true) or a case failed (out
+// of memory, a device error: recorded in its result file with the reason, and
+// the sweep goes on unless failFast). Throws InputError for a bad suite, filter,
+// shard or folder, and Interrupted when stopped (SIGINT, SIGTERM) between cases
+// or inside one: what is done stays, and --resume continues.
 int runSweep(const SweepOptions& o);
 
 // Joins a sweep folder's cases into DIR/results.json and writes the reports.

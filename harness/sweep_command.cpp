@@ -19,6 +19,9 @@ void registerSweepCommands(CLI::App& app) {
     cmd->add_option("--filter", o->filter, "run only cases whose id matches this regex");
     cmd->add_flag("--resume", o->resume, "continue a stopped sweep: skip the cases already done");
     cmd->add_option("--shard", *shard, "run shard I of N (I in 1..N); join them with `merge`");
+    cmd->add_flag(
+        "--fail-fast", o->failFast,
+        "stop at the first failed case (default: record it and go on; exit 1 at the end)");
     cmd->callback([o, shard] {
       runGuarded("sweep", [&] {
         if (!shard->empty()) std::tie(o->shardIndex, o->shardCount) = parseShard(*shard);

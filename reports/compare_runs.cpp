@@ -73,6 +73,9 @@ void validateResult(json& r, const std::string& where) {
       !r["case"]["id"].is_string())
     throw InputError(where + ": a result lacks case.id");
   const std::string prefix = where + " (case " + r["case"]["id"].get<std::string>() + "): ";
+  // A case a sweep recorded as failed has no timings: it is left out (shown
+  // as removed or added when the other run has it).
+  if (r.contains("failed")) return;
   if (!r.contains("frame_ms")) throw InputError(prefix + "no frame_ms");
   validateTiming(r["frame_ms"], prefix + "frame_ms");
   if (r.contains("passes")) {
@@ -101,7 +104,7 @@ RunResults loadResultsFile(const fs::path& file) {
   for (std::size_t i = 0; i < doc["results"].size(); ++i) {
     json& r = doc["results"][i];
     validateResult(r, run.source + ": results[" + std::to_string(i) + "]");
-    run.results.push_back(std::move(r));
+    if (!r.contains("failed")) run.results.push_back(std::move(r));
   }
   return run;
 }
@@ -120,7 +123,7 @@ RunResults loadCaseFiles(const fs::path& folder, const fs::path& cases) {
   for (const auto& f : files) {
     json r = readJsonFile(f);
     validateResult(r, f.string());
-    run.results.push_back(std::move(r));
+    if (!r.contains("failed")) run.results.push_back(std::move(r));
   }
   // The order of the suite, as results.json has it.
   auto index = [](const json& r) {

@@ -225,6 +225,12 @@ Group buildGroup(const std::string& name, const json* jgroup,
       const json* p = find(*r, {"case", "params", k});
       cells.push_back({p ? text(p) : kNone});
     }
+    if (const std::string why = failureOf(*r); !why.empty()) {
+      cells.push_back({"failed: " + why});
+      for (int i = 0; i < 5; ++i) cells.push_back({kNone});
+      g.table.rows.push_back(std::move(cells));
+      continue;
+    }
     Cell frame = num(frameMs(*r));
     if (const auto sd = number(find(*r, {"frame_ms", "stddev"})); sd && frameMs(*r))
       frame.text += " ± " + formatSig(*sd, 2);
@@ -318,6 +324,13 @@ std::string techniqueOf(const json& r) {
 
 std::optional<double> frameMs(const json& r) { return number(find(r, {"frame_ms", "median"})); }
 
+std::string failureOf(const json& r) {
+  const json* f = find(r, {"failed"});
+  if (!f) return "";
+  const std::string why = text(find(*f, {"reason"}));
+  return why.empty() ? "failed" : why;
+}
+
 std::optional<double> memoryMiB(const json& r, const char* key) {
   const std::optional<double> bytes = number(find(r, {"memory", key}));
   if (!bytes) return std::nullopt;
@@ -341,6 +354,10 @@ ReportData buildReport(const json& doc) {
   };
   add("Suite file", text(find(doc, {"suite", "file"})));
   add("Results", std::to_string(d.results.size()));
+  for (const json* r : d.results)
+    if (const std::string why = failureOf(*r); !why.empty())
+      d.failures.push_back({caseId(*r), why});
+  if (!d.failures.empty()) add("Failed cases", std::to_string(d.failures.size()));
   const json empty = json::object();
   const json* ctx = find(doc, {"context"});
   if (!ctx || !ctx->is_object()) ctx = &empty;

@@ -42,6 +42,8 @@ std::string backendOf(const json& r);  // `backend`, else case.params.backend
 std::string sizeOf(const json& r);
 // Technique label: "shadow SPEC, oit SPEC".
 std::string techniqueOf(const json& r);
+// The reason a case failed (its `failed.reason`), "" for a case that ran.
+std::string failureOf(const json& r);
 // Median frame time in ms / total memory in MiB, when present and finite.
 std::optional<double> frameMs(const json& r);
 std::optional<double> memoryMiB(const json& r, const char* key = "total_bytes");
@@ -83,6 +85,9 @@ struct ReportData {
   std::vector<PaperTable> paperTables;
   std::vector<Group> groups;
   std::vector<Warning> warnings;
+  // Cases that did not finish (a sweep records the reason: out of memory, a
+  // device error) and keep going: shown as failed in every table.
+  std::vector<Warning> failures;
   std::vector<const json*> results;  // in document order
 };
 

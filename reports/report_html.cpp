@@ -303,6 +303,12 @@ std::string renderHtml(const ReportData& d, const fs::path& dir) {
     o << imageGrid(g, dir);
   }
 
+  if (!d.failures.empty()) {
+    o << "<h2 id=\"failed\">Failed cases</h2>\n<ul>\n";
+    for (const Warning& f : d.failures)
+      o << "<li><code>" << h(f.caseId) << "</code>: failed: " << h(f.message) << "</li>\n";
+    o << "</ul>\n";
+  }
   o << "<h2 id=\"warnings\">Warnings</h2>\n";
   if (d.warnings.empty())
     o << "<p>None.</p>\n";

@@ -63,7 +63,7 @@ std::string renderCsv(const ReportData& d) {
   o << "case_id,group,backend,scene,segments,shadow,oit,size,frame_ms_median,frame_ms_min,"
        "frame_ms_max,frame_ms_stddev,memory_total_bytes,memory_shadow_bytes,memory_oit_bytes,"
        "image_rmse,image_psnr,image_ssim,image_flip_mean,visibility_rmse,visibility_max,"
-       "depth_complexity_eye_max,depth_complexity_light_max\n";
+       "depth_complexity_eye_max,depth_complexity_light_max,failed\n";
   for (const json* r : d.results) {
     // Numbers in full precision; null (NaN, Inf) and missing values as empty cells.
     auto n = [&](std::initializer_list<std::string_view> path) {
@@ -94,6 +94,7 @@ std::string renderCsv(const ReportData& d) {
         n({"error", "visibility", "max"}),
         n({"depth_complexity", "eye", "max"}),
         n({"depth_complexity", "light", "max"}),
+        failureOf(*r),  // empty for a case that ran
     };
     for (std::size_t i = 0; i < fields.size(); ++i) o << (i ? "," : "") << csvField(fields[i]);
     o << "\n";
@@ -130,6 +131,12 @@ std::string renderMarkdown(const ReportData& d) {
       o << "No results.\n\n";
     else
       mdTable(o, g.table);
+  }
+
+  if (!d.failures.empty()) {
+    o << "## Failed cases\n\n";
+    for (const Warning& f : d.failures) o << "- " << md(f.caseId) << ": " << md(f.message) << "\n";
+    o << "\n";
   }
 
   o << "## Warnings\n\n";

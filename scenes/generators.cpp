@@ -7,6 +7,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <new>
 #include <numbers>
 #include <random>
 
@@ -636,17 +637,9 @@ const std::vector<SceneInfo>& sceneCatalog() {
   return catalog;
 }
 
-Scene makeScene(const Spec& spec) {
-  const std::vector<SceneInfo>& catalog = sceneCatalog();
-  const SceneInfo* info = nullptr;
-  std::vector<std::string> names;
-  for (const SceneInfo& s : catalog) {
-    names.push_back(s.name);
-    if (s.name == spec.name) info = &s;
-  }
-  if (!info) throw InputError(unknownNameMessage("scene", spec.name, names));
-  const Options o(spec, *info);
-  Scene scene;
+namespace {
+// The generator or loader a spec names.
+void buildScene(const Spec& spec, const Options& o, Scene& scene) {
   if (spec.name == "straight") {
     scene = makeHair(o, HairStyle::Straight);
   } else if (spec.name == "wavy") {
@@ -663,6 +656,27 @@ Scene makeScene(const Spec& spec) {
     scene = makeSheet(o);
   } else {
     scene = makeFile(o);
+  }
+}
+}  // namespace
+
+Scene makeScene(const Spec& spec) {
+  const std::vector<SceneInfo>& catalog = sceneCatalog();
+  const SceneInfo* info = nullptr;
+  std::vector<std::string> names;
+  for (const SceneInfo& s : catalog) {
+    names.push_back(s.name);
+    if (s.name == spec.name) info = &s;
+  }
+  if (!info) throw InputError(unknownNameMessage("scene", spec.name, names));
+  const Options o(spec, *info);
+  Scene scene;
+  try {
+    buildScene(spec, o, scene);
+  } catch (const std::bad_alloc&) {
+    throw OutOfMemoryError("out of memory building scene " + spec.str() +
+                           ": a host allocation failed (points, colours and segment arrays; "
+                           "fewer strands= or points= make it fit)");
   }
   applyScaleAndZeroSegments(o, scene);
   scene.name = spec.str();

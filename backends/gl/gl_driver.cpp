@@ -131,6 +131,36 @@ class GLDriver final : public Driver {
 
   DeviceInfo info() const override { return info_; }
 
+  MemoryBudget memoryBudget() const override {
+    // The vendors' memory-info extensions (NVIDIA, AMD) report free video
+    // memory in KiB; Mesa's CPU rasterizers keep textures in host memory.
+    constexpr GLenum kNvxAvailableKiB = 0x9049;    // GPU_MEMORY_INFO_CURRENT_AVAILABLE_VIDMEM_NVX
+    constexpr GLenum kAtiTextureFreeKiB = 0x87FC;  // TEXTURE_FREE_MEMORY_ATI: 4 values, [0] free
+    GLint count = 0;
+    gl_.GetIntegerv(GL_NUM_EXTENSIONS, &count);
+    bool nvx = false, ati = false;
+    for (GLint i = 0; i < count; ++i) {
+      const char* e = reinterpret_cast<const char*>(gl_.GetStringi(GL_EXTENSIONS, GLuint(i)));
+      if (!e) continue;
+      nvx = nvx || std::strcmp(e, "GL_NVX_gpu_memory_info") == 0;
+      ati = ati || std::strcmp(e, "GL_ATI_meminfo") == 0;
+    }
+    GLint kib[4] = {0, 0, 0, 0};
+    if (nvx) {
+      gl_.GetIntegerv(kNvxAvailableKiB, kib);
+      if (kib[0] > 0) return {std::size_t(kib[0]) * 1024, "GL_NVX_gpu_memory_info"};
+    }
+    if (ati) {
+      gl_.GetIntegerv(kAtiTextureFreeKiB, kib);
+      if (kib[0] > 0) return {std::size_t(kib[0]) * 1024, "GL_ATI_meminfo"};
+    }
+    gl_.GetError();  // a query the context did not take leaves no error behind
+    if (info_.device.find("llvmpipe") != std::string::npos ||
+        info_.device.find("softpipe") != std::string::npos)
+      return hostMemoryBudget();
+    return {};
+  }
+
   std::unique_ptr<DriverObject> createBuffer(const BufferDesc& desc, const void* data) override {
     auto b = std::make_unique<GLBuffer>();
     gl_.CreateBuffers(1, &b->name);
@@ -347,6 +377,7 @@ class GLDriver final : public Driver {
 
   void checkError(const std::string& what) {
     GLenum e = gl_.GetError();
+    if (e == GL_OUT_OF_MEMORY) throw OutOfMemoryError("GL_OUT_OF_MEMORY in " + what);
     if (e != GL_NO_ERROR) throw DeviceError(std::string(glErrorName(e)) + " in " + what);
   }
 

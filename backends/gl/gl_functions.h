@@ -7,6 +7,7 @@
 
 #define SB_GL_FUNCTIONS(X)                                               \
   X(PFNGLGETSTRINGPROC, GetString)                                       \
+  X(PFNGLGETSTRINGIPROC, GetStringi)                                     \
   X(PFNGLGETINTEGERVPROC, GetIntegerv)                                   \
   X(PFNGLGETERRORPROC, GetError)                                         \
   X(PFNGLENABLEPROC, Enable)                                             \

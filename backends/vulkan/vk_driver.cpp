@@ -65,6 +65,35 @@ class VulkanDriver final : public Driver {
 
   DeviceInfo info() const override { return platform_->info; }
 
+  MemoryBudget memoryBudget() const override {
+    // The largest device-local heap: what VK_EXT_memory_budget says is left
+    // of it, else its size. A CPU device's heaps are host memory, which the
+    // host's own figure (free memory, address-space limit) bounds more tightly.
+    VkPhysicalDeviceMemoryBudgetPropertiesEXT budget{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_BUDGET_PROPERTIES_EXT};
+    VkPhysicalDeviceMemoryProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_PROPERTIES_2,
+                                            platform_->memoryBudget ? &budget : nullptr};
+    vkGetPhysicalDeviceMemoryProperties2(platform_->physical, &props);
+    MemoryBudget best;
+    const VkPhysicalDeviceMemoryProperties& m = props.memoryProperties;
+    for (uint32_t i = 0; i < m.memoryHeapCount; ++i) {
+      if (!(m.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)) continue;
+      MemoryBudget heap{m.memoryHeaps[i].size, "Vulkan heap size"};
+      if (platform_->memoryBudget) {
+        const VkDeviceSize left = budget.heapBudget[i] > budget.heapUsage[i]
+                                      ? budget.heapBudget[i] - budget.heapUsage[i]
+                                      : 0;
+        heap = {left, "VK_EXT_memory_budget"};
+      }
+      if (heap.bytes > best.bytes) best = heap;
+    }
+    if (platform_->cpuDevice) {
+      const MemoryBudget host = hostMemoryBudget();
+      if (host.bytes && (!best.bytes || host.bytes < best.bytes)) best = host;
+    }
+    return best;
+  }
+
   std::unique_ptr<DriverObject> createBuffer(const BufferDesc& desc, const void* data) override {
     return resources_.createBuffer(desc, data);
   }

@@ -217,6 +217,7 @@ void VulkanPlatform::pickPhysicalDevice() {
   // lavapipe writes a pass's end timestamp before llvmpipe has finished
   // rasterizing it (measured: 0.6 ms by timestamps vs 33 ms by wall clock for
   // a 30k-segment pass), so CPU devices are timed per pass on the CPU, as GL is.
+  cpuDevice = pick->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
   cpuTiming =
       timestampBits == 0 || envFlag("SB_VULKAN_CPU_TIMING") ||
       (pick->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU && !envFlag("SB_VULKAN_GPU_TIMING"));
@@ -244,6 +245,9 @@ void VulkanPlatform::createLogicalDevice() {
   vkEnumerateDeviceExtensionProperties(physical, nullptr, &n, exts.data());
   const bool haveLineExt = std::any_of(exts.begin(), exts.end(), [](const auto& x) {
     return std::strcmp(x.extensionName, VK_EXT_LINE_RASTERIZATION_EXTENSION_NAME) == 0;
+  });
+  memoryBudget = std::any_of(exts.begin(), exts.end(), [](const auto& x) {
+    return std::strcmp(x.extensionName, VK_EXT_MEMORY_BUDGET_EXTENSION_NAME) == 0;
   });
 
   // Enable every supported core feature (the techniques' shaders may use image

@@ -29,10 +29,12 @@ class VulkanPlatform {
   VkPhysicalDeviceMemoryProperties memProps{};
   float timestampPeriod = 1.0f;
   uint32_t timestampBits = 0;
-  bool cpuTiming = false;  // time passes on the CPU (CPU devices, or asked for)
-  bool logicOp = false;    // the logicOp feature
-  bool bresenham = false;  // Bresenham lines (VK_EXT_line_rasterization)
-  DeviceInfo info;         // backend, platform, device, driver, timing, lines
+  bool cpuTiming = false;     // time passes on the CPU (CPU devices, or asked for)
+  bool logicOp = false;       // the logicOp feature
+  bool bresenham = false;     // Bresenham lines (VK_EXT_line_rasterization)
+  bool memoryBudget = false;  // VK_EXT_memory_budget (queried, not enabled: no device state)
+  bool cpuDevice = false;     // VK_PHYSICAL_DEVICE_TYPE_CPU: its memory is the host's
+  DeviceInfo info;            // backend, platform, device, driver, timing, lines
 
  private:
   void createInstance(bool validation);

@@ -119,8 +119,11 @@ VkDeviceMemory VulkanResources::allocate(const VkMemoryRequirements& req, bool h
   VkDeviceMemory mem = VK_NULL_HANDLE;
   VkResult r = vkAllocateMemory(device_, &ai, nullptr, &mem);
   if (r != VK_SUCCESS) {
-    throw DeviceError("vulkan: allocating " + std::to_string(req.size) + " bytes for " + what +
-                      " failed: " + resultName(r));
+    const std::string m = "vulkan: allocating " + std::to_string(req.size) + " bytes for " + what +
+                          " failed: " + resultName(r);
+    if (r == VK_ERROR_OUT_OF_HOST_MEMORY || r == VK_ERROR_OUT_OF_DEVICE_MEMORY)
+      throw OutOfMemoryError(m);
+    throw DeviceError(m);
   }
   return mem;
 }

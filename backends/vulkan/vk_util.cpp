@@ -39,6 +39,8 @@ const char* resultName(VkResult r) {
 }
 
 void check(VkResult r, const char* what) {
+  if (r == VK_ERROR_OUT_OF_HOST_MEMORY || r == VK_ERROR_OUT_OF_DEVICE_MEMORY)
+    throw OutOfMemoryError(std::string("vulkan: ") + what + " failed: " + resultName(r));
   if (r != VK_SUCCESS) {
     throw DeviceError(std::string("vulkan: ") + what + " failed: " + resultName(r) + " (" +
                       std::to_string(static_cast<int>(r)) + ")");

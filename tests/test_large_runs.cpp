@@ -1,0 +1,238 @@
+// Large and long runs (issue 19): memory that is not there is refused or
+// reported with exit 2 and no partial file (never an abort), SIGINT stops a
+// render and a sweep cleanly (exit 130, nothing half written, --resume goes
+// on), and a sweep with a case that cannot run finishes the others and exits 1.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "test_util.h"
+
+namespace {
+
+using namespace sbtest;
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+// The CLI under an address-space limit (KiB, as `ulimit -v` takes it).
+CliResult runCliLimited(long kib, const std::string& args) {
+  const fs::path dir = tempDir("limited");
+  const std::string cmd = "(ulimit -v " + std::to_string(kib) + " && exec " SB_CLI " " + args +
+                          ") >" + (dir / "out").string() + " 2>" + (dir / "err").string();
+  CliResult r;
+  const int raw = std::system(cmd.c_str());
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  r.out = readFile(dir / "out");
+  r.err = readFile(dir / "err");
+  fs::remove_all(dir);
+  return r;
+}
+
+// Files a stopped or failed run must not leave: temporaries of atomic writes.
+std::vector<std::string> temporaries(const fs::path& dir) {
+  std::vector<std::string> found;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.path().filename().string().find(".tmp-") != std::string::npos)
+      found.push_back(e.path().string());
+  return found;
+}
+
+// The CLI started in the background (its own process: `exec`), output to files.
+struct Child {
+  pid_t pid = -1;
+  fs::path out, err;
+};
+
+Child startCli(const fs::path& dir, const std::string& args) {
+  Child c{-1, dir / "stdout", dir / "stderr"};
+  const std::string cmd =
+      "exec " SB_CLI " " + args + " >" + c.out.string() + " 2>" + c.err.string();
+  c.pid = ::fork();
+  if (c.pid == 0) {
+    ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  return c;
+}
+
+// Exit status (or -signal when killed by one) and the seconds it took to end.
+std::pair<int, double> stopAndWait(const Child& c, int sig) {
+  const auto t0 = Clock::now();
+  ::kill(c.pid, sig);
+  int raw = 0;
+  ::waitpid(c.pid, &raw, 0);
+  const double s = std::chrono::duration<double>(Clock::now() - t0).count();
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -WTERMSIG(raw), s};
+}
+
+// Peeling a dense clump at 128x128: seconds per frame, hundreds of passes.
+const char* kLongRender =
+    "render --scene clustered:strands=2000,points=8,head=0,alpha=0.2 --oit peel --size 128x128 "
+    "--repeat 50 --warmup 0 --json";
+
+TEST(LargeRuns, AHostAllocationThatFailsUnderAnAddressSpaceLimitExitsTwoOnBothBackends) {
+  const fs::path dir = tempDir("oom");
+  for (const std::string backend : {"gl", "vulkan"}) {
+    // 100M points need about 3 GB of host arrays: over a 1.5 GB address space.
+    const CliResult r = runCliLimited(
+        1500000, "render --scene straight:strands=1000000,points=100 --backend " + backend +
+                     " --size 16x16 --warmup 0 --out " + (dir / "big.png").string());
+    EXPECT_EQ(r.status, 2) << backend << ": " << r.err;
+    EXPECT_NE(r.err.find("out of memory building scene straight:"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("strands=1000000"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("terminate"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "big.png"));
+    // The same limit takes a scene that fits.
+    const CliResult ok = runCliLimited(
+        1500000, "render --scene straight:strands=1000,points=10 --backend " + backend +
+                     " --size 16x16 --warmup 0 --out " + (dir / "small.png").string());
+    EXPECT_EQ(ok.status, 0) << backend << ": " << ok.err;
+    EXPECT_TRUE(fs::exists(dir / "small.png"));
+    fs::remove(dir / "small.png");
+  }
+  EXPECT_TRUE(temporaries(dir).empty());
+}
+
+TEST(LargeRuns, ARunOverTheHostBudgetIsRefusedBeforeItsResourcesAreMade) {
+  // The CPU drivers' budget is host memory, here the address-space limit: an
+  // exact shadow and fragment lists at 2048x2048 need more than is left of 1.4 GB.
+  const fs::path dir = tempDir("budget");
+  for (const std::string backend : {"gl", "vulkan"}) {
+    const std::string run =
+        "render --scene straight:strands=4000,points=16,alpha=0.3,head=0 "
+        "--shadow exact:size=2048 --oit abuffer --warmup 0 --backend " +
+        backend + " --out " + (dir / "big.png").string();
+    const CliResult r = runCliLimited(1400000, run + " --size 2048x2048");
+    EXPECT_EQ(r.status, 2) << backend << ": " << r.err;
+    EXPECT_NE(r.err.find("over the device's budget"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("address-space limit"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("Largest resources"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("a smaller --size"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "big.png"));
+    // At 256x256 with a 256 light map it fits.
+    const CliResult ok =
+        runCliLimited(1400000,
+                      "render --scene straight:strands=4000,points=16,alpha=0.3,head=0 "
+                      "--shadow exact:size=256 --oit abuffer --warmup 0 --size 256x256 --backend " +
+                          backend + " --out " + (dir / "small.png").string());
+    EXPECT_EQ(ok.status, 0) << backend << ": " << ok.err;
+    EXPECT_TRUE(fs::exists(dir / "small.png"));
+    fs::remove(dir / "small.png");
+  }
+}
+
+TEST(LargeRuns, SigintStopsALongRenderWithinSecondsAndLeavesNoFile) {
+  const fs::path dir = tempDir("sigint-render");
+  const Child c = startCli(dir, std::string(kLongRender) + " --out " + (dir / "peel.png").string());
+  std::this_thread::sleep_for(std::chrono::milliseconds(2500));
+  const auto [status, seconds] = stopAndWait(c, SIGINT);
+  EXPECT_EQ(status, 130) << readFile(c.err);
+  EXPECT_LT(seconds, 3.0);
+  EXPECT_NE(readFile(c.err).find("stopped by SIGINT"), std::string::npos) << readFile(c.err);
+  EXPECT_TRUE(readFile(c.out).empty()) << readFile(c.out);
+  EXPECT_FALSE(fs::exists(dir / "peel.png"));
+  EXPECT_TRUE(temporaries(dir).empty());
+}
+
+TEST(LargeRuns, SigtermStopsALongRenderWithStatus143) {
+  const fs::path dir = tempDir("sigterm-render");
+  const Child c = startCli(dir, std::string(kLongRender) + " --out " + (dir / "peel.png").string());
+  std::this_thread::sleep_for(std::chrono::milliseconds(2500));
+  const auto [status, seconds] = stopAndWait(c, SIGTERM);
+  EXPECT_EQ(status, 143) << readFile(c.err);
+  EXPECT_LT(seconds, 3.0);
+  EXPECT_FALSE(fs::exists(dir / "peel.png"));
+}
+
+// Cases of a second or more each (peeling), so a stop lands inside one.
+const char* kSlowSuite = R"({
+  "name": "slow",
+  "defaults": {"scene": "clustered:strands=1500,points=6,head=0,alpha=0.2", "size": "64x64",
+               "repeat": 1, "warmup": 0, "oit": "peel"},
+  "groups": [{"name": "g", "backends": ["gl"], "axes": {"scene.seed": [1, 2, 3, 4, 5, 6]}}]
+})";
+
+TEST(LargeRuns, SigintStopsASweepAndResumeFinishesIt) {
+  const fs::path dir = tempDir("sigint-sweep");
+  std::ofstream(dir / "slow.json") << kSlowSuite;
+  const fs::path out = dir / "out";
+  const Child c = startCli(dir, "sweep " + (dir / "slow.json").string() + " --out " + out.string());
+  // Stopped once the first case is done, inside a later one.
+  const auto t0 = Clock::now();
+  while (Clock::now() - t0 < std::chrono::seconds(120)) {
+    std::error_code ec;
+    if (fs::is_directory(out / "cases", ec) && !fs::is_empty(out / "cases", ec)) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  const auto [status, seconds] = stopAndWait(c, SIGINT);
+  EXPECT_EQ(status, 130) << readFile(c.err);
+  EXPECT_LT(seconds, 3.0);
+  EXPECT_NE(readFile(c.out).find("continue with --resume"), std::string::npos) << readFile(c.out);
+  EXPECT_TRUE(temporaries(out).empty());
+  EXPECT_FALSE(fs::exists(out / "results.json"));
+  std::size_t done = 0;
+  for (const auto& e : fs::directory_iterator(out / "cases")) {
+    EXPECT_NO_THROW(json::parse(readFile(e.path()))) << e.path();
+    ++done;
+  }
+  EXPECT_GE(done, 1u);
+  EXPECT_LT(done, 6u);
+
+  const CliResult resumed =
+      runCli("sweep " + (dir / "slow.json").string() + " --out " + out.string() + " --resume");
+  EXPECT_EQ(resumed.status, 0) << resumed.err;
+  EXPECT_NE(resumed.out.find(std::to_string(done) + " already done"), std::string::npos)
+      << resumed.out;
+  EXPECT_EQ(json::parse(readFile(out / "results.json"))["results"].size(), 6u);
+}
+
+// One case that cannot run (a memory limit of 1 byte) between two that can.
+const char* kOneImpossible = R"({
+  "name": "impossible",
+  "defaults": {"scene": "straight:strands=40,points=6,head=0", "size": "24x24", "repeat": 1,
+               "warmup": 0, "shadow": "dom"},
+  "groups": [{"name": "g", "backends": ["gl", "vulkan"], "axes": {"memory_limit": [1, 100000000]}}]
+})";
+
+TEST(LargeRuns, ASweepRecordsAFailedCaseFinishesTheOthersAndExitsOne) {
+  const fs::path dir = tempDir("fail-sweep");
+  std::ofstream(dir / "s.json") << kOneImpossible;
+  const fs::path out = dir / "out";
+  const CliResult r = runCli("sweep " + (dir / "s.json").string() + " --out " + out.string());
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.out.find("case g/memory_limit=1,backend=gl failed: memory"), std::string::npos)
+      << r.out;
+  const json doc = json::parse(readFile(out / "results.json"));
+  ASSERT_EQ(doc["results"].size(), 4u);
+  int failed = 0;
+  for (const auto& res : doc["results"]) {
+    if (res.contains("failed")) {
+      ++failed;
+      EXPECT_NE(res["failed"]["reason"].get<std::string>().find("Largest resources"),
+                std::string::npos);
+    } else {
+      EXPECT_TRUE(res["frame_ms"]["median"].is_number());
+    }
+  }
+  EXPECT_EQ(failed, 2);
+  EXPECT_NE(readFile(out / "results.csv").find("memory: this run needs"), std::string::npos);
+  EXPECT_NE(readFile(out / "report.md").find("## Failed cases"), std::string::npos);
+  EXPECT_NE(readFile(out / "report.html").find("Failed cases"), std::string::npos);
+
+  // --fail-fast: the first case fails, nothing after it runs.
+  const fs::path fast = dir / "fast";
+  const CliResult f =
+      runCli("sweep " + (dir / "s.json").string() + " --out " + fast.string() + " --fail-fast");
+  EXPECT_EQ(f.status, 1) << f.err;
+  EXPECT_NE(f.out.find("--fail-fast"), std::string::npos) << f.out;
+  EXPECT_EQ(json::parse(readFile(fast / "results.json"))["results"].size(), 1u);
+}
+
+}  // namespace
