@@ -1,6 +1,7 @@
 #include "harness/render.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -10,6 +11,7 @@
 #include <sstream>
 
 #include "backends/device.h"
+#include "backends/window.h"
 #include "harness/invariants.h"
 #include "harness/metrics.h"
 #include "harness/settings.h"
@@ -126,6 +128,10 @@ std::unique_ptr<Device> makeRequestDevice(const RenderRequest& req) {
   dopts.backend = req.backend;
   dopts.platform = req.platform.empty() ? platforms.front() : req.platform;
   dopts.validation = req.validation;
+  dopts.windowWidth = req.width;
+  dopts.windowHeight = req.height;
+  dopts.windowTitle = "strandbench render: " + req.scene + " shadow " + req.shadow + " oit " +
+                      req.oit + " (" + req.backend + ")";
   if (std::find(platforms.begin(), platforms.end(), dopts.platform) == platforms.end())
     throw InputError("--platform " + dopts.platform + " is not a " + req.backend + " platform");
   return createDevice(dopts);
@@ -266,7 +272,7 @@ std::size_t RenderResult::bytesOwnedBy(const std::string& owner) const {
   return bytes;
 }
 
-RenderResult runRender(const RenderRequest& req, RenderCache* cache) {
+RenderResult runRender(const RenderRequest& req, RenderCache* cache, Device* device) {
   checkRequest(req, Spelling::Cli);
   const std::shared_ptr<const Scene> scenePtr = sceneFor(req.scene, cache);
   const Scene& scene = *scenePtr;
@@ -278,7 +284,8 @@ RenderResult runRender(const RenderRequest& req, RenderCache* cache) {
   std::vector<float> probeDepths;
   if (req.probe) settings.probePoints = probeRay(settings.light, *req.probe, probeDepths);
 
-  auto dev = makeRequestDevice(req);
+  std::unique_ptr<Device> ownDevice = device ? nullptr : makeRequestDevice(req);
+  Device* const dev = device ? device : ownDevice.get();
 
   // The timed frames produce what the run is for: the shaded image, or (for a
   // visibility-only run) the visibility image. Error measurements run after
@@ -294,7 +301,22 @@ RenderResult runRender(const RenderRequest& req, RenderCache* cache) {
   for (const auto& r : planned) out.estimatedBytes += r.bytes;
   if (req.memoryLimit > 0 && out.estimatedBytes > static_cast<std::size_t>(req.memoryLimit))
     throw InputError(overMemoryLimit(planned, out.estimatedBytes, req.memoryLimit));
-  for (int i = 0; i < req.warmup; ++i) renderer.renderFrame(timed);
+  // A window platform shows every frame, warm-up included; the timed frames
+  // time the present apart from the passes.
+  Window* window = device ? nullptr : dev->window();
+  if (window) out.presented = RenderResult::Presented{0, dev->info().present, {}, {}};
+  auto present = [&](PresentedImage* capture) {
+    const auto start = std::chrono::steady_clock::now();
+    const bool shown = dev->present(renderer.colorTexture(), capture);
+    window->poll();  // keep the window system answered
+    return std::pair{
+        shown, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                   .count()};
+  };
+  for (int i = 0; i < req.warmup; ++i) {
+    renderer.renderFrame(timed);
+    if (window) present(nullptr);
+  }
 
   for (int i = 0; i < req.repeat; ++i) {
     double total = 0;
@@ -307,6 +329,20 @@ RenderResult runRender(const RenderRequest& req, RenderCache* cache) {
       total += t.ms;
     }
     out.frameMs.push_back(total);
+    if (window) {
+      const auto [shown, ms] = present(nullptr);
+      out.presented->frames += shown ? 1 : 0;
+      out.presented->ms.push_back(ms);
+    }
+  }
+  if (window && req.image) {
+    PresentedImage shown;
+    if (present(&shown).first && !shown.rgba8.empty()) {
+      Image img =
+          imageFromRows(shown.rgba8, int(shown.width), int(shown.height), PixelType::UNorm8, 4);
+      for (std::size_t i = 3; i < img.pixels.size(); i += 4) img.pixels[i] = 1.0f;
+      out.presented->image = std::move(img);
+    }
   }
 
   if (req.image) out.image = colorImage(renderer, settings);
@@ -442,6 +478,16 @@ nlohmann::json renderJson(const RenderResult& r) {
                              {"light", complexityJson(r.lightComplexity)}};
   j["warnings"] = r.warnings;
   if (r.validationMessages) j["validation_messages"] = *r.validationMessages;
+  if (r.presented) {
+    // frame_ms plus the present: the frame time with presentation included.
+    std::vector<double> withPresent = r.frameMs;
+    for (std::size_t i = 0; i < withPresent.size() && i < r.presented->ms.size(); ++i)
+      withPresent[i] += r.presented->ms[i];
+    j["presented"] = {{"frames", r.presented->frames},
+                      {"how", r.presented->how},
+                      {"present_ms", statsJson(r.presented->ms)},
+                      {"frame_ms", statsJson(withPresent)}};
+  }
   return j;
 }
 
