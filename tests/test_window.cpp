@@ -31,7 +31,7 @@ std::string psnrText(const sb::ImageError& e) {
 TEST_P(WindowTest, RenderEqualsHeadless) {
   sb::RenderRequest req;
   req.scene = "curly:strands=200,points=12,seed=3";
-  req.shadow = "osm:layers=8";
+  req.shadow = "osm:maps=8";
   req.oit = "wboit";
   req.backend = GetParam();
   req.width = 64;
@@ -112,7 +112,9 @@ TEST_P(WindowTest, PresentFollowsResize) {
   expectShown(16, 16);
   // Minimized (where a window manager applies it; bare Xvfb has none): nothing shown.
   dev->window()->minimize(true);
-  if (dev->window()->width() == 0) EXPECT_FALSE(dev->present(t));
+  if (dev->window()->width() == 0) {
+    EXPECT_FALSE(dev->present(t));
+  }
   dev->window()->minimize(false);
   expectShown(16, 16);
   // Integer and array textures cannot be shown.
@@ -121,7 +123,7 @@ TEST_P(WindowTest, PresentFollowsResize) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, WindowTest, ::testing::Values("gl", "vulkan"),
-                         [](const auto& info) { return info.param; });
+                         [](const auto& param) { return param.param; });
 
 // Without a display: a clear message, exit status 2, nothing written.
 TEST(WindowNoDisplay, RenderRefusesAndWritesNothing) {

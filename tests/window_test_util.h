@@ -32,8 +32,9 @@ class WindowTest : public ::testing::TestWithParam<std::string> {
     messages_ = sb::validationMessageCount();
   }
   void TearDown() override {
-    if (haveDisplay())
+    if (haveDisplay()) {
       EXPECT_EQ(sb::validationMessageCount(), messages_) << "Vulkan validation messages";
+    }
   }
   std::size_t messages_ = 0;
 };

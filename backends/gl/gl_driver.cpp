@@ -353,6 +353,15 @@ class GLDriver final : public Driver {
     const GLint ww = static_cast<GLint>(w->width()), wh = static_cast<GLint>(w->height());
     if (ww == 0 || wh == 0) return false;  // minimized
     if (!presentFbo_) gl_.CreateFramebuffers(1, &presentFbo_);
+    if (ww != presentWidth_ || wh != presentHeight_) {
+      // A viewport call on the default framebuffer makes Mesa fetch the
+      // window's buffers at their new size; without it the first blit after a
+      // resize went to the old-size back buffer (measured on llvmpipe).
+      gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+      gl_.Viewport(0, 0, ww, wh);
+      presentWidth_ = ww;
+      presentHeight_ = wh;
+    }
     gl_.NamedFramebufferTexture(presentFbo_, GL_COLOR_ATTACHMENT0, nameOf(&t), 0);
     gl_.NamedFramebufferReadBuffer(presentFbo_, GL_COLOR_ATTACHMENT0);
     // Both have row 0 at the bottom: no flip. Float to the window's RGBA8
@@ -518,7 +527,8 @@ class GLDriver final : public Driver {
   DeviceInfo info_;
   GLuint vao_ = 0;
   std::map<std::string, GLuint> fbos_;
-  GLuint presentFbo_ = 0;  // reads the texture present() shows
+  GLuint presentFbo_ = 0;                       // reads the texture present() shows
+  GLint presentWidth_ = 0, presentHeight_ = 0;  // the window's size at the last present
   std::string passName_;
   Clock::time_point passStart_;
   std::vector<PassTiming> timings_;
