@@ -193,7 +193,9 @@ std::vector<std::pair<const Setting*, nlohmann::ordered_json>> caseSettings(
     const bool always =
         s.key == "scene" || s.key == "shadow" || s.key == "oit" || s.key == "backend";
     if (v.is_null() || (!always && v == s.get(defaults))) continue;
-    out.push_back({&s, v});
+    // A size as suites and manifests spell it ("WxH"); the rest as their JSON form.
+    out.push_back(
+        {&s, s.type == SettingType::Size ? nlohmann::ordered_json(settingText(r, s)) : v});
   }
   return out;
 }

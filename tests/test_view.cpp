@@ -82,6 +82,7 @@ TEST_P(ViewTest, ScriptedSessionScreenshotIsReproducedByItsRenderCommand) {
   EXPECT_TRUE(j.at("case").contains("light_direction"));
   EXPECT_TRUE(j.at("case").contains("camera_eye"));
   EXPECT_EQ(j.at("suite").at("defaults").at("backends"), nlohmann::json::array({backend}));
+  EXPECT_EQ(j.at("case").at("size"), "128x96");
   const std::string line = j.at("render").get<std::string>();
   EXPECT_EQ(line.rfind("strandbench render ", 0), 0u) << line;
   EXPECT_NE(line.find("--light-direction"), std::string::npos) << line;
@@ -109,6 +110,15 @@ TEST_P(ViewTest, ScriptedSessionScreenshotIsReproducedByItsRenderCommand) {
             << ": screenshot vs its render command run headless: " << figure << "\n";
   RecordProperty("screenshot_vs_render", figure);
   EXPECT_TRUE(e.identical() || e.psnr >= 45.0) << figure;
+
+  // Its one-case suite runs as it is.
+  std::ofstream(dir / "suite.json") << j.at("suite").dump();
+  const sbtest::CliResult sweep =
+      shell(std::string(SB_CLI) + " sweep " + (dir / "suite.json").string() + " --out " +
+                (dir / "sweep").string(),
+            dir);
+  EXPECT_EQ(sweep.status, 0) << sweep.err;
+  EXPECT_TRUE(fs::exists(dir / "sweep" / "results.json"));
 
   // The error heatmap's command reproduces it too.
   const nlohmann::json err = nlohmann::json::parse(sbtest::readFile(dir / "shots" / "error.json"));
