@@ -439,6 +439,36 @@ std::vector<uint8_t> Device::readBuffer(Buffer b) {
                           [&] { return driver_->readBuffer(*object, r.desc); });
 }
 
+void Device::writeTexture(Texture t, const std::vector<uint8_t>& bytes) {
+  TextureRec& r = texture(t, "writeTexture");
+  const std::string where = quoted("writeTexture", r.desc.name);
+  requireFrame(where, false, false);
+  const std::size_t want =
+      std::size_t{r.desc.width} * r.desc.height * r.desc.layers * bytesPerPixel(r.desc.format);
+  if (bytes.size() != want)
+    throw DeviceError(where + ": " + std::to_string(bytes.size()) +
+                      " bytes given, the texture holds " + std::to_string(want));
+  driver_->writeTexture(*created(r), r.desc, bytes);
+}
+
+Window* Device::window() { return driver_->window(); }
+
+bool Device::present(Texture t, PresentedImage* capture) {
+  TextureRec& r = texture(t, "present");
+  const std::string where = quoted("present", r.desc.name);
+  requireFrame(where, false, false);
+  if (isDepthFormat(r.desc.format) || isIntegerFormat(r.desc.format))
+    throw DeviceError(where + ": a " + formatName(r.desc.format) +
+                      " texture cannot be shown (a float or unorm colour texture can)");
+  if (r.desc.layers != 1)
+    throw DeviceError(where + ": an array of " + std::to_string(r.desc.layers) +
+                      " layers cannot be shown (one layer can)");
+  if (!driver_->window())
+    throw DeviceError(where + ": the " + driver_->info().platform +
+                      " platform has no window (use --platform window)");
+  return driver_->present(*created(r), r.desc, capture);
+}
+
 TextureDesc Device::describe(Texture t) const { return texture(t, "describe").desc; }
 
 BufferDesc Device::describe(Buffer b) const { return buffer(b, "describe").desc; }

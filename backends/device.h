@@ -226,6 +226,9 @@ struct DeviceInfo {
   std::string driver;    // version string / driverInfo
   std::string timing;    // how pass times are measured
   std::string lines;     // how Lines topology is rasterized
+  // Window platforms: how present() shows an image (GL swap interval; Vulkan
+  // present mode and why it was chosen). Empty on headless platforms.
+  std::string present;
   // The most colour attachments a pass or a pipeline may have (GL: the lesser
   // of GL_MAX_DRAW_BUFFERS and GL_MAX_COLOR_ATTACHMENTS, 8 or more; Vulkan:
   // maxColorAttachments, 4 or more).
@@ -239,6 +242,15 @@ struct MemoryBudget {
   std::string source;  // e.g. "VK_EXT_memory_budget", "host MemAvailable"
 };
 
+// The window's image as present() showed it, read back from the window's
+// framebuffer (GL) or swapchain image (Vulkan): RGBA8, rows bottom-up like
+// readTexture, the window's size.
+struct PresentedImage {
+  uint32_t width = 0, height = 0;
+  std::vector<uint8_t> rgba8;
+};
+
+class Window;
 class Driver;
 struct DriverObject;
 struct DriverBinding;
@@ -290,6 +302,20 @@ class Device {
   // one after the other (layer 0 first).
   std::vector<uint8_t> readTexture(Texture t);
   std::vector<uint8_t> readBuffer(Buffer b);
+  // The inverse of readTexture: the whole texture's contents, laid out as
+  // readTexture returns them (bytes must be exactly that size). Outside frames.
+  void writeTexture(Texture t, const std::vector<uint8_t>& bytes);
+
+  // Window platforms only (DeviceOptions::platform "window"): the window (null
+  // on headless platforms), and present(), which shows layer 0 of a colour
+  // (not integer) texture in it, scaled to the window's size, upright (row 0
+  // of the texture at the bottom), values clamped to [0,1] as in a PNG; it
+  // waits until the image is handed to the window system. Outside frames.
+  // With `capture`, the image shown is read back into it. Returns false, and
+  // shows nothing, while the window is minimized (zero size). Resizes are
+  // followed (the swapchain is recreated).
+  Window* window();
+  bool present(Texture t, PresentedImage* capture = nullptr);
   // What a texture or a buffer was created with (to interpret read-back bytes,
   // to name it in messages).
   TextureDesc describe(Texture t) const;
@@ -350,8 +376,11 @@ class Device {
 
 struct DeviceOptions {
   std::string backend = "gl";    // gl | vulkan
-  std::string platform = "egl";  // gl: egl | osmesa; vulkan: headless
+  std::string platform = "egl";  // gl: egl | osmesa | window; vulkan: headless | window
   bool validation = false;       // Vulkan validation layers; messages counted
+  // Window platforms: the window's first size and title.
+  uint32_t windowWidth = 512, windowHeight = 512;
+  std::string windowTitle = "strandbench";
 };
 
 // Throws DeviceError with a clear message when the backend is unavailable.

@@ -110,6 +110,19 @@ class Driver {
   // Outside frames.
   virtual std::vector<uint8_t> readTexture(DriverObject& texture, const TextureDesc& desc) = 0;
   virtual std::vector<uint8_t> readBuffer(DriverObject& buffer, const BufferDesc& desc) = 0;
+  // bytes: every layer, tightly packed, as readTexture returns them (size checked).
+  virtual void writeTexture(DriverObject& texture, const TextureDesc& desc,
+                            const std::vector<uint8_t>& bytes) = 0;
+
+  // Window platforms (Device::present). The front end has checked that the
+  // texture is a one-layer colour texture of a float or unorm format and that
+  // no frame is open.
+  virtual Window* window() { return nullptr; }
+  virtual bool present(DriverObject& texture, const TextureDesc& desc, PresentedImage* capture) {
+    (void)texture, (void)desc, (void)capture;
+    throw DeviceError("present: the " + info().platform +
+                      " platform has no window (use --platform window)");
+  }
 };
 
 }  // namespace sb

@@ -12,10 +12,11 @@ struct BackendNames {
   std::vector<std::string> platforms;  // the first is the backend's default
 };
 
-// gl (egl, osmesa) and vulkan (headless); the first backend is the default.
+// gl (egl, osmesa, window) and vulkan (headless, window); the first backend is
+// the default. "window" (a GLFW window, needs a display) is last on both: never a default.
 inline const std::vector<BackendNames>& backendCatalog() {
-  static const std::vector<BackendNames> catalog = {{"gl", {"egl", "osmesa"}},
-                                                    {"vulkan", {"headless"}}};
+  static const std::vector<BackendNames> catalog = {{"gl", {"egl", "osmesa", "window"}},
+                                                    {"vulkan", {"headless", "window"}}};
   return catalog;
 }
 
@@ -24,6 +25,8 @@ inline std::vector<std::string> backendNames() {
   for (const auto& b : backendCatalog()) names.push_back(b.name);
   return names;
 }
+
+inline bool isWindowPlatform(const std::string& platform) { return platform == "window"; }
 
 inline const std::string& defaultBackend() { return backendCatalog().front().name; }
 

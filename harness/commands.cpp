@@ -260,6 +260,7 @@ void registerCommands(CLI::App& app) {
   registerBenchCommand(app);
   registerSweepCommands(app);
   registerCompareRunsCommand(app);
+  registerViewCommand(app);
   // Unknown options get the closest valid one, for every command.
   for (CLI::App* cmd : app.get_subcommands([](CLI::App*) { return true; }))
     cmd->parse_complete_callback([cmd] { rejectUnknownArguments(*cmd); });

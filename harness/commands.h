@@ -23,6 +23,8 @@ void registerBenchCommand(CLI::App& app);
 void registerSweepCommands(CLI::App& app);
 // `compare-runs` (harness/compare_runs_command.cpp).
 void registerCompareRunsCommand(CLI::App& app);
+// `view` (harness/view_command.cpp).
+void registerViewCommand(CLI::App& app);
 int lastCommandStatus();
 // Runs a command's body and records its exit status; bad input (InputError) and
 // unavailable backends (DeviceError) print "strandbench <command>: <message>"

@@ -1,6 +1,7 @@
 #include "harness/render.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -11,6 +12,7 @@
 #include <sstream>
 
 #include "backends/device.h"
+#include "backends/window.h"
 #include "harness/invariants.h"
 #include "harness/metrics.h"
 #include "harness/settings.h"
@@ -141,6 +143,10 @@ std::unique_ptr<Device> makeRequestDevice(const RenderRequest& req) {
   dopts.backend = req.backend;
   dopts.platform = req.platform.empty() ? platforms.front() : req.platform;
   dopts.validation = req.validation;
+  dopts.windowWidth = req.width;
+  dopts.windowHeight = req.height;
+  dopts.windowTitle = "strandbench render: " + req.scene + " shadow " + req.shadow + " oit " +
+                      req.oit + " (" + req.backend + ")";
   if (std::find(platforms.begin(), platforms.end(), dopts.platform) == platforms.end())
     throw InputError("--platform " + dopts.platform + " is not a " + req.backend + " platform");
   return createDevice(dopts);
@@ -361,7 +367,7 @@ std::size_t RenderResult::bytesOwnedBy(const std::string& owner) const {
   return bytes;
 }
 
-RenderResult runRender(const RenderRequest& req, RenderCache* cache) {
+RenderResult runRender(const RenderRequest& req, RenderCache* cache, Device* device) {
   checkRequest(req, Spelling::Cli);
   const std::shared_ptr<const Scene> scenePtr = sceneFor(req.scene, cache);
   const Scene& scene = *scenePtr;
@@ -373,7 +379,8 @@ RenderResult runRender(const RenderRequest& req, RenderCache* cache) {
   std::vector<float> probeDepths;
   if (req.probe) settings.probePoints = probeRay(settings.light, *req.probe, probeDepths);
 
-  auto dev = makeRequestDevice(req);
+  std::unique_ptr<Device> ownDevice = device ? nullptr : makeRequestDevice(req);
+  Device* const dev = device ? device : ownDevice.get();
   RenderProgress progress(*dev);
 
   // The timed frames produce what the run is for: the shaded image, or (for a
@@ -392,10 +399,23 @@ RenderResult runRender(const RenderRequest& req, RenderCache* cache) {
               req.image ? imageHostBytes(settings) : 0);
   const uint32_t layers = std::max(peelLayers(renderer.oit().depthComplexity()),
                                    peelLayers(renderer.shadow().depthComplexity()));
+  // A window platform shows every frame, warm-up included; the timed frames
+  // time the present apart from the passes.
+  Window* window = device ? nullptr : dev->window();
+  if (window) out.presented = RenderResult::Presented{0, dev->info().present, {}, {}};
+  auto present = [&](PresentedImage* capture) {
+    const auto start = std::chrono::steady_clock::now();
+    const bool shown = dev->present(renderer.colorTexture(), capture);
+    window->poll();  // keep the window system answered
+    return std::pair{
+        shown, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                   .count()};
+  };
   for (int i = 0; i < req.warmup; ++i) {
     progress.phase("warm-up frame " + std::to_string(i + 1) + "/" + std::to_string(req.warmup),
                    layers);
     renderer.renderFrame(timed);
+    if (window) present(nullptr);
   }
 
   for (int i = 0; i < req.repeat; ++i) {
@@ -410,6 +430,20 @@ RenderResult runRender(const RenderRequest& req, RenderCache* cache) {
       total += t.ms;
     }
     out.frameMs.push_back(total);
+    if (window) {
+      const auto [shown, ms] = present(nullptr);
+      out.presented->frames += shown ? 1 : 0;
+      out.presented->ms.push_back(ms);
+    }
+  }
+  if (window && req.image) {
+    PresentedImage shown;
+    if (present(&shown).first && !shown.rgba8.empty()) {
+      Image img =
+          imageFromRows(shown.rgba8, int(shown.width), int(shown.height), PixelType::UNorm8, 4);
+      for (std::size_t i = 3; i < img.pixels.size(); i += 4) img.pixels[i] = 1.0f;
+      out.presented->image = std::move(img);
+    }
   }
 
   if (req.image) out.image = colorImage(renderer, settings);
@@ -547,6 +581,16 @@ nlohmann::json renderJson(const RenderResult& r) {
                              {"light", complexityJson(r.lightComplexity)}};
   j["warnings"] = r.warnings;
   if (r.validationMessages) j["validation_messages"] = *r.validationMessages;
+  if (r.presented) {
+    // frame_ms plus the present: the frame time with presentation included.
+    std::vector<double> withPresent = r.frameMs;
+    for (std::size_t i = 0; i < withPresent.size() && i < r.presented->ms.size(); ++i)
+      withPresent[i] += r.presented->ms[i];
+    j["presented"] = {{"frames", r.presented->frames},
+                      {"how", r.presented->how},
+                      {"present_ms", statsJson(r.presented->ms)},
+                      {"frame_ms", statsJson(withPresent)}};
+  }
   return j;
 }
 

@@ -115,6 +115,18 @@ struct RenderResult {
   std::vector<std::string> warnings;              // the input's, the techniques', the reference's
   std::optional<std::size_t> validationMessages;  // with validation
 
+  // A window platform: each timed frame was shown in the window (Device::present).
+  struct Presented {
+    int frames = 0;          // timed frames presented
+    std::string how;         // DeviceInfo::present
+    std::vector<double> ms;  // per timed frame: the present alone
+    // The image once more presented after the timed frames (untimed), read
+    // back from the window's framebuffer or swapchain image; top row first,
+    // RGBA with alpha 1 (the window has none). Empty if the window was minimized.
+    Image image;
+  };
+  std::optional<Presented> presented;
+
   Image image;                      // top row first (empty without an image)
   Image referenceImage;             // with a reference and an image
   std::vector<uint8_t> visibility;  // R32F visibility image (with a reference)
@@ -143,7 +155,11 @@ struct RenderCache {
 
 // Throws InputError (bad scene/technique/options) or DeviceError (backend).
 // With a cache, scenes and references are taken from it or added to it.
-RenderResult runRender(const RenderRequest& req, RenderCache* cache = nullptr);
+// With `device` (of the request's backend), it renders there instead of on a
+// device of its own, and leaves showing the image to the caller (`view`):
+// only a device of its own on a window platform presents each timed frame.
+RenderResult runRender(const RenderRequest& req, RenderCache* cache = nullptr,
+                       Device* device = nullptr);
 
 // World points along the probe ray and their light depths in [0, 1].
 std::vector<glm::vec3> probeRay(const Light& light, const ProbeSpec& probe,

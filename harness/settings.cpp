@@ -393,9 +393,11 @@ std::vector<Setting> buildTable() {
     plain(s, &RenderRequest::backend);
   }
   {
+    // The example is osmesa (headless): a window platform needs a display.
     Setting& s = add(make("platform", "--platform", T::String, "the backend's first",
-                          "the backend's platform", platformNames(defaultBackend()).back(),
-                          "no-such-platform"));
+                          "the backend's platform; window: a GLFW window, each timed frame "
+                          "presented (needs a display)",
+                          platformNames(defaultBackend()).at(1), "no-such-platform"));
     s.get = [](const RenderRequest& r) {
       return r.platform.empty() ? ojson(nullptr) : ojson(r.platform);
     };

@@ -17,6 +17,10 @@ std::string versionText() {
   for (const auto& b : backendCatalog())
     for (const auto& platform : b.platforms) {
       out << b.name << (b.platforms.size() > 1 ? " (" + platform + ")" : "") << ": ";
+      if (isWindowPlatform(platform)) {  // not opened here: a window would flash up
+        out << "a GLFW window (needs a display; not opened by --version)\n";
+        continue;
+      }
       try {
         const DeviceInfo info = createDevice({b.name, platform, false})->info();
         out << info.device << "; " << info.driver << "\n";

@@ -10,6 +10,7 @@ packages=(
   libegl-dev libegl-mesa0 libgl-dev libgl1-mesa-dri libosmesa6
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
   glslang-dev glslang-tools libglfw3-dev libglm-dev
+  xvfb xauth
   libopenimageio-dev openimageio-tools libcli11-dev nlohmann-json3-dev libtinyobjloader-dev
   libgtest-dev googletest
   clang libclang-rt-14-dev llvm

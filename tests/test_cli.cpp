@@ -31,7 +31,8 @@ TEST(Cli, VersionNamesBuildAndDrivers) {
   auto r = runCli("--version");
   ASSERT_EQ(r.status, 0) << r.err;
   for (const char* part :
-       {"strandbench ", "commit: ", "build type: ", "gl (egl): ", "gl (osmesa): ", "vulkan: "})
+       {"strandbench ", "commit: ", "build type: ", "gl (egl): ", "gl (osmesa): ",
+        "vulkan (headless): ", "gl (window): a GLFW window", "vulkan (window): a GLFW window"})
     EXPECT_NE(r.out.find(part), std::string::npos) << part << " in\n" << r.out;
   // On these machines both backends are Mesa's CPU drivers: their versions are named.
   EXPECT_NE(r.out.find("Mesa "), std::string::npos) << r.out;

@@ -528,5 +528,30 @@ TEST(DeviceContract, FreshResourcesHaveDefinedContents) {
   }
 }
 
+// writeTexture is readTexture's inverse (every layer), on both APIs; a wrong
+// size and a headless present are refused.
+TEST(DeviceContract, WriteTextureRoundTripsAndPresentNeedsAWindow) {
+  for (auto& [backend, dev] : availableDevices()) {
+    for (const TextureDesc& desc :
+         {TextureDesc{"one", "test", Format::RGBA8, 5, 3, false},
+          TextureDesc{"array", "test", Format::RGBA32F, 4, 2, false, 3}}) {
+      const Texture t = dev->createTexture(desc);
+      std::vector<uint8_t> bytes(dev->readTexture(t).size());
+      for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = uint8_t(i * 7 + 1);
+      if (desc.format == Format::RGBA32F)  // finite floats: NaN bytes need not survive
+        for (std::size_t i = 0; i < bytes.size(); i += 4) {
+          const float v = float(i) * 0.25f;
+          std::memcpy(bytes.data() + i, &v, 4);
+        }
+      dev->writeTexture(t, bytes);
+      EXPECT_EQ(dev->readTexture(t), bytes) << backend << " " << desc.name;
+      EXPECT_THROW(dev->writeTexture(t, std::vector<uint8_t>(bytes.size() - 1)), DeviceError);
+    }
+    EXPECT_EQ(dev->window(), nullptr) << backend;
+    const Texture c = dev->createTexture({"c", "test", Format::RGBA32F, 4, 4, false});
+    EXPECT_THROW(dev->present(c), DeviceError) << backend;
+  }
+}
+
 }  // namespace
 }  // namespace sb

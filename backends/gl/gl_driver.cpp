@@ -12,6 +12,7 @@
 #include "backends/gl/gl_functions.h"
 #include "backends/gl/gl_platform.h"
 #include "backends/shader_source.h"
+#include "backends/window.h"
 
 namespace sb {
 namespace {
@@ -104,6 +105,7 @@ class GLDriver final : public Driver {
     info_.driver = reinterpret_cast<const char*>(gl_.GetString(GL_VERSION));
     info_.timing = "cpu clock per pass (glFinish before and after)";
     info_.lines = "aliased (diamond exit)";
+    info_.present = platform_->presentMode();
     // Draw buffers and framebuffer attachments both bound a pass's targets.
     GLint drawBuffers = 0, colorAttachments = 0;
     gl_.GetIntegerv(GL_MAX_DRAW_BUFFERS, &drawBuffers);
@@ -126,6 +128,7 @@ class GLDriver final : public Driver {
 
   ~GLDriver() override {
     for (auto& [key, fbo] : fbos_) gl_.DeleteFramebuffers(1, &fbo);
+    if (presentFbo_) gl_.DeleteFramebuffers(1, &presentFbo_);
     gl_.DeleteVertexArrays(1, &vao_);
   }
 
@@ -360,6 +363,56 @@ class GLDriver final : public Driver {
     return out;
   }
 
+  void writeTexture(DriverObject& t, const TextureDesc& desc,
+                    const std::vector<uint8_t>& bytes) override {
+    const GLFormat f = glFormat(desc.format);
+    const auto& tex = static_cast<const GLTexture&>(t);
+    if (tex.layers > 1)
+      gl_.TextureSubImage3D(tex.name, 0, 0, 0, 0, GLsizei(desc.width), GLsizei(desc.height),
+                            GLsizei(desc.layers), f.format, f.type, bytes.data());
+    else
+      gl_.TextureSubImage2D(tex.name, 0, 0, 0, GLsizei(desc.width), GLsizei(desc.height), f.format,
+                            f.type, bytes.data());
+    checkError("writeTexture " + desc.name);
+  }
+
+  Window* window() override { return platform_->window(); }
+
+  bool present(DriverObject& t, const TextureDesc& desc, PresentedImage* capture) override {
+    Window* w = platform_->window();
+    const GLint ww = static_cast<GLint>(w->width()), wh = static_cast<GLint>(w->height());
+    if (ww == 0 || wh == 0) return false;  // minimized
+    if (!presentFbo_) gl_.CreateFramebuffers(1, &presentFbo_);
+    if (ww != presentWidth_ || wh != presentHeight_) {
+      // A viewport call on the default framebuffer makes Mesa fetch the
+      // window's buffers at their new size; without it the first blit after a
+      // resize went to the old-size back buffer (measured on llvmpipe).
+      gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+      gl_.Viewport(0, 0, ww, wh);
+      presentWidth_ = ww;
+      presentHeight_ = wh;
+    }
+    gl_.NamedFramebufferTexture(presentFbo_, GL_COLOR_ATTACHMENT0, nameOf(&t), 0);
+    gl_.NamedFramebufferReadBuffer(presentFbo_, GL_COLOR_ATTACHMENT0);
+    // Both have row 0 at the bottom: no flip. Float to the window's RGBA8
+    // clamps and rounds, as the PNG writer does.
+    const bool same = GLint(desc.width) == ww && GLint(desc.height) == wh;
+    gl_.BlitNamedFramebuffer(presentFbo_, 0, 0, 0, GLint(desc.width), GLint(desc.height), 0, 0, ww,
+                             wh, GL_COLOR_BUFFER_BIT, same ? GL_NEAREST : GL_LINEAR);
+    if (capture) {  // the back buffer, before the swap leaves it undefined
+      gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+      gl_.NamedFramebufferReadBuffer(0, GL_BACK);
+      capture->width = static_cast<uint32_t>(ww);
+      capture->height = static_cast<uint32_t>(wh);
+      capture->rgba8.assign(std::size_t(ww) * std::size_t(wh) * 4, 0);
+      gl_.ReadPixels(0, 0, ww, wh, GL_RGBA, GL_UNSIGNED_BYTE, capture->rgba8.data());
+    }
+    platform_->swapBuffers();
+    gl_.Finish();
+    checkError("present " + desc.name);
+    return true;
+  }
+
  private:
   std::string shaderLog(GLuint obj, bool program) {
     GLint len = 0;
@@ -505,6 +558,8 @@ class GLDriver final : public Driver {
   DeviceInfo info_;
   GLuint vao_ = 0;
   std::map<std::string, GLuint> fbos_;
+  GLuint presentFbo_ = 0;                       // reads the texture present() shows
+  GLint presentWidth_ = 0, presentHeight_ = 0;  // the window's size at the last present
   std::string passName_;
   Clock::time_point passStart_;
   std::vector<PassTiming> timings_;
@@ -518,8 +573,10 @@ std::unique_ptr<Driver> createGLDriver(const DeviceOptions& opts) {
     platform = createEGLPlatform();
   else if (opts.platform == "osmesa")
     platform = createOSMesaPlatform();
+  else if (opts.platform == "window")
+    platform = createWindowGLPlatform(opts.windowWidth, opts.windowHeight, opts.windowTitle);
   else
-    throw DeviceError("unknown GL platform '" + opts.platform + "' (valid: egl, osmesa)");
+    throw DeviceError("unknown GL platform '" + opts.platform + "' (valid: egl, osmesa, window)");
   return std::make_unique<GLDriver>(std::move(platform));
 }
 

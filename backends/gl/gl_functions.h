@@ -70,7 +70,12 @@
   X(PFNGLLOGICOPPROC, LogicOp)                                           \
   X(PFNGLCOLORMASKIPROC, ColorMaski)                                     \
   X(PFNGLLINEWIDTHPROC, LineWidth)                                       \
-  X(PFNGLPIXELSTOREIPROC, PixelStorei)
+  X(PFNGLPIXELSTOREIPROC, PixelStorei)                                   \
+  X(PFNGLBLITNAMEDFRAMEBUFFERPROC, BlitNamedFramebuffer)                 \
+  X(PFNGLNAMEDFRAMEBUFFERREADBUFFERPROC, NamedFramebufferReadBuffer)     \
+  X(PFNGLREADPIXELSPROC, ReadPixels)                                     \
+  X(PFNGLTEXTURESUBIMAGE3DPROC, TextureSubImage3D)                       \
+  X(PFNGLTEXTURESUBIMAGE2DPROC, TextureSubImage2D)
 
 namespace sb {
 

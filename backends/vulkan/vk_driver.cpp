@@ -34,6 +34,8 @@
 #include "backends/vulkan/vk_resources.h"
 #include "backends/vulkan/vk_shader.h"
 #include "backends/vulkan/vk_util.h"
+#include "backends/vulkan/vk_window.h"
+#include "backends/window/glfw_window.h"
 
 namespace sb {
 
@@ -54,7 +56,12 @@ class VulkanDriver final : public Driver {
     cpuTiming_ = p.cpuTiming;
     try {
       createCommandObjects();
+      if (platform_->surface != VK_NULL_HANDLE) {
+        swapchain_ = std::make_unique<VulkanSwapchain>(*platform_, resources_);
+        platform_->info.present = swapchain_->mode();
+      }
     } catch (...) {
+      swapchain_.reset();
       cleanup();
       throw;
     }
@@ -400,6 +407,30 @@ class VulkanDriver final : public Driver {
     return out;
   }
 
+  void writeTexture(DriverObject& object, const TextureDesc& desc,
+                    const std::vector<uint8_t>& bytes) override {
+    auto& t = static_cast<TextureRes&>(object);
+    resources_.withHostBuffer(bytes.size(), [&](HostBuffer& staging) {
+      std::memcpy(staging.mapped, bytes.data(), bytes.size());
+      resources_.immediate([&](VkCommandBuffer cmd) {
+        std::vector<VkImageMemoryBarrier> barriers;
+        transition(barriers, t, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        fullBarrier(cmd, barriers);
+        VkBufferImageCopy region{};
+        region.imageSubresource = {t.aspect, 0, 0, desc.layers};
+        region.imageExtent = {desc.width, desc.height, 1};
+        vkCmdCopyBufferToImage(cmd, staging.buffer, t.image, t.layout, 1, &region);
+        fullBarrier(cmd);
+      });
+    });
+  }
+
+  Window* window() override { return platform_->window.get(); }
+
+  bool present(DriverObject& t, const TextureDesc&, PresentedImage* capture) override {
+    return swapchain_->present(static_cast<TextureRes&>(t), capture);
+  }
+
  private:
   void createCommandObjects() {
     frameCmd_ = resources_.allocateCommandBuffer();
@@ -553,7 +584,8 @@ class VulkanDriver final : public Driver {
 
   // ---- state ----
   std::unique_ptr<VulkanPlatform> platform_;
-  VulkanResources resources_;  // after platform_: destroyed before it
+  VulkanResources resources_;                   // after platform_: destroyed before it
+  std::unique_ptr<VulkanSwapchain> swapchain_;  // window platform; destroyed before resources_
   // Copied from the platform, which outlives every use.
   VkDevice device_ = VK_NULL_HANDLE;
   VkPhysicalDeviceLimits limits_{};
@@ -582,6 +614,11 @@ class VulkanDriver final : public Driver {
 }  // namespace
 
 std::unique_ptr<Driver> createVulkanDriver(const DeviceOptions& opts) {
+  if (opts.platform == "window") {
+    const VulkanWindowRequest window{opts.windowWidth, opts.windowHeight, opts.windowTitle};
+    return std::make_unique<VulkanDriver>(
+        std::make_unique<VulkanPlatform>(opts.validation, &window));
+  }
   return std::make_unique<VulkanDriver>(std::make_unique<VulkanPlatform>(opts.validation));
 }
 

@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "backends/vulkan/vk_util.h"
+#include "backends/vulkan/vk_window.h"
+#include "backends/window/glfw_window.h"
 
 namespace sb {
 
@@ -34,13 +36,29 @@ std::string versionString(uint32_t v) {
          "." + std::to_string(VK_API_VERSION_PATCH(v));
 }
 
+bool hasDeviceExtension(VkPhysicalDevice pd, const char* name) {
+  uint32_t n = 0;
+  vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, nullptr);
+  std::vector<VkExtensionProperties> exts(n);
+  vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, exts.data());
+  return std::any_of(exts.begin(), exts.end(),
+                     [&](const auto& x) { return std::strcmp(x.extensionName, name) == 0; });
+}
+
 }  // namespace
 
 std::size_t validationMessageCount() { return g_validationMessages.load(); }
 
-VulkanPlatform::VulkanPlatform(bool validation) {
+VulkanPlatform::VulkanPlatform(bool validation, const VulkanWindowRequest* request) {
   try {
-    createInstance(validation || envFlag("SB_VALIDATION"));
+    std::vector<const char*> windowExtensions;
+    if (request) {
+      window = std::make_unique<GlfwWindow>(GlfwWindow::Api::None, request->width, request->height,
+                                            request->title);
+      windowExtensions = windowInstanceExtensions();
+    }
+    createInstance(validation || envFlag("SB_VALIDATION"), windowExtensions);
+    if (window) surface = createWindowSurface(instance, *window);
     pickPhysicalDevice();
     createLogicalDevice();
   } catch (...) {
@@ -51,7 +69,8 @@ VulkanPlatform::VulkanPlatform(bool validation) {
 
 VulkanPlatform::~VulkanPlatform() { destroy(); }
 
-void VulkanPlatform::createInstance(bool validation) {
+void VulkanPlatform::createInstance(bool validation,
+                                    const std::vector<const char*>& windowExtensions) {
   uint32_t loaderVersion = VK_API_VERSION_1_0;
   if (vkEnumerateInstanceVersion(&loaderVersion) != VK_SUCCESS ||
       loaderVersion < VK_API_VERSION_1_3) {
@@ -59,7 +78,7 @@ void VulkanPlatform::createInstance(bool validation) {
                       versionString(loaderVersion) + "; 1.3 is required");
   }
   std::vector<const char*> layers;
-  std::vector<const char*> extensions;
+  std::vector<const char*> extensions = windowExtensions;
   bool debugUtils = false;
   if (validation) {
     uint32_t n = 0;
@@ -160,8 +179,13 @@ void VulkanPlatform::pickPhysicalDevice() {
     std::vector<VkQueueFamilyProperties> qs(qn);
     vkGetPhysicalDeviceQueueFamilyProperties(pd, &qn, qs.data());
     const VkQueueFlags want = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
+    if (surface != VK_NULL_HANDLE && !hasDeviceExtension(pd, VK_KHR_SWAPCHAIN_EXTENSION_NAME))
+      continue;
     for (uint32_t i = 0; i < qn; ++i) {
-      if ((qs[i].queueFlags & want) == want) {
+      VkBool32 presents = VK_TRUE;
+      if (surface != VK_NULL_HANDLE)
+        vkGetPhysicalDeviceSurfaceSupportKHR(pd, i, surface, &presents);
+      if ((qs[i].queueFlags & want) == want && presents) {
         usable.push_back({pd, props, i});
         break;
       }
@@ -199,9 +223,10 @@ void VulkanPlatform::pickPhysicalDevice() {
     }
     if (pick == nullptr) {
       throw DeviceError(
-          "no Vulkan device found with Vulkan 1.3, dynamic rendering and a graphics+compute "
-          "queue (devices: " +
-          seen + ")");
+          std::string("no Vulkan device found with Vulkan 1.3, dynamic rendering and a "
+                      "graphics+compute queue") +
+          (surface != VK_NULL_HANDLE ? " that presents to the window" : "") + " (devices: " + seen +
+          ")");
     }
   }
   physical = pick->pd;
@@ -227,7 +252,7 @@ void VulkanPlatform::pickPhysicalDevice() {
   vkGetPhysicalDeviceProperties2(physical, &p2);
   info.backend = "vulkan";
   info.timing = cpuTiming ? "cpu clock per pass (submit and wait)" : "gpu timestamps";
-  info.platform = "headless";
+  info.platform = surface != VK_NULL_HANDLE ? "window" : "headless";
   info.maxColorAttachments = pick->props.limits.maxColorAttachments;
   info.device = pick->props.deviceName;
   if (drv.driverName[0] != '\0') {
@@ -289,6 +314,7 @@ void VulkanPlatform::createLogicalDevice() {
 
   std::vector<const char*> enabled;
   if (bresenham) enabled.push_back(VK_EXT_LINE_RASTERIZATION_EXTENSION_NAME);
+  if (surface != VK_NULL_HANDLE) enabled.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
   if (!bresenham) f13.pNext = nullptr;
 
   const float priority = 1.0f;
@@ -315,6 +341,10 @@ void VulkanPlatform::destroy() {
         vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
     if (destroyFn != nullptr) destroyFn(instance, messenger, nullptr);
     messenger = VK_NULL_HANDLE;
+  }
+  if (surface != VK_NULL_HANDLE) {
+    vkDestroySurfaceKHR(instance, surface, nullptr);
+    surface = VK_NULL_HANDLE;
   }
   if (instance != VK_NULL_HANDLE) {
     vkDestroyInstance(instance, nullptr);

@@ -5,21 +5,37 @@
 
 #include <vulkan/vulkan.h>
 
+#include <memory>
+#include <string>
+
 #include "backends/device.h"
 
 namespace sb {
+
+class GlfwWindow;
+
+// The window platform's window (`--platform window`): its first size and title.
+struct VulkanWindowRequest {
+  uint32_t width = 512, height = 512;
+  std::string title = "strandbench";
+};
 
 class VulkanPlatform {
  public:
   // Throws DeviceError ("no Vulkan device found ...") when no usable device exists.
   // Device choice: env SB_VULKAN_DEVICE (substring of deviceName), else discrete,
   // integrated, then CPU. Validation: `validation` or env SB_VALIDATION=1.
-  explicit VulkanPlatform(bool validation);
+  // With a window request: a GLFW window and its surface, the instance
+  // extensions GLFW needs, a queue family that can present to the surface and
+  // VK_KHR_swapchain (DeviceError "no display: ..." without a display).
+  explicit VulkanPlatform(bool validation, const VulkanWindowRequest* window = nullptr);
   ~VulkanPlatform();
   VulkanPlatform(const VulkanPlatform&) = delete;
   VulkanPlatform& operator=(const VulkanPlatform&) = delete;
 
+  std::unique_ptr<GlfwWindow> window;  // destroyed after the surface and instance
   VkInstance instance = VK_NULL_HANDLE;
+  VkSurfaceKHR surface = VK_NULL_HANDLE;  // window platform
   VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
   VkPhysicalDevice physical = VK_NULL_HANDLE;
   VkDevice device = VK_NULL_HANDLE;
@@ -37,7 +53,7 @@ class VulkanPlatform {
   DeviceInfo info;            // backend, platform, device, driver, timing, lines
 
  private:
-  void createInstance(bool validation);
+  void createInstance(bool validation, const std::vector<const char*>& windowExtensions);
   void pickPhysicalDevice();
   void createLogicalDevice();
   void destroy();

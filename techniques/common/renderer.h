@@ -40,6 +40,8 @@ class Renderer {
   std::set<uint32_t> graphResources(const std::set<std::string>& outputs) const;
   // RGBA32F, rows bottom-up (row 0 = NDC y=-1).
   std::vector<uint8_t> readColor();
+  // The texture readColor reads (to show it in a window: Device::present).
+  Texture colorTexture() const { return color_; }
   // R32F, rows bottom-up; -1 where no surface.
   std::vector<uint8_t> readVisibility();
   // The shadow technique's visibility at settings.probePoints ("probe" output).
