@@ -29,6 +29,7 @@ enum class SettingType {
   Flag,   // a CLI flag; a JSON bool
   Size,   // "WxH"; in JSON also a number N for NxN
   Probe,  // "X,Y[,MAP_SIZE[,SAMPLES]]"; in JSON also {"texel": [x, y], "map_size", "samples"}
+  Animation,  // "KIND[:frames=N,degrees=D]"; in JSON also {"kind", "frames", "degrees"}
 };
 
 struct Setting {
