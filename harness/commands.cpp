@@ -151,9 +151,8 @@ void registerRender(CLI::App& app) {
     runGuarded("render", [&] {
       settings->apply(*req);
       if (!out->empty()) checkOutputPath("--out", *out, {".png", ".exr"});
-      if (!req->image &&
-          (!out->empty() || !referenceOut->empty() || !heatmap->empty() || !flipMap->empty() ||
-           !strip->empty()))
+      if (!req->image && (!out->empty() || !referenceOut->empty() || !heatmap->empty() ||
+                          !flipMap->empty() || !strip->empty()))
         throw InputError(
             "--no-image writes no images: drop --out, --reference-out, --heatmap, --flip-map and "
             "--strip");

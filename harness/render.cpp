@@ -120,17 +120,16 @@ nlohmann::json errorJson(const RenderResult& r) {
 nlohmann::json animationJson(const AnimationResult& a) {
   nlohmann::json frames = nlohmann::json::array();
   for (const AnimationFrame& f : a.frames) {
-    nlohmann::json j = {{"frame", f.frame},
-                        {"degrees", f.degrees},
-                        {"visibility", {{"rmse", f.visibilityRmse}}}};
+    nlohmann::json j = {
+        {"frame", f.frame}, {"degrees", f.degrees}, {"visibility", {{"rmse", f.visibilityRmse}}}};
     if (f.imageRmse) j["image"] = {{"rmse", *f.imageRmse}, {"flip", *f.flipMean}};
     frames.push_back(j);
   }
   nlohmann::json flicker = {{"visibility", a.visibilityFlicker},
                             {"visibility_pixels", a.visibilityPixels}};
   if (a.imageFlicker) flicker["image"] = *a.imageFlicker;
-  return {{"kind", a.spec.kind},  {"frames", a.spec.frames}, {"degrees", a.spec.degrees},
-          {"flicker", flicker},   {"per_frame", frames},     {"strip_frames", a.stripFrames}};
+  return {{"kind", a.spec.kind}, {"frames", a.spec.frames}, {"degrees", a.spec.degrees},
+          {"flicker", flicker},  {"per_frame", frames},     {"strip_frames", a.stripFrames}};
 }
 
 nlohmann::json complexityJson(const std::optional<DepthComplexity>& c) {
@@ -264,7 +263,8 @@ std::vector<InvariantFailure> checkInvariants(const RenderRequest& req, const Re
     for (const auto& [kind, e] : errors.items())
       for (const auto& [metric, v] : e.items())
         // PSNR is infinite (null) exactly when the images are identical.
-        if (kind != "total" && kind != "own" && kind != "by_eye_layers" &&  // copies and objects, checked apart
+        if (kind != "total" && kind != "own" &&
+            kind != "by_eye_layers" &&  // copies and objects, checked apart
             ((v.is_null() && !(metric == "psnr" && e.value("identical", false))) ||
              (v.is_number_float() && !std::isfinite(v.get<double>()))))
           failures.push_back({"reference", "error " + kind + "." + metric + " is not a number"});
@@ -320,8 +320,8 @@ RenderSettings animatedSettings(const RenderSettings& base, const RenderRequest&
                                 const Bounds& b, int frame, double& degrees) {
   const AnimateSpec& a = *req.animate;
   degrees = a.degrees * frame / double(a.frames - 1);
-  const glm::mat4 turn4 = glm::rotate(glm::mat4(1.0f), glm::radians(float(degrees)),
-                                      glm::normalize(base.camera.up));
+  const glm::mat4 turn4 =
+      glm::rotate(glm::mat4(1.0f), glm::radians(float(degrees)), glm::normalize(base.camera.up));
   const glm::mat3 turn(turn4);
   RenderSettings s = base;
   if (a.kind == "light-orbit") {
@@ -356,8 +356,8 @@ std::vector<float> visibilityFloats(const std::vector<uint8_t>& bytes) {
 
 // The same over the pixels where all four visibility images see a surface (>= 0).
 void addVisibilityFlicker(const std::vector<float>& t0, const std::vector<float>& t1,
-                          const std::vector<float>& r0, const std::vector<float>& r1,
-                          double& sum, std::size_t& count) {
+                          const std::vector<float>& r0, const std::vector<float>& r1, double& sum,
+                          std::size_t& count) {
   for (std::size_t i = 0; i < t0.size(); ++i) {
     if (t0[i] < 0 || t1[i] < 0 || r0[i] < 0 || r1[i] < 0) continue;
     sum += std::fabs(double(t1[i] - t0[i]) - double(r1[i] - r0[i]));
@@ -413,8 +413,7 @@ AnimationResult runAnimation(const RenderRequest& req, Device& dev, const Scene&
     AnimationFrame f;
     f.frame = t;
     const RenderSettings st = animatedSettings(settings, req, scene.bounds(), t, f.degrees);
-    Renderer r(dev, scene, st, makeShadowTechnique(shadowSpec), makeOitTechnique(oitSpec),
-               outputs);
+    Renderer r(dev, scene, st, makeShadowTechnique(shadowSpec), makeOitTechnique(oitSpec), outputs);
     r.renderFrame();
     Image img;
     if (req.image) img = colorImage(r, st);
@@ -646,8 +645,8 @@ RenderResult runRender(const RenderRequest& req, RenderCache* cache) {
       if (ref->eye) out.errorByEyeLayers = errorByLayers(out, *ref->eye, ref->visibility);
       out.own = ownError(req, *dev, scene, settings, shadowSpec, oitSpec, refShadow, out, cache);
       if (req.animate)
-        out.animation = runAnimation(req, *dev, scene, settings, shadowSpec, oitSpec, refShadow,
-                                     out, *ref);
+        out.animation =
+            runAnimation(req, *dev, scene, settings, shadowSpec, oitSpec, refShadow, out, *ref);
     }
     if (req.probe)
       out.probe = ProbeResult{req.probe->texel, req.probe->mapSize, probeDepths, ref->probe,

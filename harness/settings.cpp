@@ -365,8 +365,7 @@ void checkValue(const Setting& s, const ojson& v) {
       if (frames < 2 || frames > kMaxFrames)
         throw Problem{"frames must be in 2.." + std::to_string(kMaxFrames)};
       const double degrees = v["degrees"].get<double>();
-      if (!(std::fabs(degrees) <= kMaxDegrees))
-        throw Problem{"degrees must be in [-360, 360]"};
+      if (!(std::fabs(degrees) <= kMaxDegrees)) throw Problem{"degrees must be in [-360, 360]"};
       return;
     }
     case SettingType::Spec:
@@ -629,9 +628,15 @@ struct TypeNames {
   const char* cli;
 };
 constexpr TypeNames kTypeNames[] = {
-    {"spec", "SPEC"}, {"string", "NAME"},  {"enum", "NAME"},
-    {"int", "INT"},   {"float", "NUMBER"}, {"vec3", "X,Y,Z"},
-    {"flag", "NAME"}, {"size", "WxH"},     {"probe", "X,Y[,MAP[,SAMPLES]]"},
+    {"spec", "SPEC"},
+    {"string", "NAME"},
+    {"enum", "NAME"},
+    {"int", "INT"},
+    {"float", "NUMBER"},
+    {"vec3", "X,Y,Z"},
+    {"flag", "NAME"},
+    {"size", "WxH"},
+    {"probe", "X,Y[,MAP[,SAMPLES]]"},
     {"animation", "KIND[:frames=N,degrees=D]"},
 };
 static_assert(std::size(kTypeNames) == static_cast<std::size_t>(SettingType::Animation) + 1);

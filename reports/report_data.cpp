@@ -485,9 +485,9 @@ ReportData buildReport(const json& doc) {
     if (!b.table.rows.empty()) d.budgets.push_back(std::move(b));
   }
 
-  d.animationTable.header = {"Case",         "Technique",          "Animation",
-                             "Frames",       "Flicker image",      "Flicker visibility",
-                             "FLIP per frame", "Visibility RMSE per frame"};
+  d.animationTable.header = {
+      "Case",          "Technique",          "Animation",      "Frames",
+      "Flicker image", "Flicker visibility", "FLIP per frame", "Visibility RMSE per frame"};
   for (const json* r : d.results) {
     const json* a = find(*r, {"animation"});
     if (!a || !a->is_object()) continue;

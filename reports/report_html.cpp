@@ -116,11 +116,17 @@ struct ErrorMetric {
 };
 const ErrorMetric kErrorMetrics[] = {
     {"image-rmse", "image RMSE",
-     [](const json& r) { return number(find(r, {"error", "image", "rmse"})); }},
+     [](const json& r) {
+       return number(find(r, {"error", "image", "rmse"}));
+     }},
     {"visibility-rmse", "visibility RMSE",
-     [](const json& r) { return number(find(r, {"error", "visibility", "rmse"})); }},
+     [](const json& r) {
+       return number(find(r, {"error", "visibility", "rmse"}));
+     }},
     {"flip", "FLIP mean",
-     [](const json& r) { return number(find(r, {"error", "image", "flip", "mean"})); }},
+     [](const json& r) {
+       return number(find(r, {"error", "image", "flip", "mean"}));
+     }},
 };
 
 // (a) Error against frame time per scene, size and backend, with the Pareto
@@ -176,8 +182,8 @@ std::string errorTimeCharts(const ReportData& d) {
       c.series.push_back(std::move(front));
       const std::string id = "errc" + std::to_string(chooser) + "-" + metric.id;
       radios << "<input type=\"radio\" name=\"errc" << chooser << "\" id=\"" << id << "\""
-             << (shown == 0 ? " checked" : "") << " class=\"pick-" << m << "\"><label for=\""
-             << id << "\">" << h(metric.label) << "</label>\n";
+             << (shown == 0 ? " checked" : "") << " class=\"pick-" << m << "\"><label for=\"" << id
+             << "\">" << h(metric.label) << "</label>\n";
       charts << "<figure class=\"choice choice-" << m << " metric-" << metric.id << "\">"
              << svgChart(c) << "</figure>\n";
       ++shown;
@@ -198,8 +204,8 @@ std::string depthComplexityCharts(const ReportData& d) {
   for (const json* r : d.results) {
     const json* buckets = find(*r, {"error", "by_eye_layers"});
     if (!buckets || !buckets->is_array()) continue;
-    const std::string key = text(find(*r, {"scene", "spec"})) + " | " + sizeOf(*r) + " | " +
-                            shortTechniqueOf(*r);
+    const std::string key =
+        text(find(*r, {"scene", "spec"})) + " | " + sizeOf(*r) + " | " + shortTechniqueOf(*r);
     if (!byKey.count(key)) keys.push_back(key);
     byKey[key].push_back(r);
   }
@@ -355,8 +361,8 @@ std::string animationSection(const ReportData& d, const fs::path& dir) {
           const auto x = number(find(f, {"frame"}));
           const auto y = number(find(f, {path[0], path[1]}));
           if (x && y)
-            s.points.push_back({*x, *y, "frame " + shortest(*x) + ": " + label + " " +
-                                            formatSig(*y)});
+            s.points.push_back(
+                {*x, *y, "frame " + shortest(*x) + ": " + label + " " + formatSig(*y)});
         }
       if (!s.points.empty()) c.series.push_back(std::move(s));
     }
@@ -366,9 +372,11 @@ std::string animationSection(const ReportData& d, const fs::path& dir) {
       << h(shown(number(find(r, {"animation", "flicker", "visibility"}))))
       << "</figcaption></figure>\n";
     if (const json* strip = find(r, {"images", "animation"}); strip && strip->is_string())
-      o << "<figure class=\"strip\">" << embeddedImage(dir, strip->get<std::string>(), "animation strip")
-        << "<figcaption>" << h(a.caseId)
-        << ": frames side by side, the technique above, the reference below</figcaption></figure>\n";
+      o << "<figure class=\"strip\">"
+        << embeddedImage(dir, strip->get<std::string>(), "animation strip") << "<figcaption>"
+        << h(a.caseId)
+        << ": frames side by side, the technique above, the reference "
+           "below</figcaption></figure>\n";
   }
   return o.str();
 }

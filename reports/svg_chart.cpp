@@ -209,9 +209,9 @@ std::string svgChart(const Chart& chart) {
       if (!hasBar(*p)) continue;
       const std::string y = fmt(py(p->y)), lo = fmt(px(p->xLo)), hi = fmt(px(p->xHi));
       const std::string top = fmt(py(p->y) - 4), bottom = fmt(py(p->y) + 4);
-      o << "<path class=\"error-bar\" stroke=\"" << color << "\" fill=\"none\" d=\"M" << lo
-        << "," << y << "H" << hi << "M" << lo << "," << top << "V" << bottom << "M" << hi << ","
-        << top << "V" << bottom << "\"/>\n";
+      o << "<path class=\"error-bar\" stroke=\"" << color << "\" fill=\"none\" d=\"M" << lo << ","
+        << y << "H" << hi << "M" << lo << "," << top << "V" << bottom << "M" << hi << "," << top
+        << "V" << bottom << "\"/>\n";
     }
     if (s.markers) {
       o << "<g fill=\"" << color << "\">";

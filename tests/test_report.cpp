@@ -131,8 +131,12 @@ json makeDocument(const fs::path& dir) {
       {"degrees", 30},
       {"flicker", {{"image", 0.004}, {"visibility", 0.02}, {"visibility_pixels", 300}}},
       {"per_frame",
-       {{{"frame", 0}, {"image", {{"rmse", 0.01}, {"flip", 0.02}}}, {"visibility", {{"rmse", 0.05}}}},
-        {{"frame", 1}, {"image", {{"rmse", 0.02}, {"flip", 0.03}}}, {"visibility", {{"rmse", 0.06}}}},
+       {{{"frame", 0},
+         {"image", {{"rmse", 0.01}, {"flip", 0.02}}},
+         {"visibility", {{"rmse", 0.05}}}},
+        {{"frame", 1},
+         {"image", {{"rmse", 0.02}, {"flip", 0.03}}},
+         {"visibility", {{"rmse", 0.06}}}},
         {{"frame", 2},
          {"image", {{"rmse", 0.015}, {"flip", 0.025}}},
          {"visibility", {{"rmse", 0.04}}}}}},
@@ -309,15 +313,15 @@ TEST_F(ReportWriter, MarkdownHasTablesRatiosAndWarnings) {
   EXPECT_NE(lineStarting(budgets, "| ≤ 3.00 | dom:layers=3 | 0.00667 | dom:layers=3 | 0.0167 |"),
             "")
       << budgets;
-  EXPECT_NE(lineStarting(budgets, "| ≤ 4.00 | osm:maps=16 | 0.00500 | osm:maps=16 | 0.0125 |"),
-            "")
+  EXPECT_NE(lineStarting(budgets, "| ≤ 4.00 | osm:maps=16 | 0.00500 | osm:maps=16 | 0.0125 |"), "")
       << budgets;
   EXPECT_NE(lineStarting(budgets, "| ≤ 2.00 | osm:maps=1 | 0.0100 | osm:maps=1 | 0.0250 |"), "")
       << budgets;
   EXPECT_EQ(budgets.find("| none |"), std::string::npos) << budgets;
   EXPECT_NE(md.find("## Error under animation"), std::string::npos);
-  EXPECT_NE(lineStarting(md, "| shadows/shadow=osm:maps=16,backend=vulkan | osm:maps=16 | "
-                             "light-orbit | 3 | 0.00400 | 0.0200 |"),
+  EXPECT_NE(lineStarting(md,
+                         "| shadows/shadow=osm:maps=16,backend=vulkan | osm:maps=16 | "
+                         "light-orbit | 3 | 0.00400 | 0.0200 |"),
             "")
       << md;
 }
@@ -410,10 +414,10 @@ TEST(ReportBrowser, LoadsOfflineWithoutConsoleErrors) {
   // with its technique and a bar for its spread over repetitions, error
   // against depth complexity per technique, the budget table, the animation.
   for (const char* needle :
-       {"metric-image-rmse", "metric-visibility-rmse", "metric-flip",
-        "<text class=\"point-label\"", ">osm:maps=16</text>", "class=\"error-bar\"",
-        "class=\"chart-depth-complexity\"", "Most accurate by FLIP", "Most accurate by image RMSE",
-        "class=\"chart-animation\"", "alt=\"animation strip\"", "Image RMSE (own)"})
+       {"metric-image-rmse", "metric-visibility-rmse", "metric-flip", "<text class=\"point-label\"",
+        ">osm:maps=16</text>", "class=\"error-bar\"", "class=\"chart-depth-complexity\"",
+        "Most accurate by FLIP", "Most accurate by image RMSE", "class=\"chart-animation\"",
+        "alt=\"animation strip\"", "Image RMSE (own)"})
     EXPECT_NE(page.dom.find(needle), std::string::npos) << needle;
   const sbtest::ScreenshotVerdict shot = sbtest::inspectScreenshot(page.screenshot);
   EXPECT_FALSE(shot.blank) << shot.distinct << " colours, " << shot.inked << " inked";

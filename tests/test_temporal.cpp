@@ -137,9 +137,12 @@ std::vector<std::map<std::string, std::string>> csvRows(const std::string& text)
   for (std::size_t i = 0; i < text.size(); ++i) {
     const char c = text[i];
     if (quoted) {
-      if (c == '"' && i + 1 < text.size() && text[i + 1] == '"') row.back() += '"', ++i;
-      else if (c == '"') quoted = false;
-      else row.back() += c;
+      if (c == '"' && i + 1 < text.size() && text[i + 1] == '"')
+        row.back() += '"', ++i;
+      else if (c == '"')
+        quoted = false;
+      else
+        row.back() += c;
     } else if (c == '"') {
       quoted = true;
     } else if (c == ',') {
@@ -180,7 +183,8 @@ TEST(OwnError, ZeroForTheExactTechniquesAndReportedForTheOthers) {
 
   // Peeling and the A-buffer are exact transparency: their own error is 0
   // though their total error (DOM's shadows) is not.
-  for (const char* id : {"transparency/oit=peel,backend=gl", "transparency/oit=abuffer,backend=gl"}) {
+  for (const char* id :
+       {"transparency/oit=peel,backend=gl", "transparency/oit=abuffer,backend=gl"}) {
     EXPECT_EQ(own(id)["technique"], "transparency") << id;
     EXPECT_EQ(own(id)["reference"]["shadow"], "dom:layers=3") << id;
     EXPECT_EQ(own(id)["image"]["rmse"], 0.0) << id;
@@ -217,13 +221,14 @@ TEST(OwnError, ZeroForTheExactTechniquesAndReportedForTheOthers) {
     EXPECT_EQ(row.at("own_technique"), r["error"]["own"]["technique"]);
     EXPECT_DOUBLE_EQ(std::stod(row.at("own_image_rmse")),
                      r["error"]["own"]["image"]["rmse"].get<double>());
-    EXPECT_DOUBLE_EQ(std::stod(row.at("image_rmse")), r["error"]["total"]["image"]["rmse"].get<double>());
+    EXPECT_DOUBLE_EQ(std::stod(row.at("image_rmse")),
+                     r["error"]["total"]["image"]["rmse"].get<double>());
   }
   EXPECT_EQ(rows.back().at("animation"), "light-orbit");
   const std::string md = sbtest::readFile(dir / "run" / "report.md");
-  for (const char* label : {"Image RMSE (total)", "Image RMSE (own)", "FLIP mean (own)",
-                            "Own error of", "## Which technique within which budget",
-                            "## Error under animation", "Flicker visibility"})
+  for (const char* label :
+       {"Image RMSE (total)", "Image RMSE (own)", "FLIP mean (own)", "Own error of",
+        "## Which technique within which budget", "## Error under animation", "Flicker visibility"})
     EXPECT_NE(md.find(label), std::string::npos) << label;
 
   // The real report in headless Chromium: the new charts present and labelled.
