@@ -94,8 +94,8 @@ TEST_P(Temporal, FlickerIsZeroExactlyForTheReference) {
 
 // Deep opacity maps paper: OSM's layering bands crawl as the light moves.
 TEST_P(Temporal, OpacityShadowMapsFlickerMoreThanDeepOpacityMapsOnStraightHair) {
-  const std::string animate = "light-orbit:frames=8,degrees=30";
-  RenderRequest osm = request("straight:strands=2000,points=16", "osm:maps=16,size=256", animate);
+  const std::string orbit = "light-orbit:frames=8,degrees=30";
+  RenderRequest osm = request("straight:strands=2000,points=16", "osm:maps=16,size=256", orbit);
   osm.view.lightDirection = glm::vec3(-1.0f, 0.0f, 0.0f);  // from the side
   RenderRequest dom = osm;
   dom.shadow = "dom:layers=3,size=256";
@@ -104,8 +104,8 @@ TEST_P(Temporal, OpacityShadowMapsFlickerMoreThanDeepOpacityMapsOnStraightHair) 
 
 // Occupancy paper, Fig. 5a: a stray strand makes DOM's layers jump.
 TEST_P(Temporal, DeepOpacityMapsFlickerMoreThanOccupancyMapsOnAStrayStrand) {
-  const std::string animate = "light-orbit:frames=8,degrees=30";
-  const RenderRequest dom = request("stray:strands=3000", "dom:layers=3,size=256", animate);
+  const std::string orbit = "light-orbit:frames=8,degrees=30";
+  const RenderRequest dom = request("stray:strands=3000", "dom:layers=3,size=256", orbit);
   RenderRequest occupancy = dom;
   occupancy.shadow = "occupancy:size=256";
   EXPECT_GT(animate(dom).visibilityFlicker, animate(occupancy).visibilityFlicker);
