@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "browser_util.h"
+#include "harness/image.h"
 #include "harness/render.h"
 #include "harness/settings.h"
 #include "test_util.h"
@@ -113,6 +114,35 @@ TEST_P(Temporal, DeepOpacityMapsFlickerMoreThanOccupancyMapsOnAStrayStrand) {
 
 INSTANTIATE_TEST_SUITE_P(Backends, Temporal, ::testing::Values("gl", "vulkan"),
                          [](const auto& param) { return param.param; });
+
+// Bad animation input: exit status 2, a message naming the option, nothing written.
+TEST(AnimateInput, RefusedWithClearMessages) {
+  const fs::path dir = sbtest::tempDir("animate-bad");
+  const std::string base = "render --scene straight:strands=20,points=4 --size 16x16 --strip " +
+                           (dir / "s.png").string() + " ";
+  for (const auto& [args, needles] : std::vector<std::pair<std::string, std::vector<std::string>>>{
+           {"--animate light-orbit", {"--animate", "needs --reference"}},
+           {"--reference", {"--strip needs --animate"}},
+           {"--reference --animate light-orbitt", {"--animate", "did you mean 'light-orbit'"}},
+           {"--reference --animate light-orbit:frames=1",
+            {"--animate", "frames must be in 2..1000"}},
+           {"--reference --animate camera-orbit:degrees=400", {"--animate", "[-360, 360]"}},
+           {"--reference --animate light-orbit:speed=2",
+            {"--animate", "unknown option 'speed'"}}}) {
+    const sbtest::CliResult r = sbtest::runCli(base + args);
+    EXPECT_EQ(r.status, 2) << args << ": " << r.err;
+    for (const std::string& n : needles) EXPECT_NE(r.err.find(n), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "s.png")) << args;
+  }
+  // And a good one writes the strip: two frames side by side over the reference's.
+  const sbtest::CliResult ok =
+      sbtest::runCli(base + "--reference --animate camera-orbit:frames=2,degrees=10");
+  ASSERT_EQ(ok.status, 0) << ok.err;
+  const Image strip = readImage((dir / "s.png").string());
+  EXPECT_EQ(strip.width, 2 * 16 + 2);
+  EXPECT_EQ(strip.height, 2 * 16 + 2);
+  fs::remove_all(dir);
+}
 
 // One small suite: transparency techniques over DOM shadows, shadow techniques
 // over opaque hair, one animated case. Its results, CSV, Markdown and HTML.
