@@ -378,7 +378,7 @@ std::vector<int> stripFrames(int frames) {
 
 // Frames 1 .. N-1 of an animation, each by the technique and by the reference;
 // frame 0 is the still render already in `out` and `ref`.
-AnimationResult runAnimation(const RenderRequest& req, Device& dev, const Scene& scene,
+AnimationResult runAnimation(const RenderRequest& req, const Scene& scene,
                              const RenderSettings& settings, const Spec& shadowSpec,
                              const Spec& oitSpec, const Spec& refShadow, const RenderResult& out,
                              const RenderCache::Reference& ref) {
@@ -413,12 +413,17 @@ AnimationResult runAnimation(const RenderRequest& req, Device& dev, const Scene&
     AnimationFrame f;
     f.frame = t;
     const RenderSettings st = animatedSettings(settings, req, scene.bounds(), t, f.degrees);
-    Renderer r(dev, scene, st, makeShadowTechnique(shadowSpec), makeOitTechnique(oitSpec), outputs);
+    // A device per frame: a device frees its resources only when it goes, so
+    // the frames' memory stays that of one frame (declared before the renderer,
+    // which it outlives).
+    const std::unique_ptr<Device> dev = makeRequestDevice(req);
+    Renderer r(*dev, scene, st, makeShadowTechnique(shadowSpec), makeOitTechnique(oitSpec),
+               outputs);
     r.renderFrame();
     Image img;
     if (req.image) img = colorImage(r, st);
     const std::vector<float> vis = visibilityFloats(r.readVisibility());
-    const RenderCache::Reference fr = renderReference(dev, scene, st, refShadow, refReq);
+    const RenderCache::Reference fr = renderReference(*dev, scene, st, refShadow, refReq);
     const std::vector<float> refVis = visibilityFloats(fr.visibility);
     f.visibilityRmse = compareVisibility(vis, refVis).rmse;
     addVisibilityFlicker(prevVT, vis, prevVR, refVis, visSum, visCount);
@@ -646,7 +651,7 @@ RenderResult runRender(const RenderRequest& req, RenderCache* cache) {
       out.own = ownError(req, *dev, scene, settings, shadowSpec, oitSpec, refShadow, out, cache);
       if (req.animate)
         out.animation =
-            runAnimation(req, *dev, scene, settings, shadowSpec, oitSpec, refShadow, out, *ref);
+            runAnimation(req, scene, settings, shadowSpec, oitSpec, refShadow, out, *ref);
     }
     if (req.probe)
       out.probe = ProbeResult{req.probe->texel, req.probe->mapSize, probeDepths, ref->probe,
