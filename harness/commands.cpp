@@ -138,7 +138,11 @@ void registerRender(CLI::App& app) {
   auto referenceOut = std::make_shared<std::string>();
   auto heatmap = std::make_shared<std::string>();
   auto flipMap = std::make_shared<std::string>();
+  auto strip = std::make_shared<std::string>();
   cmd->add_option("--reference-out", *referenceOut, "with --reference: write the reference image");
+  cmd->add_option("--strip", *strip,
+                  "with --animate: write up to four frames side by side, the technique's above "
+                  "the reference's");
   cmd->add_option("--heatmap", *heatmap,
                   "with --reference: write a heatmap of |image - reference| (full scale 0.25)");
   cmd->add_option("--flip-map", *flipMap,
@@ -149,10 +153,15 @@ void registerRender(CLI::App& app) {
     runGuarded("render", [&] {
       settings->apply(*req);
       if (!out->empty()) checkOutputPath("--out", *out, {".png", ".exr"});
-      if (!req->image &&
-          (!out->empty() || !referenceOut->empty() || !heatmap->empty() || !flipMap->empty()))
+      if (!req->image && (!out->empty() || !referenceOut->empty() || !heatmap->empty() ||
+                          !flipMap->empty() || !strip->empty()))
         throw InputError(
-            "--no-image writes no images: drop --out, --reference-out, --heatmap and --flip-map");
+            "--no-image writes no images: drop --out, --reference-out, --heatmap, --flip-map and "
+            "--strip");
+      if (!strip->empty()) {
+        if (!req->animate) throw InputError("--strip needs --animate");
+        checkOutputPath("--strip", *strip, {".png", ".exr"});
+      }
       for (const auto& [option, extra] :
            {std::pair{"--reference-out", referenceOut.get()}, std::pair{"--heatmap", heatmap.get()},
             std::pair{"--flip-map", flipMap.get()}}) {
@@ -178,6 +187,7 @@ void registerRender(CLI::App& app) {
         write(*referenceOut, [&]() -> const Image& { return result.referenceImage; });
         write(*heatmap, [&] { return diffHeatmap(result.image, result.referenceImage, 0.25); });
         write(*flipMap, [&] { return flipErrorImage(*result.flip); });
+        write(*strip, [&] { return animationStrip(*result.animation); });
         throwIfStopped();
       } catch (...) {
         std::error_code ec;
@@ -203,6 +213,9 @@ void registerRender(CLI::App& app) {
         std::cout << "  error against " << result.reference->first << " + "
                   << result.reference->second << ": image " << report["error"]["image"].dump()
                   << ", visibility " << report["error"]["visibility"].dump() << "\n";
+      if (report.contains("animation"))
+        std::cout << "  animation " << settingText(*req, *findSetting("animate")) << ": flicker "
+                  << report["animation"]["flicker"].dump() << "\n";
       if (report.contains("depth_complexity"))
         std::cout << "  depth complexity: " << report["depth_complexity"].dump() << "\n";
       for (const auto& warning : result.warnings) std::cout << "  warning: " << warning << "\n";

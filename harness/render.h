@@ -43,6 +43,17 @@ struct ProbeSpec {
   bool operator==(const ProbeSpec&) const = default;
 };
 
+// A light or camera moving over `frames` frames (render --animate): frame t is
+// turned by degrees * t / (frames - 1) about the camera's up axis, the light
+// about the scene's centre, the camera about its target. Frame 0 is the still
+// render.
+struct AnimateSpec {
+  std::string kind = "light-orbit";  // light-orbit | camera-orbit
+  int frames = 8;
+  double degrees = 30;
+  bool operator==(const AnimateSpec&) const = default;
+};
+
 struct RenderRequest {
   std::string scene = "straight";
   std::string shadow = "none";
@@ -63,6 +74,8 @@ struct RenderRequest {
   // would take more bytes than this, before they are made; 0: no limit.
   long long memoryLimit = 0;
   ViewOverrides view;
+  // Every frame rendered by the technique and by the reference (needs reference).
+  std::optional<AnimateSpec> animate;
   bool operator==(const RenderRequest&) const = default;
 };
 
@@ -84,6 +97,50 @@ struct ProbeResult {
   glm::uvec2 texel{0, 0};
   uint32_t mapSize = 0;
   std::vector<float> lightDepth, exact, visibility;
+};
+
+// One animation frame's error against that frame's reference.
+struct AnimationFrame {
+  int frame = 0;
+  double degrees = 0;
+  std::optional<double> imageRmse, flipMean;  // with an image
+  double visibilityRmse = 0;
+};
+
+// The error of an animation (render --animate). Flicker: the mean over frames
+// t >= 1 and pixels of |(T_t - T_{t-1}) - (R_t - R_{t-1})|, the technique's
+// frame-to-frame change that the reference does not have (image: RGB channels;
+// visibility: pixels where all four frames see a surface).
+struct AnimationResult {
+  AnimateSpec spec;
+  std::vector<AnimationFrame> frames;
+  std::optional<double> imageFlicker;  // with an image
+  double visibilityFlicker = 0;
+  std::size_t visibilityPixels = 0;  // pixel pairs the visibility flicker averages
+  // A few frames for a strip in reports: their indices, the technique's and the
+  // reference's images (with an image).
+  std::vector<int> stripFrames;
+  std::vector<Image> stripImages, stripReferences;
+};
+
+// The error over the pixels whose eye depth complexity (hair fragments in the
+// reference) is in [lo, hi]: where a technique breaks.
+struct LayerBucket {
+  uint32_t lo = 0, hi = 0;
+  std::size_t pixels = 0;
+  std::optional<double> imageMeanAbs, flipMean;  // with an image; mean |T - R| over RGB
+  std::optional<double> visibilityMeanAbs;       // over the pixels with a surface in both
+};
+
+// Each technique's own error: the case's transparency technique (oit other
+// than none) against exact transparency with the same shadow technique, else
+// its shadow technique against exact shadows with the same transparency.
+struct OwnError {
+  std::string technique;  // "transparency" or "shadow"
+  std::string referenceShadow, referenceOit;
+  std::optional<ImageError> image;  // with an image
+  std::optional<double> flipMean;
+  std::optional<VisibilityError> visibility;  // shadow: the same as the total's
 };
 
 // What runRender measured; renderJson writes it as the `render --json` object
@@ -109,6 +166,9 @@ struct RenderResult {
   std::optional<ImageError> imageError;  // with a reference and an image
   std::optional<FlipResult> flip;  // LDR-FLIP of the image against the reference, 67 ppd (same)
   std::optional<VisibilityError> visibilityError;  // with a reference
+  std::optional<OwnError> own;                     // with a reference
+  std::vector<LayerBucket> errorByEyeLayers;       // with a reference: 0, 1, 2-3, 4-7, ...
+  std::optional<AnimationResult> animation;        // with animate
   std::optional<ProbeResult> probe;
   std::optional<std::vector<InvariantFailure>> invariants;  // when requested
   std::optional<DepthComplexity> eyeComplexity, lightComplexity;
@@ -135,6 +195,10 @@ struct RenderResult {
   std::size_t bytesOwnedBy(const std::string& owner) const;
 };
 
+// An animation's strip: its strip frames side by side, the technique's above
+// the reference's, 2-pixel white gaps (empty without an image).
+Image animationStrip(const AnimationResult& a);
+
 // The `render --json` object (keys in docs/suites-and-results.md).
 nlohmann::json renderJson(const RenderResult& r);
 
@@ -148,6 +212,8 @@ struct RenderCache {
     std::optional<DepthComplexity> eye, light;
     std::vector<std::string> warnings;
   };
+  // Images of own-error references (exact in one family only), by key.
+  std::map<std::string, Image> ownReferences;
   std::map<std::string, std::shared_ptr<const Scene>> scenes;
   std::map<std::string, Reference> references;
   int referenceRenders = 0;  // how many references were rendered (not taken from the cache)

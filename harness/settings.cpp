@@ -79,6 +79,10 @@ glm::vec3 jsonVec3(const ojson& j) {
 
 constexpr uint32_t kMaxSize = 16384;
 constexpr long long kMaxSamples = 1000000;
+// Animation: every frame is rendered twice (technique and reference).
+constexpr long long kMaxFrames = 1000;
+constexpr double kMaxDegrees = 360;
+const std::vector<std::string> kAnimationKinds = {"light-orbit", "camera-orbit"};
 
 // ------------------------------------------------------------------ text and JSON forms
 
@@ -128,6 +132,54 @@ ojson probeFromJson(const ojson& v) {
   return p;
 }
 
+ojson animationFromText(const std::string& t) {
+  Spec spec;
+  try {
+    spec = Spec::parse(t);
+  } catch (const InputError& e) {
+    throw Problem{e.what()};
+  }
+  const AnimateSpec d;
+  ojson a = {{"kind", spec.name}, {"frames", d.frames}, {"degrees", d.degrees}};
+  for (const auto& [k, v] : spec.options) {
+    if (k == "frames") {
+      const auto n = parseInteger(v);
+      if (!n) throw Problem{"frames '" + v + "': expected an integer"};
+      a["frames"] = *n;
+    } else if (k == "degrees") {
+      const auto degrees = parseNumber(v);
+      if (!degrees) throw Problem{"degrees '" + v + "': not a finite number"};
+      a["degrees"] = *degrees;
+    } else {
+      throw Problem{"unknown option '" + k + "'; expected frames or degrees"};
+    }
+  }
+  return a;
+}
+
+ojson animationFromJson(const ojson& v) {
+  try {
+    checkKeys(v, {"kind", "frames", "degrees"}, "animate", "animate setting");
+  } catch (const InputError& e) {
+    throw Problem{std::string(e.what()).substr(std::string("animate: ").size())};
+  }
+  const AnimateSpec d;
+  ojson a = {{"kind", d.kind}, {"frames", d.frames}, {"degrees", d.degrees}};
+  if (v.contains("kind")) {
+    if (!v["kind"].is_string()) throw Problem{"kind must be a string"};
+    a["kind"] = v["kind"];
+  }
+  if (v.contains("frames")) {
+    if (!v["frames"].is_number_integer()) throw Problem{"frames must be an integer"};
+    a["frames"] = v["frames"].get<long long>();
+  }
+  if (v.contains("degrees")) {
+    if (!v["degrees"].is_number()) throw Problem{"degrees must be a number"};
+    a["degrees"] = v["degrees"].get<double>();
+  }
+  return a;
+}
+
 ojson fromText(const Setting& s, const std::string& t) {
   switch (s.type) {
     case SettingType::Spec:
@@ -162,6 +214,8 @@ ojson fromText(const Setting& s, const std::string& t) {
       return sizeFromText(t);
     case SettingType::Probe:
       return probeFromText(t);
+    case SettingType::Animation:
+      return animationFromText(t);
   }
   return nullptr;
 }
@@ -200,6 +254,12 @@ ojson fromJson(const Setting& s, const ojson& v) {
       if (v.is_string()) return fromText(s, v.get<std::string>());
       if (v.is_object()) return probeFromJson(v);
       throw Problem{"expected {\"texel\": [x, y], \"map_size\": N, \"samples\": N} or \"X,Y\""};
+    case SettingType::Animation:
+      if (v.is_string()) return fromText(s, v.get<std::string>());
+      if (v.is_object()) return animationFromJson(v);
+      throw Problem{
+          "expected \"KIND:frames=N,degrees=D\" or {\"kind\": ..., \"frames\": N, "
+          "\"degrees\": D}"};
   }
   return nullptr;
 }
@@ -226,6 +286,9 @@ std::string textOf(const Setting& s, const ojson& v) {
     case SettingType::Probe:
       return v["texel"][0].dump() + "," + v["texel"][1].dump() + "," + v["map_size"].dump() + "," +
              v["samples"].dump();
+    case SettingType::Animation:
+      return v["kind"].get<std::string>() + ":frames=" + v["frames"].dump() +
+             ",degrees=" + numberText(v["degrees"].get<double>());
   }
   return "";
 }
@@ -292,6 +355,17 @@ void checkValue(const Setting& s, const ojson& v) {
       if (x >= map || y >= map)
         throw Problem{"texel " + std::to_string(x) + "," + std::to_string(y) + " is outside the " +
                       std::to_string(map) + "x" + std::to_string(map) + " map"};
+      return;
+    }
+    case SettingType::Animation: {
+      const std::string kind = v["kind"].get<std::string>();
+      if (std::find(kAnimationKinds.begin(), kAnimationKinds.end(), kind) == kAnimationKinds.end())
+        throw Problem{unknownChoice("animation", kind, kAnimationKinds)};
+      const long long frames = v["frames"].get<long long>();
+      if (frames < 2 || frames > kMaxFrames)
+        throw Problem{"frames must be in 2.." + std::to_string(kMaxFrames)};
+      const double degrees = v["degrees"].get<double>();
+      if (!(std::fabs(degrees) <= kMaxDegrees)) throw Problem{"degrees must be in [-360, 360]"};
       return;
     }
     case SettingType::Spec:
@@ -458,6 +532,23 @@ std::vector<Setting> buildTable() {
       r.probe = p;
     };
   }
+  {
+    Setting& s = add(make("animate", "--animate", T::Animation, "none",
+                          "also render frames=N frames (default 8) of a light or camera orbit of "
+                          "degrees=D (default 30) by the technique and the reference: per-frame "
+                          "errors and the flicker error (needs the reference)",
+                          "camera-orbit:frames=3,degrees=12", "light-orbit:frames=1"));
+    s.get = [](const RenderRequest& r) -> ojson {
+      if (!r.animate) return nullptr;
+      return {{"kind", r.animate->kind},
+              {"frames", r.animate->frames},
+              {"degrees", r.animate->degrees}};
+    };
+    s.set = [](RenderRequest& r, const ojson& v) {
+      r.animate = AnimateSpec{v["kind"].get<std::string>(), v["frames"].get<int>(),
+                              v["degrees"].get<double>()};
+    };
+  }
   plain(add(make("invariants", "--invariants", T::Flag, "false",
                  "check the outputs and maps (finite, in range; needs the reference)", "true",
                  "maybe")),
@@ -539,11 +630,18 @@ struct TypeNames {
   const char* cli;
 };
 constexpr TypeNames kTypeNames[] = {
-    {"spec", "SPEC"}, {"string", "NAME"},  {"enum", "NAME"},
-    {"int", "INT"},   {"float", "NUMBER"}, {"vec3", "X,Y,Z"},
-    {"flag", "NAME"}, {"size", "WxH"},     {"probe", "X,Y[,MAP[,SAMPLES]]"},
+    {"spec", "SPEC"},
+    {"string", "NAME"},
+    {"enum", "NAME"},
+    {"int", "INT"},
+    {"float", "NUMBER"},
+    {"vec3", "X,Y,Z"},
+    {"flag", "NAME"},
+    {"size", "WxH"},
+    {"probe", "X,Y[,MAP[,SAMPLES]]"},
+    {"animation", "KIND[:frames=N,degrees=D]"},
 };
-static_assert(std::size(kTypeNames) == static_cast<std::size_t>(SettingType::Probe) + 1);
+static_assert(std::size(kTypeNames) == static_cast<std::size_t>(SettingType::Animation) + 1);
 const TypeNames& typeNames(SettingType t) { return kTypeNames[static_cast<std::size_t>(t)]; }
 }  // namespace
 
@@ -571,6 +669,9 @@ std::string Setting::rangeText() const {
     case SettingType::Probe:
       return "texel inside the map; map 1.." + std::to_string(kMaxSize) + "; samples 2.." +
              std::to_string(kMaxSamples);
+    case SettingType::Animation:
+      return "light-orbit or camera-orbit; frames 2.." + std::to_string(kMaxFrames) +
+             "; degrees [-360, 360]";
     case SettingType::Spec:
       return key == "scene" ? "a scene of `strandbench list`" : "a technique of `strandbench list`";
     case SettingType::String:
@@ -664,6 +765,10 @@ void checkRequest(const RenderRequest& req, Spelling spelling) {
   };
   if (!req.image && !req.reference)
     throw InputError(flag("image", false) + " measures only the visibility error: it needs " +
+                     flag("reference", true));
+  if (req.animate && !req.reference)
+    throw InputError(settingLabel(*findSetting("animate"), spelling) +
+                     " compares every frame with the reference: it needs " +
                      flag("reference", true));
   if (req.invariants && !req.reference)
     throw InputError(flag("invariants", true) + " checks against the reference: it needs " +

@@ -22,13 +22,14 @@ namespace sb {
 enum class SettingType {
   Spec,  // NAME:key=value,... (scene and technique specs)
   String,
-  Enum,   // one of `choices`
-  Int,    // in [min, max]
-  Float,  // finite, in the range of min / max (open or closed ends)
-  Vec3,   // "x,y,z"; in JSON also [x, y, z]
-  Flag,   // a CLI flag; a JSON bool
-  Size,   // "WxH"; in JSON also a number N for NxN
-  Probe,  // "X,Y[,MAP_SIZE[,SAMPLES]]"; in JSON also {"texel": [x, y], "map_size", "samples"}
+  Enum,       // one of `choices`
+  Int,        // in [min, max]
+  Float,      // finite, in the range of min / max (open or closed ends)
+  Vec3,       // "x,y,z"; in JSON also [x, y, z]
+  Flag,       // a CLI flag; a JSON bool
+  Size,       // "WxH"; in JSON also a number N for NxN
+  Probe,      // "X,Y[,MAP_SIZE[,SAMPLES]]"; in JSON also {"texel": [x, y], "map_size", "samples"}
+  Animation,  // "KIND[:frames=N,degrees=D]"; in JSON also {"kind", "frames", "degrees"}
 };
 
 struct Setting {

@@ -122,6 +122,10 @@ ojson runCase(const fs::path& dir, const SweepCase& c, RenderCache& cache) {
       images["heatmap"] = base + ".heatmap.png";
       images["flip"] = base + ".flip.png";
     }
+    if (out.animation) {
+      writeImage(animationStrip(*out.animation), (dir / (base + ".animation.png")).string());
+      images["animation"] = base + ".animation.png";
+    }
   }
   if (c.request.invariants) {
     // Identical results run to run: the case again, on a fresh device.
@@ -184,6 +188,8 @@ std::string caseSummary(const ojson& r) {
     if (r["error"]["visibility"]["rmse"].is_number())
       s << "  vis " << r["error"]["visibility"]["rmse"].get<double>();
   }
+  if (r.contains("animation"))
+    s << "  flicker vis " << r["animation"]["flicker"]["visibility"].get<double>();
   return s.str();
 }
 

@@ -44,6 +44,12 @@ std::string sizeOf(const json& r);
 std::string techniqueOf(const json& r);
 // The reason a case failed (its `failed.reason`), "" for a case that ran.
 std::string failureOf(const json& r);
+// The technique a case is about, short (a chart's point label): the
+// transparency technique with its shadow technique ("wboit + dom:layers=3")
+// when oit is not none, else the shadow technique.
+std::string shortTechniqueOf(const json& r);
+// The results' "scene | size | backend": cases whose times and errors compare.
+std::string comparableKey(const json& r);
 // Median frame time in ms / total memory in MiB, when present and finite.
 std::optional<double> frameMs(const json& r);
 std::optional<double> memoryMiB(const json& r, const char* key = "total_bytes");
@@ -74,6 +80,19 @@ struct Group {
   Table table;
 };
 
+// Per scene, size and backend: for each frame-time budget (the frame times of
+// the Pareto frontiers), the most accurate technique that fits it.
+struct BudgetTable {
+  std::string key;  // comparableKey
+  Table table;
+};
+
+// A case rendered under animation (render --animate): its flicker and per-frame errors.
+struct Animation {
+  const json* result = nullptr;
+  std::string caseId, technique, spec;  // spec: "light-orbit:frames=8,degrees=30"
+};
+
 struct Warning {
   std::string caseId, message;
 };
@@ -84,6 +103,9 @@ struct ReportData {
   Table devices;
   std::vector<PaperTable> paperTables;
   std::vector<Group> groups;
+  std::vector<BudgetTable> budgets;
+  std::vector<Animation> animations;
+  Table animationTable;  // one row per animated case
   std::vector<Warning> warnings;
   // Cases that did not finish (a sweep records the reason: out of memory, a
   // device error) and keep going: shown as failed in every table.

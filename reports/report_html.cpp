@@ -2,6 +2,7 @@
 // data URIs, no scripts) that a browser shows offline.
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdint>
 #include <fstream>
 #include <map>
@@ -36,6 +37,11 @@ figcaption { font-size: 12px; max-width: 520px; overflow-wrap: anywhere; }
 .grid img { width: 160px; image-rendering: pixelated; border: 1px solid #ccc; margin-right: 4px; }
 .note { color: #a45a00; }
 nav a { margin-right: 16px; }
+.metric-choice { border: 1px solid #ddd; padding: 6px; }
+.metric-choice .choice { display: none; }
+.metric-choice .pick-0:checked ~ .choice-0, .metric-choice .pick-1:checked ~ .choice-1,
+.metric-choice .pick-2:checked ~ .choice-2 { display: block; }
+.strip img { width: auto; max-width: 100%; image-rendering: pixelated; border: 1px solid #ccc; }
 </style>
 )";
 
@@ -102,51 +108,134 @@ std::vector<ChartSeries> seriesBy(const std::vector<const json*>& results, X x, 
   return out;
 }
 
-// (a) Error against frame time per scene, size and backend, with the Pareto frontier.
+// The error metrics a reader chooses between on the error-against-time charts.
+struct ErrorMetric {
+  const char* id;     // CSS class suffix
+  const char* label;  // axis and radio label
+  std::optional<double> (*value)(const json& r);
+};
+const ErrorMetric kErrorMetrics[] = {
+    {"image-rmse", "image RMSE",
+     [](const json& r) {
+       return number(find(r, {"error", "image", "rmse"}));
+     }},
+    {"visibility-rmse", "visibility RMSE",
+     [](const json& r) {
+       return number(find(r, {"error", "visibility", "rmse"}));
+     }},
+    {"flip", "FLIP mean",
+     [](const json& r) {
+       return number(find(r, {"error", "image", "flip", "mean"}));
+     }},
+};
+
+// (a) Error against frame time per scene, size and backend, with the Pareto
+// frontier: one chart per error metric, chosen by radio buttons (CSS only, no
+// script); every point labelled with its technique, its frame time's spread
+// over the repetitions (min to max) as an error bar.
 std::string errorTimeCharts(const ReportData& d) {
   std::vector<std::string> keys;
   std::map<std::string, std::vector<const json*>> byKey;
   for (const json* r : d.results) {
+    const std::string key = comparableKey(*r);
+    if (!byKey.count(key)) keys.push_back(key);
+    byKey[key].push_back(r);
+  }
+  std::ostringstream o;
+  int chooser = 0;
+  for (const std::string& key : keys) {
+    std::ostringstream charts, radios;
+    int shown = 0;
+    for (std::size_t m = 0; m < std::size(kErrorMetrics); ++m) {
+      const ErrorMetric& metric = kErrorMetrics[m];
+      Chart c;
+      c.title = key + ": " + metric.label;
+      c.xLabel = "frame ms (median; bar: min to max)";
+      c.yLabel = metric.label;
+      c.cssClass = "chart-error-time";
+      c.width = 560;
+      ChartSeries points{metric.label};
+      points.line = false;
+      points.color = 2 * static_cast<int>(m);
+      for (const json* r : byKey[key]) {
+        const auto ms = frameMs(*r);
+        const auto err = metric.value(*r);
+        if (!ms || !err) continue;
+        ChartPoint p{*ms, *err,
+                     techniqueOf(*r) + "\n" + caseId(*r) + "\n" + formatSig(*ms) + " ms, " +
+                         metric.label + " " + formatSig(*err),
+                     shortTechniqueOf(*r)};
+        const auto lo = number(find(*r, {"frame_ms", "min"}));
+        const auto hi = number(find(*r, {"frame_ms", "max"}));
+        if (lo && hi) p.xLo = *lo, p.xHi = *hi;
+        points.points.push_back(p);
+      }
+      if (points.points.empty()) continue;
+      ChartSeries front{std::string(metric.label) + " Pareto frontier",
+                        paretoFrontier(points.points)};
+      for (ChartPoint& p : front.points) p.label.clear(), p.xLo = p.xHi = NAN;  // drawn once
+      front.markers = false;
+      front.dashed = true;
+      front.color = points.color;
+      front.cssClass = "pareto-frontier";
+      c.series.push_back(std::move(points));
+      c.series.push_back(std::move(front));
+      const std::string id = "errc" + std::to_string(chooser) + "-" + metric.id;
+      radios << "<input type=\"radio\" name=\"errc" << chooser << "\" id=\"" << id << "\""
+             << (shown == 0 ? " checked" : "") << " class=\"pick-" << m << "\"><label for=\"" << id
+             << "\">" << h(metric.label) << "</label>\n";
+      charts << "<figure class=\"choice choice-" << m << " metric-" << metric.id << "\">"
+             << svgChart(c) << "</figure>\n";
+      ++shown;
+    }
+    if (shown == 0) continue;
+    o << "<div class=\"metric-choice\">\n" << radios.str() << charts.str() << "</div>\n";
+    ++chooser;
+  }
+  return o.str();
+}
+
+// Error against eye depth complexity: per scene and size, one chart per
+// technique, one series per backend (FLIP mean per bucket of eye layers, or
+// the visibility error where there is no image).
+std::string depthComplexityCharts(const ReportData& d) {
+  std::vector<std::string> keys;
+  std::map<std::string, std::vector<const json*>> byKey;
+  for (const json* r : d.results) {
+    const json* buckets = find(*r, {"error", "by_eye_layers"});
+    if (!buckets || !buckets->is_array()) continue;
     const std::string key =
-        text(find(*r, {"scene", "spec"})) + " | " + sizeOf(*r) + " | " + backendOf(*r);
+        text(find(*r, {"scene", "spec"})) + " | " + sizeOf(*r) + " | " + shortTechniqueOf(*r);
     if (!byKey.count(key)) keys.push_back(key);
     byKey[key].push_back(r);
   }
   std::ostringstream o;
   for (const std::string& key : keys) {
-    Chart c;
-    c.title = key;
-    c.xLabel = "frame ms (median)";
-    c.yLabel = "RMSE";
-    c.cssClass = "chart-error-time";
-    c.width = 560;
-    int color = 0;
-    for (const char* kind : {"image", "visibility"}) {
-      ChartSeries points{std::string(kind) + " RMSE"};
-      points.line = false;
-      points.color = color;
-      for (const json* r : byKey[key]) {
-        const auto ms = frameMs(*r);
-        const auto err = number(find(*r, {"error", kind, "rmse"}));
-        if (ms && err)
-          points.points.push_back({*ms, *err,
-                                   techniqueOf(*r) + "\n" + caseId(*r) + "\n" + formatSig(*ms) +
-                                       " ms, " + kind + " RMSE " + formatSig(*err)});
+    const bool image = find(*byKey[key][0], {"error", "image", "flip"}) != nullptr;
+    const char* metric = image ? "flip_mean" : "visibility_mean_abs";
+    Chart c{key, "eye layers (bucket's first)", image ? "mean FLIP" : "mean |visibility error|"};
+    c.cssClass = "chart-depth-complexity";
+    for (const json* r : byKey[key]) {
+      ChartSeries s{backendOf(*r)};
+      for (const json& b : *find(*r, {"error", "by_eye_layers"})) {
+        const json* layers = find(b, {"layers"});
+        if (!layers || !layers->is_array() || layers->size() != 2) continue;
+        const auto lo = number(&(*layers)[0]), hi = number(&(*layers)[1]);
+        const auto e = number(find(b, {metric}));
+        if (!lo || !hi || !e || *lo < 1) continue;  // pixels without hair: not on a log axis
+        s.points.push_back({*lo, *e,
+                            shortest(*lo) + "-" + shortest(*hi) + " layers, " +
+                                text(find(b, {"pixels"})) + " pixels: " + formatSig(*e)});
       }
-      if (points.points.empty()) continue;
-      ChartSeries front{std::string(kind) + " RMSE Pareto frontier", paretoFrontier(points.points)};
-      front.markers = false;
-      front.dashed = true;
-      front.color = color;
-      front.cssClass = "pareto-frontier";
-      c.series.push_back(std::move(points));
-      c.series.push_back(std::move(front));
-      color += 2;
+      if (!s.points.empty()) c.series.push_back(std::move(s));
     }
     if (!c.series.empty()) o << "<figure>" << svgChart(c) << "</figure>\n";
   }
   return o.str();
 }
+
+// Error against frame index for each animated case, beside its strip.
+std::string animationSection(const ReportData& d, const fs::path& dir);
 
 // (b), (c): frame time and memory against numeric technique options, frame time
 // against segments.
@@ -254,6 +343,44 @@ std::string imageGrid(const Group& g, const fs::path& dir) {
   return grid.empty() ? "" : "<div class=\"grid\">\n" + grid + "</div>\n";
 }
 
+std::string animationSection(const ReportData& d, const fs::path& dir) {
+  std::ostringstream o;
+  for (const Animation& a : d.animations) {
+    const json& r = *a.result;
+    Chart c{a.caseId + " (" + a.spec + ")", "frame", "error against the frame's reference"};
+    c.cssClass = "chart-animation";
+    c.autoLog = false;
+    const json* frames = find(r, {"animation", "per_frame"});
+    for (const auto& [label, path] :
+         {std::pair{"image RMSE", std::vector<std::string>{"image", "rmse"}},
+          std::pair{"FLIP mean", std::vector<std::string>{"image", "flip"}},
+          std::pair{"visibility RMSE", std::vector<std::string>{"visibility", "rmse"}}}) {
+      ChartSeries s{label};
+      if (frames && frames->is_array())
+        for (const json& f : *frames) {
+          const auto x = number(find(f, {"frame"}));
+          const auto y = number(find(f, {path[0], path[1]}));
+          if (x && y)
+            s.points.push_back(
+                {*x, *y, "frame " + shortest(*x) + ": " + label + " " + formatSig(*y)});
+        }
+      if (!s.points.empty()) c.series.push_back(std::move(s));
+    }
+    auto shown = [](std::optional<double> v) { return v ? formatSig(*v) : std::string(kNone); };
+    o << "<figure>" << svgChart(c) << "<figcaption>" << h(a.technique) << ": flicker image "
+      << h(shown(number(find(r, {"animation", "flicker", "image"})))) << ", visibility "
+      << h(shown(number(find(r, {"animation", "flicker", "visibility"}))))
+      << "</figcaption></figure>\n";
+    if (const json* strip = find(r, {"images", "animation"}); strip && strip->is_string())
+      o << "<figure class=\"strip\">"
+        << embeddedImage(dir, strip->get<std::string>(), "animation strip") << "<figcaption>"
+        << h(a.caseId)
+        << ": frames side by side, the technique above, the reference "
+           "below</figcaption></figure>\n";
+  }
+  return o.str();
+}
+
 }  // namespace
 
 std::string renderHtml(const ReportData& d, const fs::path& dir) {
@@ -263,7 +390,9 @@ std::string renderHtml(const ReportData& d, const fs::path& dir) {
   o << "<h1>" << h(d.title) << "</h1>\n";
   if (!d.description.empty()) o << "<p>" << h(d.description) << "</p>\n";
   o << "<nav><a href=\"#context\">Context</a><a href=\"#paper-tables\">Paper tables</a>"
-       "<a href=\"#error-time\">Error vs time</a><a href=\"#groups\">Groups</a>"
+       "<a href=\"#error-time\">Error vs time</a><a href=\"#budgets\">Budgets</a>"
+       "<a href=\"#depth-complexity\">Error vs depth complexity</a>"
+       "<a href=\"#animation\">Animation</a><a href=\"#groups\">Groups</a>"
        "<a href=\"#warnings\">Warnings</a></nav>\n";
 
   o << "<h2 id=\"context\">Context</h2>\n<table><tbody>\n";
@@ -281,11 +410,42 @@ std::string renderHtml(const ReportData& d, const fs::path& dir) {
   }
 
   o << "<h2 id=\"error-time\">Error against frame time</h2>\n"
-       "<p>Per scene, image size and backend; hover a point for its technique. The dashed "
-       "line is the Pareto frontier (no other technique is both faster and more accurate).</p>\n";
+       "<p>Per scene, image size and backend, with the error to show chosen above each chart "
+       "(image RMSE, visibility RMSE or FLIP). Each point is labelled with its technique (hover "
+       "for the case); the bar is the frame time's spread over the repetitions (min to max). "
+       "The dashed line is the Pareto frontier (no other technique is both faster and more "
+       "accurate).</p>\n";
   const std::string errorCharts = errorTimeCharts(d);
   o << (errorCharts.empty() ? "<p>No results with an error.</p>\n"
                             : "<div class=\"charts\">\n" + errorCharts + "</div>\n");
+
+  o << "<h2 id=\"budgets\">Which technique within which budget</h2>\n"
+       "<p>Per scene, size and backend, from the Pareto frontiers: for each frame-time budget, "
+       "the most accurate technique that fits it, by FLIP and by image RMSE.</p>\n";
+  if (d.budgets.empty()) o << "<p>No results with an image error.</p>\n";
+  for (const BudgetTable& b : d.budgets) {
+    o << "<h3>" << h(b.key) << "</h3>\n<div class=\"budget\">";
+    htmlTable(o, b.table);
+    o << "</div>\n";
+  }
+
+  o << "<h2 id=\"depth-complexity\">Error against depth complexity</h2>\n"
+       "<p>Per technique, the mean error over the pixels whose eye depth complexity (hair "
+       "fragments in the reference) falls in each bucket of layers (1, 2-3, 4-7, ...): where "
+       "each technique breaks.</p>\n";
+  const std::string complexity = depthComplexityCharts(d);
+  o << (complexity.empty() ? "<p>No results with errors per depth complexity.</p>\n"
+                           : "<div class=\"charts\">\n" + complexity + "</div>\n");
+
+  o << "<h2 id=\"animation\">Error under animation</h2>\n"
+       "<p>Error against frame index and a strip of frames per animated case; flicker is the "
+       "mean over frames and pixels of |(T_t - T_{t-1}) - (R_t - R_{t-1})|.</p>\n";
+  if (d.animations.empty()) {
+    o << "<p>No animated cases.</p>\n";
+  } else {
+    htmlTable(o, d.animationTable);
+    o << "<div class=\"charts\">\n" << animationSection(d, dir) << "</div>\n";
+  }
 
   o << "<h2 id=\"groups\">Groups</h2>\n";
   if (d.groups.empty()) o << "<p>No results.</p>\n";

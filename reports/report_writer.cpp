@@ -63,7 +63,9 @@ std::string renderCsv(const ReportData& d) {
   o << "case_id,group,backend,scene,segments,shadow,oit,size,frame_ms_median,frame_ms_min,"
        "frame_ms_max,frame_ms_stddev,memory_total_bytes,memory_shadow_bytes,memory_oit_bytes,"
        "image_rmse,image_psnr,image_ssim,image_flip_mean,visibility_rmse,visibility_max,"
-       "depth_complexity_eye_max,depth_complexity_light_max,failed\n";
+       "depth_complexity_eye_max,depth_complexity_light_max,own_technique,own_image_rmse,"
+       "own_image_flip_mean,own_visibility_rmse,animation,animation_frames,animation_degrees,"
+       "flicker_image,flicker_visibility,failed\n";
   for (const json* r : d.results) {
     // Numbers in full precision; null (NaN, Inf) and missing values as empty cells.
     auto n = [&](std::initializer_list<std::string_view> path) {
@@ -94,6 +96,15 @@ std::string renderCsv(const ReportData& d) {
         n({"error", "visibility", "max"}),
         n({"depth_complexity", "eye", "max"}),
         n({"depth_complexity", "light", "max"}),
+        text(find(*r, {"error", "own", "technique"})),
+        n({"error", "own", "image", "rmse"}),
+        n({"error", "own", "image", "flip", "mean"}),
+        n({"error", "own", "visibility", "rmse"}),
+        text(find(*r, {"animation", "kind"})),
+        n({"animation", "frames"}),
+        n({"animation", "degrees"}),
+        n({"animation", "flicker", "image"}),
+        n({"animation", "flicker", "visibility"}),
         failureOf(*r),  // empty for a case that ran
     };
     for (std::size_t i = 0; i < fields.size(); ++i) o << (i ? "," : "") << csvField(fields[i]);
@@ -137,6 +148,23 @@ std::string renderMarkdown(const ReportData& d) {
     o << "## Failed cases\n\n";
     for (const Warning& f : d.failures) o << "- " << md(f.caseId) << ": " << md(f.message) << "\n";
     o << "\n";
+  }
+
+  if (!d.budgets.empty()) {
+    o << "## Which technique within which budget\n\n"
+         "Per scene, size and backend, from the Pareto frontiers of error against median frame "
+         "time: for each budget, the most accurate technique that fits it.\n\n";
+    for (const BudgetTable& b : d.budgets) {
+      o << "### " << md(b.key) << "\n\n";
+      mdTable(o, b.table);
+    }
+  }
+
+  if (!d.animationTable.rows.empty()) {
+    o << "## Error under animation\n\n"
+         "Flicker: the mean over frames and pixels of |(T_t - T_{t-1}) - (R_t - R_{t-1})|, the "
+         "technique's frame-to-frame change that the reference does not have.\n\n";
+    mdTable(o, d.animationTable);
   }
 
   o << "## Warnings\n\n";

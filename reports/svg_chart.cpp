@@ -85,6 +85,7 @@ std::string fmt(double v) {
 }
 
 bool finite(const ChartPoint& p) { return std::isfinite(p.x) && std::isfinite(p.y); }
+bool hasBar(const ChartPoint& p) { return std::isfinite(p.xLo) && std::isfinite(p.xHi); }
 
 }  // namespace
 
@@ -138,6 +139,7 @@ std::string svgChart(const Chart& chart) {
       if (!finite(p)) continue;
       x0 = std::min(x0, p.x), x1 = std::max(x1, p.x);
       y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+      if (hasBar(p)) x0 = std::min(x0, p.xLo), x1 = std::max(x1, p.xHi);
     }
   }
   const bool empty = !(x0 <= x1);
@@ -203,6 +205,14 @@ std::string svgChart(const Chart& chart) {
       for (const ChartPoint* p : pts) o << fmt(px(p->x)) << "," << fmt(py(p->y)) << " ";
       o << "\"/>\n";
     }
+    for (const ChartPoint* p : pts) {
+      if (!hasBar(*p)) continue;
+      const std::string y = fmt(py(p->y)), lo = fmt(px(p->xLo)), hi = fmt(px(p->xHi));
+      const std::string top = fmt(py(p->y) - 4), bottom = fmt(py(p->y) + 4);
+      o << "<path class=\"error-bar\" stroke=\"" << color << "\" fill=\"none\" d=\"M" << lo << ","
+        << y << "H" << hi << "M" << lo << "," << top << "V" << bottom << "M" << hi << "," << top
+        << "V" << bottom << "\"/>\n";
+    }
     if (s.markers) {
       o << "<g fill=\"" << color << "\">";
       for (const ChartPoint* p : pts) {
@@ -212,6 +222,11 @@ std::string svgChart(const Chart& chart) {
       }
       o << "</g>\n";
     }
+    for (const ChartPoint* p : pts)
+      if (!p->label.empty())
+        o << "<text class=\"point-label\" x=\"" << fmt(px(p->x) + 5) << "\" y=\""
+          << fmt(py(p->y) - 5) << "\" font-size=\"9\" fill=\"#333\">" << htmlEscape(p->label)
+          << "</text>\n";
     const int ly = kTop + plotH + kBottom + kLegendRow * static_cast<int>(i) + 8;
     o << "<line x1=\"" << kLeft << "\" x2=\"" << kLeft + 20 << "\" y1=\"" << ly << "\" y2=\"" << ly
       << "\" stroke=\"" << color << "\" stroke-width=\"" << (s.line ? "1.5" : "0") << "\"" << dash

@@ -1,7 +1,9 @@
 // Small inline-SVG line and scatter charts for report.html: axes with ticks and
-// labels, a legend, tooltips (<title>) on points; no scripts, no external resources.
+// labels, a legend, tooltips (<title>) and optional labels and horizontal error
+// bars on points; no scripts, no external resources.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -9,7 +11,11 @@ namespace sb {
 
 struct ChartPoint {
   double x = 0, y = 0;
-  std::string tip;  // tooltip text (plain text; escaped when drawn)
+  std::string tip;    // tooltip text (plain text; escaped when drawn)
+  std::string label;  // drawn beside the point (class "point-label"), not only on hover
+  // A horizontal error bar from xLo to xHi (class "error-bar"); none when not finite.
+  double xLo = std::numeric_limits<double>::quiet_NaN();
+  double xHi = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct ChartSeries {

@@ -67,7 +67,15 @@ json makeResult(const std::string& group, const json& params, int index, double 
           {"psnr", 40.0 - ms},
           {"ssim", 0.99},
           {"flip", {{"mean", 0.02 / ms}}}}},
-        {"visibility", {{"rmse", 0.1 / ms}, {"max", 0.5}}}}},
+        {"visibility", {{"rmse", 0.1 / ms}, {"max", 0.5}}},
+        {"own",
+         {{"technique", "shadow"},
+          {"reference", {{"shadow", "exact"}, {"oit", "none"}}},
+          {"image", {{"rmse", 0.03 / ms}, {"flip", {{"mean", 0.01 / ms}}}}}}},
+        {"by_eye_layers",
+         {{{"layers", {0, 0}}, {"pixels", 40}, {"flip_mean", 0.001}},
+          {{"layers", {1, 1}}, {"pixels", 20}, {"flip_mean", 0.01 / ms}},
+          {{"layers", {2, 3}}, {"pixels", 10}, {"flip_mean", 0.03 / ms}}}}}},
       {"depth_complexity", {{"eye", {{"max", 12}}}, {"light", nullptr}}},
       {"warnings", json::array()},
       {"case", {{"id", id}, {"group", group}, {"index", index}, {"params", params}}},
@@ -114,6 +122,25 @@ json makeDocument(const fs::path& dir) {
                             {"heatmap", stem + ".heatmap.png"}};
   }
   results[4]["images"] = {{"image", "images/gone.png"}};
+  // One animated case with its strip.
+  writePng(dir / "images/case3.animation.png", 0.5f);
+  results[3]["images"]["animation"] = "images/case3.animation.png";
+  results[3]["animation"] = {
+      {"kind", "light-orbit"},
+      {"frames", 3},
+      {"degrees", 30},
+      {"flicker", {{"image", 0.004}, {"visibility", 0.02}, {"visibility_pixels", 300}}},
+      {"per_frame",
+       {{{"frame", 0},
+         {"image", {{"rmse", 0.01}, {"flip", 0.02}}},
+         {"visibility", {{"rmse", 0.05}}}},
+        {{"frame", 1},
+         {"image", {{"rmse", 0.02}, {"flip", 0.03}}},
+         {"visibility", {{"rmse", 0.06}}}},
+        {{"frame", 2},
+         {"image", {{"rmse", 0.015}, {"flip", 0.025}}},
+         {"visibility", {{"rmse", 0.04}}}}}},
+      {"strip_frames", {0, 1, 2}}};
 
   return {
       {"schema_version", 1},
@@ -248,7 +275,10 @@ TEST_F(ReportWriter, MarkdownHasTablesRatiosAndWarnings) {
   EXPECT_NE(md.find("a test \\| suite"), std::string::npos);  // escaped pipe
   EXPECT_NE(md.find("### shadows"), std::string::npos);
   EXPECT_NE(md.find("### osm-maps"), std::string::npos);
-  EXPECT_NE(md.find("| PSNR dB | FLIP mean | Visibility RMSE |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| PSNR dB (total) | FLIP mean (total) | Visibility RMSE | Own error of | "
+                    "Image RMSE (own) | FLIP mean (own) |"),
+            std::string::npos)
+      << md;
   EXPECT_NE(md.find("### DOM paper, Fig. 1"), std::string::npos);
 
   // OSM 16 on gl: 4 ms against the 2 ms baseline; the paper's 81 fps against 154 fps.
@@ -275,6 +305,27 @@ TEST_F(ReportWriter, MarkdownHasTablesRatiosAndWarnings) {
   // Group table: median ± stddev, memory MiB.
   EXPECT_NE(lineStarting(md, "| osm:maps=16 | gl | 4.00 ± 0.20 | 6.00 |"), "") << md;
   EXPECT_NE(md.find("peeling cap hit: 8 layers \\| more needed & \\<tag\\>"), std::string::npos);
+
+  // Budgets on gl (both groups: same scene and size): OSM 1 map (2 ms) alone
+  // fits 2 ms; DOM (3 ms, FLIP 0.0067) is the first of a tie within 3 ms; OSM
+  // 16 maps (4 ms, FLIP 0.005) within 4 ms; "none" has no error, no choice.
+  const std::size_t gl = md.find("128x96 \\| gl\n");
+  ASSERT_NE(gl, std::string::npos) << md;
+  const std::string budgets = md.substr(gl, md.find("###", gl) - gl);
+  EXPECT_NE(lineStarting(budgets, "| ≤ 3.00 | dom:layers=3 | 0.00667 | dom:layers=3 | 0.0167 |"),
+            "")
+      << budgets;
+  EXPECT_NE(lineStarting(budgets, "| ≤ 4.00 | osm:maps=16 | 0.00500 | osm:maps=16 | 0.0125 |"), "")
+      << budgets;
+  EXPECT_NE(lineStarting(budgets, "| ≤ 2.00 | osm:maps=1 | 0.0100 | osm:maps=1 | 0.0250 |"), "")
+      << budgets;
+  EXPECT_EQ(budgets.find("| none |"), std::string::npos) << budgets;
+  EXPECT_NE(md.find("## Error under animation"), std::string::npos);
+  EXPECT_NE(lineStarting(md,
+                         "| shadows/shadow=osm:maps=16,backend=vulkan | osm:maps=16 | "
+                         "light-orbit | 3 | 0.00400 | 0.0200 |"),
+            "")
+      << md;
 }
 
 TEST_F(ReportWriter, HtmlIsSelfContainedWithChartsAndImages) {
@@ -289,7 +340,8 @@ TEST_F(ReportWriter, HtmlIsSelfContainedWithChartsAndImages) {
   EXPECT_NE(html.find("memory vs shadow.maps"), std::string::npos);
   EXPECT_NE(html.find("visibility along a light ray"), std::string::npos);
   EXPECT_NE(html.find("images/gone.png is missing"), std::string::npos);
-  EXPECT_NE(html.find("<th>FLIP mean</th>"), std::string::npos);
+  EXPECT_NE(html.find("<th>FLIP mean (total)</th>"), std::string::npos);
+  EXPECT_NE(html.find("<th>FLIP mean (own)</th>"), std::string::npos);
   EXPECT_NE(html.find("FLIP 0.005"), std::string::npos);  // in a thumbnail caption
   EXPECT_NE(html.find("quick &amp; dirty"), std::string::npos);
   EXPECT_NE(html.find("&lt;tag&gt;"), std::string::npos);
@@ -360,6 +412,15 @@ TEST(ReportBrowser, LoadsOfflineWithoutConsoleErrors) {
   EXPECT_NE(page.dom.find("<table>"), std::string::npos);
   EXPECT_NE(page.dom.find("class=\"chart-error-time\""), std::string::npos);
   EXPECT_NE(page.dom.find("class=\"pareto-frontier\""), std::string::npos);
+  // The charts of issue 18: FLIP as a third error axis, every point labelled
+  // with its technique and a bar for its spread over repetitions, error
+  // against depth complexity per technique, the budget table, the animation.
+  for (const char* needle :
+       {"metric-image-rmse", "metric-visibility-rmse", "metric-flip", "<text class=\"point-label\"",
+        ">osm:maps=16</text>", "class=\"error-bar\"", "class=\"chart-depth-complexity\"",
+        "Most accurate by FLIP", "Most accurate by image RMSE", "class=\"chart-animation\"",
+        "alt=\"animation strip\"", "Image RMSE (own)"})
+    EXPECT_NE(page.dom.find(needle), std::string::npos) << needle;
   const sbtest::ScreenshotVerdict shot = sbtest::inspectScreenshot(page.screenshot);
   EXPECT_FALSE(shot.blank) << shot.distinct << " colours, " << shot.inked << " inked";
 

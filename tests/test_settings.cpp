@@ -34,7 +34,9 @@ const char* kScene = "straight:strands=30,points=6,seed=3";
 
 // Settings that are valid only with another one set: given with it everywhere.
 const std::map<std::string, std::pair<std::string, std::string>> kNeeds = {
-    {"image", {"reference", "true"}}, {"invariants", {"reference", "true"}}};
+    {"image", {"reference", "true"}},
+    {"invariants", {"reference", "true"}},
+    {"animate", {"reference", "true"}}};
 
 std::vector<std::string> splitCommas(const std::string& t) {
   std::vector<std::string> parts;
@@ -160,6 +162,7 @@ TEST(Settings, TableIsComplete) {
                         "reference",
                         "image",
                         "probe",
+                        "animate",
                         "invariants",
                         "validation",
                         "memory_limit",
@@ -175,7 +178,7 @@ TEST(Settings, TableIsComplete) {
                         "light_color",
                         "light_intensity"})
     EXPECT_EQ(keys.count(k), 1u) << k;
-  EXPECT_EQ(keys.size(), 27u);
+  EXPECT_EQ(keys.size(), 28u);
 }
 
 // Every setting through the three front ends: the same value lands in the same

@@ -14,6 +14,7 @@ ListLayout layoutFromCounts(const std::vector<uint8_t>& countBytes) {
   ListLayout l;
   const std::size_t n = countBytes.size() / sizeof(uint32_t);
   l.offsets.resize(n);
+  l.complexity.counts.resize(n);
   uint64_t covered = 0;
   for (std::size_t i = 0; i < n; ++i) {
     uint32_t c = 0;
@@ -21,6 +22,7 @@ ListLayout layoutFromCounts(const std::vector<uint8_t>& countBytes) {
     if (l.complexity.total > 0xFFFFFFFFull)
       throw InputError("fragment lists need more than 2^32 entries; lower the resolution");
     l.offsets[i] = static_cast<uint32_t>(l.complexity.total);
+    l.complexity.counts[i] = c;
     l.complexity.total += c;
     l.complexity.max = std::max(l.complexity.max, c);
     covered += c > 0;

@@ -53,6 +53,9 @@ struct DepthComplexity {
   uint32_t max = 0;
   double mean = 0;  // over pixels with at least one fragment
   uint64_t total = 0;
+  // Fragments per pixel, rows bottom-up (row 0 = NDC y=-1): the error per
+  // bucket of layers in reports.
+  std::vector<uint32_t> counts;
 };
 
 // A view's uniforms (binding 0 in every geometry pass), std140.
