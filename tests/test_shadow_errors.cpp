@@ -8,6 +8,7 @@
 
 #include <iostream>
 
+#include "gpu_test_util.h"
 #include "harness/render.h"
 
 namespace sb {
@@ -23,7 +24,7 @@ double visibilityRmse(RenderRequest r, const std::string& shadow) {
   return rmse;
 }
 
-class ShadowErrors : public ::testing::TestWithParam<std::string> {
+class ShadowErrors : public sbtest::BackendTest {
  protected:
   RenderRequest request(const std::string& scene) {
     RenderRequest r;
@@ -33,16 +34,6 @@ class ShadowErrors : public ::testing::TestWithParam<std::string> {
     r.repeat = 1;
     r.warmup = 0;
     return r;
-  }
-  void SetUp() override {
-    try {
-      DeviceOptions o;
-      o.backend = GetParam();
-      o.platform = GetParam() == "gl" ? "egl" : "headless";
-      createDevice(o);
-    } catch (const DeviceError& e) {
-      GTEST_SKIP() << "backend unavailable: " << e.what();
-    }
   }
 };
 

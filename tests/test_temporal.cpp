@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "browser_util.h"
+#include "gpu_test_util.h"
 #include "harness/image.h"
 #include "harness/render.h"
 #include "harness/settings.h"
@@ -24,18 +25,8 @@ namespace {
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
-class Temporal : public ::testing::TestWithParam<std::string> {
+class Temporal : public sbtest::BackendTest {
  protected:
-  void SetUp() override {
-    try {
-      DeviceOptions o;
-      o.backend = GetParam();
-      o.platform = GetParam() == "gl" ? "egl" : "headless";
-      createDevice(o);
-    } catch (const DeviceError& e) {
-      GTEST_SKIP() << "backend unavailable: " << e.what();
-    }
-  }
   RenderRequest request(const std::string& scene, const std::string& shadow,
                         const std::string& animate) {
     RenderRequest r;
