@@ -3,6 +3,8 @@
 #include <iostream>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "harness/commands.h"
 #include "harness/errors.h"
@@ -19,6 +21,7 @@ void registerCompareRunsCommand(CLI::App& app) {
   auto threshold = std::make_shared<std::string>("5");
   auto alpha = std::make_shared<double>(0.05);
   auto asJson = std::make_shared<bool>(false);
+  auto pairs = std::make_shared<std::vector<std::string>>();
   cmd->add_option("OLD", *oldPath, "results.json, or a sweep folder (results.json or cases/*.json)")
       ->required();
   cmd->add_option("NEW", *newPath, "the same, for the run to judge")->required();
@@ -28,6 +31,11 @@ void registerCompareRunsCommand(CLI::App& app) {
   cmd->add_option("--alpha", *alpha, "significance level of the one-sided test")
       ->capture_default_str();
   cmd->add_flag("--json", *asJson, "print one JSON object instead of the table");
+  cmd->add_option("--pair", *pairs,
+                  "OLD NEW: one more pair of runs taken one after the other; OLD NEW and every "
+                  "--pair are then judged as paired rounds (repeat the option)")
+      ->expected(2)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   cmd->footer(
       "Cases are matched by case.id; cases in only one run are listed as added/removed and do not\n"
       "fail. A case whose scene, shadow, oit, size or primitive differ is 'definition changed' "
@@ -44,6 +52,11 @@ void registerCompareRunsCommand(CLI::App& app) {
       "  could not be significant; at alpha 0.05, 3 vs 3 is too few, 4 vs 4 is enough).\n"
       "Passes that are slower or faster by the same rules, or in only one run, are listed under\n"
       "their case for information (only the frame time fails a case).\n"
+      "With --pair (paired rounds, for a shared machine whose speed drifts between runs more\n"
+      "than the change to judge): each pair's runs were taken one after the other, alternating\n"
+      "which went first; change = median over pairs of new/old frame median - 1, and p is a\n"
+      "one-sided Wilcoxon signed-rank test of the log ratios over the pairs (exact up to 20\n"
+      "pairs); at alpha 0.05, 5 pairs are the fewest that can be judged. Passes are not listed.\n"
       "Exit status: 0 no regression, 1 a case SLOWER, 2 bad input.");
   cmd->callback([=] {
     runGuarded("compare-runs", [&] {
@@ -59,7 +72,13 @@ void registerCompareRunsCommand(CLI::App& app) {
       if (t.empty() || used != t.size() || !std::isfinite(opt.thresholdPct) || opt.thresholdPct < 0)
         throw InputError("--threshold " + *threshold + ": not a percentage >= 0");
       opt.alpha = *alpha;
-      return runCompareRuns(*oldPath, *newPath, opt, *asJson, std::cout);
+      if (pairs->size() % 2 != 0)
+        throw InputError("--pair needs two runs, OLD and NEW; got " +
+                         std::to_string(pairs->size()) + " values");
+      std::vector<std::pair<std::string, std::string>> more;
+      for (std::size_t i = 0; i + 1 < pairs->size(); i += 2)
+        more.emplace_back((*pairs)[i], (*pairs)[i + 1]);
+      return runCompareRuns(*oldPath, *newPath, opt, *asJson, std::cout, more);
     });
   });
 }

@@ -383,14 +383,92 @@ std::vector<CaseComparison> compareRuns(const RunResults& oldRun, const RunResul
   return out;
 }
 
+std::vector<CaseComparison> comparePairedRuns(const std::vector<RunResults>& olds,
+                                              const std::vector<RunResults>& news,
+                                              const CompareRunsOptions& opt) {
+  if (olds.empty() || olds.size() != news.size())
+    throw InputError("paired runs: as many old runs as new runs, at least one of each");
+  // The first pair decides what is added, removed or redefined.
+  std::vector<CaseComparison> out = compareRuns(olds[0], news[0], opt);
+  auto find = [](const RunResults& run, const std::string& id) -> const json* {
+    for (const json& r : run.results)
+      if (caseId(r) == id) return &r;
+    return nullptr;
+  };
+  for (CaseComparison& c : out) {
+    c.passes.clear();
+    if (c.verdict == Verdict::Added || c.verdict == Verdict::Removed ||
+        c.verdict == Verdict::DefinitionChanged)
+      continue;
+    TimingChange t;
+    t.name = c.id;
+    std::vector<double> oldMedians, newMedians, logRatios;
+    for (std::size_t i = 0; i < olds.size(); ++i) {
+      const json* a = find(olds[i], c.id);
+      const json* b = find(news[i], c.id);
+      if (!a || !b || !definitionChanges(*a, *b).empty() ||
+          !definitionChanges(*find(olds[0], c.id), *a).empty()) {
+        t.note = "missing or redefined in pair " + std::to_string(i + 1);
+        break;
+      }
+      const double o = (*a)["frame_ms"]["median"].get<double>();
+      const double n = (*b)["frame_ms"]["median"].get<double>();
+      oldMedians.push_back(o);
+      newMedians.push_back(n);
+      if (o > 0 && n > 0) logRatios.push_back(std::log(n / o));
+    }
+    t.oldSamples = t.newSamples = static_cast<int>(oldMedians.size());
+    if (t.note.empty() && logRatios.size() != olds.size()) t.note = "a median is 0";
+    if (t.note.empty()) {
+      t.oldMedian = median(oldMedians);
+      t.newMedian = median(newMedians);
+      t.changePct = (std::exp(median(logRatios)) - 1.0) * 100.0;
+      const double best = signedRankMinP(static_cast<int>(logRatios.size()));
+      if (best >= opt.alpha) {
+        t.note = "too few pairs: " + std::to_string(logRatios.size()) + ", best possible p " +
+                 formatP(best);
+      } else {
+        const bool slower = *t.changePct >= 0;
+        std::vector<double> d = logRatios;
+        if (!slower)
+          for (double& v : d) v = -v;
+        const RankTest test = signedRankGreater(d);
+        t.p = test.p;
+        t.exact = test.exact;
+        const bool beyond = std::abs(*t.changePct) > opt.thresholdPct;
+        if (beyond && test.p < opt.alpha) {
+          t.verdict = slower ? Verdict::Slower : Verdict::Faster;
+        } else {
+          t.verdict = Verdict::Ok;
+          if (beyond) t.note = "not significant";
+        }
+      }
+    }
+    c.frame = t;
+    c.verdict = t.verdict;
+  }
+  return out;
+}
+
 int runCompareRuns(const std::string& oldPath, const std::string& newPath,
-                   const CompareRunsOptions& opt, bool asJson, std::ostream& out) {
+                   const CompareRunsOptions& opt, bool asJson, std::ostream& out,
+                   const std::vector<std::pair<std::string, std::string>>& morePairs) {
   if (!std::isfinite(opt.thresholdPct) || opt.thresholdPct < 0)
     throw InputError("--threshold must be a percentage >= 0");
   if (!(opt.alpha > 0 && opt.alpha < 1)) throw InputError("--alpha must be between 0 and 1");
   const RunResults oldRun = loadRunResults(oldPath);
   const RunResults newRun = loadRunResults(newPath);
-  const std::vector<CaseComparison> cases = compareRuns(oldRun, newRun, opt);
+  std::vector<CaseComparison> cases;
+  if (morePairs.empty()) {
+    cases = compareRuns(oldRun, newRun, opt);
+  } else {
+    std::vector<RunResults> olds{oldRun}, news{newRun};
+    for (const auto& [o, n] : morePairs) {
+      olds.push_back(loadRunResults(o));
+      news.push_back(loadRunResults(n));
+    }
+    cases = comparePairedRuns(olds, news, opt);
+  }
 
   std::map<Verdict, int> counts;
   for (const auto& c : cases) ++counts[c.verdict];
@@ -401,6 +479,7 @@ int runCompareRuns(const std::string& oldPath, const std::string& newPath,
     json j;
     j["old"] = oldRun.source;
     j["new"] = newRun.source;
+    j["pairs"] = morePairs.empty() ? 0 : morePairs.size() + 1;  // 0: one run per side
     j["threshold_pct"] = opt.thresholdPct;
     j["alpha"] = opt.alpha;
     j["context_differs"] = contextDiff;
@@ -428,6 +507,9 @@ int runCompareRuns(const std::string& oldPath, const std::string& newPath,
 
   out << "old: " << runLabel(oldRun) << "\n";
   out << "new: " << runLabel(newRun) << "\n";
+  if (!morePairs.empty())
+    out << "paired: " << morePairs.size() + 1
+        << " pairs of runs; change = median new/old ratio, p = signed-rank test over the pairs\n";
   if (!contextDiff.empty()) {
     out << "note: the runs' contexts differ in";
     for (const auto& k : contextDiff) out << " " << k;

@@ -6,6 +6,7 @@
 #include <optional>
 #include <ostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace sb {
@@ -60,9 +61,23 @@ struct CaseComparison {
 std::vector<CaseComparison> compareRuns(const RunResults& oldRun, const RunResults& newRun,
                                         const CompareRunsOptions& options);
 
+// Paired runs: olds[i] and news[i] were taken one after the other (alternating which went
+// first), so the machine's drift over the rounds affects both alike. Per case, the ratios
+// new_i/old_i of the frame medians are judged with a one-sided Wilcoxon signed-rank test of
+// their logarithms (p from signedRankGreater); change = median ratio - 1; old and new median
+// are the medians of the rounds' medians. The verdicts follow the same threshold and alpha as
+// compareRuns; with too few pairs to reach alpha (2^-n >= alpha: 4 pairs at 0.05) a case is
+// not judged. A case missing from any run, or defined differently than in the first pair, is
+// added, removed or definition changed as in compareRuns. Passes are not listed.
+std::vector<CaseComparison> comparePairedRuns(const std::vector<RunResults>& olds,
+                                              const std::vector<RunResults>& news,
+                                              const CompareRunsOptions& options);
+
 // Prints the table (or one JSON object with asJson) and returns the exit status: 1 when a case
-// is Slower, else 0. Throws InputError for bad input or options.
+// is Slower, else 0. With morePairs, OLD NEW is the first of several paired runs
+// (comparePairedRuns). Throws InputError for bad input or options.
 int runCompareRuns(const std::string& oldPath, const std::string& newPath,
-                   const CompareRunsOptions& options, bool asJson, std::ostream& out);
+                   const CompareRunsOptions& options, bool asJson, std::ostream& out,
+                   const std::vector<std::pair<std::string, std::string>>& morePairs = {});
 
 }  // namespace sb

@@ -75,6 +75,58 @@ double mannWhitneyMinP(int m, int n) {
   return 1.0 / c;
 }
 
+double signedRankMinP(int n) { return n <= 0 ? 1.0 : std::ldexp(1.0, -n); }
+
+RankTest signedRankGreater(const std::vector<double>& d) {
+  RankTest r;
+  std::vector<double> nonzero;
+  for (double v : d)
+    if (v != 0.0) nonzero.push_back(v);
+  const std::size_t n = nonzero.size();
+  if (n == 0) return r;
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return std::abs(nonzero[a]) < std::abs(nonzero[b]);
+  });
+  std::vector<double> rank(n);
+  for (std::size_t i = 0; i < n;) {  // average ranks over ties in |d|
+    std::size_t j = i;
+    while (j + 1 < n && std::abs(nonzero[order[j + 1]]) == std::abs(nonzero[order[i]])) ++j;
+    for (std::size_t k = i; k <= j; ++k) rank[order[k]] = double(i + j) / 2.0 + 1.0;
+    i = j + 1;
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (nonzero[i] > 0) r.u += rank[i];
+  if (n <= static_cast<std::size_t>(kSignedRankExactLimit)) {
+    // Every sign pattern is equally likely under the null hypothesis.
+    std::size_t hits = 0;
+    for (std::size_t signs = 0; signs < (std::size_t{1} << n); ++signs) {
+      double w = 0;
+      for (std::size_t i = 0; i < n; ++i)
+        if (signs >> i & 1u) w += rank[i];
+      if (w >= r.u - 1e-9) ++hits;
+    }
+    r.p = double(hits) / double(std::size_t{1} << n);
+    r.exact = true;
+    return r;
+  }
+  double tieSum = 0;  // sum over tie groups of (t^3 - t)
+  for (std::size_t i = 0; i < n;) {
+    std::size_t j = i;
+    while (j + 1 < n && rank[order[j + 1]] == rank[order[i]]) ++j;
+    const double t = double(j - i + 1);
+    tieSum += t * t * t - t;
+    i = j + 1;
+  }
+  const double nn = double(n);
+  const double mean = nn * (nn + 1) / 4.0;
+  const double var = nn * (nn + 1) * (2 * nn + 1) / 24.0 - tieSum / 48.0;
+  const double z = (r.u - mean - 0.5) / std::sqrt(var);
+  r.p = 0.5 * std::erfc(z / std::sqrt(2.0));
+  return r;
+}
+
 RankTest mannWhitneyGreater(const std::vector<double>& x, const std::vector<double>& y) {
   RankTest r;
   const std::size_t m = x.size(), n = y.size();

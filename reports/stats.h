@@ -40,4 +40,16 @@ double mannWhitneyExactUpperTail(int m, int n, double u);
 // repetitions give 0.05 at best).
 double mannWhitneyMinP(int m, int n);
 
+// One-sided Wilcoxon signed-rank test of "the differences d tend to be above 0", for paired
+// measurements (each pair taken at the same time, so the machine's drift cancels).
+//   u: the sum of the ranks of |d_i| (ties averaged) over the positive d_i; zeros are dropped.
+//   p: P(W >= u) under the null hypothesis that each difference is as likely + as -, counted
+//     exactly over the 2^n sign patterns for n <= kSignedRankExactLimit, else the normal
+//     approximation with continuity correction. p = 1 when no difference is non-zero.
+inline constexpr int kSignedRankExactLimit = 20;
+RankTest signedRankGreater(const std::vector<double>& d);
+
+// The smallest p the signed-rank test can give for n pairs: 2^-n (every difference above 0).
+double signedRankMinP(int n);
+
 }  // namespace sb

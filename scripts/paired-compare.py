@@ -16,10 +16,9 @@ case is SLOWER when its median ratio exceeds 1 + threshold and a one-sided exact
 Wilcoxon signed-rank test of the log ratios over rounds gives p < alpha. Two
 sweeps of one binary a minute apart differ by up to 2x per case here, so only
 pairs taken within a round are compared (compare-runs on two sweeps judges the
-drift, not the build). --keep DIR keeps the sweeps and writes DIR/old and
-DIR/new: each case's repetitions pooled over all rounds (both builds sampled
-across the same minutes), which `strandbench compare-runs DIR/old DIR/new`
-then judges with its Mann-Whitney test; the script runs it and prints its table.
+drift, not the build). --keep DIR keeps the sweeps (DIR/roundR-old, -new) and
+runs `strandbench compare-runs` on them as paired rounds (--pair), the same test
+in the CLI, and prints its table.
 """
 import argparse, itertools, json, math, os, shlex, statistics, subprocess, sys, tempfile
 
@@ -74,33 +73,6 @@ def sweep(binary, suite, out):
         return {r["case"]["id"]: r["frame_ms"]["median"] for r in json.load(f)["results"]}
 
 
-def pool(folders, out):
-    """One results.json whose cases hold the repetitions of every folder's run."""
-    runs = []
-    for d in folders:
-        with open(os.path.join(d, "results.json")) as f:
-            runs.append(json.load(f))
-    merged = runs[0]
-
-    def join(ms, more):
-        ms["samples"] = ms["samples"] + more["samples"]
-        ms["median"] = statistics.median(ms["samples"])
-
-    for run in runs[1:]:
-        by_id = {r["case"]["id"]: r for r in run["results"]}
-        for r in merged["results"]:
-            other = by_id.get(r["case"]["id"])
-            if other is None:
-                continue
-            join(r["frame_ms"], other["frame_ms"])
-            passes = {p["name"]: p for p in other["passes"]}
-            for p in r["passes"]:
-                if p["name"] in passes:
-                    join(p["ms"], passes[p["name"]]["ms"])
-    os.makedirs(out, exist_ok=True)
-    with open(os.path.join(out, "results.json"), "w") as f:
-        json.dump(merged, f)
-
 
 def compare_suite(a):
     ratios = {}
@@ -118,12 +90,10 @@ def compare_suite(a):
                 if case in got[a.new] and old_ms > 0:
                     ratios.setdefault(case, []).append(got[a.new][case] / old_ms)
         if a.keep:
-            pool(folders[a.old], os.path.join(a.keep, "old"))
-            pool(folders[a.new], os.path.join(a.keep, "new"))
-            print(f"compare-runs on the repetitions pooled over {a.rounds} rounds:", flush=True)
-            subprocess.run([a.new, "compare-runs", os.path.join(a.keep, "old"),
-                            os.path.join(a.keep, "new"), "--threshold", str(a.threshold),
-                            "--alpha", str(a.alpha)])
+            cmd = [a.new, "compare-runs", folders[a.old][0], folders[a.new][0]]
+            for o, n in zip(folders[a.old][1:], folders[a.new][1:]):
+                cmd += ["--pair", o, n]
+            subprocess.run(cmd + ["--threshold", str(a.threshold), "--alpha", str(a.alpha)])
     slower = 0
     for case, v in ratios.items():
         med = statistics.median(v)
@@ -147,7 +117,7 @@ def main():
     ap.add_argument("--suite", help="pair whole sweeps of this suite, round by round")
     ap.add_argument("--threshold", type=float, default=5.0, help="percent (with --suite)")
     ap.add_argument("--alpha", type=float, default=0.05, help="significance (with --suite)")
-    ap.add_argument("--keep", help="with --suite: keep the sweeps here and pool them for compare-runs")
+    ap.add_argument("--keep", help="with --suite: keep the sweeps here and judge them with compare-runs --pair")
     a = ap.parse_args()
     if a.rounds < 2:
         sys.exit("--rounds: at least 2")

@@ -481,4 +481,97 @@ TEST(CompareRuns, JudgesTimingsDirectly) {
   EXPECT_NEAR(*none.changePct, 100.0, 1e-12);
 }
 
+// ---- paired rounds ----
+
+TEST(SignedRank, AllPositiveIsTwoToTheMinusN) {
+  const sb::RankTest r = sb::signedRankGreater({0.1, 0.3, 0.2, 0.5, 0.4});
+  EXPECT_TRUE(r.exact);
+  EXPECT_NEAR(r.u, 15.0, 1e-12);
+  EXPECT_NEAR(r.p, 1.0 / 32.0, 1e-12);
+  EXPECT_NEAR(sb::signedRankGreater({-0.1, -0.3, -0.2}).p, 1.0, 1e-12);
+  EXPECT_NEAR(sb::signedRankMinP(5), 1.0 / 32.0, 1e-12);
+  EXPECT_NEAR(sb::signedRankMinP(4), 1.0 / 16.0, 1e-12);  // cannot be < 0.05
+  // Symmetric differences: W = 3 of 0..6, P(W >= 3) = 5/8 over the 8 sign patterns.
+  EXPECT_NEAR(sb::signedRankGreater({1.0, -1.0, 2.0, -2.0}).p, 10.0 / 16.0, 1e-12);
+  EXPECT_NEAR(sb::signedRankGreater({0.0, 0.0}).p, 1.0, 1e-12);  // no non-zero difference
+}
+
+TEST(SignedRank, NormalApproximationAgreesWithTheExactTail) {
+  // 20 pairs are counted exactly, 21 by the normal approximation: both near for mixed signs.
+  std::vector<double> d;
+  for (int i = 1; i <= 21; ++i) d.push_back((i % 3 == 0 ? -1.0 : 1.0) * i);
+  const sb::RankTest approx = sb::signedRankGreater(d);
+  EXPECT_FALSE(approx.exact);
+  d.pop_back();
+  const sb::RankTest exact = sb::signedRankGreater(d);
+  EXPECT_TRUE(exact.exact);
+  EXPECT_GT(approx.p, 0.0);
+  EXPECT_LT(approx.p, 0.2);
+  EXPECT_LT(exact.p, 0.2);
+}
+
+// Rounds on a machine whose speed drifts by up to 2x between rounds: each round's runs are
+// taken together, so both builds see the same factor.
+struct PairedRounds {
+  std::vector<std::string> olds, news;
+};
+PairedRounds writeRounds(const std::filesystem::path& dir, int rounds, double slowCase1) {
+  const double drift[] = {1.0, 1.6, 0.8, 1.3, 0.7, 2.0, 1.1, 0.9};
+  PairedRounds p;
+  for (int r = 0; r < rounds; ++r) {
+    auto at = [&](double extra, unsigned seed) {
+      return [=](int i, std::vector<double> s) {
+        std::mt19937 rng(seed + 31 * i);
+        std::uniform_real_distribution<double> jitter(-0.02, 0.02);
+        for (double& x : s) x *= drift[r] * (i == 1 ? extra : 1.0) * (1.0 + jitter(rng));
+        return s;
+      };
+    };
+    p.olds.push_back(write(dir / ("old" + std::to_string(r) + ".json"), makeRun(5, at(1.0, r))));
+    p.news.push_back(
+        write(dir / ("new" + std::to_string(r) + ".json"), makeRun(5, at(slowCase1, 100 + r))));
+  }
+  return p;
+}
+std::string pairedCommand(const PairedRounds& p) {
+  std::string cmd = compareRuns(p.olds[0], p.news[0]);
+  for (std::size_t i = 1; i < p.olds.size(); ++i)
+    cmd += " --pair '" + p.olds[i] + "' '" + p.news[i] + "'";
+  return cmd;
+}
+
+TEST(CompareRunsCli, PairedRoundsFlagASlowerCaseThroughDrift) {
+  const auto dir = tempDir("cmpruns");
+  const PairedRounds p = writeRounds(dir, 6, 1.10);  // case 1: 10% slower in every round
+  const auto r = runCli(pairedCommand(p));
+  EXPECT_EQ(r.status, 1) << r.out << r.err;
+  EXPECT_NE(r.out.find("paired: 6 pairs"), std::string::npos) << r.out;
+  EXPECT_NE(lineOf(r.out, kIds[1]).find("SLOWER"), std::string::npos) << r.out;
+  EXPECT_NE(lineOf(r.out, kIds[0]).find(" ok"), std::string::npos) << r.out;
+  EXPECT_NE(lineOf(r.out, kIds[2]).find(" ok"), std::string::npos) << r.out;
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CompareRunsCli, PairedRoundsPassDriftThatTwoSweepsCallSlower) {
+  const auto dir = tempDir("cmpruns");
+  const PairedRounds p = writeRounds(dir, 6, 1.0);  // no change, only the machine's drift
+  const auto paired = runCli(pairedCommand(p));
+  EXPECT_EQ(paired.status, 0) << paired.out << paired.err;
+  EXPECT_NE(paired.out.find("0 slower"), std::string::npos) << paired.out;
+  // The same runs compared unpaired, round 0's old against round 1's new (1.6x slower
+  // machine): every case is called slower.
+  const auto unpaired = runCli(compareRuns(p.olds[0], p.news[1]));
+  EXPECT_EQ(unpaired.status, 1) << unpaired.out;
+  EXPECT_NE(unpaired.out.find("3 slower"), std::string::npos) << unpaired.out;
+  // Four pairs cannot reach p < 0.05 (2^-4): not judged.
+  const PairedRounds four = writeRounds(dir / "four", 4, 1.10);
+  const auto few = runCli(pairedCommand(four));
+  EXPECT_EQ(few.status, 0) << few.out;
+  EXPECT_NE(lineOf(few.out, kIds[1]).find("too few pairs: 4"), std::string::npos) << few.out;
+  // A --pair needs both of its runs.
+  const auto bad = runCli(compareRuns(p.olds[0], p.news[0]) + " --pair '" + p.olds[1] + "'");
+  EXPECT_EQ(bad.status, 2) << bad.out << bad.err;
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
