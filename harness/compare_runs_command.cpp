@@ -21,6 +21,7 @@ void registerCompareRunsCommand(CLI::App& app) {
   auto threshold = std::make_shared<std::string>("5");
   auto alpha = std::make_shared<double>(0.05);
   auto asJson = std::make_shared<bool>(false);
+  auto correction = std::make_shared<std::string>("holm");
   auto pairs = std::make_shared<std::vector<std::string>>();
   cmd->add_option("OLD", *oldPath, "results.json, or a sweep folder (results.json or cases/*.json)")
       ->required();
@@ -29,6 +30,11 @@ void registerCompareRunsCommand(CLI::App& app) {
                   "percent a median must change by to count (e.g. 5 or 5%)")
       ->capture_default_str();
   cmd->add_option("--alpha", *alpha, "significance level of the one-sided test")
+      ->capture_default_str();
+  cmd->add_option("--correction", *correction,
+                  "holm: alpha bounds the chance of any false verdict among the cases (Holm's "
+                  "step-down); none: alpha per case")
+      ->check(CLI::IsMember({"holm", "none"}))
       ->capture_default_str();
   cmd->add_flag("--json", *asJson, "print one JSON object instead of the table");
   cmd->add_option("--pair", *pairs,
@@ -50,6 +56,10 @@ void registerCompareRunsCommand(CLI::App& app) {
       "  not judged: 'no samples' (a run lacks frame_ms.samples: summary statistics cannot be\n"
       "  tested), or 'too few repetitions' (1/C(m+n,m) >= alpha: even fully separated samples\n"
       "  could not be significant; at alpha 0.05, 3 vs 3 is too few, 4 vs 4 is enough).\n"
+      "Over the cases, p is corrected by Holm's step-down procedure (--correction holm, the\n"
+      "default): with 38 unchanged cases at alpha 0.05 each, about two would be SLOWER by chance\n"
+      "in every comparison; corrected, the chance of any false verdict is at most alpha. The\n"
+      "verdicts use the corrected p ('p Holm'); --correction none judges each case alone.\n"
       "Passes that are slower or faster by the same rules, or in only one run, are listed under\n"
       "their case for information (only the frame time fails a case).\n"
       "With --pair (paired rounds, for a shared machine whose speed drifts between runs more\n"
@@ -72,6 +82,7 @@ void registerCompareRunsCommand(CLI::App& app) {
       if (t.empty() || used != t.size() || !std::isfinite(opt.thresholdPct) || opt.thresholdPct < 0)
         throw InputError("--threshold " + *threshold + ": not a percentage >= 0");
       opt.alpha = *alpha;
+      opt.correction = *correction == "none" ? Correction::None : Correction::Holm;
       if (pairs->size() % 2 != 0)
         throw InputError("--pair needs two runs, OLD and NEW; got " +
                          std::to_string(pairs->size()) + " values");

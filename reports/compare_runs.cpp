@@ -180,6 +180,7 @@ json timingJson(const TimingChange& t) {
           {"new_median", optionalJson(t.newMedian)},
           {"change_pct", optionalJson(t.changePct)},
           {"p", optionalJson(t.p)},
+          {"p_adjusted", optionalJson(t.pAdjusted)},
           {"exact", t.exact},
           {"old_samples", t.oldSamples},
           {"new_samples", t.newSamples}};
@@ -450,6 +451,34 @@ std::vector<CaseComparison> comparePairedRuns(const std::vector<RunResults>& old
   return out;
 }
 
+void applyCorrection(std::vector<CaseComparison>& cases, const CompareRunsOptions& opt) {
+  if (opt.correction == Correction::None) return;
+  std::vector<CaseComparison*> judged;
+  for (auto& c : cases)
+    if (c.frame.p) judged.push_back(&c);
+  std::sort(judged.begin(), judged.end(), [](const CaseComparison* a, const CaseComparison* b) {
+    return *a->frame.p < *b->frame.p;
+  });
+  const std::size_t m = judged.size();
+  double running = 0.0;  // adjusted p-values are made monotone in the order of the raw ones
+  for (std::size_t i = 0; i < m; ++i) {
+    TimingChange& t = judged[i]->frame;
+    running = std::max(running, std::min(1.0, static_cast<double>(m - i) * *t.p));
+    t.pAdjusted = running;
+    const bool beyond = std::abs(*t.changePct) > opt.thresholdPct;
+    const bool wasSignificant = *t.p < opt.alpha;
+    if (beyond && running < opt.alpha) {
+      t.verdict = *t.changePct >= 0 ? Verdict::Slower : Verdict::Faster;
+    } else {
+      t.verdict = Verdict::Ok;
+      if (beyond)
+        t.note = wasSignificant ? "not significant over " + std::to_string(m) + " cases"
+                                : "not significant";
+    }
+    judged[i]->verdict = t.verdict;
+  }
+}
+
 int runCompareRuns(const std::string& oldPath, const std::string& newPath,
                    const CompareRunsOptions& opt, bool asJson, std::ostream& out,
                    const std::vector<std::pair<std::string, std::string>>& morePairs) {
@@ -469,6 +498,7 @@ int runCompareRuns(const std::string& oldPath, const std::string& newPath,
     }
     cases = comparePairedRuns(olds, news, opt);
   }
+  applyCorrection(cases, opt);
 
   std::map<Verdict, int> counts;
   for (const auto& c : cases) ++counts[c.verdict];
@@ -482,6 +512,7 @@ int runCompareRuns(const std::string& oldPath, const std::string& newPath,
     j["pairs"] = morePairs.empty() ? 0 : morePairs.size() + 1;  // 0: one run per side
     j["threshold_pct"] = opt.thresholdPct;
     j["alpha"] = opt.alpha;
+    j["correction"] = opt.correction == Correction::Holm ? "holm" : "none";
     j["context_differs"] = contextDiff;
     j["cases"] = json::array();
     for (const auto& c : cases) {
@@ -516,28 +547,29 @@ int runCompareRuns(const std::string& oldPath, const std::string& newPath,
     out << "; timings may not be comparable\n";
   }
   // One row per case, then its notable passes indented.
-  std::vector<std::array<std::string, 6>> rows;
-  rows.push_back({"case", "old ms", "new ms", "change", "p", "verdict"});
+  std::vector<std::array<std::string, 7>> rows;
+  rows.push_back({"case", "old ms", "new ms", "change", "p", "p Holm", "verdict"});
   auto row = [&](const std::string& name, const TimingChange& t, bool pass) {
     rows.push_back({name, t.oldMedian ? format("%.3f", *t.oldMedian) : "-",
                     t.newMedian ? format("%.3f", *t.newMedian) : "-",
                     t.changePct && t.verdict != Verdict::DefinitionChanged
                         ? format("%+.1f%%", *t.changePct)
                         : "-",
-                    t.p ? formatP(*t.p) : "-", verdictText(t, pass)});
+                    t.p ? formatP(*t.p) : "-", t.pAdjusted ? formatP(*t.pAdjusted) : "-",
+                    verdictText(t, pass)});
   };
   for (const auto& c : cases) {
     row(c.id, c.frame, false);
     for (const auto& p : c.passes) row("  pass " + p.name, p, true);
   }
-  std::array<std::size_t, 6> width{};
+  std::array<std::size_t, 7> width{};
   for (const auto& r : rows)
     for (std::size_t i = 0; i < r.size(); ++i) width[i] = std::max(width[i], r[i].size());
   for (const auto& r : rows) {
     std::string line = r[0] + std::string(width[0] - r[0].size(), ' ');
-    for (std::size_t i = 1; i < 5; ++i)
+    for (std::size_t i = 1; i < 6; ++i)
       line += "  " + std::string(width[i] - r[i].size(), ' ') + r[i];
-    line += "  " + r[5];
+    line += "  " + r[6];
     out << line << "\n";
   }
   out << cases.size() << " cases: " << counts[Verdict::Slower] << " slower, "
@@ -545,7 +577,9 @@ int runCompareRuns(const std::string& oldPath, const std::string& newPath,
       << counts[Verdict::NotJudged] << " not judged, " << counts[Verdict::DefinitionChanged]
       << " definition changed, " << counts[Verdict::Added] << " added, " << counts[Verdict::Removed]
       << " removed (threshold " << format("%g", opt.thresholdPct) << "%, alpha "
-      << format("%g", opt.alpha) << ")\n";
+      << format("%g", opt.alpha)
+      << (opt.correction == Correction::Holm ? ", Holm-corrected over the judged cases" : "")
+      << ")\n";
   return status;
 }
 

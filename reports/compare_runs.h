@@ -23,9 +23,15 @@ struct RunResults {
 // documented format, a case id twice).
 RunResults loadRunResults(const std::string& path);
 
+// How the cases' p-values are combined. A suite compares dozens of cases: at alpha 0.05 each,
+// 38 unchanged cases give about two false SLOWER verdicts per comparison. Holm's step-down
+// procedure keeps the chance of any false verdict among the cases (familywise) below alpha.
+enum class Correction { None, Holm };
+
 struct CompareRunsOptions {
   double thresholdPct = 5.0;  // a median must change by more than this to count
   double alpha = 0.05;        // significance level of the one-sided test
+  Correction correction = Correction::Holm;
 };
 
 enum class Verdict { Ok, Slower, Faster, NotJudged, DefinitionChanged, Added, Removed };
@@ -40,6 +46,8 @@ struct TimingChange {
   // One-sided p-value in the direction of the median change (new slower when changePct >= 0,
   // new faster otherwise); absent when not judged.
   std::optional<double> p;
+  // p after Holm's correction over the run's judged cases (frames only; passes are information).
+  std::optional<double> pAdjusted;
   bool exact = false;  // p from the exact distribution (else the normal approximation)
   int oldSamples = 0, newSamples = 0;
 };
@@ -72,6 +80,10 @@ std::vector<CaseComparison> compareRuns(const RunResults& oldRun, const RunResul
 std::vector<CaseComparison> comparePairedRuns(const std::vector<RunResults>& olds,
                                               const std::vector<RunResults>& news,
                                               const CompareRunsOptions& options);
+
+// Holm's step-down correction over the frame p-values of the judged cases: each case's verdict
+// is decided again with its adjusted p (threshold unchanged). No-op with Correction::None.
+void applyCorrection(std::vector<CaseComparison>& cases, const CompareRunsOptions& options);
 
 // Prints the table (or one JSON object with asJson) and returns the exit status: 1 when a case
 // is Slower, else 0. With morePairs, OLD NEW is the first of several paired runs

@@ -13,7 +13,8 @@ Without --case or --suite, a fixed set of cases from the quick suite is used.
 With --suite, each round sweeps the whole suite with both binaries (alternating
 which goes first) and each case's frame median is paired within the round; a
 case is SLOWER when its median ratio exceeds 1 + threshold and a one-sided exact
-Wilcoxon signed-rank test of the log ratios over rounds gives p < alpha. Two
+Wilcoxon signed-rank test of the log ratios over rounds gives p < alpha after Holm's
+correction over the cases (as compare-runs does by default). Two
 sweeps of one binary a minute apart differ by up to 2x per case here, so only
 pairs taken within a round are compared (compare-runs on two sweeps judges the
 drift, not the build). --keep DIR keeps the sweeps (DIR/roundR-old, -new) and
@@ -94,17 +95,24 @@ def compare_suite(a):
             for o, n in zip(folders[a.old][1:], folders[a.new][1:]):
                 cmd += ["--pair", o, n]
             subprocess.run(cmd + ["--threshold", str(a.threshold), "--alpha", str(a.alpha)])
+    # Holm's step-down correction over the cases, as compare-runs does by default: with dozens
+    # of unchanged cases at alpha each, a few would be SLOWER by chance in every comparison.
+    pvals = {case: signed_rank_p([math.log(x) for x in v]) for case, v in ratios.items()}
+    adjusted, running = {}, 0.0
+    for i, case in enumerate(sorted(pvals, key=pvals.get)):
+        running = max(running, min(1.0, (len(pvals) - i) * pvals[case]))
+        adjusted[case] = running
     slower = 0
     for case, v in ratios.items():
         med = statistics.median(v)
         q = statistics.quantiles(v, n=4) if len(v) >= 2 else [med, med, med]
-        p = signed_rank_p([math.log(x) for x in v])
-        verdict = "SLOWER" if med > 1 + a.threshold / 100 and p < a.alpha else "ok"
+        p = pvals[case]
+        verdict = "SLOWER" if med > 1 + a.threshold / 100 and adjusted[case] < a.alpha else "ok"
         slower += verdict == "SLOWER"
         print(f"{case:52s} new/old {med:.3f} (quartiles {q[0]:.3f}..{q[2]:.3f}) "
-              f"p(slower) {p:.3f}  {verdict}", flush=True)
+              f"p(slower) {p:.3f} Holm {adjusted[case]:.3f}  {verdict}", flush=True)
     print(f"{len(ratios)} cases, {slower} slower ({a.rounds} rounds, threshold "
-          f"{a.threshold}%, alpha {a.alpha})")
+          f"{a.threshold}%, alpha {a.alpha}, Holm-corrected over the cases)")
     return 1 if slower else 0
 
 

@@ -575,3 +575,66 @@ TEST(CompareRunsCli, PairedRoundsPassDriftThatTwoSweepsCallSlower) {
 }
 
 }  // namespace
+
+namespace {
+
+// ---- Holm's correction over the cases ----
+
+sb::CaseComparison judgedCase(const std::string& id, double changePct, double p,
+                              const sb::CompareRunsOptions& opt) {
+  sb::CaseComparison c;
+  c.id = id;
+  c.frame.name = id;
+  c.frame.changePct = changePct;
+  c.frame.p = p;
+  const bool beyond = std::abs(changePct) > opt.thresholdPct;
+  c.frame.verdict = beyond && p < opt.alpha
+                        ? (changePct >= 0 ? sb::Verdict::Slower : sb::Verdict::Faster)
+                        : sb::Verdict::Ok;
+  c.verdict = c.frame.verdict;
+  return c;
+}
+
+// The textbook example: p = 0.01, 0.04, 0.03 over three cases adjust to 0.03, 0.06, 0.06 (the
+// second smallest is 2 x 0.03 = 0.06, and the largest may not fall below it).
+TEST(CompareRunsHolm, AdjustedValuesAreTheStepDownOnes) {
+  sb::CompareRunsOptions opt;
+  std::vector<sb::CaseComparison> cases{judgedCase("a", 10, 0.01, opt),
+                                        judgedCase("b", 10, 0.04, opt),
+                                        judgedCase("c", 10, 0.03, opt)};
+  sb::applyCorrection(cases, opt);
+  EXPECT_NEAR(*cases[0].frame.pAdjusted, 0.03, 1e-12);
+  EXPECT_NEAR(*cases[1].frame.pAdjusted, 0.06, 1e-12);
+  EXPECT_NEAR(*cases[2].frame.pAdjusted, 0.06, 1e-12);
+  EXPECT_EQ(cases[0].verdict, sb::Verdict::Slower);
+  EXPECT_EQ(cases[1].verdict, sb::Verdict::Ok);
+  EXPECT_EQ(cases[2].verdict, sb::Verdict::Ok);
+  EXPECT_NE(cases[1].frame.note.find("not significant over 3 cases"), std::string::npos);
+}
+
+// 38 cases, two of them beyond the threshold with p 0.02 and 0.03, as chance gives in a suite:
+// judged alone they are SLOWER, corrected they are not; a real regression (p 1e-5, as 16 rounds
+// all slower give) stays SLOWER among them.
+TEST(CompareRunsHolm, ChanceVerdictsAmongManyCasesAreNotRegressions) {
+  sb::CompareRunsOptions opt;
+  std::vector<sb::CaseComparison> cases;
+  for (int i = 0; i < 36; ++i)
+    cases.push_back(judgedCase("noise" + std::to_string(i), 2.0, 0.1 + 0.025 * i, opt));
+  cases.push_back(judgedCase("chance1", 12.0, 0.02, opt));
+  cases.push_back(judgedCase("chance2", 9.0, 0.03, opt));
+  std::vector<sb::CaseComparison> alone = cases;
+  opt.correction = sb::Correction::None;
+  sb::applyCorrection(alone, opt);
+  EXPECT_EQ(alone[36].verdict, sb::Verdict::Slower);
+  EXPECT_EQ(alone[37].verdict, sb::Verdict::Slower);
+  opt.correction = sb::Correction::Holm;
+  std::vector<sb::CaseComparison> corrected = cases;
+  sb::applyCorrection(corrected, opt);
+  for (const auto& c : corrected) EXPECT_NE(c.verdict, sb::Verdict::Slower) << c.id;
+  cases.push_back(judgedCase("real", 10.0, 1.0 / 65536.0, opt));
+  sb::applyCorrection(cases, opt);
+  EXPECT_EQ(cases.back().verdict, sb::Verdict::Slower);
+  EXPECT_EQ(cases[36].verdict, sb::Verdict::Ok);
+}
+
+}  // namespace
