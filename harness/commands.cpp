@@ -60,6 +60,9 @@ void registerList(CLI::App& app) {
           j["shadow"].push_back({{"name", t.name}, {"help", t.help}, {"options", opts(t.options)}});
         for (const auto& t : oitCatalog())
           j["oit"].push_back({{"name", t.name}, {"help", t.help}, {"options", opts(t.options)}});
+        for (const auto& t : shadingCatalog())
+          j["shading"].push_back(
+              {{"name", t.name}, {"help", t.help}, {"options", opts(t.options)}});
         for (const auto& b : backendCatalog())
           j["backends"].push_back({{"name", b.name}, {"platforms", b.platforms}});
         j["primitives"] = findSetting("primitive")->choices;
@@ -79,6 +82,11 @@ void registerList(CLI::App& app) {
       }
       std::cout << "transparency techniques (--oit NAME:key=value,...):\n";
       for (const auto& t : oitCatalog()) {
+        std::cout << "  " << t.name << "  " << t.help << "\n";
+        printOptions(t.options);
+      }
+      std::cout << "hair shading models (--shading NAME:key=value,...):\n";
+      for (const auto& t : shadingCatalog()) {
         std::cout << "  " << t.name << "  " << t.help << "\n";
         printOptions(t.options);
       }
@@ -357,6 +365,7 @@ void checkRenderRequest(const RenderRequest& req, bool device, RenderCache* cach
   }
   named("shadow", req.shadow, [&] { makeShadowTechnique(Spec::parse(req.shadow)); });
   named("oit", req.oit, [&] { makeOitTechnique(Spec::parse(req.oit)); });
+  named("shading", req.shading, [&] { ShadingModel::fromSpec(req.shading); });
   makeRenderSettings(req, *scene);
   if (device) makeRequestDevice(req);
 }

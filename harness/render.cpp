@@ -31,6 +31,7 @@ RenderSettings makeRenderSettings(const RenderRequest& req, const Scene& scene) 
   s.height = req.height;
   s.primitive = req.primitive == "ribbons" ? Primitive::Ribbons : Primitive::Lines;
   s.ribbonWidth = req.ribbonWidth;
+  s.shading = ShadingModel::fromSpec(req.shading);
 
   const Bounds b = scene.bounds();
   const ViewOverrides& o = req.view;
@@ -740,6 +741,7 @@ RenderResult runRender(const RenderRequest& req, RenderCache* cache, Device* dev
                scene.bounds()};
   out.shadow = shadowSpec.str();
   out.oit = oitSpec.str();
+  out.shading = settings.shading.spec;
   out.primitive = req.primitive;
   out.width = settings.width;
   out.height = settings.height;
@@ -838,6 +840,7 @@ nlohmann::json renderJson(const RenderResult& r) {
                 {"bounds", boundsJson(r.scene.bounds)}};
   j["shadow"] = r.shadow;
   j["oit"] = r.oit;
+  j["shading"] = r.shading;
   j["primitive"] = r.primitive;
   j["size"] = {r.width, r.height};
   j["repeat"] = r.repeat;

@@ -57,9 +57,10 @@ struct AnimateSpec {
 struct RenderRequest {
   std::string scene = "straight";
   std::string shadow = "none";
-  std::string oit = "none";  // transparency technique (none | peel | abuffer, ...)
-  bool reference = false;    // also render the reference and report errors against it
-  bool image = true;         // false: no final shading; only the visibility error (needs reference)
+  std::string oit = "none";            // transparency technique (none | peel | abuffer, ...)
+  std::string shading = "kajiya-kay";  // hair shading model spec
+  bool reference = false;              // also render the reference and report errors against it
+  bool image = true;  // false: no final shading; only the visibility error (needs reference)
   std::optional<ProbeSpec> probe;  // also report visibility along a light ray
   bool invariants = false;         // check the outputs and maps (harness/invariants.h)
   std::string backend = defaultBackend();
@@ -149,6 +150,7 @@ struct RenderResult {
   DeviceInfo device;
   SceneSummary scene;
   std::string shadow, oit;  // the technique specs as run
+  std::string shading;      // the hair shading model spec
   std::string primitive;
   uint32_t width = 0, height = 0;
   int repeat = 0, warmup = 0;

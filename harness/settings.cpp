@@ -458,6 +458,11 @@ std::vector<Setting> buildTable() {
   plain(add(make("oit", "--oit", T::Spec, "none", "transparency technique spec, e.g. peel, abuffer",
                  "wavg", "pel")),
         &RenderRequest::oit);
+  plain(add(make("shading", "--shading", T::Spec, "kajiya-kay",
+                 "hair shading model spec: kajiya-kay, marschner or sadeghi, with options "
+                 "(`strandbench list`)",
+                 "marschner:alpha=-5", "marschnr")),
+        &RenderRequest::shading);
   {
     Setting& s = add(make("backend", "--backend", T::Enum, defaultBackend(),
                           "graphics API; suites and manifests also take `backends`, a list: one "

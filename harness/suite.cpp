@@ -66,14 +66,16 @@ RenderRequest toRequest(const ojson& s, const std::string& where) {
       if (s.contains(setting.key)) setFromJson(r, setting, s.at(setting.key));
     checkRequest(r, Spelling::Json);
     // Technique specs are checked now, not half way through a sweep.
-    for (const char* key : {"shadow", "oit"}) {
+    for (const char* key : {"shadow", "oit", "shading"}) {
       const Setting& setting = *findSetting(key);
       try {
         const Spec spec = Spec::parse(settingText(r, setting));
         if (setting.key == "shadow")
           makeShadowTechnique(spec);
-        else
+        else if (setting.key == "oit")
           makeOitTechnique(spec);
+        else
+          ShadingModel::fromSpec(settingText(r, setting));
       } catch (const InputError& e) {
         throw InputError(
             settingMessage(setting, Spelling::Json, settingText(r, setting), e.what()));

@@ -16,6 +16,7 @@
 #include "techniques/common/frame_graph.h"
 #include "techniques/common/pass.h"
 #include "techniques/common/shader_library.h"
+#include "techniques/common/shading_model.h"
 #include "techniques/common/slots.h"
 
 namespace sb {
@@ -23,6 +24,7 @@ namespace sb {
 enum class Primitive { Lines, Ribbons };
 
 struct RenderSettings {
+  ShadingModel shading;  // hair shading model of the final passes
   uint32_t width = 512, height = 512;
   Primitive primitive = Primitive::Lines;
   float ribbonWidth = 1.0f;  // pixels of the target being drawn

@@ -1,13 +1,35 @@
-// The shaded colour of a hair fragment: Kajiya-Kay with the light's visibility
-// from the shadow technique. Include after common/shading.glsl and <shadow>.
+// The shaded colour of a hair fragment: the shading model chosen by --shading
+// (SB_SHADING_MODEL, techniques/common/shading_model.h) with the light's
+// visibility from the shadow technique. Include after common/shading.glsl and <shadow>.
+#ifndef SB_SHADING_MODEL
+#error "hair passes need the shading's defines (KajiyaKayShading::hairDefines)"
+#endif
 #include "kajiya_kay.glsl"
+#if SB_SHADING_MODEL == 1
+#include "../marschner/marschner.glsl"
+#elif SB_SHADING_MODEL == 2
+#include "../sadeghi/sadeghi.glsl"
+#endif
 
 vec3 shadeHair(vec3 worldPos, vec3 tangent, vec3 color) {
   vec3 T = normalize(tangent);
   vec3 L = directionToLight(worldPos);
   vec3 V = normalize(eyePos.xyz - worldPos);
-  vec2 kk = kajiyaKay(T, L, V, hairMaterial.z);
   float visibility = shadowVisibility(worldPos);
+#if SB_SHADING_MODEL == 0
+  vec2 kk = kajiyaKay(T, L, V, hairMaterial.z);
   vec3 direct = (hairMaterial.x * kk.x * color + hairMaterial.y * kk.y) * lightColor.rgb;
+#else
+  // Both papers' models add a Kajiya-Kay diffuse term (the thesis, Listing 2, line 3).
+  float tl = dot(T, L);
+  float diffuse = sqrt(max(0.0f, 1.0f - tl * tl));
+#if SB_SHADING_MODEL == 1
+  // L_r = D * integral of S L_i cos(theta_i): one light, cos(theta_i) = sin(T, L).
+  vec3 specular = marschner(T, L, V, color, lobeShift, lobeWidth) * diffuse;
+#else
+  vec3 specular = sadeghi(T, L, V, color, lobeShift, lobeWidth, lobeIntensity, sceneParams.z);
+#endif
+  vec3 direct = (hairMaterial.x * diffuse * color + hairMaterial.y * specular) * lightColor.rgb;
+#endif
   return hairMaterial.w * color + visibility * direct;
 }

@@ -9,7 +9,8 @@ namespace sb {
 float KajiyaKayShading::maxRadiance(const RenderSettings& s) {
   const glm::vec3 light = s.light.color * s.light.intensity;
   const float l = std::max({light.r, light.g, light.b, 0.0f});
-  const float hair = kHairMaterial.w + (kHairMaterial.x + kHairMaterial.y) * l;
+  const glm::vec4 m = s.shading.material;
+  const float hair = m.w + (m.x + m.y * s.shading.maxSpecular()) * l;
   const float albedo = std::max({kMeshMaterial.r, kMeshMaterial.g, kMeshMaterial.b});
   const float mesh = albedo * (kMeshMaterial.w + l);
   return std::max({hair, mesh, s.background.r, s.background.g, s.background.b});
@@ -29,9 +30,12 @@ void KajiyaKayShading::setup(Device& dev, const GpuScene& scene, const RenderSet
   u.lightPos = s.light.type == LightType::Point ? glm::vec4(s.light.position, 1)
                                                 : glm::vec4(-glm::normalize(s.light.direction), 0);
   u.lightColor = glm::vec4(s.light.color * s.light.intensity, 1);
-  u.hairMaterial = kHairMaterial;
+  u.hairMaterial = s.shading.material;
   u.meshMaterial = kMeshMaterial;
-  u.sceneParams = glm::vec4(scene.hairAlpha, scene.shadowAlpha, 0, 0);
+  u.sceneParams = glm::vec4(scene.hairAlpha, scene.shadowAlpha, s.shading.glintWidth, 0);
+  u.lobeShift = s.shading.shift;
+  u.lobeWidth = s.shading.width;
+  u.lobeIntensity = s.shading.intensity;
   shadingUbo_ = dev.createBuffer({"shading.params", "frame", BufferUsage::Uniform, sizeof u}, &u);
 
   if (scene.hasMesh()) {
@@ -54,6 +58,8 @@ ShaderDefines KajiyaKayShading::hairDefines() const {
   const ShadowLookup lookup = shadow_->lookup();
   ShaderDefines defs = lookup.defines;
   defs.aliases["shadow"] = lookup.shader;
+  defs.defines.push_back(
+      {"SB_SHADING_MODEL", std::to_string(static_cast<int>(settings_.shading.kind))});
   return defs;
 }
 

@@ -11,16 +11,19 @@ struct ShadingUniforms {
   glm::vec4 lightColor;
   glm::vec4 hairMaterial;  // kd, ks, shininess, ambient
   glm::vec4 meshMaterial;  // rgb, ambient
-  glm::vec4 sceneParams;   // hair alpha, shadow alpha
+  glm::vec4 sceneParams;   // hair alpha, shadow alpha, glint width (Sadeghi)
+  glm::vec4 lobeShift;     // the shading model's parameters (ShadingModel)
+  glm::vec4 lobeWidth;
+  glm::vec4 lobeIntensity;
 };
 
 // Final shading from the camera: the opaque mesh (Lambert, pass "shading.mesh")
 // and what every hair pass of a transparency technique needs to shade hair with
-// Kajiya-Kay through the shadow technique's lookup (hair_shading.glsl).
+// the model chosen by --shading (Kajiya-Kay, Marschner or Sadeghi) through the
+// shadow technique's lookup (hair_shading.glsl).
 class KajiyaKayShading {
  public:
-  // Hair: diffuse, specular, specular exponent, ambient; mesh: albedo, ambient.
-  static constexpr glm::vec4 kHairMaterial{0.8f, 0.35f, 40.0f, 0.12f};
+  // Mesh: albedo, ambient (hair: the shading model's material).
   static constexpr glm::vec4 kMeshMaterial{0.75f, 0.72f, 0.68f, 0.15f};
   // The brightest any shaded fragment or the background can be (hair colour
   // <= 1, visibility <= 1): a bound every composited pixel must stay under.

@@ -1,0 +1,40 @@
+// The hair shading models of the final passes (`--shading NAME:key=value,...`): Kajiya-Kay
+// (techniques/kajiya_kay/), Marschner et al. 2003 (techniques/marschner/) and the
+// artist-friendly model of Sadeghi et al. 2010 as the thesis implements it (techniques/sadeghi/).
+// The math is in each folder's .glsl, shared with the CPU tests; this is the choice and its
+// parameters, read from the spec and handed to the shaders as uniforms.
+#pragma once
+
+#include <glm/glm.hpp>
+#include <string>
+#include <vector>
+
+#include "scenes/scene.h"
+
+namespace sb {
+
+struct TechniqueInfo;
+
+enum class ShadingKind { KajiyaKay = 0, Marschner = 1, Sadeghi = 2 };  // SB_SHADING_MODEL
+
+struct ShadingModel {
+  ShadingKind kind = ShadingKind::KajiyaKay;
+  std::string spec = "kajiya-kay";  // canonical NAME[:options] as given
+  // Diffuse and specular weights, Kajiya-Kay's exponent, ambient.
+  glm::vec4 material{0.8f, 0.35f, 40.0f, 0.12f};
+  // Marschner: (alpha_R, alpha_TT, alpha_TRT, eta), (beta_R, beta_TT, beta_TRT, caustic floor).
+  // Sadeghi: (alpha_R, alpha_TT, alpha_TRT, glint half angle), (beta_R, beta_TT, beta_TRT,
+  // xi_TT), intensities (I_R, I_TT, I_TRT, I_g), glint width xi_g. Angles in radians.
+  glm::vec4 shift{0.0f}, width{1.0f}, intensity{0.0f};
+  float glintWidth = 0.1f;
+
+  // Throws InputError naming the model and the option (unknown name or option, out of range).
+  static ShadingModel fromSpec(const std::string& spec);
+  // The largest value the specular factor can take (the shader's bounds on cos^2(theta_d)
+  // included): the colour invariant's bound.
+  float maxSpecular() const;
+};
+
+const std::vector<TechniqueInfo>& shadingCatalog();
+
+}  // namespace sb
