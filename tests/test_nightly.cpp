@@ -294,7 +294,9 @@ TEST(HistoryCli, FindsARecentStepAndRaisesTheAlarm) {
     char date[32];
     std::snprintf(date, sizeof date, "2026-11-%02dT02:00:00Z", i + 1);
     // Named so that folder order is not date order: history sorts by context.date.
-    writeRun(dir / "runs" / ("run-" + std::to_string(29 - i)), date,
+    std::string name = "run-";
+    name += std::to_string(29 - i);
+    writeRun(dir / "runs" / name, date,
              {{"g/step", step[i]}, {"g/noise", noise[i]}, {"g/faster", old[i]}}, rng);
   }
   const CliResult r = runCli("history " + (dir / "runs").string() + " --out " +
@@ -338,7 +340,9 @@ TEST(HistoryCli, PureNoiseGivesNoAlarm) {
   for (int i = 0; i < 30; ++i) {
     char date[32];
     std::snprintf(date, sizeof date, "2026-10-%02dT02:00:00Z", i + 1);
-    const fs::path run = dir / ("r" + std::to_string(i));
+    std::string name = "r";  // (not "r" + to_string: GCC 12's -Wrestrict false positive)
+    name += std::to_string(i);
+    const fs::path run = dir / name;
     writeRun(run, date,
              {{"a", cases[0][i]}, {"b", cases[1][i]}, {"c", cases[2][i]}, {"d", cases[3][i]}}, rng);
     runs.push_back(run.string());
