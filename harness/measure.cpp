@@ -1,5 +1,6 @@
 #include "harness/measure.h"
 
+#include <algorithm>
 #include <iomanip>
 #include <sstream>
 
@@ -39,6 +40,7 @@ std::vector<Measurement> measureInterleaved(const std::vector<std::function<doub
     }
     for (std::size_t i = 0; i < n; ++i) m[i].samples.push_back(sample[i]);
     if (round + 1 < o.minReps) continue;
+    if (o.targetCiPct == 0) break;  // no target: exactly --min-reps rounds
     bool precise = true;
     for (auto& c : m) {
       c.median = bootstrapMedian(c.samples);
@@ -63,13 +65,18 @@ Interval printRatio(std::ostream& out, const std::string& label, const Measureme
   const Interval r = ratioInterval(num, den);
   out << "  " << label << ": " << formatInterval(r) << "  (" << paper << ")\n";
   if (claim) {
-    const std::string v = orderingVerdict(r, claim->bound, claim->claimBelow);
+    // A percentile bootstrap of 2-4 rounds has too few distinct resamples to be an interval.
+    const bool tooFew = std::min(num.samples.size(), den.samples.size()) < kMinRoundsForVerdict;
+    const std::string v =
+        tooFew ? "undecided" : orderingVerdict(r, claim->bound, claim->claimBelow);
     std::ostringstream bound;
     bound << claim->bound;
     out << "    paper's ordering (" << claim->text << ", ratio "
         << (claim->claimBelow ? "< " : "> ") << bound.str() << "): "
-        << (v == "undecided" ? "undecided (the interval contains " + bound.str() + ")"
-                             : v + " with 95% confidence")
+        << (tooFew ? "undecided (fewer than " + std::to_string(kMinRoundsForVerdict) +
+                         " rounds: no interval to judge by)"
+            : v == "undecided" ? "undecided (the interval contains " + bound.str() + ")"
+                               : v + " with 95% confidence")
         << "\n";
   }
   return r;

@@ -43,6 +43,9 @@ void checkRepetitionOptions(const RepetitionOptions& options);
 // together: both samples of a round saw the same state of the machine).
 Interval ratioInterval(const Measurement& num, const Measurement& den);
 
+// Rounds below which printRatio judges no ordering (the interval is printed, "undecided").
+inline constexpr std::size_t kMinRoundsForVerdict = 5;
+
 // A paper's claimed ordering of a ratio: below `bound` (claimBelow) or above it.
 struct OrderingClaim {
   double bound = 1.0;

@@ -313,9 +313,14 @@ TEST(HistoryCli, FindsARecentStepAndRaisesTheAlarm) {
   EXPECT_TRUE(byId["g/noise"]["changes"].empty());
   EXPECT_FALSE(byId["g/faster"]["alarm"].get<bool>());
   EXPECT_FALSE(byId["g/faster"]["changes"].empty());
-  // Sorted by the size of the latest change: -15% first, +10% next, the unchanged case last.
-  EXPECT_EQ(h["cases"][0]["id"], "g/faster");
+  // Sorted by the size of the latest change, largest first; the unchanged case last.
+  auto latest = [](const json& c) {
+    return c["changes"].empty() ? 0.0 : std::abs(c["changes"].back()["size"].get<double>());
+  };
+  for (std::size_t i = 1; i < h["cases"].size(); ++i)
+    EXPECT_GE(latest(h["cases"][i - 1]), latest(h["cases"][i])) << h["cases"][i]["verdict"];
   EXPECT_EQ(h["cases"][2]["id"], "g/noise");
+  for (const auto& c : h["cases"]) std::cout << c["id"] << ": " << c["verdict"] << "\n";
   EXPECT_EQ(h["cases"][0]["points"].size(), 30u);
   EXPECT_LE(h["cases"][0]["points"][0]["ci95"][0].get<double>(),
             h["cases"][0]["points"][0]["median"].get<double>());
