@@ -59,12 +59,12 @@ for s in $suites; do
   ((rc == 0)) || { echo "gpu-suite.sh: sweep $s exited $rc" >&2; ((status)) || status=$rc; }
   secs=$(($(date +%s) - t0))
   cases=$(ls "$out/$s/cases" 2>/dev/null | wc -l)
-  failed=$(grep -l '"failed"' "$out/$s"/cases/*.json 2>/dev/null | wc -l)
+  failed=$( (grep -l '"failed"' "$out/$s"/cases/*.json 2>/dev/null || true) | wc -l)
   # The devices block of results.json's context: one "backend ... timing" group per device.
   devices=$(tr -d '\n' <"$out/$s/results.json" 2>/dev/null |
     grep -o '"devices": *\[[^]]*\]' | grep -o '{[^}]*}' |
     sed -E 's/.*"backend": *"([^"]*)".*"device": *"([^"]*)".*"driver": *"([^"]*)".*"timing": *"([^"]*)".*/\1: \2, \3, \4/' |
-    paste -sd ';' -)
+    paste -sd ';' -) || true
   echo "| $s | $cases | $failed | $secs | ${devices:-?} |" >>"$out/summary.md"
 done
 echo
