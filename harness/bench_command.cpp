@@ -1,14 +1,18 @@
-// `strandbench bench-shadows`: the self-shadowing papers' timing and memory
-// figures as ratios measured on one backend in one run (not a test: these
-// machines are shared and noisy, so only ratios within a run are compared).
+// `strandbench bench-shadows` and `bench-oit`: the papers' timing figures as ratios measured on
+// one backend in one run (not a test: these machines are shared and noisy, so only ratios
+// within a run are compared, their cases interleaved round by round, each ratio with its 95%
+// interval; harness/measure.h).
 #include <cmath>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 
 #include "harness/commands.h"
+#include "harness/measure.h"
 #include "harness/render.h"
 #include "reports/stats.h"
 
@@ -19,6 +23,7 @@ namespace {
 struct BenchOptions {
   RenderRequest base;
   std::vector<int> osmMaps = {1, 2, 4, 8, 16, 32};
+  RepetitionOptions reps;
 };
 
 struct Measured {
@@ -80,6 +85,19 @@ void checkCases(const RenderRequest& base, std::string RenderRequest::*technique
   }
 }
 
+// The header every benchmark prints: what is measured, how, and the machine's state.
+void printHeader(const RenderRequest& base, const RepetitionOptions& reps) {
+  std::cout << "scene " << base.scene << ", " << base.width << "x" << base.height << ", "
+            << base.backend << "; each round renders every case once (" << base.repeat << " frame"
+            << (base.repeat > 1 ? "s" : "") << " after " << base.warmup
+            << " warm-up, their median is the round's sample), " << reps.minReps << ".."
+            << reps.maxReps << " rounds round-robin";
+  if (reps.targetCiPct > 0)
+    std::cout << " until every 95% interval is within +-" << reps.targetCiPct << "%";
+  std::cout << "; medians and ratios with 95% bootstrap intervals\nbefore: " << machineState()
+            << "\n\n";
+}
+
 int runBench(const BenchOptions& o) {
   std::vector<std::string> specs;
   for (const auto& row : kFig1) specs.push_back(row.first);
@@ -90,76 +108,136 @@ int runBench(const BenchOptions& o) {
   }
   if (std::set<int>(o.osmMaps.begin(), o.osmMaps.end()).size() < 2)
     throw InputError("--osm-maps needs at least two different map counts for the fit");
+  checkRepetitionOptions(o.reps);
   checkCases(o.base, &RenderRequest::shadow, specs);
   std::cout << std::fixed << std::setprecision(2);
-  std::cout << "scene " << o.base.scene << ", " << o.base.width << "x" << o.base.height << ", "
-            << o.base.backend << ", median of " << o.base.repeat << " after " << o.base.warmup
-            << " warm-up\n\n";
+  printHeader(o.base, o.reps);
+
+  // Every case of both figures in one interleaved group: the ratios compare rounds taken
+  // side by side.
+  std::vector<std::vector<double>> frames(specs.size());
+  std::vector<std::function<double()>> cases;
+  for (std::size_t i = 0; i < specs.size(); ++i)
+    cases.push_back([&, i] {
+      const Measured m = measure(o.base, specs[i]);
+      frames[i].push_back(m.frameMs);
+      return m.shadowMs;
+    });
+  const std::vector<Measurement> ms = measureInterleaved(cases, o.reps);
+  std::map<std::string, const Measurement*> m;
+  for (std::size_t i = 0; i < specs.size(); ++i) m[specs[i]] = &ms[i];
 
   std::cout << "Deep opacity maps paper, Fig. 1 (GeForce 8800, fps) beside ours (shadow ms, "
                "frame ms):\n";
-  std::map<std::string, Measured> m;
-  for (const auto& [spec, paper] : kFig1) {
-    m[spec] = measure(o.base, spec);
-    std::cout << "  " << std::left << std::setw(16) << spec << std::right << " shadow "
-              << std::setw(9) << m[spec].shadowMs << " ms  frame " << std::setw(9)
-              << m[spec].frameMs << " ms  paper " << paper << "\n";
-  }
-  std::cout << "\nratios (one backend, one run):\n"
-            << "  DOM(3) / OSM(16) shadow time: "
-            << m["dom:layers=3"].shadowMs / m["osm:maps=16"].shadowMs
-            << "  (paper, from fps: frames 8.8 / 12.3 ms = 0.71; shadow part over 'no shadows' "
-               "2.3 / 5.9 ms = 0.39)\n"
-            << "  occupancy / DOM(4) shadow time: "
-            << m["occupancy"].shadowMs / m["dom:layers=4"].shadowMs
-            << "  (occupancy paper: 41 / 33.5 = 1.22)\n";
+  for (std::size_t i = 0; i < kFig1.size(); ++i)
+    std::cout << "  " << std::left << std::setw(16) << kFig1[i].first << std::right << " shadow "
+              << describe(ms[i]) << "  frame " << median(frames[i]) << " ms  paper "
+              << kFig1[i].second << "\n";
+  std::cout << "\nratios (one backend, rounds interleaved, 95% paired bootstrap intervals):\n";
+  printRatio(std::cout, "DOM(3) / OSM(16) shadow time", *m["dom:layers=3"], *m["osm:maps=16"],
+             "paper, from fps: frames 8.8 / 12.3 ms = 0.71; shadow part over 'no shadows' 2.3 / "
+             "5.9 ms = 0.39",
+             OrderingClaim{1.0, true, "DOM(3) faster than OSM(16)"});
+  printRatio(std::cout, "occupancy / DOM(4) shadow time", *m["occupancy"], *m["dom:layers=4"],
+             "occupancy paper: 41 / 33.5 = 1.22",
+             OrderingClaim{1.0, false, "occupancy slower than DOM(4)"});
 
   std::cout << "\nOpacity shadow maps paper, Fig. 4: time against the number of maps "
                "(passes=single, one geometry pass per map):\n";
   std::vector<double> xs, ys;
-  for (int maps : o.osmMaps) {
-    const Measured r = measure(o.base, "osm:passes=single,maps=" + std::to_string(maps));
-    xs.push_back(maps);
-    ys.push_back(r.shadowMs);
-    std::cout << "  maps " << std::setw(4) << maps << ": " << std::setw(9) << r.shadowMs << " ms\n";
+  std::vector<const Measurement*> osm;
+  for (std::size_t k = 0; k < o.osmMaps.size(); ++k) {
+    const Measurement& r = ms[kFig1.size() + k];
+    osm.push_back(&r);
+    xs.push_back(o.osmMaps[k]);
+    ys.push_back(r.median.estimate);
+    std::cout << "  maps " << std::setw(4) << o.osmMaps[k] << ": " << describe(r) << "\n";
   }
   double slope = 0, intercept = 0, r2 = 0;
   fitLine(xs, ys, slope, intercept, r2);
-  std::cout << "  fit: " << slope << " ms per map + " << intercept
+  // The slope's interval: the rounds resampled together, the line fitted to each resample's
+  // medians (a percentile bootstrap like the ratios').
+  std::vector<double> slopes;
+  {
+    const std::size_t rounds = osm.front()->samples.size();
+    std::uint64_t state = 1;
+    for (int b = 0; b < 1000; ++b) {
+      std::vector<std::size_t> pick(rounds);
+      for (auto& p : pick) {
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;  // Knuth's LCG
+        p = static_cast<std::size_t>(state >> 33) % rounds;
+      }
+      std::vector<double> y;
+      for (const Measurement* r : osm) {
+        std::vector<double> v;
+        for (std::size_t p : pick) v.push_back(r->samples[p]);
+        y.push_back(median(v));
+      }
+      double s = 0, i0 = 0, q = 0;
+      fitLine(xs, y, s, i0, q);
+      slopes.push_back(s);
+    }
+  }
+  std::cout << "  fit: " << slope << " ms per map [" << quantile(slopes, 0.025) << ", "
+            << quantile(slopes, 0.975) << "] + " << intercept
             << " ms, R^2 = " << std::setprecision(4) << r2 << std::setprecision(2)
             << "  (paper: linear)\n";
+  std::cout << "\nafter: " << machineState() << "\n";
   return 0;
 }
 
-int runOitBench(const RenderRequest& base) {
+int runOitBench(const RenderRequest& base, const RepetitionOptions& reps) {
   const std::vector<std::pair<std::string, double>> rows = {
       {"peel", 4.01}, {"occupancy", 51}, {"wavg", 72}, {"wboit", 0}, {"none", 120}};
   std::vector<std::string> oits;
   for (const auto& row : rows) oits.push_back(row.first);
+  checkRepetitionOptions(reps);
   checkCases(base, &RenderRequest::oit, oits);
   std::cout << std::fixed << std::setprecision(2);
-  std::cout << "scene " << base.scene << ", " << base.width << "x" << base.height << ", "
-            << base.backend << ", shadow " << base.shadow << ", median of " << base.repeat
-            << " after " << base.warmup << " warm-up\n";
-  std::map<std::string, double> ms;
+  std::cout << "shadow " << base.shadow << "; ";
+  printHeader(base, reps);
+  std::optional<DepthComplexity> eye;
+  std::vector<std::function<double()>> cases;
+  for (const std::string& oit : oits)
+    cases.push_back([&, oit] {
+      RenderRequest r = base;
+      r.oit = oit;
+      const RenderResult out = runRender(r);
+      if (oit == "peel" && out.eyeComplexity) eye = out.eyeComplexity;
+      return summarize(out.frameMs).median;
+    });
+  const std::vector<Measurement> ms = measureInterleaved(cases, reps);
+  std::map<std::string, const Measurement*> m;
+  for (std::size_t i = 0; i < oits.size(); ++i) m[oits[i]] = &ms[i];
+  if (eye)
+    std::cout << "eye depth complexity: max " << eye->max << ", mean " << eye->mean
+              << "  (paper's Fig. 2 scene: 112)\n\n";
   for (const auto& [oit, fps] : rows) {
-    RenderRequest r = base;
-    r.oit = oit;
-    const RenderResult out = runRender(r);
-    ms[oit] = summarize(out.frameMs).median;
-    if (oit == "peel" && out.eyeComplexity)
-      std::cout << "eye depth complexity: max " << out.eyeComplexity->max << ", mean "
-                << out.eyeComplexity->mean << "  (paper's Fig. 2 scene: 112)\n\n";
-    std::cout << "  " << std::left << std::setw(10) << oit << std::right << std::setw(10) << ms[oit]
-              << " ms";
+    std::cout << "  " << std::left << std::setw(10) << oit << std::right << " "
+              << describe(*m[oit]);
     if (fps > 0) std::cout << "   paper " << fps << " fps = " << 1000.0 / fps << " ms";
     std::cout << "\n";
   }
-  std::cout << "\ndepth peeling / occupancy-ordered time: " << ms["peel"] / ms["occupancy"]
-            << "  (paper: 51 / 4.01 fps = 12.7)\n"
-            << "weighted average / occupancy-ordered time: " << ms["wavg"] / ms["occupancy"]
-            << "  (paper: 51 / 72 fps = 0.71)\n";
+  std::cout << "\nratios (95% paired bootstrap intervals):\n";
+  printRatio(std::cout, "depth peeling / occupancy-ordered time", *m["peel"], *m["occupancy"],
+             "paper: 51 / 4.01 fps = 12.7",
+             OrderingClaim{1.0, false, "occupancy-ordered faster than depth peeling"});
+  printRatio(std::cout, "weighted average / occupancy-ordered time", *m["wavg"], *m["occupancy"],
+             "paper: 51 / 72 fps = 0.71",
+             OrderingClaim{1.0, true, "weighted average faster than occupancy-ordered"});
+  std::cout << "\nafter: " << machineState() << "\n";
   return 0;
+}
+
+// --min-reps, --max-reps, --target-ci on a benchmark command.
+void addRepetitionOptions(CLI::App& cmd, RepetitionOptions& reps) {
+  cmd.add_option("--min-reps", reps.minReps, "rounds always taken (each renders every case once)")
+      ->capture_default_str();
+  cmd.add_option("--max-reps", reps.maxReps, "rounds at most")->capture_default_str();
+  cmd.add_option("--target-ci", reps.targetCiPct,
+                 "PCT: take rounds until every median's 95% interval is within +-PCT of it (or "
+                 "--max-reps); 0: --min-reps rounds")
+      ->capture_default_str();
 }
 
 // The settings the benchmarks take; the technique under test is theirs.
@@ -179,15 +257,17 @@ void registerBenchCommand(CLI::App& app) {
         "bench-oit", "the transparency paper's Fig. 2 timings as ratios in one run (a benchmark)");
     auto base = std::make_shared<RenderRequest>();
     base->scene = "clustered:strands=2000,points=8,head=0,alpha=0.2";  // complexity 125
-    base->repeat = 3;
+    base->repeat = 1;
     base->width = base->height = 128;
     std::vector<std::string> keys = kBenchSettings;
     keys.push_back("shadow");
     auto settings = std::make_shared<CliSettings>(*cmd, keys, *base);
-    cmd->callback([base, settings] {
+    auto reps = std::make_shared<RepetitionOptions>();
+    addRepetitionOptions(*cmd, *reps);
+    cmd->callback([base, settings, reps] {
       runGuarded("bench-oit", [&] {
         settings->apply(*base);
-        return runOitBench(*base);
+        return runOitBench(*base, *reps);
       });
     });
   }
@@ -196,9 +276,10 @@ void registerBenchCommand(CLI::App& app) {
       "papers' shadow timing figures as ratios in one run (a benchmark, not a test)");
   auto o = std::make_shared<BenchOptions>();
   o->base.scene = "straight:strands=20000,points=16,head=0";  // 300k segments
-  o->base.repeat = 3;
+  o->base.repeat = 1;
   auto settings = std::make_shared<CliSettings>(*cmd, kBenchSettings, o->base);
   cmd->add_option("--osm-maps", o->osmMaps, "map counts for the OSM time-vs-maps fit");
+  addRepetitionOptions(*cmd, o->reps);
   cmd->callback([o, settings] {
     runGuarded("bench-shadows", [&] {
       settings->apply(o->base);

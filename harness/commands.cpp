@@ -281,6 +281,7 @@ void registerCommands(CLI::App& app) {
   registerBenchCommand(app);
   registerSweepCommands(app);
   registerCompareRunsCommand(app);
+  registerHistoryCommand(app);
   registerViewCommand(app);
   // Unknown options get the closest valid one, for every command.
   for (CLI::App* cmd : app.get_subcommands([](CLI::App*) { return true; }))

@@ -23,6 +23,8 @@ void registerBenchCommand(CLI::App& app);
 void registerSweepCommands(CLI::App& app);
 // `compare-runs` (harness/compare_runs_command.cpp).
 void registerCompareRunsCommand(CLI::App& app);
+// `history` (harness/history_command.cpp).
+void registerHistoryCommand(CLI::App& app);
 // `view` (harness/view_command.cpp).
 void registerViewCommand(CLI::App& app);
 int lastCommandStatus();

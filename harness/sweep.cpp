@@ -225,6 +225,111 @@ std::pair<int, int> parseShard(const std::string& text) {
   return {i, n};
 }
 
+namespace {
+
+// A scheduler variable as a whole number; InputError naming it otherwise.
+int envNumber(const std::function<const char*(const char*)>& env, const char* name) {
+  const char* v = env(name);
+  if (!v) throw InputError(std::string("--shard auto: ") + name + " is not set");
+  std::istringstream in(v);
+  long n = 0;
+  if (!(in >> n) || !in.eof() || n < 0 || n > 1000000)
+    throw InputError(std::string("--shard auto: ") + name + "=" + v +
+                     " is not a whole number in 0..1000000");
+  return static_cast<int>(n);
+}
+
+}  // namespace
+
+AutoShard shardFromEnvironment(const std::string& text,
+                               const std::function<const char*(const char*)>& env) {
+  // "auto" or "auto/N": N is the count for schedulers that give only an index.
+  int given = 0;
+  if (text != "auto") {
+    std::istringstream in(text.substr(text.find('/') + 1));
+    if (text.rfind("auto/", 0) != 0 || !(in >> given) || !in.eof() || given < 1)
+      throw InputError("--shard " + text + ": expected I/N, auto or auto/N (N >= 1)");
+  }
+  AutoShard s;
+  auto check = [&](const std::string& what) {
+    if (s.count < 1 || s.index < 1 || s.index > s.count)
+      throw InputError("--shard auto: " + what + " gives shard " + std::to_string(s.index) +
+                       " of " + std::to_string(s.count) + ", outside 1.." +
+                       std::to_string(s.count));
+    if (given && given != s.count)
+      throw InputError("--shard " + text + ": " + what + " says " + std::to_string(s.count) +
+                       " shards");
+    return s;
+  };
+  if (env("SLURM_ARRAY_TASK_ID")) {
+    // An array --array=MIN-MAX[:STEP]: the tasks are MIN, MIN+STEP, ... (COUNT of them).
+    const int id = envNumber(env, "SLURM_ARRAY_TASK_ID");
+    const int min = env("SLURM_ARRAY_TASK_MIN") ? envNumber(env, "SLURM_ARRAY_TASK_MIN") : 0;
+    const int step = env("SLURM_ARRAY_TASK_STEP") ? envNumber(env, "SLURM_ARRAY_TASK_STEP") : 1;
+    s.count = env("SLURM_ARRAY_TASK_COUNT") ? envNumber(env, "SLURM_ARRAY_TASK_COUNT") : given;
+    if (s.count == 0)
+      throw InputError(
+          "--shard auto: SLURM_ARRAY_TASK_ID is set but SLURM_ARRAY_TASK_COUNT is "
+          "not; give the count as --shard auto/N");
+    if (step < 1 || id < min || (id - min) % step != 0)
+      throw InputError(
+          "--shard auto: SLURM_ARRAY_TASK_ID=" + std::to_string(id) +
+          " is not on the array's steps from SLURM_ARRAY_TASK_MIN=" + std::to_string(min));
+    s.index = (id - min) / step + 1;
+    s.source = "SLURM_ARRAY_TASK_ID";
+    return check("SLURM_ARRAY_TASK_ID/SLURM_ARRAY_TASK_COUNT");
+  }
+  if (env("JOB_COMPLETION_INDEX")) {
+    if (!given)
+      throw InputError(
+          "--shard auto: JOB_COMPLETION_INDEX (a Kubernetes indexed job) gives no "
+          "count; give it as --shard auto/N with N the job's completions");
+    s.index = envNumber(env, "JOB_COMPLETION_INDEX") + 1;
+    s.count = given;
+    s.source = "JOB_COMPLETION_INDEX";
+    return check("JOB_COMPLETION_INDEX");
+  }
+  if (env("CI_NODE_INDEX")) {
+    s.index = envNumber(env, "CI_NODE_INDEX");
+    s.count = envNumber(env, "CI_NODE_TOTAL");
+    s.source = "CI_NODE_INDEX";
+    return check("CI_NODE_INDEX/CI_NODE_TOTAL");
+  }
+  if (env("GTEST_SHARD_INDEX")) {
+    s.index = envNumber(env, "GTEST_SHARD_INDEX") + 1;
+    s.count = envNumber(env, "GTEST_TOTAL_SHARDS");
+    s.source = "GTEST_SHARD_INDEX";
+    return check("GTEST_SHARD_INDEX/GTEST_TOTAL_SHARDS");
+  }
+  throw InputError(
+      "--shard " + text +
+      ": no scheduler's shard variable is set; expected one of SLURM_ARRAY_TASK_ID (with "
+      "SLURM_ARRAY_TASK_COUNT, SLURM_ARRAY_TASK_MIN: a Slurm job array), JOB_COMPLETION_INDEX "
+      "(a Kubernetes indexed job, with --shard auto/N), CI_NODE_INDEX and CI_NODE_TOTAL (GitLab "
+      "parallel jobs), GTEST_SHARD_INDEX and GTEST_TOTAL_SHARDS; or give --shard I/N");
+}
+
+nlohmann::json loadAverage() {
+  std::ifstream f("/proc/loadavg");
+  double one = 0, five = 0, fifteen = 0;
+  if (!(f >> one >> five >> fifteen)) return nullptr;
+  return {{"1min", one}, {"5min", five}, {"15min", fifteen}};
+}
+
+std::string cpuGovernor() {
+  // Every CPU's governor; one name when they agree ("performance"), else each distinct one.
+  std::set<std::string> seen;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator("/sys/devices/system/cpu", ec)) {
+    std::ifstream f(e.path() / "cpufreq" / "scaling_governor");
+    std::string g;
+    if (f >> g) seen.insert(g);
+  }
+  std::string out;
+  for (const auto& g : seen) out += (out.empty() ? "" : ",") + g;
+  return out;
+}
+
 nlohmann::json runContext() {
   nlohmann::json c;
   c["date"] = utcNow();
@@ -244,6 +349,9 @@ nlohmann::json runContext() {
   c["cpu"] = fileValue("/proc/cpuinfo", "model name", ':') + " (" +
              std::to_string(std::thread::hardware_concurrency()) + " threads)";
   c["os"] = fileValue("/etc/os-release", "PRETTY_NAME", '=');
+  c["load_before"] = loadAverage();
+  const std::string governor = cpuGovernor();
+  c["cpu_governor"] = governor.empty() ? nlohmann::json(nullptr) : nlohmann::json(governor);
   return c;
 }
 
@@ -270,8 +378,11 @@ int runSweep(const SweepOptions& o) {
 
   const fs::path dir = o.out;
   const fs::path sweepFile = dir / "sweep.json";
-  const ojson sweepDoc = {
+  ojson sweepDoc = {
       {"schema_version", kSchemaVersion}, {"suite_file", o.suitePath}, {"suite", suite.doc}};
+  // What `merge` needs to name a missing shard: this folder's index, the count, the filter.
+  sweepDoc["shard"] = {{"index", o.shardIndex}, {"count", o.shardCount}, {"filter", o.filter}};
+  if (!o.shardSource.empty()) sweepDoc["shard"]["source"] = o.shardSource;
   if (fs::exists(sweepFile)) {
     if (!o.resume)
       throw InputError("--out " + o.out +
@@ -367,6 +478,12 @@ int runSweep(const SweepOptions& o) {
     std::cout << "\n";
   }
   std::cout << "references rendered: " << cache.referenceRenders << "\n";
+  {
+    // The load after the cases, beside the load before them (a busy machine explains noise).
+    ojson context = readJsonFile<ojson>(dir / "context.json");
+    context["load_after"] = loadAverage();
+    writeFileAtomic(dir / "context.json", context.dump(2) + "\n");
+  }
   const int n = writeSweepReport(o.out);
   std::cout << "wrote " << (dir / "results.json").string() << " (" << n
             << " results), results.csv, report.md, report.html\n";
@@ -414,20 +531,44 @@ int writeSweepReport(const std::string& dirText) {
   return static_cast<int>(results.size());
 }
 
-int mergeSweeps(const std::string& outText, const std::vector<std::string>& inputs) {
+MergeOutcome mergeSweeps(const std::string& outText, const std::vector<std::string>& inputs,
+                         bool allowMissing) {
   if (inputs.empty()) throw InputError("merge: name the sweep folders to join");
   const fs::path out = outText;
   if (fs::exists(out)) throw InputError("merge: " + outText + " exists; choose a new folder");
   ojson suite;
   std::map<std::string, std::string> owner;  // case file -> input folder
+  std::map<int, std::string> shardOwner;     // shard index -> input folder
+  MergeOutcome outcome;
+  std::string filter;
+  ojson shards = ojson::array();
   for (const auto& in : inputs) {
     if (!fs::is_regular_file(fs::path(in) / "sweep.json"))
       throw InputError("merge: " + in + " is not a sweep folder (no sweep.json)");
     const ojson doc = readJsonFile<ojson>(fs::path(in) / "sweep.json");
-    if (suite.is_null())
+    if (suite.is_null()) {
       suite = doc;
-    else if (doc["suite"] != suite["suite"])
+      suite.erase("shard");
+    } else if (doc["suite"] != suite["suite"]) {
       throw InputError("merge: " + in + " ran a different suite than " + inputs.front());
+    }
+    // Folders from before the shard was recorded count as one shard of their own.
+    const ojson shard = doc.value("shard", ojson{{"index", 1}, {"count", 1}, {"filter", ""}});
+    const int index = shard.value("index", 1), count = shard.value("count", 1);
+    if (doc.contains("shard")) {
+      if (outcome.shardCount && count != outcome.shardCount)
+        throw InputError("merge: " + in + " is shard " + std::to_string(index) + " of " +
+                         std::to_string(count) + ", but an earlier folder is one of " +
+                         std::to_string(outcome.shardCount));
+      if (outcome.shardCount && shard.value("filter", "") != filter)
+        throw InputError("merge: " + in + " ran with another --filter than the folders before");
+      outcome.shardCount = count;
+      filter = shard.value("filter", "");
+      if (shardOwner.count(index))
+        throw InputError("merge: shard " + std::to_string(index) + "/" + std::to_string(count) +
+                         " is in both " + shardOwner[index] + " and " + in);
+      shardOwner[index] = in;
+    }
     for (const auto& e : fs::directory_iterator(fs::path(in) / "cases")) {
       if (e.path().extension() != ".json") continue;
       const std::string name = e.path().filename().string();
@@ -435,7 +576,26 @@ int mergeSweeps(const std::string& outText, const std::vector<std::string>& inpu
         throw InputError("merge: case " + name + " is in both " + owner[name] + " and " + in);
       owner[name] = in;
     }
+    // Each shard's own context (host, date, commit) with its devices and drivers, which
+    // the shard's results.json holds once its report is written.
+    ojson context = ojson::object();
+    if (fs::is_regular_file(fs::path(in) / "results.json"))
+      context = readJsonFile<ojson>(fs::path(in) / "results.json").value("context", context);
+    else if (fs::is_regular_file(fs::path(in) / "context.json"))
+      context = readJsonFile<ojson>(fs::path(in) / "context.json");
+    shards.push_back({{"dir", in}, {"shard", shard}, {"context", context}});
   }
+  // What is missing: shards never merged, and cases of the (filtered) suite no folder holds.
+  for (int i = 1; i <= outcome.shardCount; ++i)
+    if (!shardOwner.count(i)) outcome.missingShards.push_back(i);
+  const Suite parsed = parseSuite(suite["suite"].dump(), suite.value("suite_file", "?"));
+  std::optional<std::regex> filterRe;
+  if (!filter.empty()) filterRe.emplace(filter);
+  for (const auto& c : parsed.cases)
+    if ((!filterRe || std::regex_search(c.id, *filterRe)) && !owner.count(c.stem + ".json"))
+      outcome.missingCases.push_back(c.id);
+  if (!outcome.missingCases.empty() && !allowMissing) return outcome;
+
   // Built beside the target and renamed: a failed merge leaves nothing behind.
   const fs::path tmp = out.string() + ".tmp-merge";
   std::error_code ec;
@@ -453,6 +613,9 @@ int mergeSweeps(const std::string& outText, const std::vector<std::string>& inpu
     }
     ojson context = readJsonFile<ojson>(fs::path(inputs.front()) / "context.json");
     context["merged_from"] = inputs;
+    context["shards"] = shards;
+    if (!outcome.missingCases.empty())
+      context["missing"] = {{"shards", outcome.missingShards}, {"cases", outcome.missingCases}};
     writeFileAtomic(tmp / "context.json", context.dump(2) + "\n");
     writeFileAtomic(tmp / "sweep.json", suite.dump(2) + "\n");
     fs::rename(tmp, out);
@@ -463,7 +626,9 @@ int mergeSweeps(const std::string& outText, const std::vector<std::string>& inpu
     fs::remove_all(tmp, ec);
     throw;
   }
-  return writeSweepReport(outText);
+  outcome.written = true;
+  outcome.results = writeSweepReport(outText);
+  return outcome;
 }
 
 }  // namespace sb

@@ -3,6 +3,7 @@
 // done), then join the folder's results into results.json and the reports.
 #pragma once
 
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -17,6 +18,7 @@ struct SweepOptions {
   std::string filter;  // regex on case ids; empty: all
   bool resume = false;
   int shardIndex = 1, shardCount = 1;  // --shard I/N, I in 1..N
+  std::string shardSource;             // where --shard auto found it ("SLURM_ARRAY_TASK_ID")
   bool progressBar = false;            // a terminal: one updating line
   bool failFast = false;               // stop at the first failed case (else record it, go on)
 };
@@ -33,14 +35,48 @@ int runSweep(const SweepOptions& o);
 // Returns the number of results.
 int writeSweepReport(const std::string& dir);
 
-// Copies the cases of shard folders (same suite) into a new folder `out`, then
-// writes its reports. Throws InputError on a mismatch or a case in two inputs.
-int mergeSweeps(const std::string& out, const std::vector<std::string>& inputs);
+// What `merge` found: the results written (0 when refused), and what is missing: the
+// shards (1-based indices of N, from the shards' sweep.json) and the cases of the suite that
+// no input holds.
+struct MergeOutcome {
+  int results = 0;
+  bool written = false;
+  int shardCount = 0;
+  std::vector<int> missingShards;
+  std::vector<std::string> missingCases;
+};
+
+// Copies the cases of shard folders (same suite) into a new folder `out`, then writes its
+// reports; the merged context keeps each shard's context (host, devices, drivers) under
+// "shards". Throws InputError on a mismatch or a case in two inputs. When a shard or case is
+// missing nothing is written unless allowMissing (then the context lists what is missing).
+MergeOutcome mergeSweeps(const std::string& out, const std::vector<std::string>& inputs,
+                         bool allowMissing = false);
 
 // "I/N" -> (I, N) with 1 <= I <= N.
 std::pair<int, int> parseShard(const std::string& text);
 
-// The machine and build a run was made on (date, commit, build type, compiler, CPU, OS).
+// The shard a scheduler gave this process (`--shard auto`, or `auto/N` where the scheduler
+// gives only an index): Slurm job arrays (SLURM_ARRAY_TASK_ID, _COUNT, _MIN, _STEP),
+// Kubernetes indexed jobs (JOB_COMPLETION_INDEX, 0-based, with N given), GitLab parallel jobs
+// (CI_NODE_INDEX, CI_NODE_TOTAL, 1-based) and GoogleTest sharding (GTEST_SHARD_INDEX,
+// GTEST_TOTAL_SHARDS, 0-based), in that order. `env` reads a variable (nullptr: unset).
+// Returns (I, N, the variable used); throws InputError naming the variables when none is set
+// or one is malformed.
+struct AutoShard {
+  int index = 1, count = 1;
+  std::string source;
+};
+AutoShard shardFromEnvironment(const std::string& text,
+                               const std::function<const char*(const char*)>& env);
+
+// The machine and build a run was made on (date, commit, build type, compiler, CPU, OS, the
+// load average when it starts, the CPU frequency governor where /sys shows it).
 nlohmann::json runContext();
+// /proc/loadavg as {"1min", "5min", "15min"}; null where it cannot be read.
+nlohmann::json loadAverage();
+// The CPUs' cpufreq scaling governors ("performance", or "a,b" when they differ); "" where
+// cpufreq is not visible (virtual machines, containers).
+std::string cpuGovernor();
 
 }  // namespace sb

@@ -1,6 +1,7 @@
 // `strandbench sweep`, `merge` and `report` (harness/sweep.h does the work).
 #include <unistd.h>
 
+#include <cstdlib>
 #include <memory>
 
 #include "harness/commands.h"
@@ -18,13 +19,24 @@ void registerSweepCommands(CLI::App& app) {
     cmd->add_option("--out", o->out, "output folder")->required();
     cmd->add_option("--filter", o->filter, "run only cases whose id matches this regex");
     cmd->add_flag("--resume", o->resume, "continue a stopped sweep: skip the cases already done");
-    cmd->add_option("--shard", *shard, "run shard I of N (I in 1..N); join them with `merge`");
+    cmd->add_option("--shard", *shard,
+                    "run shard I of N (I in 1..N), or `auto` (`auto/N`): the shard a scheduler "
+                    "gives (Slurm array, Kubernetes indexed job, GitLab parallel, GTest "
+                    "sharding); join them with `merge`");
     cmd->add_flag(
         "--fail-fast", o->failFast,
         "stop at the first failed case (default: record it and go on; exit 1 at the end)");
     cmd->callback([o, shard] {
       runGuarded("sweep", [&] {
-        if (!shard->empty()) std::tie(o->shardIndex, o->shardCount) = parseShard(*shard);
+        if (shard->rfind("auto", 0) == 0) {
+          const AutoShard a =
+              shardFromEnvironment(*shard, [](const char* name) { return std::getenv(name); });
+          o->shardIndex = a.index;
+          o->shardCount = a.count;
+          o->shardSource = a.source;
+        } else if (!shard->empty()) {
+          std::tie(o->shardIndex, o->shardCount) = parseShard(*shard);
+        }
         o->progressBar = ::isatty(STDOUT_FILENO) != 0;
         return runSweep(*o);
       });
@@ -49,12 +61,36 @@ void registerSweepCommands(CLI::App& app) {
         app.add_subcommand("merge", "join the folders of a sharded sweep into a new folder");
     auto out = std::make_shared<std::string>();
     auto inputs = std::make_shared<std::vector<std::string>>();
+    auto allowMissing = std::make_shared<bool>(false);
     cmd->add_option("--out", *out, "new folder for the joined sweep")->required();
     cmd->add_option("dirs", *inputs, "shard folders")->required();
-    cmd->callback([out, inputs] {
+    cmd->add_flag("--allow-missing", *allowMissing,
+                  "merge what is there when shards or cases are missing (default: name them, "
+                  "write nothing, exit 1)");
+    cmd->callback([out, inputs, allowMissing] {
       runGuarded("merge", [&] {
-        const int n = mergeSweeps(*out, *inputs);
-        std::cout << "merged " << inputs->size() << " folders into " << *out << " (" << n
+        const MergeOutcome m = mergeSweeps(*out, *inputs, *allowMissing);
+        if (!m.missingCases.empty()) {
+          std::ostream& s = m.written ? std::cout : std::cerr;
+          s << (m.written ? "merge: warning: " : "merge: ");
+          if (!m.missingShards.empty()) {
+            s << "missing shard" << (m.missingShards.size() > 1 ? "s" : "");
+            for (std::size_t i = 0; i < m.missingShards.size(); ++i)
+              s << (i ? ", " : " ") << m.missingShards[i] << "/" << m.shardCount;
+            s << "; ";
+          }
+          s << m.missingCases.size() << " case" << (m.missingCases.size() > 1 ? "s" : "")
+            << " of the suite in no folder:";
+          for (std::size_t i = 0; i < m.missingCases.size() && i < 10; ++i)
+            s << (i ? ", " : " ") << m.missingCases[i];
+          if (m.missingCases.size() > 10) s << ", ...";
+          s << "\n";
+          if (!m.written) {
+            s << "merge: nothing written; add --allow-missing to merge what is there\n";
+            return 1;
+          }
+        }
+        std::cout << "merged " << inputs->size() << " folders into " << *out << " (" << m.results
                   << " results)\n";
         return 0;
       });

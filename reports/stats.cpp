@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <mutex>
 #include <numeric>
@@ -159,6 +160,177 @@ RankTest mannWhitneyGreater(const std::vector<double>& x, const std::vector<doub
   const double z = (r.u - mm * nn / 2.0 - 0.5) / std::sqrt(variance);
   r.p = std::clamp(0.5 * std::erfc(z / std::sqrt(2.0)), 0.0, 1.0);
   return r;
+}
+
+}  // namespace sb
+
+namespace sb {
+
+double quantile(std::vector<double> v, double q) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const double pos = std::clamp(q, 0.0, 1.0) * static_cast<double>(v.size() - 1);
+  const std::size_t lo = static_cast<std::size_t>(pos);
+  const std::size_t hi = std::min(lo + 1, v.size() - 1);
+  return v[lo] + (pos - static_cast<double>(lo)) * (v[hi] - v[lo]);
+}
+
+std::vector<bool> tukeyOutliers(const std::vector<double>& values) {
+  std::vector<bool> out(values.size(), false);
+  if (values.size() < 4) return out;  // quartiles of fewer values say nothing
+  const double q1 = quantile(values, 0.25), q3 = quantile(values, 0.75);
+  const double iqr = q3 - q1;
+  for (std::size_t i = 0; i < values.size(); ++i)
+    out[i] = values[i] < q1 - 1.5 * iqr || values[i] > q3 + 1.5 * iqr;
+  return out;
+}
+
+double Interval::relativeHalfWidth() const {
+  return estimate != 0 ? 0.5 * (high - low) / std::abs(estimate) : 0.0;
+}
+
+namespace {
+
+// A small, fast generator with a stated seed (SplitMix64, Steele et al. 2014): the intervals
+// are reproducible run to run, unlike std::random_device.
+struct SplitMix {
+  std::uint64_t state;
+  std::uint64_t next() {
+    std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+  }
+  std::size_t below(std::size_t n) { return static_cast<std::size_t>(next() % n); }
+};
+
+Interval percentileInterval(double estimate, std::vector<double>& draws, double confidence) {
+  const double a = (1 - confidence) / 2;
+  return {estimate, quantile(draws, a), quantile(draws, 1 - a)};
+}
+
+double medianInPlace(std::vector<double>& v) {
+  const std::size_t n = v.size(), h = n / 2;
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(h), v.end());
+  if (n % 2) return v[h];
+  const double upper = v[h];
+  return 0.5 * (*std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(h)) + upper);
+}
+
+}  // namespace
+
+Interval bootstrapMedian(const std::vector<double>& values, double confidence, int resamples,
+                         std::uint64_t seed) {
+  const double m = median(values);
+  if (values.size() < 2) return {m, m, m};
+  SplitMix rng{seed};
+  std::vector<double> draws, x(values.size());
+  draws.reserve(static_cast<std::size_t>(resamples));
+  for (int r = 0; r < resamples; ++r) {
+    for (double& v : x) v = values[rng.below(values.size())];
+    draws.push_back(medianInPlace(x));
+  }
+  return percentileInterval(m, draws, confidence);
+}
+
+Interval bootstrapRatio(const std::vector<double>& num, const std::vector<double>& den, bool paired,
+                        double confidence, int resamples, std::uint64_t seed) {
+  const double d = median(den);
+  const double estimate = d != 0 ? median(num) / d : 0.0;
+  if (num.size() < 2 || den.size() < 2 || d == 0) return {estimate, estimate, estimate};
+  paired = paired && num.size() == den.size();
+  SplitMix rng{seed};
+  std::vector<double> draws, a(num.size()), b(den.size());
+  draws.reserve(static_cast<std::size_t>(resamples));
+  for (int r = 0; r < resamples; ++r) {
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      const std::size_t k = rng.below(num.size());
+      a[i] = num[k];
+      if (paired) b[i] = den[k];
+    }
+    if (!paired)
+      for (double& v : b) v = den[rng.below(den.size())];
+    const double db = medianInPlace(b);
+    if (db != 0) draws.push_back(medianInPlace(a) / db);
+  }
+  return percentileInterval(estimate, draws, confidence);
+}
+
+std::string formatInterval(const Interval& i, int precision) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "%.*f [%.*f, %.*f]", precision, i.estimate, precision, i.low,
+                precision, i.high);
+  return buf;
+}
+
+std::string orderingVerdict(const Interval& ratio, double bound, bool claimBelow) {
+  const bool below = ratio.high<bound, above = ratio.low> bound;
+  if (claimBelow ? below : above) return "holds";
+  if (claimBelow ? above : below) return "fails";
+  return "undecided";
+}
+
+namespace {
+
+// Pettitt's statistic standardized per split: Z_k = D_k / sd(D_k), D_k = sum_{i<k<=j}
+// sign(x_j - x_i), sd^2 = k (n-k) (n+1) / 3 (the Mann-Whitney variance, no ties). The split
+// with the largest |Z| over k in [minSeg, n - minSeg]; standardizing keeps splits near the
+// ends (a recent change) as detectable as those in the middle.
+std::pair<int, double> pettittMax(const std::vector<double>& x, int minSeg) {
+  const int n = static_cast<int>(x.size());
+  auto sign = [](double d) { return d > 0 ? 1.0 : (d < 0 ? -1.0 : 0.0); };
+  double d = 0;
+  int best = -1;
+  double bestZ = -1;
+  for (int k = 1; k < n; ++k) {
+    // Moving x[k-1] from the second part to the first: its pairs with the first part leave D,
+    // its pairs with the rest of the second part enter it.
+    for (int j = 0; j < n; ++j)
+      if (j != k - 1) d += j > k - 1 ? sign(x[j] - x[k - 1]) : -sign(x[k - 1] - x[j]);
+    if (k < minSeg || n - k < minSeg) continue;
+    const double z = std::abs(d) / std::sqrt(double(k) * double(n - k) * double(n + 1) / 3.0);
+    if (z > bestZ) bestZ = z, best = k;
+  }
+  return {best, bestZ};
+}
+
+void segment(const std::vector<double>& x, int from, int to, const ChangePointOptions& o,
+             std::uint64_t& seed, std::vector<ChangePoint>& out) {
+  if (to - from < 2 * o.minSegment) return;
+  std::vector<double> part(x.begin() + from, x.begin() + to);
+  const auto [k, z] = pettittMax(part, o.minSegment);
+  if (k < 0) return;
+  SplitMix rng{seed++};
+  int atLeast = 0;
+  std::vector<double> shuffled = part;
+  for (int r = 0; r < o.permutations; ++r) {
+    for (std::size_t i = shuffled.size() - 1; i > 0; --i)
+      std::swap(shuffled[i], shuffled[rng.below(i + 1)]);  // Fisher-Yates
+    if (pettittMax(shuffled, o.minSegment).second >= z - 1e-12) ++atLeast;
+  }
+  const double p = (1.0 + atLeast) / (1.0 + o.permutations);
+  if (p >= o.alpha) return;
+  ChangePoint c;
+  c.index = from + k;
+  c.before = median(std::vector<double>(part.begin(), part.begin() + k));
+  c.after = median(std::vector<double>(part.begin() + k, part.end()));
+  c.size = c.before != 0 ? c.after / c.before - 1 : 0;
+  c.p = p;
+  out.push_back(c);
+  segment(x, from, from + k, o, seed, out);
+  segment(x, from + k, to, o, seed, out);
+}
+
+}  // namespace
+
+std::vector<ChangePoint> findChangePoints(const std::vector<double>& series,
+                                          const ChangePointOptions& options) {
+  std::vector<ChangePoint> out;
+  std::uint64_t seed = options.seed;
+  segment(series, 0, static_cast<int>(series.size()), options, seed, out);
+  std::sort(out.begin(), out.end(),
+            [](const ChangePoint& a, const ChangePoint& b) { return a.index < b.index; });
+  return out;
 }
 
 }  // namespace sb

@@ -15,6 +15,7 @@ packages=(
   libgtest-dev googletest
   clang libclang-rt-14-dev llvm
   chromium
+  slurm-wlm munge
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -1,0 +1,106 @@
+#include "harness/measure.h"
+
+#include <algorithm>
+#include <iomanip>
+#include <sstream>
+
+#include "harness/errors.h"
+#include "harness/sweep.h"
+
+namespace sb {
+
+int Measurement::outlierCount() const {
+  int n = 0;
+  for (bool o : outliers) n += o;
+  return n;
+}
+
+void checkRepetitionOptions(const RepetitionOptions& o) {
+  if (o.minReps < 2)
+    throw InputError("--min-reps " + std::to_string(o.minReps) +
+                     ": at least 2 (an interval needs two samples)");
+  if (o.maxReps < o.minReps)
+    throw InputError("--max-reps " + std::to_string(o.maxReps) + ": below --min-reps " +
+                     std::to_string(o.minReps));
+  if (!(o.targetCiPct >= 0) || o.targetCiPct > 100)
+    throw InputError("--target-ci: a percentage in 0..100 (0: take --min-reps rounds)");
+}
+
+std::vector<Measurement> measureInterleaved(const std::vector<std::function<double()>>& cases,
+                                            const RepetitionOptions& o) {
+  checkRepetitionOptions(o);
+  const std::size_t n = cases.size();
+  std::vector<Measurement> m(n);
+  for (int round = 0; round < o.maxReps; ++round) {
+    // Rotating the first case: no case always runs right after a warm-up or a cold cache.
+    std::vector<double> sample(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t i = (k + std::size_t(round)) % n;
+      sample[i] = cases[i]();
+    }
+    for (std::size_t i = 0; i < n; ++i) m[i].samples.push_back(sample[i]);
+    if (round + 1 < o.minReps) continue;
+    if (o.targetCiPct == 0) break;  // no target: exactly --min-reps rounds
+    bool precise = true;
+    for (auto& c : m) {
+      c.median = bootstrapMedian(c.samples);
+      precise = precise && c.median.relativeHalfWidth() * 100 <= o.targetCiPct;
+    }
+    if (precise) break;
+  }
+  for (auto& c : m) {
+    c.median = bootstrapMedian(c.samples);
+    c.outliers = tukeyOutliers(c.samples);
+  }
+  return m;
+}
+
+Interval ratioInterval(const Measurement& num, const Measurement& den) {
+  return bootstrapRatio(num.samples, den.samples, /*paired=*/true);
+}
+
+Interval printRatio(std::ostream& out, const std::string& label, const Measurement& num,
+                    const Measurement& den, const std::string& paper,
+                    const std::optional<OrderingClaim>& claim) {
+  const Interval r = ratioInterval(num, den);
+  out << "  " << label << ": " << formatInterval(r) << "  (" << paper << ")\n";
+  if (claim) {
+    // A percentile bootstrap of 2-4 rounds has too few distinct resamples to be an interval.
+    const bool tooFew = std::min(num.samples.size(), den.samples.size()) < kMinRoundsForVerdict;
+    const std::string v =
+        tooFew ? "undecided" : orderingVerdict(r, claim->bound, claim->claimBelow);
+    std::ostringstream bound;
+    bound << claim->bound;
+    out << "    paper's ordering (" << claim->text << ", ratio "
+        << (claim->claimBelow ? "< " : "> ") << bound.str() << "): "
+        << (tooFew ? "undecided (fewer than " + std::to_string(kMinRoundsForVerdict) +
+                         " rounds: no interval to judge by)"
+            : v == "undecided" ? "undecided (the interval contains " + bound.str() + ")"
+                               : v + " with 95% confidence")
+        << "\n";
+  }
+  return r;
+}
+
+std::string describe(const Measurement& m) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(2) << m.median.estimate << " ms [" << m.median.low << ", "
+    << m.median.high << "], " << m.samples.size() << " reps";
+  if (const int k = m.outlierCount()) s << ", " << k << " outlier" << (k > 1 ? "s" : "");
+  return s.str();
+}
+
+std::string machineState() {
+  std::ostringstream s;
+  const auto load = loadAverage();
+  if (load.is_null())
+    s << "load unknown";
+  else
+    s << "load " << load["1min"].get<double>() << " " << load["5min"].get<double>() << " "
+      << load["15min"].get<double>();
+  const std::string g = cpuGovernor();
+  s << ", CPU governor " << (g.empty() ? "not visible" : g);
+  return s.str();
+}
+
+}  // namespace sb
