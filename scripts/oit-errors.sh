@@ -21,6 +21,23 @@ SIZE=${SIZE:-48x48}
 BACKENDS=${BACKENDS:-gl vulkan}
 EXTRA=${EXTRA:-"mboit:moments=4 mboit:moments=8 mboit:precision=16 kbuffer:k=1 kbuffer:k=2 kbuffer:k=4 kbuffer:k=16 mlab:layers=1 mlab:layers=8 shortcut:k=8"}
 
+# One line from a render --json object (stdin).
+SUMMARY='
+import json, sys
+backend, technique = sys.argv[1], sys.argv[2]
+j = json.load(sys.stdin)
+err = j.get("error", {})
+rmse = err.get("own", {}).get("image", {}).get("rmse", err.get("image", {}).get("rmse"))
+eye = (j.get("depth_complexity") or {}).get("eye") or {}
+complexity = "%s/%.0f" % (eye.get("max", "-"), eye.get("mean", 0)) if eye else "-"
+oit = j.get("memory", {}).get("oit_bytes", "-")
+passes = len(j.get("passes", []))
+note = "timing emulated" if j.get("timing_emulated") else ""
+counters = j.get("counters")
+if counters:
+    note = (note + " " + " ".join("%s=%s" % kv for kv in counters.items())).strip()
+print("%-8s %-30s %-10.6f %-12s %-10s %-6s %s" % (backend, technique, rmse, complexity, oit, passes, note))
+'
 [ -x "$BIN" ] || { echo "oit-errors: $BIN not found (build it first, or set BIN)" >&2; exit 2; }
 mapfile -t TECHNIQUES < <("$BIN" list --json |
   python3 -c 'import json, sys; print("\n".join(t["name"] for t in json.load(sys.stdin)["oit"]))')
@@ -36,21 +53,6 @@ for backend in $BACKENDS; do
       printf '%-8s %-30s %s\n' "$backend" "$t" "FAILED (exit $?)"
       continue
     fi
-    python3 - "$backend" "$t" <<<"$out" <<'PY'
-import json, sys
-backend, technique = sys.argv[1], sys.argv[2]
-j = json.load(sys.stdin)
-err = j.get("error", {})
-rmse = err.get("own", {}).get("image", {}).get("rmse", err.get("image", {}).get("rmse"))
-eye = (j.get("depth_complexity") or {}).get("eye") or {}
-complexity = f"{eye.get('max', '-')}/{eye.get('mean', 0):.0f}" if eye else "-"
-oit = j.get("memory", {}).get("oit_bytes", "-")
-passes = len(j.get("passes", []))
-note = "timing emulated" if j.get("timing_emulated") else ""
-counters = j.get("counters")
-if counters:
-    note = (note + " " + " ".join(f"{k}={v}" for k, v in counters.items())).strip()
-print(f"{backend:<8} {technique:<30} {rmse:<10.6f} {complexity:<12} {oit!s:<10} {passes:<6} {note}")
-PY
+    python3 -c "$SUMMARY" "$backend" "$t" <<<"$out"
   done
 done
