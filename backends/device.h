@@ -233,6 +233,10 @@ struct DeviceInfo {
   // of GL_MAX_DRAW_BUFFERS and GL_MAX_COLOR_ATTACHMENTS, 8 or more; Vulkan:
   // maxColorAttachments, 4 or more).
   uint32_t maxColorAttachments = 0;
+  // Ordered per-pixel read-modify-write in fragment shaders (GL:
+  // GL_ARB_fragment_shader_interlock; Vulkan: VK_EXT_fragment_shader_interlock).
+  // Absent on Mesa's CPU rasterizers: mlab then emulates the order in a resolve.
+  bool fragmentShaderInterlock = false;
 };
 
 // The memory a run may still take on a device, and where that figure came from

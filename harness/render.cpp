@@ -731,6 +731,10 @@ RenderResult runRender(const RenderRequest& req, RenderCache* cache, Device* dev
             [](const ResourceBytes& a, const ResourceBytes& b) { return a.name < b.name; });
   out.warnings = scene.warnings;  // the input's, then the techniques'
   for (const auto& w : renderer.warnings()) out.warnings.push_back(w);
+  out.counters = renderer.oit().counters(*dev);
+  out.timingEmulated = renderer.oit().timingEmulated();
+  if (!out.timingEmulated.empty())
+    out.warnings.push_back("timing emulated, not a real cost: " + out.timingEmulated);
 
   out.device = dev->info();
   out.scene = {req.scene,
@@ -885,6 +889,12 @@ nlohmann::json renderJson(const RenderResult& r) {
     j["depth_complexity"] = {{"eye", complexityJson(r.eyeComplexity)},
                              {"light", complexityJson(r.lightComplexity)}};
   j["warnings"] = r.warnings;
+  if (!r.counters.empty()) {
+    nlohmann::json counters = nlohmann::json::object();
+    for (const auto& [name, value] : r.counters) counters[name] = value;
+    j["counters"] = counters;
+  }
+  if (!r.timingEmulated.empty()) j["timing_emulated"] = r.timingEmulated;
   if (r.validationMessages) j["validation_messages"] = *r.validationMessages;
   if (r.presented) {
     // frame_ms plus the present: the frame time with presentation included.

@@ -176,6 +176,10 @@ struct RenderResult {
   std::optional<DepthComplexity> eyeComplexity, lightComplexity;
   std::vector<std::string> warnings;              // the input's, the techniques', the reference's
   std::optional<std::size_t> validationMessages;  // with validation
+  // The transparency technique's counters (OitTechnique::counters) and, when
+  // its timing is an emulation, why (OitTechnique::timingEmulated).
+  std::vector<std::pair<std::string, uint64_t>> counters;
+  std::string timingEmulated;
 
   // A window platform: each timed frame was shown in the window (Device::present).
   struct Presented {

@@ -13,6 +13,9 @@
 #include "techniques/dc/dc.h"
 #include "techniques/dom/dom.h"
 #include "techniques/exact/exact.h"
+#include "techniques/kbuffer/kbuffer.h"
+#include "techniques/mboit/mboit.h"
+#include "techniques/mlab/mlab.h"
 #include "techniques/none/none.h"
 #include "techniques/occupancy/occupancy.h"
 #include "techniques/occupancy_oit/occupancy_oit.h"
@@ -20,6 +23,7 @@
 #include "techniques/osm/osm.h"
 #include "techniques/peel/peel.h"
 #include "techniques/shadowmap/shadowmap.h"
+#include "techniques/shortcut/shortcut.h"
 #include "techniques/wboit/wboit.h"
 #include "techniques/weighted/weighted.h"
 
@@ -148,6 +152,27 @@ const std::vector<TechniqueInfo>& oitCatalog() {
          "occupancy bits per pixel, multiple of 32 (128 per RGBA32UI layer), 32..1024"},
         {"slabs", "4", "fragment counts per pixel (4 per RGBA32F layer), dividing slices, 1..32"},
         {"lambda", "on", "on | off: renormalise the hair weights to 1 - prod(1 - alpha)"}}},
+      {"mboit",
+       "moment-based OIT (Muenstermann et al. 2018): transmittance from power moments of "
+       "log depth, the paper's bias; two hair passes",
+       {{"moments", "6", "power moments: 4 | 6 | 8"},
+        {"precision", "32",
+         "moment target bits: 16 (RGBA16F, the paper's 16-bit bias) | 32 (RGBA32F)"}}},
+      {"kbuffer",
+       "k-buffer over per-pixel lists as TressFX 4 resolves them: the k nearest sorted, "
+       "the rest blended as a tail",
+       {{"k", "8", "fragments kept and sorted per pixel, 1..32"},
+        {"nodes", "0",
+         "node pool entries (32 bytes each); 0: the counted fragments; a full pool drops "
+         "fragments (counted and reported), 0..1000000000"}}},
+      {"mlab",
+       "multi-layer alpha blending (Salvi & Vaidyanathan 2014); without fragment-shader "
+       "interlock merged in primitive order in a resolve (timing marked emulated)",
+       {{"layers", "4", "layers per pixel, 1..32"}}},
+      {"shortcut",
+       "TressFX ShortCut: the k nearest depths by atomic min, those fragments blended in order, "
+       "the rest as a weighted average under the product of (1 - alpha)",
+       {{"k", "3", "nearest fragments blended in order per pixel, 1..16"}}},
   };
   return catalog;
 }
@@ -157,11 +182,16 @@ std::unique_ptr<OitTechnique> makeOitTechnique(const Spec& spec) {
   const OptionReader o(spec, info.options, "transparency technique '" + spec.name + "'");
   if (spec.name == "peel")
     return std::make_unique<PeelOit>(static_cast<uint32_t>(o.integer("layers", 1, 1000000)));
-  if (spec.name == "occupancy")
-    return std::make_unique<OccupancyOit>(OccupancyOit::readOptions(o));
+  if (spec.name == "occupancy") return std::make_unique<OccupancyOit>(OccupancyOit::readOptions(o));
   if (spec.name == "abuffer")
     return std::make_unique<ABufferOit>(
         static_cast<uint64_t>(o.integer("max_fragments", 1, 1000000000)));
+  if (spec.name == "mboit") return std::make_unique<MomentOit>(MomentOit::readOptions(o));
+  if (spec.name == "kbuffer") return std::make_unique<KBufferOit>(KBufferOit::readOptions(o));
+  if (spec.name == "mlab")
+    return std::make_unique<MlabOit>(static_cast<int>(o.integer("layers", 1, MlabOit::kMaxLayers)));
+  if (spec.name == "shortcut")
+    return std::make_unique<ShortCutOit>(static_cast<int>(o.integer("k", 1, ShortCutOit::kMaxK)));
   if (spec.name == "wsum") return std::make_unique<WeightedOit>(WeightedOit::Mode::Sum);
   if (spec.name == "wavg") return std::make_unique<WeightedOit>(WeightedOit::Mode::Average);
   if (spec.name == "wboit")

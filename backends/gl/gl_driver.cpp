@@ -112,6 +112,13 @@ class GLDriver final : public Driver {
     gl_.GetIntegerv(GL_MAX_COLOR_ATTACHMENTS, &colorAttachments);
     info_.maxColorAttachments =
         static_cast<uint32_t>(std::max(0, std::min(drawBuffers, colorAttachments)));
+    GLint extensions = 0;
+    gl_.GetIntegerv(GL_NUM_EXTENSIONS, &extensions);
+    for (GLint i = 0; i < extensions; ++i) {
+      const char* e = reinterpret_cast<const char*>(gl_.GetStringi(GL_EXTENSIONS, GLuint(i)));
+      if (e && std::strcmp(e, "GL_ARB_fragment_shader_interlock") == 0)
+        info_.fragmentShaderInterlock = true;
+    }
     // Same conventions as Vulkan: NDC y=-1 at row 0, depth in [0,1].
     gl_.ClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
     gl_.CreateVertexArrays(1, &vao_);  // core profile needs one bound, even if empty

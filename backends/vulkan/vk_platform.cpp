@@ -254,6 +254,8 @@ void VulkanPlatform::pickPhysicalDevice() {
   info.timing = cpuTiming ? "cpu clock per pass (submit and wait)" : "gpu timestamps";
   info.platform = surface != VK_NULL_HANDLE ? "window" : "headless";
   info.maxColorAttachments = pick->props.limits.maxColorAttachments;
+  info.fragmentShaderInterlock =
+      hasDeviceExtension(physical, VK_EXT_FRAGMENT_SHADER_INTERLOCK_EXTENSION_NAME);
   info.device = pick->props.deviceName;
   if (drv.driverName[0] != '\0') {
     info.driver = std::string(drv.driverName) + " " + drv.driverInfo;

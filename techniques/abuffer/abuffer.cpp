@@ -1,5 +1,7 @@
 #include "techniques/abuffer/abuffer.h"
 
+#include <cstring>
+
 #include "techniques/common/shader_library.h"
 #include "techniques/kajiya_kay/shading.h"
 
@@ -16,33 +18,48 @@ constexpr std::size_t kFragmentBytes = 32;
 void ABufferOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
                        const KajiyaKayShading& shading, const OitTargets& targets) {
   setupCommon(dev, scene, s, shading, targets);
-  offsets_ = dev.createBuffer({"abuffer.offsets", "oit", BufferUsage::Storage, pixels() * 4ull});
-  cursor_ = dev.createBuffer({"abuffer.cursor", "oit", BufferUsage::Storage, pixels() * 4ull});
-  status_ = dev.createBuffer({"abuffer.status", "oit", BufferUsage::Storage, 16});
+  offsets_ = dev.createBuffer({name() + ".offsets", "oit", BufferUsage::Storage, pixels() * 4ull});
+  cursor_ = dev.createBuffer({name() + ".cursor", "oit", BufferUsage::Storage, pixels() * 4ull});
+  status_ = dev.createBuffer({name() + ".status", "oit", BufferUsage::Storage, 16});
   const glm::uvec4 size(pixels(), s.width, s.height, 0);
-  sizeUbo_ = dev.createBuffer({"abuffer.size", "frame", BufferUsage::Uniform, sizeof size}, &size);
+  sizeUbo_ =
+      dev.createBuffer({name() + ".size", "frame", BufferUsage::Uniform, sizeof size}, &size);
   fill_ = hairPipeline(dev, fillPass(), "techniques/abuffer/fill.frag", {});
 
-  const ShaderCode comp = loadShader("techniques/abuffer/resolve.comp");
+  const ShaderCode comp = loadShader(resolveShader(), resolveDefines());
   PipelineDesc c;
-  c.name = "abuffer.resolve";
-  c.technique = "abuffer";
+  c.name = name() + ".resolve";
+  c.technique = name();
   c.compute = &comp;
   c.bindings = resolvePass().slots();
   resolve_ = dev.createPipeline(c);
 }
 
-void ABufferOit::prepare(Device& dev) {
-  const ListLayout layout = countFragments(dev);
-  if (complexity_.total > maxFragments_)
+uint64_t ABufferOit::poolEntries(uint64_t counted) const {
+  if (counted > maxFragments_)
     throw InputError(
-        "A-buffer: the scene has " + std::to_string(complexity_.total) +
+        "A-buffer: the scene has " + std::to_string(counted) +
         " visible hair fragments, over the limit max_fragments=" + std::to_string(maxFragments_) +
-        " (" + std::to_string(complexity_.total * kFragmentBytes >> 20) +
+        " (" + std::to_string(counted * kFragmentBytes >> 20) +
         " MiB); lower the resolution or raise the limit");
+  return counted;
+}
+
+void ABufferOit::prepare(Device& dev) {
+  ListLayout layout = countFragments(dev);
+  pool_ = poolEntries(complexity_.total);
+  if (pool_ < complexity_.total) {
+    // A fixed pool (kbuffer's nodes): a pixel keeps what fits below the pool's
+    // end; the fill counts the rest as dropped (status[1]).
+    std::vector<uint32_t> capacity(layout.offsets.size());
+    for (std::size_t p = 0; p < capacity.size(); ++p)
+      capacity[p] = static_cast<uint32_t>(std::min<uint64_t>(
+          complexity_.counts[p], pool_ - std::min<uint64_t>(pool_, layout.offsets[p])));
+    dev.updateBuffer(counts_, capacity.data(), capacity.size() * 4);
+  }
   dev.updateBuffer(offsets_, layout.offsets.data(), layout.offsets.size() * 4);
-  fragments_ = dev.createBuffer({"abuffer.fragments", "oit", BufferUsage::Storage,
-                                 std::max<uint64_t>(complexity_.total, 1) * kFragmentBytes});
+  fragments_ = dev.createBuffer({name() + ".fragments", "oit", BufferUsage::Storage,
+                                 std::max<uint64_t>(pool_, 1) * kFragmentBytes});
 }
 
 // The lists: the fill appends to them, the resolve sorts and accumulates them.
@@ -57,15 +74,15 @@ Inputs ABufferOit::lists() const {
   return in;
 }
 
-Pass ABufferOit::fillPass() const { return hairPass("abuffer.fill", true).inputs(lists()); }
+Pass ABufferOit::fillPass() const { return hairPass(name() + ".fill", true).inputs(lists()); }
 
 Pass ABufferOit::resolvePass() const {
-  return Pass("abuffer.resolve").uniform(kSize, sizeUbo_).inputs(lists());
+  return Pass(name() + ".resolve").uniform(kSize, sizeUbo_).inputs(lists());
 }
 
 void ABufferOit::addPasses(FrameGraph& graph, Device& dev) {
   const Pass fill = fillPass(), resolve = resolvePass(), composite = composite_.pass();
-  graph.add("abuffer", {fill, resolve, composite}, [this, &dev, fill, resolve] {
+  graph.add(name(), {fill, resolve, composite}, [this, &dev, fill, resolve] {
     dev.fillBuffer(cursor_, 0);
     dev.fillBuffer(status_, 0);
     fill.draw(dev, fill_, hairVertices());
@@ -75,10 +92,15 @@ void ABufferOit::addPasses(FrameGraph& graph, Device& dev) {
   });
 }
 
+std::vector<uint32_t> ABufferOit::status(Device& dev) {
+  const auto bytes = dev.readBuffer(status_);
+  std::vector<uint32_t> words(bytes.size() / 4);
+  std::memcpy(words.data(), bytes.data(), words.size() * 4);
+  return words;
+}
+
 std::vector<std::string> ABufferOit::warnings(Device& dev) {
-  const auto status = dev.readBuffer(status_);
-  if (status[0] || status[1] || status[2] || status[3])
-    return {"eye-space A-buffer overflow: fragments were dropped"};
+  if (status(dev)[0]) return {"eye-space A-buffer overflow: fragments were dropped"};
   return {};
 }
 

@@ -19,6 +19,18 @@ class ABufferOit : public HairOit {
   void addPasses(FrameGraph& graph, Device& dev) override;
   std::vector<std::string> warnings(Device& dev) override;
 
+ protected:
+  // What the k-buffer and MLAB (techniques/kbuffer, techniques/mlab) change on
+  // the same lists: the resolve shader and its defines, and the number of
+  // entries stored (abuffer: all counted ones, over max_fragments an error).
+  virtual std::string resolveShader() const { return "techniques/abuffer/resolve.comp"; }
+  virtual ShaderDefines resolveDefines() const { return {}; }
+  virtual uint64_t poolEntries(uint64_t counted) const;
+  // The status words: [0] more fragments than counted, [1] fragments dropped
+  // because the pool was full, [2] free for the resolve (a counter).
+  std::vector<uint32_t> status(Device& dev);
+  uint64_t pool_ = 0;
+
  private:
   Inputs lists() const;
   Pass fillPass() const;

@@ -17,8 +17,9 @@ layout(location = 2) in vec4 vColor;
 void main() {
   uint p = pixelIndex(viewViewport.x);
   uint i = atomicAdd(cursor[p], 1u);
-  if (i >= counts[p]) {  // more fragments than counted: reported, never silent
+  if (i >= counts[p]) {  // over the pixel's capacity: reported, never silent
     atomicOr(overflow, 1u);
+    atomicAdd(dropped, 1u);
     return;
   }
   fragments[offsets[p] + i] =

@@ -109,4 +109,23 @@
 #define SB_SLOT_PROBE_POINTS 16
 #define SB_SLOT_PROBE_VALUES 17
 
+// mboit: the parameters (both hair passes), the moment targets sampled by the
+// second hair pass and the accumulation sampled by the resolve
+#define SB_SLOT_MBOIT_PARAMS 16
+#define SB_SLOT_MBOIT_B0 17
+#define SB_SLOT_MBOIT_LOW 18
+#define SB_SLOT_MBOIT_HIGH 19
+#define SB_SLOT_MBOIT_ACCUM 20
+
+// kbuffer, mlab: the abuffer lists (SB_SLOT_ABUFFER_*), plus the counters of
+// the node pool (dropped fragments) in the same status buffer
+
+// shortcut: the k nearest depths, their colours and claims, the tail targets
+#define SB_SLOT_SHORTCUT_PARAMS 16
+#define SB_SLOT_SHORTCUT_DEPTHS 18
+#define SB_SLOT_SHORTCUT_COLORS 19
+#define SB_SLOT_SHORTCUT_CLAIMS 20
+#define SB_SLOT_SHORTCUT_TAIL 21
+#define SB_SLOT_SHORTCUT_REVEALAGE 22
+
 #endif  // SB_SLOTS_H

@@ -162,6 +162,13 @@ class OitTechnique {
   virtual void addPasses(FrameGraph& graph, Device& dev) = 0;
   virtual std::optional<DepthComplexity> depthComplexity() const { return std::nullopt; }
   virtual std::vector<std::string> warnings(Device& /*dev*/) { return {}; }
+  // Counters of the last frame, by name, for the render JSON (e.g. fragments
+  // a full node pool dropped, merge steps an emulation did).
+  virtual std::vector<std::pair<std::string, uint64_t>> counters(Device& /*dev*/) { return {}; }
+  // Non-empty (the reason) when part of the timed work is an emulation whose
+  // cost is not the technique's real cost (mlab without fragment-shader
+  // interlock): the JSON and the reports mark the timing "emulated".
+  virtual std::string timingEmulated() const { return {}; }
 };
 
 // Groups of 64 for a 1D compute pass over `items`, as a 2D grid (x, y) so that

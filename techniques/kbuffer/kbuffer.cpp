@@ -1,0 +1,35 @@
+#include "techniques/kbuffer/kbuffer.h"
+
+#include "scenes/options.h"
+
+namespace sb {
+
+KBufferOit::Options KBufferOit::readOptions(const OptionReader& o) {
+  Options r;
+  r.k = static_cast<int>(o.integer("k", 1, kMaxK));
+  r.nodes = static_cast<uint64_t>(o.integer("nodes", 0, 1000000000));
+  return r;
+}
+
+ShaderDefines KBufferOit::resolveDefines() const {
+  ShaderDefines d;
+  d.defines.push_back({"SB_KBUFFER_K", std::to_string(o_.k)});
+  return d;
+}
+
+uint64_t KBufferOit::poolEntries(uint64_t counted) const {
+  return o_.nodes == 0 ? counted : o_.nodes;
+}
+
+std::vector<std::pair<std::string, uint64_t>> KBufferOit::counters(Device& dev) {
+  return {{"pool_nodes", pool_}, {"dropped_fragments", status(dev)[1]}};
+}
+
+std::vector<std::string> KBufferOit::warnings(Device& dev) {
+  const uint32_t dropped = status(dev)[1];
+  if (dropped == 0) return {};
+  return {"kbuffer: node pool overflow: " + std::to_string(dropped) + " fragments dropped (nodes=" +
+          std::to_string(pool_) + ", " + std::to_string(complexity_.total) + " needed)"};
+}
+
+}  // namespace sb

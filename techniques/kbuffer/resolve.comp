@@ -1,0 +1,24 @@
+// kbuffer resolve: each pixel's list, in submission order, through the
+// k-buffer of kbuffer_math.glsl (SB_KBUFFER_K entries), into the accumulation.
+#define SB_INOUT(T) inout T
+#include "../common/key_order.glsl"
+#include "../abuffer/abuffer.glsl"
+#include "../abuffer/submission_order.glsl"
+#include "../common/invocation.glsl"
+#include "../common/slots.h"
+#define SB_KBUFFER_MAX SB_KBUFFER_K
+#include "kbuffer_math.glsl"
+layout(local_size_x = 64) in;
+layout(std140, binding = SB_SLOT_ABUFFER_SIZE) uniform Size { uvec4 size; };  // x: pixel count
+
+void main() {
+  uint p = linearInvocation();
+  if (p >= size.x) return;
+  uint base = offsets[p];
+  uint n = min(cursor[p], counts[p]);
+  sortBySubmission(base, n);
+  KBuffer kb = kbufferEmpty();
+  for (uint i = 0u; i < n; ++i)
+    kbufferInsert(kb, SB_KBUFFER_K, fragments[base + i].color, fragments[base + i].key.xy);
+  accum[p] = kbufferResolve(kb);
+}

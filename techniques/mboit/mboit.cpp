@@ -1,0 +1,151 @@
+#include "techniques/mboit/mboit.h"
+
+#include <cmath>
+
+#include "scenes/options.h"
+#include "techniques/kajiya_kay/shading.h"
+#include "techniques/mboit/mboit_math.h"
+
+namespace sb {
+
+namespace {
+constexpr uint32_t kParams = SB_SLOT_MBOIT_PARAMS, kB0 = SB_SLOT_MBOIT_B0, kLow = SB_SLOT_MBOIT_LOW,
+                   kHigh = SB_SLOT_MBOIT_HIGH, kAccum = SB_SLOT_MBOIT_ACCUM;
+
+struct Params {
+  glm::vec4 warp;  // ln(near), 1 / (ln(far) - ln(near)), bias, overestimation
+  glm::ivec4 n;
+};
+
+// The view distances (along the camera's forward axis) that bound the scene:
+// the log warp maps [near, far] onto [-1, 1].
+glm::vec2 depthRange(const Bounds& b, const ViewUniforms& v) {
+  float lo = 1e30f, hi = 0.0f;
+  for (int i = 0; i < 8; ++i) {
+    const glm::vec3 c((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y,
+                      (i & 4) ? b.max.z : b.min.z);
+    const float z = glm::dot(c - glm::vec3(v.eye), glm::vec3(v.forward));
+    lo = std::min(lo, z);
+    hi = std::max(hi, z);
+  }
+  hi = std::max(hi, 1e-3f);
+  lo = std::clamp(lo, hi * 1e-3f, hi * 0.999f);
+  return {lo, hi};
+}
+}  // namespace
+
+MomentOit::Options MomentOit::readOptions(const OptionReader& o) {
+  Options r;
+  r.moments = std::stoi(o.choice("moments", {"4", "6", "8"}));
+  r.bits = std::stoi(o.choice("precision", {"16", "32"}));
+  return r;
+}
+
+void MomentOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
+                      const KajiyaKayShading& shading, const OitTargets& targets) {
+  scene_ = &scene;
+  shading_ = &shading;
+  settings_ = s;
+  targets_ = targets;
+  const glm::vec2 range = depthRange(scene.bounds, cameraView(s));
+  Params p{{std::log(range.x), 1.0f / (std::log(range.y) - std::log(range.x)),
+            glsl::mboitBias(o_.moments / 2, o_.bits), 0.25f},
+           {o_.moments / 2, o_.bits, 0, 0}};
+  params_ = dev.createBuffer({"mboit.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
+  const Format f = o_.bits == 16 ? Format::RGBA16F : Format::RGBA32F;
+  b0_ = dev.createTexture({"mboit.b0", "oit", Format::R32F, s.width, s.height, false});
+  low_ = dev.createTexture({"mboit.moments_1_4", "oit", f, s.width, s.height, false});
+  if (highTarget())
+    high_ = dev.createTexture({"mboit.moments_5_8", "oit", f, s.width, s.height, false});
+  accum_ = dev.createTexture({"mboit.accum", "oit", f, s.width, s.height, false});
+
+  ShaderDefines defs;
+  if (highTarget()) defs.defines.push_back({"SB_MBOIT_HIGH", "1"});
+  const ShaderDefines hair = shading.hairDefines();
+  ShaderDefines shaded = defs;
+  for (const auto& [alias, file] : hair.aliases) shaded.aliases[alias] = file;
+  shaded.defines.insert(shaded.defines.end(), hair.defines.begin(), hair.defines.end());
+  const ShaderCode vert = Geometry::strandVertexShader(s);
+  const ShaderCode momentsFrag = loadShader("techniques/mboit/moments.frag", defs);
+  const ShaderCode accumFrag = loadShader("techniques/mboit/accumulate.frag", shaded);
+
+  // Both hair passes: depth-tested against the opaque depth without writing it,
+  // additive into their targets.
+  PipelineDesc d;
+  d.technique = "mboit";
+  d.vertex = &vert;
+  d.topology = Geometry::strandTopology(s);
+  d.hasDepth = d.depthTest = true;
+  d.depthWrite = false;
+  d.depthCompare = CompareOp::Less;
+  d.name = "mboit.moments";
+  d.fragment = &momentsFrag;
+  d.colorFormats = {Format::R32F, f};
+  if (highTarget()) d.colorFormats.push_back(f);
+  d.blend.assign(d.colorFormats.size(), BlendState::additive());
+  d.bindings = momentsPass().slots();
+  moments_ = dev.createPipeline(d);
+
+  d.name = "mboit.accumulate";
+  d.technique = "mboit+" + shading.shadow().name();
+  d.fragment = &accumFrag;
+  d.colorFormats = {f};
+  d.blend = {BlendState::additive()};
+  d.bindings = accumulatePass().slots();
+  accumulate_ = dev.createPipeline(d);
+
+  const ShaderCode fullScreen = loadShader("techniques/common/composite.vert");
+  const ShaderCode resolve = loadShader("techniques/mboit/resolve.frag");
+  PipelineDesc r;
+  r.name = "mboit.resolve";
+  r.technique = "mboit";
+  r.vertex = &fullScreen;
+  r.fragment = &resolve;
+  r.colorFormats = {Format::RGBA32F};
+  r.blend = {{true, BlendFactor::One, BlendFactor::SrcAlpha, BlendOp::Add, BlendFactor::Zero,
+              BlendFactor::One, BlendOp::Add}};
+  r.bindings = resolvePass().slots();
+  resolve_ = dev.createPipeline(r);
+}
+
+// The first pass clears the depth when nothing opaque was drawn.
+Pass MomentOit::momentsPass() const {
+  Pass p("mboit.moments");
+  p.color(b0_, LoadOp::Clear, {0, 0, 0, 0}).color(low_, LoadOp::Clear, {0, 0, 0, 0});
+  if (highTarget()) p.color(high_, LoadOp::Clear, {0, 0, 0, 0});
+  if (targets_.opaqueDrawn)
+    p.depthReadOnly(targets_.depth);
+  else
+    p.depth(targets_.depth, LoadOp::Clear);
+  return p.inputs(Geometry::inputs(*scene_, shading_->viewUbo())).uniform(kParams, params_);
+}
+
+Pass MomentOit::accumulatePass() const {
+  Pass p("mboit.accumulate");
+  p.color(accum_, LoadOp::Clear, {0, 0, 0, 0}).depthReadOnly(targets_.depth);
+  p.inputs(shading_->hairInputs()).uniform(kParams, params_).sample(kB0, b0_).sample(kLow, low_);
+  if (highTarget()) p.sample(kHigh, high_);
+  return p;
+}
+
+Pass MomentOit::resolvePass() const {
+  const glm::vec3 bg = settings_.background;
+  return Pass("mboit.resolve")
+      .color(targets_.color, targets_.opaqueDrawn ? LoadOp::Load : LoadOp::Clear,
+             {bg.r, bg.g, bg.b, 1.0f})
+      .sample(kB0, b0_)
+      .sample(kAccum, accum_);
+}
+
+void MomentOit::addPasses(FrameGraph& graph, Device& dev) {
+  const Pass moments = momentsPass(), accumulate = accumulatePass(), resolve = resolvePass();
+  const uint32_t vertices = Geometry::strandVertexCount(*scene_, settings_);
+  graph.add("mboit", {moments, accumulate, resolve},
+            [this, &dev, moments, accumulate, resolve, vertices] {
+              moments.draw(dev, moments_, vertices);
+              accumulate.draw(dev, accumulate_, vertices);
+              resolve.draw(dev, resolve_, 3);
+            });
+}
+
+}  // namespace sb

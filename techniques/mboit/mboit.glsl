@@ -1,0 +1,6 @@
+// The parameters of both hair passes of mboit (std140).
+#include "../common/slots.h"
+layout(std140, binding = SB_SLOT_MBOIT_PARAMS) uniform MboitParams {
+  vec4 mboitWarp;  // ln(near), 1 / (ln(far) - ln(near)), bias, overestimation
+  ivec4 mboitN;    // x: n (2n power moments)
+};

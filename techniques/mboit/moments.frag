@@ -1,0 +1,25 @@
+// mboit pass 1: every visible hair fragment adds its absorbance A to b0 and
+// A z^k to the moment targets (additive blending; mboit_math.glsl).
+#include "../common/view.glsl"
+#include "mboit.glsl"
+#include "mboit_math.glsl"
+
+layout(location = 0) in vec3 vWorldPos;
+layout(location = 1) in vec3 vTangent;
+layout(location = 2) in vec4 vColor;
+layout(location = 0) out vec4 outB0;
+layout(location = 1) out vec4 outLow;
+#ifdef SB_MBOIT_HIGH
+layout(location = 2) out vec4 outHigh;
+#endif
+
+void main() {
+  float z = mboitWarpDepth(dot(vWorldPos - viewEye.xyz, viewForward.xyz), mboitWarp.x, mboitWarp.y);
+  float a = mboitAbsorbance(vColor.a);
+  outB0 = vec4(a, 0.0, 0.0, 0.0);
+  outLow = a * mboitPowersLow(z);
+#ifdef SB_MBOIT_HIGH
+  outHigh = a * mboitPowersHigh(z);
+  if (mboitN.x == 3) outHigh.zw = vec2(0.0);  // 6 moments: b5, b6 only
+#endif
+}

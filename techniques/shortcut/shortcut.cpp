@@ -1,0 +1,124 @@
+#include "techniques/shortcut/shortcut.h"
+
+#include "techniques/kajiya_kay/shading.h"
+
+namespace sb {
+
+namespace {
+constexpr uint32_t kDepths = SB_SLOT_SHORTCUT_DEPTHS, kColors = SB_SLOT_SHORTCUT_COLORS,
+                   kClaims = SB_SLOT_SHORTCUT_CLAIMS, kTail = SB_SLOT_SHORTCUT_TAIL,
+                   kRevealage = SB_SLOT_SHORTCUT_REVEALAGE;
+}  // namespace
+
+void ShortCutOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
+                        const KajiyaKayShading& shading, const OitTargets& targets) {
+  scene_ = &scene;
+  shading_ = &shading;
+  settings_ = s;
+  targets_ = targets;
+  const std::size_t slots = std::size_t(s.width) * s.height * std::size_t(k_);
+  depths_ = dev.createBuffer({"shortcut.depths", "oit", BufferUsage::Storage, slots * 4});
+  colors_ = dev.createBuffer({"shortcut.colors", "oit", BufferUsage::Storage, slots * 16});
+  claims_ = dev.createBuffer({"shortcut.claims", "oit", BufferUsage::Storage, slots * 4});
+  tail_ = dev.createTexture({"shortcut.tail", "oit", Format::RGBA32F, s.width, s.height, false});
+  revealage_ =
+      dev.createTexture({"shortcut.revealage", "oit", Format::R32F, s.width, s.height, false});
+
+  ShaderDefines defs;
+  defs.defines.push_back({"SB_SHORTCUT_K", std::to_string(k_)});
+  ShaderDefines shaded = defs;
+  const ShaderDefines hair = shading.hairDefines();
+  for (const auto& [alias, file] : hair.aliases) shaded.aliases[alias] = file;
+  shaded.defines.insert(shaded.defines.end(), hair.defines.begin(), hair.defines.end());
+  const ShaderCode vert = Geometry::strandVertexShader(s);
+  const ShaderCode depthsFrag = loadShader("techniques/shortcut/depths.frag", defs);
+  const ShaderCode colorsFrag = loadShader("techniques/shortcut/colors.frag", shaded);
+
+  PipelineDesc d;
+  d.technique = "shortcut";
+  d.vertex = &vert;
+  d.topology = Geometry::strandTopology(s);
+  d.hasDepth = d.depthTest = true;
+  d.depthWrite = false;
+  d.depthCompare = CompareOp::Less;
+  d.name = "shortcut.depths";
+  d.fragment = &depthsFrag;
+  d.colorFormats = {Format::R32F};
+  // dst *= (1 - alpha): the product of (1 - alpha) over the pixel's fragments.
+  d.blend = {{true, BlendFactor::Zero, BlendFactor::OneMinusSrcColor, BlendOp::Add,
+              BlendFactor::Zero, BlendFactor::OneMinusSrcAlpha, BlendOp::Add}};
+  d.bindings = depthsPass().slots();
+  depthsPipeline_ = dev.createPipeline(d);
+
+  d.name = "shortcut.colors";
+  d.technique = "shortcut+" + shading.shadow().name();
+  d.fragment = &colorsFrag;
+  d.colorFormats = {Format::RGBA32F};
+  d.blend = {BlendState::additive()};
+  d.bindings = colorsPass().slots();
+  colorsPipeline_ = dev.createPipeline(d);
+
+  const ShaderCode fullScreen = loadShader("techniques/common/composite.vert");
+  const ShaderCode resolve = loadShader("techniques/shortcut/resolve.frag", defs);
+  PipelineDesc r;
+  r.name = "shortcut.resolve";
+  r.technique = "shortcut";
+  r.vertex = &fullScreen;
+  r.fragment = &resolve;
+  r.colorFormats = {Format::RGBA32F};
+  r.blend = {{true, BlendFactor::One, BlendFactor::SrcAlpha, BlendOp::Add, BlendFactor::Zero,
+              BlendFactor::One, BlendOp::Add}};
+  r.bindings = resolvePass().slots();
+  resolvePipeline_ = dev.createPipeline(r);
+}
+
+Inputs ShortCutOit::slots() const {
+  Inputs in;
+  in.storage(kDepths, depths_).storage(kColors, colors_).storage(kClaims, claims_);
+  return in;
+}
+
+// The first pass clears the depth when nothing opaque was drawn.
+Pass ShortCutOit::depthsPass() const {
+  Pass p("shortcut.depths");
+  p.color(revealage_, LoadOp::Clear, {1, 1, 1, 1});
+  if (targets_.opaqueDrawn)
+    p.depthReadOnly(targets_.depth);
+  else
+    p.depth(targets_.depth, LoadOp::Clear);
+  return p.inputs(Geometry::inputs(*scene_, shading_->viewUbo())).inputs(slots());
+}
+
+Pass ShortCutOit::colorsPass() const {
+  Pass p("shortcut.colors");
+  p.color(tail_, LoadOp::Clear, {0, 0, 0, 0}).depthReadOnly(targets_.depth);
+  return p.inputs(shading_->hairInputs()).inputs(slots());
+}
+
+Pass ShortCutOit::resolvePass() const {
+  const glm::vec3 bg = settings_.background;
+  Pass p("shortcut.resolve");
+  p.color(targets_.color, targets_.opaqueDrawn ? LoadOp::Load : LoadOp::Clear,
+          {bg.r, bg.g, bg.b, 1.0f})
+      .uniform(bind::kView, shading_->viewUbo())
+      .readStorage(kDepths, depths_)
+      .readStorage(kColors, colors_)
+      .readStorage(kClaims, claims_)
+      .sample(kTail, tail_)
+      .sample(kRevealage, revealage_);
+  return p;
+}
+
+void ShortCutOit::addPasses(FrameGraph& graph, Device& dev) {
+  const Pass depths = depthsPass(), colors = colorsPass(), resolve = resolvePass();
+  const uint32_t vertices = Geometry::strandVertexCount(*scene_, settings_);
+  graph.add("shortcut", {depths, colors, resolve}, [this, &dev, depths, colors, resolve, vertices] {
+    dev.fillBuffer(depths_, 0xFFFFFFFFu);
+    dev.fillBuffer(claims_, 0u);
+    depths.draw(dev, depthsPipeline_, vertices);
+    colors.draw(dev, colorsPipeline_, vertices);
+    resolve.draw(dev, resolvePipeline_, 3);
+  });
+}
+
+}  // namespace sb
