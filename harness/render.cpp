@@ -31,6 +31,7 @@ RenderSettings makeRenderSettings(const RenderRequest& req, const Scene& scene) 
   s.height = req.height;
   s.primitive = req.primitive == "ribbons" ? Primitive::Ribbons : Primitive::Lines;
   s.ribbonWidth = req.ribbonWidth;
+  s.msaa = static_cast<uint32_t>(req.msaa);
 
   const Bounds b = scene.bounds();
   const ViewOverrides& o = req.view;
@@ -349,7 +350,11 @@ RenderCache::Reference renderReference(Device& dev, const Scene& scene,
   std::set<std::string> outputs = {"visibility"};
   if (req.image) outputs.insert("color");
   if (req.probe) outputs.insert("probe");
-  Renderer ref(dev, scene, settings, makeShadowTechnique(refShadow),
+  // The reference is exact at each pixel's centre: one sample, whatever
+  // --msaa the run has (its error then includes what anti-aliasing changed).
+  RenderSettings exactSettings = settings;
+  exactSettings.msaa = 1;
+  Renderer ref(dev, scene, exactSettings, makeShadowTechnique(refShadow),
                makeOitTechnique(Spec::parse(kReferenceOit)), outputs);
   checkMemory(dev.allocationsAfterUsing(ref.graphResources(outputs)), dev.allocations(), 0,
               dev.memoryBudget(), "the reference", req.image ? imageHostBytes(settings) : 0);
@@ -658,6 +663,11 @@ RenderResult runRender(const RenderRequest& req, RenderCache* cache, Device* dev
 
   std::unique_ptr<Device> ownDevice = device ? nullptr : makeRequestDevice(req);
   Device* const dev = device ? device : ownDevice.get();
+  if (!dev->supportsSamples(settings.msaa))
+    throw InputError(settingMessage(*findSetting("msaa"), Spelling::Cli,
+                                    std::to_string(settings.msaa),
+                                    "the device has " + dev->sampleCountsText() +
+                                        " samples per pixel (" + dev->info().device + ")"));
   RenderProgress progress(*dev);
 
   // The timed frames produce what the run is for: the shaded image, or (for a
@@ -730,6 +740,7 @@ RenderResult runRender(const RenderRequest& req, RenderCache* cache, Device* dev
             [](const ResourceBytes& a, const ResourceBytes& b) { return a.name < b.name; });
   out.warnings = scene.warnings;  // the input's, then the techniques'
   for (const auto& w : renderer.warnings()) out.warnings.push_back(w);
+  out.oitCounters = renderer.oit().counters(*dev);
 
   out.device = dev->info();
   out.scene = {req.scene,
@@ -882,6 +893,7 @@ nlohmann::json renderJson(const RenderResult& r) {
     j["depth_complexity"] = {{"eye", complexityJson(r.eyeComplexity)},
                              {"light", complexityJson(r.lightComplexity)}};
   j["warnings"] = r.warnings;
+  if (!r.oitCounters.empty()) j["oit_counters"] = r.oitCounters;
   if (r.validationMessages) j["validation_messages"] = *r.validationMessages;
   if (r.presented) {
     // frame_ms plus the present: the frame time with presentation included.

@@ -67,6 +67,7 @@ struct RenderRequest {
   uint32_t width = 512, height = 512;
   std::string primitive = "lines";  // lines | ribbons
   float ribbonWidth = 1.0f;
+  int msaa = 1;  // samples per pixel of the frame targets: 1, 2, 4, 8 (what the device has)
   int repeat = 1;
   int warmup = 1;
   bool validation = false;
@@ -172,6 +173,9 @@ struct RenderResult {
   std::optional<ProbeResult> probe;
   std::optional<std::vector<InvariantFailure>> invariants;  // when requested
   std::optional<DepthComplexity> eyeComplexity, lightComplexity;
+  // The transparency technique's counters after the last frame
+  // (OitTechnique::counters: layers, geometry passes, lost depth ties).
+  std::map<std::string, double> oitCounters;
   std::vector<std::string> warnings;              // the input's, the techniques', the reference's
   std::optional<std::size_t> validationMessages;  // with validation
 

@@ -12,6 +12,7 @@
 #include "techniques/common/technique.h"
 #include "techniques/dc/dc.h"
 #include "techniques/dom/dom.h"
+#include "techniques/dual_peel/dual_peel.h"
 #include "techniques/exact/exact.h"
 #include "techniques/none/none.h"
 #include "techniques/occupancy/occupancy.h"
@@ -19,7 +20,9 @@
 #include "techniques/opaque_hair/opaque_hair.h"
 #include "techniques/osm/osm.h"
 #include "techniques/peel/peel.h"
+#include "techniques/peel_classic/peel_classic.h"
 #include "techniques/shadowmap/shadowmap.h"
+#include "techniques/stochastic/stochastic.h"
 #include "techniques/wboit/wboit.h"
 #include "techniques/weighted/weighted.h"
 
@@ -148,6 +151,21 @@ const std::vector<TechniqueInfo>& oitCatalog() {
          "occupancy bits per pixel, multiple of 32 (128 per RGBA32UI layer), 32..1024"},
         {"slabs", "4", "fragment counts per pixel (4 per RGBA32F layer), dividing slices, 1..32"},
         {"lambda", "on", "on | off: renormalise the hair weights to 1 - prod(1 - alpha)"}}},
+      {"stochastic",
+       "stochastic transparency (Enderton et al. 2010): random sample masks on multisampled "
+       "targets, depth + accumulate + total alpha passes, alpha-corrected",
+       {{"samples", "8",
+         "samples per pixel S, 1..64: groups of the largest multisample count the device has "
+         "that divides S"},
+        {"seed", "1", "random seed of the coverage masks, 0..4294967295"}}},
+      {"peel_classic",
+       "depth peeling as the papers time it (Everitt 2001): one geometry pass per layer, "
+       "depth ties lost and counted",
+       {{"layers", "65536", "most layers peeled (a cap that is reported), 1..1000000"}}},
+      {"dual_peel",
+       "dual depth peeling (Bavoil & Myers 2008): the nearest and farthest layers per pass, "
+       "ceil(layers/2) peel passes after one min/max depth pass",
+       {{"layers", "65536", "most layers peeled (a cap that is reported), 1..1000000"}}},
   };
   return catalog;
 }
@@ -157,11 +175,16 @@ std::unique_ptr<OitTechnique> makeOitTechnique(const Spec& spec) {
   const OptionReader o(spec, info.options, "transparency technique '" + spec.name + "'");
   if (spec.name == "peel")
     return std::make_unique<PeelOit>(static_cast<uint32_t>(o.integer("layers", 1, 1000000)));
-  if (spec.name == "occupancy")
-    return std::make_unique<OccupancyOit>(OccupancyOit::readOptions(o));
+  if (spec.name == "occupancy") return std::make_unique<OccupancyOit>(OccupancyOit::readOptions(o));
   if (spec.name == "abuffer")
     return std::make_unique<ABufferOit>(
         static_cast<uint64_t>(o.integer("max_fragments", 1, 1000000000)));
+  if (spec.name == "peel_classic")
+    return std::make_unique<ClassicPeelOit>(static_cast<uint32_t>(o.integer("layers", 1, 1000000)));
+  if (spec.name == "dual_peel")
+    return std::make_unique<DualPeelOit>(static_cast<uint32_t>(o.integer("layers", 1, 1000000)));
+  if (spec.name == "stochastic")
+    return std::make_unique<StochasticOit>(StochasticOit::readOptions(o));
   if (spec.name == "wsum") return std::make_unique<WeightedOit>(WeightedOit::Mode::Sum);
   if (spec.name == "wavg") return std::make_unique<WeightedOit>(WeightedOit::Mode::Average);
   if (spec.name == "wboit")

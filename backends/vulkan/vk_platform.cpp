@@ -254,6 +254,10 @@ void VulkanPlatform::pickPhysicalDevice() {
   info.timing = cpuTiming ? "cpu clock per pass (submit and wait)" : "gpu timestamps";
   info.platform = surface != VK_NULL_HANDLE ? "window" : "headless";
   info.maxColorAttachments = pick->props.limits.maxColorAttachments;
+  // Multisampled render targets: counts both colour and depth attachments take.
+  info.sampleCounts = (pick->props.limits.framebufferColorSampleCounts &
+                       pick->props.limits.framebufferDepthSampleCounts) |
+                      1u;
   info.device = pick->props.deviceName;
   if (drv.driverName[0] != '\0') {
     info.driver = std::string(drv.driverName) + " " + drv.driverInfo;

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <glm/glm.hpp>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -26,6 +27,9 @@ struct RenderSettings {
   uint32_t width = 512, height = 512;
   Primitive primitive = Primitive::Lines;
   float ribbonWidth = 1.0f;  // pixels of the target being drawn
+  // Samples per pixel of the frame's colour and depth (--msaa): 1, or a count
+  // the device supports; only techniques that are multisampled() take more.
+  uint32_t msaa = 1;
   Camera camera;
   Light light;
   glm::vec3 background{0.0f, 0.0f, 0.0f};
@@ -143,6 +147,9 @@ class ShadowTechnique {
 struct OitTargets {
   Texture color, depth;
   bool opaqueDrawn = false;  // false: the technique's first pass clears them
+  // With --msaa N > 1, color and depth have N samples and `resolved` is the
+  // single-sampled frame colour the technique's last pass resolves color into.
+  Texture resolved;
 };
 
 class KajiyaKayShading;
@@ -160,6 +167,14 @@ class OitTechnique {
   virtual void addPasses(FrameGraph& graph, Device& dev) = 0;
   virtual std::optional<DepthComplexity> depthComplexity() const { return std::nullopt; }
   virtual std::vector<std::string> warnings(Device& /*dev*/) { return {}; }
+  // What the last frame counted (after it): e.g. layers peeled, geometry
+  // passes, fragments lost to depth ties. Reported in render --json
+  // ("oit_counters"); empty for most techniques.
+  virtual std::map<std::string, double> counters(Device& /*dev*/) { return {}; }
+  // Whether it renders into multisampled frame targets (--msaa N > 1). Those
+  // that keep per-pixel data (fragment lists, peeled layers, accumulation
+  // targets, occupancy maps) say no and the renderer refuses --msaa for them.
+  virtual bool multisampled() const { return false; }
 };
 
 // Groups of 64 for a 1D compute pass over `items`, as a 2D grid (x, y) so that
