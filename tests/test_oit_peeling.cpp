@@ -178,9 +178,8 @@ TEST_P(StochasticTest, ErrorFallsWithSamplesOnADeepScene) {
   const double ratio = mean[4] / mean[16];
   if (GetParam() == "gl" && ratio < 1.5) {
     std::cout << "[ KNOWN FAIL ] gl stochastic: error 4 -> 16 samples falls only " << ratio
-              << "x (claim: >= 1.5x)
-                 ";
-        RecordProperty("known_failing_claim", "stochastic 1.5x on gl: " + std::to_string(ratio));
+              << "x (claim: >= 1.5x)\n";
+    RecordProperty("known_failing_claim", "stochastic 1.5x on gl: " + std::to_string(ratio));
   } else {
     EXPECT_LT(mean[8], mean[4]);
     EXPECT_GE(ratio, 1.5) << "4 samples " << mean[4] << ", 16 samples " << mean[16];
@@ -223,7 +222,7 @@ const std::string kNoTieScene = "curly:strands=120,points=16,alpha=0.4,head=0";
 class PeelingTest : public sbtest::BackendTest {};
 
 TEST_P(PeelingTest, ClassicAndDualEqualTheExactPeelWithoutTies) {
-  for (const std::string scene : {kNoTieScene, kNoTieScene + ",seed=5"}) {
+  for (const std::string& scene : {kNoTieScene, kNoTieScene + ",seed=5"}) {
     SCOPED_TRACE(scene);
     const Rendered exact = render(*dev_, scene, "peel");
     const uint32_t layers = exact.maxComplexity;
