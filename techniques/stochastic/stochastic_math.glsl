@@ -56,7 +56,8 @@ SB_INLINE uint stochasticKey(uint x, uint y, uint primitive, uint group, uint se
 // to correct: the hair adds nothing, the background keeps its exact T.
 SB_INLINE vec4 stochasticResolve(vec4 accum, float t) {
   t = clamp(t, 0.0f, 1.0f);
-  if (!(accum.w > 0.0f)) return vec4(0.0f, 0.0f, 0.0f, t);
+  // (An overflowed sum, w = inf, has no usable colour either: inf / inf is NaN.)
+  if (!(accum.w > 0.0f) || !(accum.w < 3.0e38f)) return vec4(0.0f, 0.0f, 0.0f, t);
   vec3 colour = clamp(vec3(accum.x, accum.y, accum.z) / accum.w, vec3(0.0f), vec3(1.0f));
   return vec4(colour * (1.0f - t), t);
 }
