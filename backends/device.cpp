@@ -51,6 +51,7 @@ struct Device::OpenPass {
   std::vector<uint32_t> attachmentLayers;  // the layer of each attachment
   std::vector<Format> colorFormats;
   bool hasDepth = false;
+  uint32_t samples = 0;  // of its attachments (0 until the first)
 };
 
 namespace {
@@ -67,8 +68,23 @@ void checkColorCount(const std::string& where, std::size_t count, uint32_t limit
 }
 }  // namespace
 
-Device::Device(std::unique_ptr<Driver> driver)
-    : driver_(std::move(driver)), maxColorAttachments_(driver_->info().maxColorAttachments) {}
+Device::Device(std::unique_ptr<Driver> driver) : driver_(std::move(driver)) {
+  const DeviceInfo i = driver_->info();
+  maxColorAttachments_ = i.maxColorAttachments;
+  sampleCounts_ = i.sampleCounts | 1u;
+}
+
+bool Device::supportsSamples(uint32_t samples) const {
+  // A power of two that the mask has.
+  return samples != 0 && (samples & (samples - 1)) == 0 && (sampleCounts_ & samples) != 0;
+}
+
+std::string Device::sampleCountsText() const {
+  std::string out;
+  for (uint32_t c = 1; c != 0 && c <= sampleCounts_; c <<= 1)
+    if (sampleCounts_ & c) out += (out.empty() ? "" : ", ") + std::to_string(c);
+  return out;
+}
 
 Device::~Device() {
   // Native objects go back to the driver that made them, before it goes.
@@ -85,8 +101,9 @@ Device::~Device() {
 DeviceInfo Device::info() const { return driver_->info(); }
 
 namespace {
+// Every sample of a multisampled texture counts.
 std::size_t textureBytes(const TextureDesc& d) {
-  return std::size_t{d.width} * d.height * d.layers * bytesPerPixel(d.format);
+  return std::size_t{d.width} * d.height * d.layers * d.samples * bytesPerPixel(d.format);
 }
 
 std::string mib(std::size_t bytes) {
@@ -108,6 +125,14 @@ auto namingAllocation(const std::string& what, std::size_t bytes, F&& allocate) 
   } catch (const OutOfMemoryError& e) {
     throw OutOfMemoryError("out of memory " + what + size + ": " + e.what());
   }
+}
+
+// Multisampled textures are render targets only: their samples leave them by a resolve.
+void requireSingleSampled(const TextureDesc& d, const char* call) {
+  if (d.samples != 1)
+    throw DeviceError(quoted(call, d.name) + ": a multisampled texture (" +
+                      std::to_string(d.samples) +
+                      " samples); resolve it into a single-sampled one");
 }
 
 // The record behind a handle, or a DeviceError naming the call and the handle.
@@ -216,6 +241,18 @@ Texture Device::createTexture(const TextureDesc& desc) {
   if (desc.layers > 1 && isDepthFormat(desc.format))
     throw DeviceError(quoted("createTexture", desc.name) + ": a depth texture has one layer, not " +
                       std::to_string(desc.layers));
+  if (desc.samples != 1) {
+    const std::string where =
+        quoted("createTexture", desc.name) + ": " + std::to_string(desc.samples) + " samples";
+    if (!supportsSamples(desc.samples))
+      throw DeviceError(where + ": not a count the device supports (Device::supportsSamples)");
+    if (desc.layers != 1)
+      throw DeviceError(where + " and " + std::to_string(desc.layers) +
+                        " layers (a multisampled texture has one layer)");
+    if (isIntegerFormat(desc.format))
+      throw DeviceError(where + " of integer format " + formatName(desc.format) +
+                        " (integer formats are not multisampled)");
+  }
   auto rec = std::make_unique<TextureRec>(TextureRec{desc, nullptr});  // created when first used
   const uint32_t id = nextId_++;
   textures_.emplace(id, std::move(rec));
@@ -235,6 +272,9 @@ Pipeline Device::createPipeline(const PipelineDesc& desc) {
   checkColorCount(where, desc.colorFormats.size(), maxColorAttachments_);
   for (Format f : desc.colorFormats)
     if (isDepthFormat(f)) throw DeviceError(where + ": depth format as colour target");
+  if (graphics && !supportsSamples(desc.samples))
+    throw DeviceError(where + ": " + std::to_string(desc.samples) +
+                      " samples: not a count the device supports (Device::supportsSamples)");
   if (desc.blend.size() > desc.colorFormats.size())
     throw DeviceError(where + ": " + std::to_string(desc.blend.size()) + " blend states for " +
                       std::to_string(desc.colorFormats.size()) + " colour targets");
@@ -280,6 +320,13 @@ void Device::beginPass(const PassDesc& pd) {
   open->name = pd.name;
   DriverPass dp;
   dp.name = pd.name;
+  dp.color.reserve(pd.color.size());  // resolveTargets points into it
+  struct ResolveTarget {
+    DriverColorTarget* target;
+    TextureRec* from;
+    Texture to;
+  };
+  std::vector<ResolveTarget> resolveTargets;
   auto size = [&](const TextureRec& t) {
     if (dp.width == 0) {
       dp.width = t.desc.width;
@@ -304,6 +351,14 @@ void Device::beginPass(const PassDesc& pd) {
     open->attachments.push_back(tex.id);
     open->attachmentLayers.push_back(layer);
     size(t);
+    // One sample count for the whole pass: the rasterizer has one.
+    if (open->samples == 0) {
+      open->samples = t.desc.samples;
+    } else if (open->samples != t.desc.samples) {
+      throw DeviceError(where + ": attachments differ in sample count ('" + t.desc.name + "' has " +
+                        std::to_string(t.desc.samples) + ", the pass " +
+                        std::to_string(open->samples) + ")");
+    }
     return t;
   };
   for (const ColorAttachment& a : pd.color) {
@@ -311,7 +366,8 @@ void Device::beginPass(const PassDesc& pd) {
     if (isDepthFormat(t.desc.format))
       throw DeviceError(where + ": depth texture '" + t.desc.name + "' as colour attachment");
     open->colorFormats.push_back(t.desc.format);
-    dp.color.push_back({{created(t), &t.desc}, a.load, a.clear, a.clearUint, a.layer});
+    dp.color.push_back({{created(t), &t.desc}, a.load, a.clear, a.clearUint, a.layer, {}});
+    if (a.resolve) resolveTargets.push_back({&dp.color.back(), &t, a.resolve});
   }
   if (pd.depth.texture) {
     TextureRec& t = attach(pd.depth.texture, 0);
@@ -327,12 +383,41 @@ void Device::beginPass(const PassDesc& pd) {
     dp.width = pd.width;
     dp.height = pd.height;
   }
+  if (open->samples == 0) open->samples = 1;
+  dp.samples = open->samples;
+  // Resolve targets: single-sampled, of the attachment's format and size,
+  // neither attached nor resolved into twice (checked after every attachment
+  // is known, so a target that is also an attachment is caught).
+  std::vector<uint32_t> resolved;
+  for (auto& [target, from, tex] : resolveTargets) {
+    TextureRec& r = texture(tex, where);
+    const std::string what =
+        where + ": resolve of '" + from->desc.name + "' into '" + r.desc.name + "'";
+    if (from->desc.samples == 1) throw DeviceError(what + ": the attachment is not multisampled");
+    if (r.desc.samples != 1 || r.desc.layers != 1)
+      throw DeviceError(what + ": the target must be single-sampled with one layer");
+    if (r.desc.format != from->desc.format)
+      throw DeviceError(what + ": formats differ (" + formatName(from->desc.format) + ", " +
+                        formatName(r.desc.format) + ")");
+    if (r.desc.width != from->desc.width || r.desc.height != from->desc.height)
+      throw DeviceError(what + ": sizes differ");
+    // (An attachment of the pass is multisampled, so it failed above.)
+    if (std::count(resolved.begin(), resolved.end(), tex.id))
+      throw DeviceError(what + ": the target is resolved into twice");
+    resolved.push_back(tex.id);
+    target->resolve = {created(r), &r.desc};
+  }
+  open->attachments.insert(open->attachments.end(), resolved.begin(), resolved.end());
   for (Texture s : pd.sampledTextures) {
     TextureRec& t = texture(s, where);
     if (std::count(open->attachments.begin(), open->attachments.end(), s.id))
       throw DeviceError(where + ": texture '" + t.desc.name +
                         "' is both an attachment and sampled");
     if (std::count(open->sampled.begin(), open->sampled.end(), s.id)) continue;
+    if (t.desc.samples != 1)
+      throw DeviceError(where + ": texture '" + t.desc.name + "' is multisampled (" +
+                        std::to_string(t.desc.samples) +
+                        " samples) and cannot be sampled: resolve it (ColorAttachment::resolve)");
     open->sampled.push_back(s.id);
     dp.sampled.push_back({created(t), &t.desc});
   }
@@ -364,6 +449,9 @@ std::vector<DriverBinding> Device::resolve(const PipelineRec& p, const std::vect
     if (s.kind == BindingKind::SampledTexture || s.kind == BindingKind::SampledTextureArray) {
       if (!it->texture || it->buffer) throw DeviceError(slot + " needs a texture");
       TextureRec& t = texture(it->texture, where);
+      if (t.desc.samples != 1)
+        throw DeviceError(slot + ": texture '" + t.desc.name +
+                          "' is multisampled and cannot be sampled: resolve it");
       if (s.kind == BindingKind::SampledTexture && t.desc.layers > 1)
         throw DeviceError(slot + ": texture '" + t.desc.name + "' has " +
                           std::to_string(t.desc.layers) +
@@ -390,6 +478,10 @@ void Device::draw(Pipeline pipe, const std::vector<Binding>& bindings, uint32_t 
   if (p.desc.colorFormats != pass_->colorFormats || p.desc.hasDepth != pass_->hasDepth)
     throw DeviceError(where + ": the pipeline's targets do not match pass '" + pass_->name +
                       "' (colour formats and depth must be the same)");
+  if (p.desc.samples != pass_->samples)
+    throw DeviceError(where + ": the pipeline has " + std::to_string(p.desc.samples) +
+                      " samples, pass '" + pass_->name + "' " + std::to_string(pass_->samples) +
+                      " (they must be the same)");
   const auto resolved = resolve(p, bindings, where, true);
   driver_->draw(*p.object, p.desc, resolved, vertexCount, instanceCount);
 }
@@ -426,6 +518,7 @@ std::vector<PassTiming> Device::lastFrameTimings() const { return driver_->lastF
 std::vector<uint8_t> Device::readTexture(Texture t) {
   TextureRec& r = texture(t, "readTexture");
   requireFrame(quoted("readTexture", r.desc.name), false, false);
+  requireSingleSampled(r.desc, "readTexture");
   DriverObject* object = created(r);
   return namingAllocation("reading back texture '" + r.desc.name + "'", textureBytes(r.desc),
                           [&] { return driver_->readTexture(*object, r.desc); });
@@ -443,6 +536,7 @@ void Device::writeTexture(Texture t, const std::vector<uint8_t>& bytes) {
   TextureRec& r = texture(t, "writeTexture");
   const std::string where = quoted("writeTexture", r.desc.name);
   requireFrame(where, false, false);
+  requireSingleSampled(r.desc, "writeTexture");
   const std::size_t want =
       std::size_t{r.desc.width} * r.desc.height * r.desc.layers * bytesPerPixel(r.desc.format);
   if (bytes.size() != want)
@@ -457,6 +551,7 @@ bool Device::present(Texture t, PresentedImage* capture) {
   TextureRec& r = texture(t, "present");
   const std::string where = quoted("present", r.desc.name);
   requireFrame(where, false, false);
+  requireSingleSampled(r.desc, "present");
   if (isDepthFormat(r.desc.format) || isIntegerFormat(r.desc.format))
     throw DeviceError(where + ": a " + formatName(r.desc.format) +
                       " texture cannot be shown (a float or unorm colour texture can)");

@@ -80,6 +80,12 @@ struct TextureDesc {
   // count, one layer included) and a one-layer texture also through a
   // SampledTexture slot (sampler2D). Read-back returns the layers in order.
   uint32_t layers = 1;
+  // Samples per pixel (1, or a count in DeviceInfo::sampleCounts). A
+  // multisampled texture has one layer and is only a render target: it is
+  // never sampled, read back or written; a pass resolves it into a
+  // single-sampled texture (ColorAttachment::resolve) that is. Memory counts
+  // every sample.
+  uint32_t samples = 1;
 };
 // The most layers a texture may have: the least both APIs guarantee (Vulkan's
 // maxImageArrayLayers; GL 4.5 guarantees 2048).
@@ -166,6 +172,11 @@ struct PipelineDesc {
   std::vector<BlendState> blend;  // one per colour target (empty: replace)
   bool logicOpOr = false;         // bitwise OR into integer targets (both APIs: all targets)
   std::vector<BindingSlot> bindings;
+  // Rasterization samples: the sample count of the passes it draws in (checked
+  // at each draw). With more than one, the fragment shader may write
+  // gl_SampleMask (ANDed with the geometric coverage), depth is tested per
+  // sample, and lines are rasterized as the API's multisampled lines.
+  uint32_t samples = 1;
 };
 
 enum class LoadOp { Clear, Load };
@@ -179,6 +190,11 @@ struct ColorAttachment {
   std::array<float, 4> clear{0, 0, 0, 0};         // float/unorm formats
   std::array<uint32_t, 4> clearUint{0, 0, 0, 0};  // integer formats
   uint32_t layer = 0;                             // < the texture's layers
+  // A multisampled attachment may name a single-sampled texture of its format
+  // (float or unorm) and size: at the end of the pass its samples are averaged
+  // into it (GL: a framebuffer blit; Vulkan: the rendering's resolve
+  // attachment). The resolve target is written by the pass.
+  Texture resolve;
 };
 
 struct DepthAttachment {
@@ -237,6 +253,13 @@ struct DeviceInfo {
   // GL_ARB_fragment_shader_interlock; Vulkan: VK_EXT_fragment_shader_interlock).
   // Absent on Mesa's CPU rasterizers: mlab then emulates the order in a resolve.
   bool fragmentShaderInterlock = false;
+  // The sample counts a texture may have, as a mask of the counts themselves
+  // (bit value 4 = 4 samples, like VkSampleCountFlags): those every float and
+  // unorm colour format and Depth32F support as render targets (GL:
+  // glGetInternalformativ GL_SAMPLES of each; Vulkan: the framebuffer colour
+  // and depth sample counts). Always has 1. Integer formats are never
+  // multisampled.
+  uint32_t sampleCounts = 1;
 };
 
 // The memory a run may still take on a device, and where that figure came from
@@ -275,6 +298,10 @@ class Device {
   // (PipelineDesc::colorFormats) may have on this device: techniques size
   // their passes by it (at least 4, the least Vulkan guarantees).
   uint32_t maxColorAttachments() const { return maxColorAttachments_; }
+  // Whether textures and pipelines may have `samples` samples per pixel.
+  bool supportsSamples(uint32_t samples) const;
+  // The supported counts, in words ("1, 4"), for messages.
+  std::string sampleCountsText() const;
 
   // A buffer of zero bytes is an error. Contents are zero unless data is given.
   Buffer createBuffer(const BufferDesc& desc, const void* data = nullptr);
@@ -369,6 +396,7 @@ class Device {
 
   std::unique_ptr<Driver> driver_;
   uint32_t maxColorAttachments_ = 0;
+  uint32_t sampleCounts_ = 1;
   uint32_t nextId_ = 1;  // shared by all kinds: ids give creation order
   std::map<uint32_t, std::unique_ptr<BufferRec>> buffers_;
   std::map<uint32_t, std::unique_ptr<TextureRec>> textures_;

@@ -34,6 +34,9 @@ struct DriverColorTarget {
   std::array<float, 4> clear{0, 0, 0, 0};
   std::array<uint32_t, 4> clearUint{0, 0, 0, 0};
   uint32_t layer = 0;  // the one layer rendered into (< desc->layers)
+  // object null: none. Else a single-sampled texture of the attachment's
+  // (float or unorm) format and size, averaged into at the end of the pass.
+  DriverTexture resolve;
 };
 
 // A pass as checked by the front end: attachments share one size (width x
@@ -49,6 +52,7 @@ struct DriverPass {
   float depthClear = 1.0f;
   std::vector<DriverTexture> sampled;
   uint32_t width = 0, height = 0;
+  uint32_t samples = 1;  // of every attachment (checked equal); 1 without attachments
 };
 
 // One binding of a draw or dispatch, in the order the pipeline declares them:
@@ -95,7 +99,7 @@ class Driver {
 
   virtual void beginFrame() = 0;
   virtual void beginPass(const DriverPass& pass) = 0;
-  // The pipeline's colour formats and depth match the open pass.
+  // The pipeline's colour formats, depth and samples match the open pass.
   virtual void draw(DriverObject& pipeline, const PipelineDesc& desc,
                     const std::vector<DriverBinding>& bindings, uint32_t vertexCount,
                     uint32_t instanceCount) = 0;

@@ -186,6 +186,45 @@ int runBench(const BenchOptions& o) {
   return 0;
 }
 
+// Issue 14's peeling rows, after the Fig. 2 ones: Everitt's classic peel (one
+// geometry pass per layer, as the papers time it) and dual depth peeling
+// (Bavoil & Myers 2008: ceil(layers/2) peel passes after one min/max pass),
+// their passes from the techniques' own counters, their times against each
+// other, and the classic peel against occupancy-ordered blending beside the
+// occupancy paper's Fig. 2 ratio. Self-contained: one render per technique.
+void printPeelingRows(const RenderRequest& base, double occupancyMs) {
+  std::map<std::string, RenderResult> out;
+  for (const char* oit : {"peel_classic", "dual_peel"}) {
+    RenderRequest r = base;
+    r.oit = oit;
+    out[oit] = runRender(r);
+  }
+  const auto counter = [&](const std::string& oit, const std::string& key) {
+    for (const Counter& c : out[oit].counters)
+      if (c.name == key) return c.value;
+    return -1.0;
+  };
+  const double classic = summarize(out["peel_classic"].frameMs).median;
+  const double dual = summarize(out["dual_peel"].frameMs).median;
+  const double layers = counter("dual_peel", "layers");
+  std::cout << "\npeeling (issue 14):\n"
+            << "  peel_classic " << std::setw(10) << classic << " ms   layers "
+            << counter("peel_classic", "layers") << ", geometry passes "
+            << counter("peel_classic", "geometry_passes") << " (Everitt: one per layer)";
+  if (counter("peel_classic", "lost_ties") >= 0)
+    std::cout << ", depth ties lost " << counter("peel_classic", "lost_ties");
+  std::cout << "\n  dual_peel    " << std::setw(10) << dual << " ms   layers " << layers
+            << ", geometry passes " << counter("dual_peel", "geometry_passes")
+            << "  (Bavoil & Myers: ceil(layers/2)+1 = " << std::ceil(layers / 2.0) + 1 << ")\n"
+            << "dual_peel / peel_classic time: " << dual / classic
+            << "  (geometry passes: " << counter("dual_peel", "geometry_passes") << " / "
+            << counter("peel_classic", "geometry_passes") << " = "
+            << counter("dual_peel", "geometry_passes") / counter("peel_classic", "geometry_passes")
+            << ")\n"
+            << "peel_classic / occupancy-ordered time: " << classic / occupancyMs
+            << "  (paper: 51 / 4.01 fps = 12.7)\n";
+}
+
 int runOitBench(const RenderRequest& base, const RepetitionOptions& reps) {
   const std::vector<std::pair<std::string, double>> rows = {
       {"peel", 4.01}, {"occupancy", 51}, {"wavg", 72}, {"wboit", 0}, {"none", 120}};
@@ -225,6 +264,7 @@ int runOitBench(const RenderRequest& base, const RepetitionOptions& reps) {
   printRatio(std::cout, "weighted average / occupancy-ordered time", *m["wavg"], *m["occupancy"],
              "paper: 51 / 72 fps = 0.71",
              OrderingClaim{1.0, true, "weighted average faster than occupancy-ordered"});
+  printPeelingRows(base, m["occupancy"]->median.estimate);
   std::cout << "\nafter: " << machineState() << "\n";
   return 0;
 }

@@ -32,6 +32,7 @@ RenderSettings makeRenderSettings(const RenderRequest& req, const Scene& scene) 
   s.primitive = req.primitive == "ribbons" ? Primitive::Ribbons : Primitive::Lines;
   s.ribbonWidth = req.ribbonWidth;
   s.shading = ShadingModel::fromSpec(req.shading);
+  s.msaa = static_cast<uint32_t>(req.msaa);
 
   const Bounds b = scene.bounds();
   const ViewOverrides& o = req.view;
@@ -350,7 +351,11 @@ RenderCache::Reference renderReference(Device& dev, const Scene& scene,
   std::set<std::string> outputs = {"visibility"};
   if (req.image) outputs.insert("color");
   if (req.probe) outputs.insert("probe");
-  Renderer ref(dev, scene, settings, makeShadowTechnique(refShadow),
+  // The reference is exact at each pixel's centre: one sample, whatever
+  // --msaa the run has (its error then includes what anti-aliasing changed).
+  RenderSettings exactSettings = settings;
+  exactSettings.msaa = 1;
+  Renderer ref(dev, scene, exactSettings, makeShadowTechnique(refShadow),
                makeOitTechnique(Spec::parse(kReferenceOit)), outputs);
   checkMemory(dev.allocationsAfterUsing(ref.graphResources(outputs)), dev.allocations(), 0,
               dev.memoryBudget(), "the reference", req.image ? imageHostBytes(settings) : 0);
@@ -659,6 +664,11 @@ RenderResult runRender(const RenderRequest& req, RenderCache* cache, Device* dev
 
   std::unique_ptr<Device> ownDevice = device ? nullptr : makeRequestDevice(req);
   Device* const dev = device ? device : ownDevice.get();
+  if (!dev->supportsSamples(settings.msaa))
+    throw InputError(settingMessage(*findSetting("msaa"), Spelling::Cli,
+                                    std::to_string(settings.msaa),
+                                    "the device has " + dev->sampleCountsText() +
+                                        " samples per pixel (" + dev->info().device + ")"));
   RenderProgress progress(*dev);
 
   // The timed frames produce what the run is for: the shaded image, or (for a
@@ -891,7 +901,7 @@ nlohmann::json renderJson(const RenderResult& r) {
   j["warnings"] = r.warnings;
   if (!r.counters.empty()) {
     nlohmann::json counters = nlohmann::json::object();
-    for (const auto& [name, value] : r.counters) counters[name] = value;
+    for (const Counter& c : r.counters) counters[c.name] = c.value;
     j["counters"] = counters;
   }
   if (!r.timingEmulated.empty()) j["timing_emulated"] = r.timingEmulated;

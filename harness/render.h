@@ -68,6 +68,7 @@ struct RenderRequest {
   uint32_t width = 512, height = 512;
   std::string primitive = "lines";  // lines | ribbons
   float ribbonWidth = 1.0f;
+  int msaa = 1;  // samples per pixel of the frame targets: 1, 2, 4, 8 (what the device has)
   int repeat = 1;
   int warmup = 1;
   bool validation = false;
@@ -178,7 +179,7 @@ struct RenderResult {
   std::optional<std::size_t> validationMessages;  // with validation
   // The transparency technique's counters (OitTechnique::counters) and, when
   // its timing is an emulation, why (OitTechnique::timingEmulated).
-  std::vector<std::pair<std::string, uint64_t>> counters;
+  std::vector<Counter> counters;
   std::string timingEmulated;
 
   // A window platform: each timed frame was shown in the window (Device::present).

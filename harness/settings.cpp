@@ -502,6 +502,20 @@ std::vector<Setting> buildTable() {
                              "ribbon width in pixels", "2.5", "0"),
                         {0, 64, true, true, true, false})),
              &RenderRequest::ribbonWidth);
+  {
+    // Scene-wide anti-aliasing: the mesh and hair colour passes render with N
+    // samples and are resolved before the composite. Techniques with per-pixel
+    // data that is not multisampled refuse N > 1; the reference stays at one
+    // sample (exact at pixel centres). The device's counts are checked when it
+    // is made.
+    Setting& s = add(make("msaa", "--msaa", T::Enum, "1",
+                          "samples per pixel of the frame (anti-aliasing): 1, 2, 4, 8, as the "
+                          "device supports; only --oit none is multisampled",
+                          "4", "3"));
+    s.choices = {"1", "2", "4", "8"};
+    s.get = [](const RenderRequest& r) { return ojson(std::to_string(r.msaa)); };
+    s.set = [](RenderRequest& r, const ojson& v) { r.msaa = std::stoi(v.get<std::string>()); };
+  }
   plain(add(ranged(make("repeat", "--repeat", T::Int, "1", "timed frames", "3", "0"), kAtLeast1)),
         &RenderRequest::repeat);
   plain(add(ranged(make("warmup", "--warmup", T::Int, "1 (manifests: 0)",

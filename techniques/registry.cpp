@@ -12,6 +12,7 @@
 #include "techniques/common/technique.h"
 #include "techniques/dc/dc.h"
 #include "techniques/dom/dom.h"
+#include "techniques/dual_peel/dual_peel.h"
 #include "techniques/exact/exact.h"
 #include "techniques/kbuffer/kbuffer.h"
 #include "techniques/mboit/mboit.h"
@@ -22,8 +23,10 @@
 #include "techniques/opaque_hair/opaque_hair.h"
 #include "techniques/osm/osm.h"
 #include "techniques/peel/peel.h"
+#include "techniques/peel_classic/peel_classic.h"
 #include "techniques/shadowmap/shadowmap.h"
 #include "techniques/shortcut/shortcut.h"
+#include "techniques/stochastic/stochastic.h"
 #include "techniques/wboit/wboit.h"
 #include "techniques/weighted/weighted.h"
 
@@ -173,6 +176,21 @@ const std::vector<TechniqueInfo>& oitCatalog() {
        "TressFX ShortCut: the k nearest depths by atomic min, those fragments blended in order, "
        "the rest as a weighted average under the product of (1 - alpha)",
        {{"k", "3", "nearest fragments blended in order per pixel, 1..16"}}},
+      {"stochastic",
+       "stochastic transparency (Enderton et al. 2010): random sample masks on multisampled "
+       "targets, depth + accumulate + total alpha passes, alpha-corrected",
+       {{"samples", "8",
+         "samples per pixel S, 1..64: groups of the largest multisample count the device has "
+         "that divides S"},
+        {"seed", "1", "random seed of the coverage masks, 0..4294967295"}}},
+      {"peel_classic",
+       "depth peeling as the papers time it (Everitt 2001): one geometry pass per layer, "
+       "depth ties lost and counted",
+       {{"layers", "65536", "most layers peeled (a cap that is reported), 1..1000000"}}},
+      {"dual_peel",
+       "dual depth peeling (Bavoil & Myers 2008): the nearest and farthest layers per pass, "
+       "ceil(layers/2) peel passes after one min/max depth pass",
+       {{"layers", "65536", "most layers peeled (a cap that is reported), 1..1000000"}}},
   };
   return catalog;
 }
@@ -192,6 +210,12 @@ std::unique_ptr<OitTechnique> makeOitTechnique(const Spec& spec) {
     return std::make_unique<MlabOit>(static_cast<int>(o.integer("layers", 1, MlabOit::kMaxLayers)));
   if (spec.name == "shortcut")
     return std::make_unique<ShortCutOit>(static_cast<int>(o.integer("k", 1, ShortCutOit::kMaxK)));
+  if (spec.name == "peel_classic")
+    return std::make_unique<ClassicPeelOit>(static_cast<uint32_t>(o.integer("layers", 1, 1000000)));
+  if (spec.name == "dual_peel")
+    return std::make_unique<DualPeelOit>(static_cast<uint32_t>(o.integer("layers", 1, 1000000)));
+  if (spec.name == "stochastic")
+    return std::make_unique<StochasticOit>(StochasticOit::readOptions(o));
   if (spec.name == "wsum") return std::make_unique<WeightedOit>(WeightedOit::Mode::Sum);
   if (spec.name == "wavg") return std::make_unique<WeightedOit>(WeightedOit::Mode::Average);
   if (spec.name == "wboit")

@@ -94,6 +94,10 @@ struct World {
     p.sampledTextures = {other};
     return p;
   }
+  // An 8x8 RGBA32F texture with 4 samples per pixel.
+  Texture multisampled() const {
+    return dev.createTexture({"ms", "test", Format::RGBA32F, 8, 8, false, 1, 4});
+  }
   Pipeline widePipeline(uint32_t targets) const {
     PipelineDesc d;
     d.name = "contract.wide";
@@ -381,6 +385,78 @@ std::vector<Rule> rules() {
          w.dev.destroy(w.other);
          w.dev.readTexture(w.other);
        }},
+      // Multisampling (4 samples: both CPU drivers have them).
+      {"unsupported sample count",
+       "createTexture('odd'): 3 samples: not a count the device supports",
+       [](World& w) {
+         w.dev.createTexture({"odd", "test", Format::RGBA32F, 8, 8, false, 1, 3});
+       }},
+      {"multisampled array", "createTexture('msarray'): 4 samples and 2 layers",
+       [](World& w) {
+         w.dev.createTexture({"msarray", "test", Format::RGBA32F, 8, 8, false, 2, 4});
+       }},
+      {"multisampled integer texture", "of integer format RGBA32UI",
+       [](World& w) {
+         w.dev.createTexture({"msuint", "test", Format::RGBA32UI, 8, 8, false, 1, 4});
+       }},
+      {"pipeline with unsupported samples", "3 samples: not a count the device supports",
+       [](World& w) {
+         PipelineDesc d;
+         d.name = "contract.ms3";
+         d.technique = "tests";
+         d.vertex = &kVert;
+         d.fragment = &kFrag;
+         d.colorFormats = {Format::RGBA32F};
+         d.samples = 3;
+         w.dev.createPipeline(d);
+       }},
+      {"attachments of different sample counts",
+       "beginPass('contract.pass'): attachments differ in sample count ('depth' has 1, the pass 4)",
+       [](World& w) {
+         PassDesc p = w.pass(w.multisampled());
+         p.depth = {w.depth, LoadOp::Clear, 1.0f};
+         w.dev.beginFrame();
+         w.dev.beginPass(p);
+       }},
+      {"pipeline samples differ from the pass",
+       "draw('contract.draw'): the pipeline has 1 samples, pass 'contract.pass' 4",
+       [](World& w) {
+         w.dev.beginFrame();
+         w.dev.beginPass(w.pass(w.multisampled(), {w.other}));
+         w.dev.draw(w.draw, w.goodBindings(), 3);
+       }},
+      {"multisampled texture sampled", "texture 'ms' is multisampled (4 samples) and cannot",
+       [](World& w) {
+         const Texture ms = w.multisampled();
+         w.dev.beginFrame();
+         w.dev.beginPass(w.pass(w.color, {ms}));
+       }},
+      {"multisampled texture read back", "readTexture('ms'): a multisampled texture",
+       [](World& w) { w.dev.readTexture(w.multisampled()); }},
+      {"resolve into another format", "resolve of 'ms' into 'narrow': formats differ",
+       [](World& w) {
+         PassDesc p = w.pass(w.multisampled());
+         p.color[0].resolve = w.dev.createTexture({"narrow", "test", Format::RGBA8, 8, 8, false});
+         w.dev.beginFrame();
+         w.dev.beginPass(p);
+       }},
+      {"resolve of a single-sampled attachment",
+       "resolve of 'color' into 'other': the attachment is not multisampled",
+       [](World& w) {
+         PassDesc p = w.pass(w.color);
+         p.color[0].resolve = w.other;
+         w.dev.beginFrame();
+         w.dev.beginPass(p);
+       }},
+      {"resolve into one target twice",
+       "resolve of 'ms' into 'color': the target is resolved into twice",
+       [](World& w) {
+         PassDesc p = w.pass(w.multisampled());
+         p.color[0].resolve = w.color;
+         p.color.push_back({w.multisampled(), LoadOp::Clear, {}, {}, 0, w.color});
+         w.dev.beginFrame();
+         w.dev.beginPass(p);
+       }},
   };
 }
 
@@ -509,6 +585,71 @@ TEST(DeviceContract, ColourTargetsUpToTheDeviceLimit) {
   std::cout << "[          ] maxColorAttachments:";
   for (const auto& [backend, limit] : limits) std::cout << " " << backend << " " << limit;
   std::cout << "\n";
+}
+
+// A multisampled pass on both APIs: a full-screen triangle whose fragment
+// shader keeps 2 of 4 samples (gl_SampleMask), over multisampled depth, is
+// averaged by the resolve into half its colour; memory counts every sample.
+// A mask of all samples gives the whole colour (the test can fail both ways).
+TEST(DeviceContract, MultisampledPassResolvesTheSampleMask) {
+  const ShaderCode frag = shader("tests/contract_mask.frag", R"(
+layout(std430, binding = 1) readonly buffer Mask { int mask; };
+layout(location = 0) out vec4 outColor;
+void main() {
+  outColor = vec4(1.0, 0.5, 0.25, 1.0);
+  gl_SampleMask[0] = mask;
+}
+)");
+  const float tri[] = {-1, -1, 0.5f, 1, 3, -1, 0.5f, 1, -1, 3, 0.5f, 1};
+  int ran = 0;
+  for (auto& [backend, dev] : availableDevices()) {
+    if (!dev->supportsSamples(4)) {
+      ADD_FAILURE() << backend << " has no 4-sample targets (" << dev->sampleCountsText() << ")";
+      continue;
+    }
+    ++ran;
+    const Buffer pos = dev->createBuffer({"pos", "test", BufferUsage::Storage, sizeof tri}, tri);
+    const Texture ms = dev->createTexture({"ms", "test", Format::RGBA32F, 8, 8, false, 1, 4});
+    const Texture msDepth =
+        dev->createTexture({"msd", "test", Format::Depth32F, 8, 8, false, 1, 4});
+    const Texture out = dev->createTexture({"out", "test", Format::RGBA32F, 8, 8, false});
+    PipelineDesc d;
+    d.name = "contract.mask";
+    d.technique = "tests";
+    d.vertex = &kVert;
+    d.fragment = &frag;
+    d.colorFormats = {Format::RGBA32F};
+    d.hasDepth = d.depthTest = d.depthWrite = true;
+    d.samples = 4;
+    d.bindings = {{0, BindingKind::StorageBuffer}, {1, BindingKind::StorageBuffer}};
+    const Pipeline p = dev->createPipeline(d);
+    for (const int mask : {0x3, 0xf}) {
+      const Buffer m = dev->createBuffer({"mask", "test", BufferUsage::Storage, 4}, &mask);
+      PassDesc pass;
+      pass.name = "contract.ms";
+      pass.color = {{ms, LoadOp::Clear, {0, 0, 0, 0}, {}, 0, out}};
+      pass.depth = {msDepth, LoadOp::Clear, 1.0f};
+      dev->beginFrame();
+      dev->beginPass(pass);
+      dev->draw(p, {Binding::buf(0, pos), Binding::buf(1, m)}, 3);
+      dev->endPass();
+      dev->endFrame();
+      const auto bytes = dev->readTexture(out);
+      const float k = mask == 0xf ? 1.0f : 0.5f;
+      for (std::size_t i = 0; i < bytes.size(); i += 16) {
+        float px[4];
+        std::memcpy(px, bytes.data() + i, 16);
+        EXPECT_NEAR(px[0], 1.0f * k, 1e-5) << backend << " mask " << mask << " byte " << i;
+        EXPECT_NEAR(px[1], 0.5f * k, 1e-5) << backend << " mask " << mask;
+        EXPECT_NEAR(px[3], 1.0f * k, 1e-5) << backend << " mask " << mask;
+      }
+    }
+    bool counted = false;
+    for (const ResourceBytes& r : dev->allocations())
+      if (r.name == "ms") counted = r.bytes == 8u * 8 * 16 * 4;
+    EXPECT_TRUE(counted) << backend << ": memory counts 4 samples of 16 bytes per pixel";
+  }
+  if (ran == 0) GTEST_SKIP() << "no backend available";
 }
 
 // Fresh resources read back as zero (colour, buffers) and 1 (depth) on both APIs.

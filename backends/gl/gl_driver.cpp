@@ -72,7 +72,8 @@ struct GLBuffer : DriverObject {
   GLuint name = 0;
 };
 struct GLTexture : DriverObject {
-  GLuint name = 0;  // GL_TEXTURE_2D, or GL_TEXTURE_2D_ARRAY with layers > 1
+  GLuint name = 0;  // GL_TEXTURE_2D, GL_TEXTURE_2D_ARRAY with layers > 1, or
+                    // GL_TEXTURE_2D_MULTISAMPLE with samples > 1
   uint32_t layers = 1;
   GLuint arrayView = 0;  // layers == 1: a GL_TEXTURE_2D_ARRAY view, made when first needed
 };
@@ -119,6 +120,7 @@ class GLDriver final : public Driver {
       if (e && std::strcmp(e, "GL_ARB_fragment_shader_interlock") == 0)
         info_.fragmentShaderInterlock = true;
     }
+    info_.sampleCounts = multisampleCounts();
     // Same conventions as Vulkan: NDC y=-1 at row 0, depth in [0,1].
     gl_.ClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
     gl_.CreateVertexArrays(1, &vao_);  // core profile needs one bound, even if empty
@@ -188,6 +190,17 @@ class GLDriver final : public Driver {
     auto t = std::make_unique<GLTexture>();
     const GLFormat f = glFormat(desc.format);
     t->layers = desc.layers;
+    if (desc.samples > 1) {
+      // Fixed sample locations: the same pattern in every pixel, as Vulkan's
+      // standard sample locations. Sampler state does not apply (never sampled).
+      gl_.CreateTextures(GL_TEXTURE_2D_MULTISAMPLE, 1, &t->name);
+      gl_.TextureStorage2DMultisample(t->name, static_cast<GLsizei>(desc.samples), f.internal,
+                                      static_cast<GLsizei>(desc.width),
+                                      static_cast<GLsizei>(desc.height), GL_TRUE);
+      clearMultisampled(t->name, desc);
+      checkError("createTexture " + desc.name);
+      return t;
+    }
     if (desc.layers > 1) {
       gl_.CreateTextures(GL_TEXTURE_2D_ARRAY, 1, &t->name);
       gl_.TextureStorage3D(t->name, 1, f.internal, static_cast<GLsizei>(desc.width),
@@ -295,6 +308,17 @@ class GLDriver final : public Driver {
     const GLuint fbo = framebuffer(pass);
     gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
     gl_.Viewport(0, 0, static_cast<GLsizei>(pass.width), static_cast<GLsizei>(pass.height));
+    // Multisampled rasterization (per-sample coverage, depth and
+    // gl_SampleMask) only in multisampled passes; elsewhere GL_MULTISAMPLE
+    // stays off, as set up, so single-sampled passes rasterize as before.
+    passSamples_ = pass.samples;
+    if (pass.samples > 1)
+      gl_.Enable(GL_MULTISAMPLE);
+    else
+      gl_.Disable(GL_MULTISAMPLE);
+    resolves_.clear();
+    for (std::size_t i = 0; i < pass.color.size(); ++i)
+      if (pass.color[i].resolve.object) resolves_.push_back({fbo, i, pass.color[i], pass});
     gl_.Finish();
     passStart_ = Clock::now();
     for (std::size_t i = 0; i < pass.color.size(); ++i) {
@@ -318,11 +342,31 @@ class GLDriver final : public Driver {
     gl_.UseProgram(static_cast<GLPipeline&>(pipeline).program);
     applyState(desc);
     bind(bindings);
+    // Lines in a multisampled pass: Vulkan's Bresenham lines cover every sample
+    // of the pixels they cover (at the pixel centre), where GL's multisampled
+    // lines are rectangles covering samples one by one. Aliased lines
+    // (multisample rasterization off) match Vulkan's; llvmpipe still applies
+    // gl_SampleMask to them (measured: tests/test_oit_peeling.cpp).
+    if (passSamples_ > 1) {
+      if (desc.topology == Topology::Lines)
+        gl_.Disable(GL_MULTISAMPLE);
+      else
+        gl_.Enable(GL_MULTISAMPLE);
+    }
     gl_.DrawArraysInstanced(desc.topology == Topology::Lines ? GL_LINES : GL_TRIANGLES, 0,
                             static_cast<GLsizei>(vertexCount), static_cast<GLsizei>(instanceCount));
   }
 
   void endPass() override {
+    // Resolves, part of the pass (Vulkan's happen at the end of rendering):
+    // a blit from each multisampled attachment averages its samples.
+    for (const Resolve& r : resolves_) {
+      const GLuint to = resolveFramebuffer(r.target.resolve);
+      gl_.NamedFramebufferReadBuffer(r.fbo, GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(r.index));
+      const GLint w = GLint(r.width), h = GLint(r.height);
+      gl_.BlitNamedFramebuffer(r.fbo, to, 0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    }
+    resolves_.clear();
     gl_.Finish();  // GL timer queries on llvmpipe miss vertex work: time with the CPU
     timings_.push_back(
         {passName_, std::chrono::duration<double, std::milli>(Clock::now() - passStart_).count()});
@@ -433,6 +477,64 @@ class GLDriver final : public Driver {
     else
       gl_.GetShaderInfoLog(obj, len, nullptr, log.data());
     return log.c_str();
+  }
+
+  // The counts every float/unorm colour format and Depth32F take as
+  // multisampled textures (glGetInternalformativ lists the exact counts).
+  uint32_t multisampleCounts() {
+    uint32_t mask = ~0u;
+    for (std::size_t i = 0; i < std::size(kFormats); ++i) {
+      const Format f = static_cast<Format>(i);
+      if (isIntegerFormat(f)) continue;
+      GLint n = 0;
+      gl_.GetInternalformativ(GL_TEXTURE_2D_MULTISAMPLE, kFormats[i].internal, GL_NUM_SAMPLE_COUNTS,
+                              1, &n);
+      std::vector<GLint> counts(static_cast<std::size_t>(std::max(n, 0)));
+      if (n > 0)
+        gl_.GetInternalformativ(GL_TEXTURE_2D_MULTISAMPLE, kFormats[i].internal, GL_SAMPLES, n,
+                                counts.data());
+      uint32_t m = 0;
+      for (GLint c : counts)
+        if (c > 1 && c <= 64) m |= uint32_t(c);
+      mask &= m;
+    }
+    gl_.GetError();
+    return mask | 1u;
+  }
+
+  // A multisampled texture's defined first contents (colour 0, depth 1),
+  // cleared through a framebuffer of its own.
+  void clearMultisampled(GLuint name, const TextureDesc& desc) {
+    GLuint fbo = 0;
+    gl_.CreateFramebuffers(1, &fbo);
+    const bool depth = isDepthFormat(desc.format);
+    gl_.NamedFramebufferTexture(fbo, depth ? GL_DEPTH_ATTACHMENT : GL_COLOR_ATTACHMENT0, name, 0);
+    if (depth) {
+      const float one = 1.0f;
+      gl_.DepthMask(GL_TRUE);
+      gl_.ClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &one);
+    } else {
+      const GLenum at = GL_COLOR_ATTACHMENT0;
+      gl_.NamedFramebufferDrawBuffers(fbo, 1, &at);
+      const float zero[4] = {0, 0, 0, 0};
+      gl_.ColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+      gl_.ClearNamedFramebufferfv(fbo, GL_COLOR, 0, zero);
+    }
+    gl_.DeleteFramebuffers(1, &fbo);
+  }
+
+  // The framebuffer a resolve blits into: the target alone, kept for reuse.
+  GLuint resolveFramebuffer(const DriverTexture& target) {
+    const std::string key = ",resolve," + std::to_string(nameOf(target.object)) + ",";
+    auto it = fbos_.find(key);
+    if (it != fbos_.end()) return it->second;
+    GLuint fbo = 0;
+    gl_.CreateFramebuffers(1, &fbo);
+    gl_.NamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, nameOf(target.object), 0);
+    const GLenum at = GL_COLOR_ATTACHMENT0;
+    gl_.NamedFramebufferDrawBuffers(fbo, 1, &at);
+    fbos_[key] = fbo;
+    return fbo;
   }
 
   void checkError(const std::string& what) {
@@ -568,6 +670,16 @@ class GLDriver final : public Driver {
   GLuint presentFbo_ = 0;                       // reads the texture present() shows
   GLint presentWidth_ = 0, presentHeight_ = 0;  // the window's size at the last present
   std::string passName_;
+  struct Resolve {
+    Resolve(GLuint f, std::size_t i, const DriverColorTarget& t, const DriverPass& p)
+        : fbo(f), index(i), target(t), width(p.width), height(p.height) {}
+    GLuint fbo;
+    std::size_t index;  // colour attachment
+    DriverColorTarget target;
+    uint32_t width, height;
+  };
+  std::vector<Resolve> resolves_;  // of the open pass, blitted at its end
+  uint32_t passSamples_ = 1;       // of the open pass
   Clock::time_point passStart_;
   std::vector<PassTiming> timings_;
 };

@@ -75,7 +75,9 @@
   X(PFNGLNAMEDFRAMEBUFFERREADBUFFERPROC, NamedFramebufferReadBuffer)     \
   X(PFNGLREADPIXELSPROC, ReadPixels)                                     \
   X(PFNGLTEXTURESUBIMAGE3DPROC, TextureSubImage3D)                       \
-  X(PFNGLTEXTURESUBIMAGE2DPROC, TextureSubImage2D)
+  X(PFNGLTEXTURESUBIMAGE2DPROC, TextureSubImage2D)                       \
+  X(PFNGLTEXTURESTORAGE2DMULTISAMPLEPROC, TextureStorage2DMultisample)   \
+  X(PFNGLGETINTERNALFORMATIVPROC, GetInternalformativ)
 
 namespace sb {
 

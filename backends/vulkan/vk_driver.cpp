@@ -237,8 +237,11 @@ class VulkanDriver final : public Driver {
     };
     if (cpuTiming_) flushFrame();
     std::vector<VkImageMemoryBarrier> barriers;
-    for (const DriverColorTarget& a : pd.color)
+    for (const DriverColorTarget& a : pd.color) {
       transition(barriers, tex(a.texture), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+      if (a.resolve.object)
+        transition(barriers, tex(a.resolve), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    }
     if (pd.depth.object)
       transition(barriers, tex(pd.depth), VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
     for (const DriverTexture& s : pd.sampled)
@@ -255,6 +258,11 @@ class VulkanDriver final : public Driver {
       ai.loadOp =
           a.load == LoadOp::Clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
       ai.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+      if (a.resolve.object) {  // averaged into the single-sampled target at the end
+        ai.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
+        ai.resolveImageView = tex(a.resolve).view;
+        ai.resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+      }
       if (isIntegerFormat(t.desc.format)) {
         for (int i = 0; i < 4; ++i) ai.clearValue.color.uint32[i] = a.clearUint[i];
       } else {

@@ -41,7 +41,9 @@ VkPipeline createGraphicsPipeline(const VulkanPlatform& platform, const Pipeline
   rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
   rs.lineWidth = 1.0f;
   VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-  ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+  // The pass's sample count (the front end checks they match); the bit value
+  // of VkSampleCountFlagBits is the count.
+  ms.rasterizationSamples = static_cast<VkSampleCountFlagBits>(desc.samples);
   VkPipelineDepthStencilStateCreateInfo ds{
       VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
   ds.depthTestEnable = desc.hasDepth && desc.depthTest;

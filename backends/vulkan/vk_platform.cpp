@@ -256,6 +256,10 @@ void VulkanPlatform::pickPhysicalDevice() {
   info.maxColorAttachments = pick->props.limits.maxColorAttachments;
   info.fragmentShaderInterlock =
       hasDeviceExtension(physical, VK_EXT_FRAGMENT_SHADER_INTERLOCK_EXTENSION_NAME);
+  // Multisampled render targets: counts both colour and depth attachments take.
+  info.sampleCounts = (pick->props.limits.framebufferColorSampleCounts &
+                       pick->props.limits.framebufferDepthSampleCounts) |
+                      1u;
   info.device = pick->props.deviceName;
   if (drv.driverName[0] != '\0') {
     info.driver = std::string(drv.driverName) + " " + drv.driverInfo;

@@ -229,13 +229,15 @@ std::unique_ptr<TextureRes> VulkanResources::createTexture(const TextureDesc& de
   ci.extent = {desc.width, desc.height, 1};
   ci.mipLevels = 1;
   ci.arrayLayers = desc.layers;
-  ci.samples = VK_SAMPLE_COUNT_1_BIT;
+  ci.samples = static_cast<VkSampleCountFlagBits>(desc.samples);
   ci.tiling = VK_IMAGE_TILING_OPTIMAL;
+  const bool multisampled = desc.samples > 1;
+  // A multisampled texture is only a render target (cleared once by transfer).
   ci.usage =
       (depth ? VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT : VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT) |
-      VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
-      VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-  if (!depth && (have & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT) != 0) {
+      VK_IMAGE_USAGE_TRANSFER_DST_BIT |
+      (multisampled ? 0u : VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+  if (!depth && !multisampled && (have & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT) != 0) {
     ci.usage |= VK_IMAGE_USAGE_STORAGE_BIT;
   }
   ci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
@@ -247,7 +249,7 @@ std::unique_ptr<TextureRes> VulkanResources::createTexture(const TextureDesc& de
     t.memory = allocate(req, false, "texture " + desc.name);
     check(vkBindImageMemory(device_, t.image, t.memory, 0), "vkBindImageMemory");
     if (desc.layers == 1) t.view = makeView(t, VK_IMAGE_VIEW_TYPE_2D, 0, 1);
-    t.arrayView = makeView(t, VK_IMAGE_VIEW_TYPE_2D_ARRAY, 0, desc.layers);
+    if (!multisampled) t.arrayView = makeView(t, VK_IMAGE_VIEW_TYPE_2D_ARRAY, 0, desc.layers);
     t.layerViews.assign(desc.layers > 1 ? desc.layers : 0, VK_NULL_HANDLE);
     // Defined initial contents: colour 0, depth 1 (far). A fresh resource, so an
     // immediate submission is ordered correctly even inside a frame.

@@ -4,6 +4,23 @@
 
 namespace sb {
 
+Pipeline fullScreenPipeline(Device& dev, const std::string& name, const std::string& technique,
+                            const std::string& fragShader, const ShaderDefines& defines,
+                            std::vector<Format> formats, std::vector<BlendState> blend,
+                            std::vector<BindingSlot> slots) {
+  const ShaderCode vert = loadShader("techniques/common/composite.vert");
+  const ShaderCode frag = loadShader(fragShader, defines);
+  PipelineDesc d;
+  d.name = name;
+  d.technique = technique;
+  d.vertex = &vert;
+  d.fragment = &frag;
+  d.colorFormats = std::move(formats);
+  d.blend = std::move(blend);
+  d.bindings = std::move(slots);
+  return dev.createPipeline(d);
+}
+
 void AccumComposite::setup(Device& dev, const RenderSettings& s, Buffer viewUbo,
                            const OitTargets& targets, const std::string& technique) {
   settings_ = s;

@@ -6,6 +6,20 @@
 
 namespace sb {
 
+// A full-screen pass's pipeline: techniques/common/composite.vert and
+// `fragShader`, drawn with 3 vertices.
+Pipeline fullScreenPipeline(Device& dev, const std::string& name, const std::string& technique,
+                            const std::string& fragShader, const ShaderDefines& defines,
+                            std::vector<Format> formats, std::vector<BlendState> blend,
+                            std::vector<BindingSlot> slots);
+// The blend of a resolve writing vec4(hair, T) over the opaque colour:
+// C = hair + T * C_dst (One, SrcAlpha), the destination alpha kept.
+inline BlendState hairOverBlend() {
+  return {true,         BlendFactor::One,  BlendFactor::SrcAlpha,
+          BlendOp::Add, BlendFactor::Zero, BlendFactor::One,
+          BlendOp::Add};
+}
+
 class AccumComposite {
  public:
   static constexpr uint32_t kAccumBinding = SB_SLOT_OIT_ACCUM;  // vec4 per pixel, premultiplied

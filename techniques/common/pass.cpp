@@ -66,12 +66,17 @@ std::vector<GraphResource> Inputs::writes() const {
 }
 
 Pass& Pass::color(Texture t, LoadOp load, std::array<float, 4> clear, uint32_t layer) {
-  desc_.color.push_back({t, load, clear, {}, layer});
+  desc_.color.push_back({t, load, clear, {}, layer, {}});
+  return *this;
+}
+
+Pass& Pass::resolveInto(Texture target) {
+  if (!desc_.color.empty()) desc_.color.back().resolve = target;
   return *this;
 }
 
 Pass& Pass::colorUint(Texture t, LoadOp load, std::array<uint32_t, 4> clear, uint32_t layer) {
-  desc_.color.push_back({t, load, {}, clear, layer});
+  desc_.color.push_back({t, load, {}, clear, layer, {}});
   return *this;
 }
 
@@ -141,7 +146,10 @@ std::vector<GraphResource> Pass::reads() const {
 
 std::vector<GraphResource> Pass::writes() const {
   std::vector<GraphResource> out = inputs_.writes();
-  for (const ColorAttachment& a : desc_.color) out.push_back(GraphResource::of(a.texture));
+  for (const ColorAttachment& a : desc_.color) {
+    out.push_back(GraphResource::of(a.texture));
+    if (a.resolve) out.push_back(GraphResource::of(a.resolve));
+  }
   if (desc_.depth.texture && depthWritten_) out.push_back(GraphResource::of(desc_.depth.texture));
   return out;
 }

@@ -60,6 +60,9 @@ class Pass {
   // What it writes. An attachment loaded (LoadOp::Load) is also read.
   Pass& color(Texture t, LoadOp load, std::array<float, 4> clear = {}, uint32_t layer = 0);
   Pass& colorUint(Texture t, LoadOp load, std::array<uint32_t, 4> clear = {}, uint32_t layer = 0);
+  // The last colour attachment (multisampled) is averaged into `target` at the
+  // end of the pass (ColorAttachment::resolve): the pass writes it too.
+  Pass& resolveInto(Texture target);
   Pass& depth(Texture t, LoadOp load, float clear = 1.0f);
   // A depth attachment only tested against (loaded, never written): a read.
   Pass& depthReadOnly(Texture t);

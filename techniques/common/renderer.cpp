@@ -27,11 +27,27 @@ Renderer::Renderer(Device& dev, const Scene& scene, const RenderSettings& settin
   upload(scene);
   color_ = dev.createTexture(
       {"frame.color", "frame", Format::RGBA32F, settings.width, settings.height, false});
-  depth_ = dev.createTexture(
-      {"frame.depth", "frame", Format::Depth32F, settings.width, settings.height, false});
+  // --msaa N: the mesh and the hair render into N-sample colour and depth,
+  // resolved into frame.color by the technique's last pass; techniques whose
+  // per-pixel data is not multisampled are refused (InputError, before any work).
+  const uint32_t n = settings.msaa;
+  if (n > 1 && !oit_->multisampled())
+    throw InputError("--msaa " + std::to_string(n) + ": transparency technique '" + oit_->name() +
+                     "' keeps per-pixel data (fragment lists, layers, accumulation or occupancy "
+                     "targets) that is not multisampled; it runs with --msaa 1 (multisampled: "
+                     "none; stochastic transparency has its own samples= option)");
+  Texture renderColor = color_, resolved;
+  if (n > 1) {
+    renderColor = dev.createTexture(
+        {"frame.color_ms", "frame", Format::RGBA32F, settings.width, settings.height, false, 1, n});
+    resolved = color_;
+  }
+  depth_ = dev.createTexture({n > 1 ? "frame.depth_ms" : "frame.depth", "frame", Format::Depth32F,
+                              settings.width, settings.height, false, 1, n});
   shadow_->setup(dev, gpu_, settings_);
-  shading_.setup(dev, gpu_, settings_, *shadow_, color_, depth_);
-  oit_->setup(dev, gpu_, settings_, shading_, {color_, depth_, shading_.drawsMesh()});
+  shading_.setup(dev, gpu_, settings_, *shadow_, renderColor, depth_);
+  oit_->setup(dev, gpu_, settings_, shading_,
+              {renderColor, depth_, shading_.drawsMesh(), resolved});
   wantVisibility_ = outputs.count("visibility") > 0;
   if (wantVisibility_) visibility_.setup(dev, gpu_, settings_, shading_);
   wantProbe_ = outputs.count("probe") > 0;

@@ -105,6 +105,30 @@
 #define SB_SLOT_OOIT_ACCUM 0
 #define SB_SLOT_OOIT_LOG2T 1
 
+// stochastic: the params and the opaque depth in the multisampled hair passes
+// (beside the shadow lookup), the resolve's inputs (a full-screen pass)
+#define SB_SLOT_STOCH_PARAMS 16
+#define SB_SLOT_STOCH_OPAQUE_DEPTH 17
+#define SB_SLOT_STOCH_ACCUM 16
+#define SB_SLOT_STOCH_ALPHA 17
+
+// peel_classic: the layer pass (beside the shadow lookup), then the blend and
+// composite (full-screen passes)
+#define SB_SLOT_PEELC_PREV_DEPTH 16
+#define SB_SLOT_PEELC_OPAQUE_DEPTH 17
+#define SB_SLOT_PEELC_LAYER_COLOR 16
+#define SB_SLOT_PEELC_LAYER_DEPTH 17
+#define SB_SLOT_PEELC_UNDER 16
+
+// dual_peel: the peel pass (beside the shadow lookup), then the back blend and
+// the final (full-screen passes)
+#define SB_SLOT_DUAL_DEPTH 16
+#define SB_SLOT_DUAL_FRONT 17
+#define SB_SLOT_DUAL_OPAQUE_DEPTH 18
+#define SB_SLOT_DUAL_BACK_TEMP 16
+#define SB_SLOT_DUAL_FRONT_FINAL 16
+#define SB_SLOT_DUAL_BACK_FINAL 17
+
 // probe: the points and their shadow values (beside the shadow lookup)
 #define SB_SLOT_PROBE_POINTS 16
 #define SB_SLOT_PROBE_VALUES 17

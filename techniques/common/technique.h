@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <glm/glm.hpp>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -28,6 +29,9 @@ struct RenderSettings {
   uint32_t width = 512, height = 512;
   Primitive primitive = Primitive::Lines;
   float ribbonWidth = 1.0f;  // pixels of the target being drawn
+  // Samples per pixel of the frame's colour and depth (--msaa): 1, or a count
+  // the device supports; only techniques that are multisampled() take more.
+  uint32_t msaa = 1;
   Camera camera;
   Light light;
   glm::vec3 background{0.0f, 0.0f, 0.0f};
@@ -119,6 +123,13 @@ struct ShadowLookup {
   Inputs inputs;
 };
 
+// A number a technique reports about its last frame (render --json "counters"),
+// e.g. the nodes a deep shadow map kept.
+struct Counter {
+  std::string name;
+  double value = 0;
+};
+
 // A self-shadowing technique: its own passes (from the light) and a GLSL
 // lookup, `float shadowVisibility(vec3 worldPos)`, that shading passes include
 // as <shadow>.
@@ -145,6 +156,9 @@ class ShadowTechnique {
 struct OitTargets {
   Texture color, depth;
   bool opaqueDrawn = false;  // false: the technique's first pass clears them
+  // With --msaa N > 1, color and depth have N samples and `resolved` is the
+  // single-sampled frame colour the technique's last pass resolves color into.
+  Texture resolved;
 };
 
 class KajiyaKayShading;
@@ -162,13 +176,18 @@ class OitTechnique {
   virtual void addPasses(FrameGraph& graph, Device& dev) = 0;
   virtual std::optional<DepthComplexity> depthComplexity() const { return std::nullopt; }
   virtual std::vector<std::string> warnings(Device& /*dev*/) { return {}; }
-  // Counters of the last frame, by name, for the render JSON (e.g. fragments
-  // a full node pool dropped, merge steps an emulation did).
-  virtual std::vector<std::pair<std::string, uint64_t>> counters(Device& /*dev*/) { return {}; }
+  // Numbers about the last frame (read back from the device), for the render
+  // JSON's "counters": e.g. fragments a full node pool dropped, merge steps an
+  // emulation did, layers peeled, fragments lost to depth ties.
+  virtual std::vector<Counter> counters(Device& /*dev*/) { return {}; }
   // Non-empty (the reason) when part of the timed work is an emulation whose
   // cost is not the technique's real cost (mlab without fragment-shader
   // interlock): the JSON and the reports mark the timing "emulated".
   virtual std::string timingEmulated() const { return {}; }
+  // Whether it renders into multisampled frame targets (--msaa N > 1). Those
+  // that keep per-pixel data (fragment lists, peeled layers, accumulation
+  // targets, occupancy maps) say no and the renderer refuses --msaa for them.
+  virtual bool multisampled() const { return false; }
 };
 
 // Groups of 64 for a 1D compute pass over `items`, as a 2D grid (x, y) so that

@@ -49,6 +49,7 @@ void KajiyaKayShading::setup(Device& dev, const GpuScene& scene, const RenderSet
     d.colorFormats = {Format::RGBA32F};
     d.hasDepth = d.depthTest = d.depthWrite = true;
     d.depthCompare = CompareOp::Less;
+    d.samples = s.msaa;
     d.bindings = meshPass().slots();
     meshPipeline_ = dev.createPipeline(d);
   }

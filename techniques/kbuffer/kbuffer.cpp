@@ -21,8 +21,8 @@ uint64_t KBufferOit::poolEntries(uint64_t counted) const {
   return o_.nodes == 0 ? counted : o_.nodes;
 }
 
-std::vector<std::pair<std::string, uint64_t>> KBufferOit::counters(Device& dev) {
-  return {{"pool_nodes", pool_}, {"dropped_fragments", status(dev)[1]}};
+std::vector<Counter> KBufferOit::counters(Device& dev) {
+  return {{"pool_nodes", double(pool_)}, {"dropped_fragments", double(status(dev)[1])}};
 }
 
 std::vector<std::string> KBufferOit::warnings(Device& dev) {

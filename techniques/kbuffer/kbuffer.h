@@ -27,7 +27,7 @@ class KBufferOit : public ABufferOit {
   static Options readOptions(const OptionReader& o);
   std::string name() const override { return "kbuffer"; }
   std::vector<std::string> warnings(Device& dev) override;
-  std::vector<std::pair<std::string, uint64_t>> counters(Device& dev) override;
+  std::vector<Counter> counters(Device& dev) override;
 
  protected:
   std::string resolveShader() const override { return "techniques/kbuffer/resolve.comp"; }

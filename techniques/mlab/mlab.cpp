@@ -19,8 +19,8 @@ ShaderDefines MlabOit::resolveDefines() const {
   return d;
 }
 
-std::vector<std::pair<std::string, uint64_t>> MlabOit::counters(Device& dev) {
-  return {{"emulated_steps", status(dev)[2]}};
+std::vector<Counter> MlabOit::counters(Device& dev) {
+  return {{"emulated_steps", double(status(dev)[2])}};
 }
 
 }  // namespace sb

@@ -23,7 +23,7 @@ class MlabOit : public ABufferOit {
   std::string name() const override { return "mlab"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
              const KajiyaKayShading& shading, const OitTargets& targets) override;
-  std::vector<std::pair<std::string, uint64_t>> counters(Device& dev) override;
+  std::vector<Counter> counters(Device& dev) override;
   std::string timingEmulated() const override { return emulated_; }
 
  protected:

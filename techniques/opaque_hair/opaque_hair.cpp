@@ -22,6 +22,7 @@ void OpaqueHair::setup(Device& dev, const GpuScene& scene, const RenderSettings&
   d.colorFormats = {Format::RGBA32F};
   d.hasDepth = d.depthTest = d.depthWrite = true;
   d.depthCompare = CompareOp::Less;
+  d.samples = s.msaa;
   d.bindings = pass().slots();
   pipeline_ = dev.createPipeline(d);
 }
@@ -30,10 +31,10 @@ void OpaqueHair::setup(Device& dev, const GpuScene& scene, const RenderSettings&
 Pass OpaqueHair::pass() const {
   const LoadOp load = targets_.opaqueDrawn ? LoadOp::Load : LoadOp::Clear;
   const glm::vec3 bg = settings_.background;
-  return Pass("shading.hair")
-      .color(targets_.color, load, {bg.r, bg.g, bg.b, 1.0f})
-      .depth(targets_.depth, load)
-      .inputs(shading_->hairInputs());
+  Pass p("shading.hair");
+  p.color(targets_.color, load, {bg.r, bg.g, bg.b, 1.0f});
+  if (targets_.resolved) p.resolveInto(targets_.resolved);  // --msaa: the samples averaged
+  return p.depth(targets_.depth, load).inputs(shading_->hairInputs());
 }
 
 void OpaqueHair::addPasses(FrameGraph& graph, Device& dev) {

@@ -1,0 +1,15 @@
+// The GLSL math of stochastic_math.glsl, compiled as C++ for tests.
+#pragma once
+
+#include <cstdint>
+#include <glm/glm.hpp>
+
+namespace sb::glsl {
+using glm::clamp;
+using glm::vec3;
+using glm::vec4;
+using uint = uint32_t;
+#define SB_INLINE inline
+#include "techniques/stochastic/stochastic_math.glsl"
+#undef SB_INLINE
+}  // namespace sb::glsl
