@@ -394,7 +394,8 @@ std::vector<InvariantFailure> checkInvariants(const RenderRequest& req, const Re
       failures.push_back({"reference", "error image.flip outside [0, 1]"});
   }
   if (req.probe) {
-    checkRay(out.probe->visibility, "probe (" + Spec::parse(req.shadow).name + ")", failures);
+    checkRay(out.probe->visibility, "probe (" + Spec::parse(req.shadow).name + ")", failures,
+             renderer.shadow().monotone());
     checkRay(exactProbe, "probe (reference)", failures);
   }
   for (Texture t : renderer.shadow().lookup().inputs.sampled()) {
@@ -730,6 +731,7 @@ RenderResult runRender(const RenderRequest& req, RenderCache* cache, Device* dev
             [](const ResourceBytes& a, const ResourceBytes& b) { return a.name < b.name; });
   out.warnings = scene.warnings;  // the input's, then the techniques'
   for (const auto& w : renderer.warnings()) out.warnings.push_back(w);
+  out.counters = renderer.counters();
 
   out.device = dev->info();
   out.scene = {req.scene,
@@ -882,6 +884,11 @@ nlohmann::json renderJson(const RenderResult& r) {
     j["depth_complexity"] = {{"eye", complexityJson(r.eyeComplexity)},
                              {"light", complexityJson(r.lightComplexity)}};
   j["warnings"] = r.warnings;
+  if (!r.counters.empty()) {
+    nlohmann::json counters = nlohmann::json::object();
+    for (const Counter& c : r.counters) counters[c.name] = c.value;
+    j["counters"] = counters;
+  }
   if (r.validationMessages) j["validation_messages"] = *r.validationMessages;
   if (r.presented) {
     // frame_ms plus the present: the frame time with presentation included.

@@ -173,6 +173,7 @@ struct RenderResult {
   std::optional<std::vector<InvariantFailure>> invariants;  // when requested
   std::optional<DepthComplexity> eyeComplexity, lightComplexity;
   std::vector<std::string> warnings;              // the input's, the techniques', the reference's
+  std::vector<Counter> counters;                  // the shadow technique's, after the frames
   std::optional<std::size_t> validationMessages;  // with validation
 
   // A window platform: each timed frame was shown in the window (Device::present).

@@ -50,6 +50,7 @@ class Renderer {
   ShadowTechnique& shadow() { return *shadow_; }
   OitTechnique& oit() { return *oit_; }
   std::vector<std::string> warnings();
+  std::vector<Counter> counters() { return shadow_->counters(dev_); }
 
  private:
   void upload(const Scene& scene);

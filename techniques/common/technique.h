@@ -117,6 +117,13 @@ struct ShadowLookup {
   Inputs inputs;
 };
 
+// A number a technique reports about its last frame (render --json "counters"),
+// e.g. the nodes a deep shadow map kept.
+struct Counter {
+  std::string name;
+  double value = 0;
+};
+
 // A self-shadowing technique: its own passes (from the light) and a GLSL
 // lookup, `float shadowVisibility(vec3 worldPos)`, that shading passes include
 // as <shadow>.
@@ -132,6 +139,11 @@ class ShadowTechnique {
   virtual std::optional<DepthComplexity> depthComplexity() const { return std::nullopt; }
   // Problems found while rendering (e.g. a fragment-list overflow, a layer cap hit).
   virtual std::vector<std::string> warnings(Device& /*dev*/) { return {}; }
+  // Whether its visibility never rises away from the light (checked by
+  // --invariants along the probe ray); fom's Fourier ringing does not promise it.
+  virtual bool monotone() const { return true; }
+  // Numbers about the last frame (read back from the device), for the JSON.
+  virtual std::vector<Counter> counters(Device& /*dev*/) { return {}; }
   // The lookup, declared once: its shader, defines and inputs.
   virtual ShadowLookup lookup() const = 0;
 };
