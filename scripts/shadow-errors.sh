@@ -2,7 +2,8 @@
 # Visibility RMSE against the exact visibility and shadow time for every
 # shadow technique on the straight, curly and stray scenes, on both backends:
 # the README's "Shadow techniques: error against time" table.
-#   scripts/shadow-errors.sh [SIZE] [REPEAT]    (defaults 256 and 5)
+#   scripts/shadow-errors.sh [SIZE] [REPEAT]    (defaults 256 and 5; STRANDBENCH=path
+#   runs another binary)
 # Shadow time: the median over the timed frames of the technique's own passes
 # (names starting "<technique>.", and "exact." for dsm, which builds its curves
 # from the exact technique's light-space lists), in ms. Image SIZExSIZE, light
@@ -14,10 +15,10 @@ repeat=${2:-5}
 scenes=("straight:strands=4000,points=16,head=0" "curly:strands=1500,points=48,head=0"
         "stray:strands=3000,points=16")
 shadows=("shadowmap" "osm:maps=16" "osm:maps=16,filter=pcf6x4" "dc:clusters=4" "dom:layers=3"
-         "dom:layers=3,spacing=power,filter=pcf6x4" "occupancy" "dsm:epsilon=0" "dsm:epsilon=0.02"
-         "dsm:epsilon=0.1" "adsm" "exact")
+         "dom:layers=3,spacing=power,filter=pcf6x4" "occupancy" "dsm:epsilon=0,max_nodes=65536" "dsm:epsilon=0.02"
+         "dsm:epsilon=0.1" "fom:coefficients=4" "fom:coefficients=16" "adsm" "exact")
 row() {  # scene backend shadow
-  build/strandbench render --scene "$1" --backend "$2" --shadow "$3" --size "${size}x${size}" \
+  "${STRANDBENCH:-build/strandbench}" render --scene "$1" --backend "$2" --shadow "$3" --size "${size}x${size}" \
     --repeat "$repeat" --warmup 1 --reference --no-image --json |
     python3 -c '
 import json, sys, statistics

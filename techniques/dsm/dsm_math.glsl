@@ -128,9 +128,14 @@ SB_INLINE void dsmFinish(SB_INOUT(DsmState) s, SB_INOUT(DsmEmit) e) {
   s.open = false;
 }
 
+// A node value as visibility: within epsilon of a function in [0, 1] the
+// curve may stray below 0 (or, in principle, above 1); clamping it there only
+// brings it closer to the function, so the bound and the fall still hold.
+SB_INLINE float dsmValue(float v) { return clamp(v, 0.0f, 1.0f); }
+
 // The curve at depth z, given the lower bound: `after` is the first node at
 // or behind z, `before` the node in front of it (before.x < z <= after.x).
 SB_INLINE float dsmInterpolate(vec2 before, vec2 after, float z) {
   float w = clamp((z - before.x) / max(after.x - before.x, 1e-30f), 0.0f, 1.0f);
-  return before.y + (after.y - before.y) * w;
+  return dsmValue(before.y + (after.y - before.y) * w);
 }

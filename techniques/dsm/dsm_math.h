@@ -77,8 +77,8 @@ inline float dsmEvaluate(const std::vector<glm::vec2>& nodes, float z) {
     else
       hi = mid;
   }
-  if (lo == 0) return nodes.front().y;
-  if (lo == nodes.size()) return nodes.back().y;
+  if (lo == 0) return glsl::dsmValue(nodes.front().y);
+  if (lo == nodes.size()) return glsl::dsmValue(nodes.back().y);
   return glsl::dsmInterpolate(nodes[lo - 1], nodes[lo], z);
 }
 

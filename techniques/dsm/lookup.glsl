@@ -30,7 +30,7 @@ float shadowVisibility(vec3 worldPos) {
     uint mid = (lo + hi) / 2u;
     if (dsmNodes[base + mid].x < z) lo = mid + 1u; else hi = mid;
   }
-  if (lo == 0u) return dsmNodes[base].y;
-  if (lo == n) return dsmNodes[base + n - 1u].y;
+  if (lo == 0u) return dsmValue(dsmNodes[base].y);
+  if (lo == n) return dsmValue(dsmNodes[base + n - 1u].y);
   return dsmInterpolate(dsmNodes[base + lo - 1u], dsmNodes[base + lo], z);
 }
