@@ -272,6 +272,21 @@ TEST(OpacityFilter, KernelsOnKnownFields) {
     EXPECT_FLOAT_EQ(glsl::filteredOpacity(glm::vec2(0.0f), size, k), 3.0f) << k;
 }
 
+// --- the ray invariant for a technique that does not promise to fall (fom) ---
+
+TEST(ShadowMoreInvariants, RayMayRiseOnlyWhereTheTechniqueSaysSo) {
+  std::vector<InvariantFailure> f;
+  checkRay({1.0f, 0.5f, 0.6f}, "probe (fom)", f, /*monotone=*/false);
+  EXPECT_TRUE(f.empty());
+  checkRay({1.0f, 0.5f, 0.6f}, "probe (fom)", f);
+  EXPECT_EQ(f.size(), 1u);
+  checkRay({1.0f, 1.5f}, "probe (fom)", f, false);  // [0, 1] still holds
+  EXPECT_EQ(f.size(), 2u);
+  EXPECT_FALSE(makeShadowTechnique(Spec::parse("fom"))->monotone());
+  EXPECT_TRUE(makeShadowTechnique(Spec::parse("dsm"))->monotone());
+  EXPECT_TRUE(makeShadowTechnique(Spec::parse("adsm"))->monotone());
+}
+
 // --- GPU: both backends against the exact visibility ---
 
 class ShadowMore : public sbtest::BackendTest {
