@@ -58,14 +58,14 @@ void checkVisibility(const std::vector<uint8_t>& r32f, const std::string& pass,
 }
 
 void checkRay(const std::vector<float>& curve, const std::string& pass,
-              std::vector<InvariantFailure>& out) {
+              std::vector<InvariantFailure>& out, bool monotone) {
   for (std::size_t i = 0; i < curve.size(); ++i) {
     if (!(curve[i] >= -kTolerance && curve[i] <= 1.0f + kTolerance)) {
       out.push_back(
           {pass, "visibility along the light ray is NaN, Inf or outside [0, 1]" + at(i, curve[i])});
       return;
     }
-    if (i > 0 && curve[i] > curve[i - 1] + kTolerance) {
+    if (monotone && i > 0 && curve[i] > curve[i - 1] + kTolerance) {
       out.push_back({pass, "visibility along the light ray increases away from the light" +
                                at(i, curve[i]) + ", after " + std::to_string(curve[i - 1])});
       return;

@@ -400,7 +400,8 @@ std::vector<InvariantFailure> checkInvariants(const RenderRequest& req, const Re
       failures.push_back({"reference", "error image.flip outside [0, 1]"});
   }
   if (req.probe) {
-    checkRay(out.probe->visibility, "probe (" + Spec::parse(req.shadow).name + ")", failures);
+    checkRay(out.probe->visibility, "probe (" + Spec::parse(req.shadow).name + ")", failures,
+             renderer.shadow().monotone());
     checkRay(exactProbe, "probe (reference)", failures);
   }
   for (Texture t : renderer.shadow().lookup().inputs.sampled()) {
@@ -741,7 +742,7 @@ RenderResult runRender(const RenderRequest& req, RenderCache* cache, Device* dev
             [](const ResourceBytes& a, const ResourceBytes& b) { return a.name < b.name; });
   out.warnings = scene.warnings;  // the input's, then the techniques'
   for (const auto& w : renderer.warnings()) out.warnings.push_back(w);
-  out.counters = renderer.oit().counters(*dev);
+  out.counters = renderer.counters();
   out.timingEmulated = renderer.oit().timingEmulated();
   if (!out.timingEmulated.empty())
     out.warnings.push_back("timing emulated, not a real cost: " + out.timingEmulated);

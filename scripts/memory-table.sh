@@ -22,6 +22,22 @@ row "osm:maps=128,size=512,bits=32" "130"
 row "osm:maps=256,size=512,bits=32" "258"
 row "dc:clusters=4,size=512" "-"
 row "shadowmap:size=512" "-"
+row "adsm:size=512" "- (TressFX: one depth map)"
+row "fom:coefficients=8,size=512" "-"
+row "fom:coefficients=16,size=512" "-"
+row "dom:layers=3,size=512,spacing=power,filter=pcf6x4" "- (Unreal: 4 layers)"
+# Deep shadow maps depend on the hair: the exact technique's light-space lists
+# they are built from, plus node slots; the paper's memory is the nodes kept.
+for eps in 0 0.02 0.1; do
+  spec="dsm:epsilon=$eps,size=512"
+  row "$spec" "-"
+  build/strandbench render --scene "$scene" --shadow "$spec" --size 64x64 --json | python3 -c '
+import json, sys
+c = json.load(sys.stdin)["counters"]
+print("  %s nodes kept per texel with hair min/mean/max %d/%.2f/%d: %d bytes (%.2f MiB) of %d in slots"
+      % (sys.argv[1], c["dsm_nodes_min"], c["dsm_nodes_mean"], c["dsm_nodes_max"],
+         c["dsm_kept_bytes"], c["dsm_kept_bytes"] / 1048576, c["dsm_slot_bytes"]))' "$spec"
+done
 occ=$(bytes "occupancy:slices=128,slabs=4,size=512")
 osm=$(bytes "osm:maps=128,size=512,bits=32")
 echo "OSM(128) / occupancy = $(awk -v a="$osm" -v b="$occ" 'BEGIN{printf "%.1f", a/b}') (paper: 13)"

@@ -9,11 +9,14 @@
 // techniques/common/.
 #include "scenes/options.h"
 #include "techniques/abuffer/abuffer.h"
+#include "techniques/adsm/adsm.h"
 #include "techniques/common/technique.h"
 #include "techniques/dc/dc.h"
 #include "techniques/dom/dom.h"
+#include "techniques/dsm/dsm.h"
 #include "techniques/dual_peel/dual_peel.h"
 #include "techniques/exact/exact.h"
+#include "techniques/fom/fom.h"
 #include "techniques/kbuffer/kbuffer.h"
 #include "techniques/mboit/mboit.h"
 #include "techniques/mlab/mlab.h"
@@ -91,17 +94,46 @@ const std::vector<TechniqueInfo>& shadowCatalog() {
         {"bits", "32", "8 (RGBA8 unorm, kappa-scaled) | 16 (RGBA16F) | 32 (RGBA32F)"},
         {"kappa", "0", "bits=8: e^-kappa at opacity 1; 0 derives 8 ln 2 (the paper), 0..100"},
         {"size", "512", "map resolution (size x size), 1..16384"},
-        {"bias", "0.002", "depth bias in light depth units [0,1], 0..1"}}},
+        {"bias", "0.002", "depth bias in light depth units [0,1], 0..1"},
+        {"filter", "none",
+         "lookup kernel on the opacity (Unreal): none | pcf2x2 | pcf6x4 (3x3 pcf2x2, 2 apart) | "
+         "pcf6x6 (36 texels)"}}},
       {"dom",
        "deep opacity maps (Yuksel & Keyser 2008): layers that follow the hair from its first depth",
        {{"layers", "3", "opacity layers K, 1..31 (K = 4n-1 fills n RGBA layers of one array)"},
-        {"spacing", "linear", "constant | linear | pow2 | fibonacci | list (layer sizes)"},
+        {"spacing", "linear",
+         "constant | linear | pow2 | fibonacci | list (layer sizes) | power (Unreal: K s "
+         "(k/K)^2.8)"},
         {"list", "1;2;3",
          "spacing=list: layer sizes as multiples of the layer size, ';'-separated"},
         {"size_abs", "0", "layer size in light depth units (0: use size_frac), 0..1"},
         {"size_frac", "0.1", "layer size as a fraction of the hair's depth range from the light"},
         {"beyond", "last", "fragments beyond the last layer: ignore | last | extend"},
         {"depth_bits", "32", "precision of the depth map z0: 8 | 16 | 32"},
+        {"filter", "none",
+         "lookup kernel on the opacity (Unreal): none | pcf2x2 | pcf6x4 (3x3 pcf2x2, 2 apart) | "
+         "pcf6x6 (36 texels)"},
+        {"size", "512", "map resolution (size x size), 1..16384"},
+        {"bias", "0.002", "depth bias in light depth units [0,1], 0..1"}}},
+      {"dsm",
+       "deep shadow maps (Lokovic & Veach 2000): per texel, the exact visibility compressed to a "
+       "piecewise-linear curve within epsilon",
+       {{"epsilon", "0.01", "greatest visibility error of the compression (0: exact), 0..1"},
+        {"max_nodes", "64", "most nodes kept per texel (more are cut and reported), 2..65536"},
+        {"size", "512", "map resolution (size x size), 1..16384"},
+        {"bias", "0.002", "depth bias in light depth units [0,1], 0..1"}}},
+      {"fom",
+       "Fourier opacity maps (Jansen & Bavoil 2010): absorption as a Fourier series in depth, "
+       "transmittance clamped to [0,1]",
+       {{"coefficients", "8",
+         "frequencies n (2n+1 floats per texel, 4 per RGBA32F layer, 8 layers a hair pass), 1..31"},
+        {"size", "512", "map resolution (size x size), 1..16384"},
+        {"bias", "0.002", "depth bias in light depth units [0,1], 0..1"}}},
+      {"adsm",
+       "approximated deep shadows (TressFX, Tomb Raider 2013): one front-depth map, "
+       "(1-alpha)^(dz/(spacing x radius) + 1), Gaussian PCF",
+       {{"spacing", "4", "fiber spacing in fiber radii (radius: half the mean strand thickness)"},
+        {"kernel", "5", "PCF taps per side, Gaussian weights sigma = kernel/2/2.4 (TressFX), 1..9"},
         {"size", "512", "map resolution (size x size), 1..16384"},
         {"bias", "0.002", "depth bias in light depth units [0,1], 0..1"}}},
   };
@@ -119,6 +151,11 @@ std::unique_ptr<ShadowTechnique> makeShadowTechnique(const Spec& spec) {
     return std::make_unique<DensityClusteringShadow>(DensityClusteringShadow::readOptions(o));
   if (spec.name == "osm")
     return std::make_unique<OpacityShadowMaps>(OpacityShadowMaps::readOptions(o));
+  if (spec.name == "fom")
+    return std::make_unique<FourierOpacityMaps>(FourierOpacityMaps::readOptions(o));
+  if (spec.name == "adsm")
+    return std::make_unique<ApproximatedDeepShadows>(ApproximatedDeepShadows::readOptions(o));
+  if (spec.name == "dsm") return std::make_unique<DeepShadowMaps>(DeepShadowMaps::readOptions(o));
   if (spec.name == "dom") return std::make_unique<DeepOpacityMaps>(DeepOpacityMaps::readOptions(o));
   if (spec.name == "exact")
     return std::make_unique<ExactShadow>(

@@ -23,6 +23,12 @@ const int kDomConstant = 0;
 const int kDomLinear = 1;
 const int kDomPow2 = 2;
 const int kDomFibonacci = 3;
+// Unreal's hair deep opacity maps place their layers at clip-space depths
+// 0.01, 0.05, 0.2, 0.5 behind the front depth (HairStrandsDeepShadowCommon.ush):
+// close to a power law d_k = D (k/K)^p with p = 2.8 (0.011, 0.07, 0.22, 0.5
+// for K = 4 and D = 0.5). spacing=power: that law with D = K s.
+const int kDomPower = 4;
+const float kDomPowerExponent = 2.8f;
 
 // What happens to fragments beyond the last layer (paper Sec. 3).
 const int kDomIgnore = 0;
@@ -54,6 +60,7 @@ SB_INLINE float osmSliceDepth(int i, int n, float nearZ, float farZ, int mode, f
 
 // Size of DOM layer k (1..K) for layer size s.
 SB_INLINE float domLayerSize(int k, int spacing, float s) {
+  // (the power law needs K: domPowerLayerSize)
   if (spacing == kDomLinear) return s * float(k);
   if (spacing == kDomPow2) return s * exp2(float(k - 1));
   if (spacing == kDomFibonacci) {
@@ -67,6 +74,13 @@ SB_INLINE float domLayerSize(int k, int spacing, float s) {
     return s * a;
   }
   return s;
+}
+
+// Size of layer k (1..K) of K under spacing=power: K s ((k/K)^p - ((k-1)/K)^p).
+SB_INLINE float domPowerLayerSize(int k, int K, float s) {
+  float a = pow(float(k) / float(K), kDomPowerExponent);
+  float b = pow(float(k - 1) / float(K), kDomPowerExponent);
+  return float(K) * s * (a - b);
 }
 
 // Depth quantized to `bits` (8, 16; 32 keeps it), rounded down so the first

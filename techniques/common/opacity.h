@@ -93,8 +93,9 @@ inline std::vector<float> domBoundaries(int K, int spacing, float s, const std::
   s = std::max(s, 1e-6f);
   std::vector<float> d(std::size_t(K) + 1, 0.0f);
   for (int k = 1; k <= K; ++k) {
-    const float size = list.empty() ? glsl::domLayerSize(k, spacing, s)
-                                    : s * list[std::min(list.size(), std::size_t(k)) - 1];
+    const float size = !list.empty() ? s * list[std::min(list.size(), std::size_t(k)) - 1]
+                       : spacing == glsl::kDomPower ? glsl::domPowerLayerSize(k, K, s)
+                                                    : glsl::domLayerSize(k, spacing, s);
     d[std::size_t(k)] = d[std::size_t(k) - 1] + std::max(size, 1e-7f);
   }
   if (beyond == glsl::kDomExtend && d.back() <= range) {

@@ -50,6 +50,12 @@ class Renderer {
   ShadowTechnique& shadow() { return *shadow_; }
   OitTechnique& oit() { return *oit_; }
   std::vector<std::string> warnings();
+  // The shadow technique's counters, then the transparency technique's.
+  std::vector<Counter> counters() {
+    std::vector<Counter> all = shadow_->counters(dev_);
+    for (Counter& c : oit_->counters(dev_)) all.push_back(std::move(c));
+    return all;
+  }
 
  private:
   void upload(const Scene& scene);

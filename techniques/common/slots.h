@@ -71,6 +71,27 @@
 #define SB_SLOT_EXACT_STATE 13
 #define SB_SLOT_EXACT_STATUS 14
 
+// dsm: the lookup (params, nodes kept per texel, their offsets, the nodes);
+// the compression pass (compute) reads exact's sorted lists at the EXACT slots
+// and writes the nodes at 0..3 (no geometry bound there)
+#define SB_SLOT_DSM_PARAMS 8
+#define SB_SLOT_DSM_KEPT 9
+#define SB_SLOT_DSM_OFFSETS 10
+#define SB_SLOT_DSM_NODES 11
+#define SB_SLOT_DSM_OUT_KEPT 0
+#define SB_SLOT_DSM_OUT_OFFSETS 1
+#define SB_SLOT_DSM_OUT_NODES 2
+#define SB_SLOT_DSM_OUT_STATUS 3
+#define SB_SLOT_DSM_COMPRESS 4
+
+// adsm: the lookup (params, the hair's front depth)
+#define SB_SLOT_ADSM_PARAMS 8
+#define SB_SLOT_ADSM_DEPTH 9
+
+// fom: parameters (passes and lookup), the coefficients (lookup)
+#define SB_SLOT_FOM_PARAMS 8
+#define SB_SLOT_FOM_MAPS 9
+
 // --- transparency techniques and outputs: 16.. ---
 // The exact ones (abuffer, peel): the accumulation they composite
 // (common/composite.frag) and the per-pixel fragment counts (common/count.frag)

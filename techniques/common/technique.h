@@ -145,6 +145,11 @@ class ShadowTechnique {
   virtual std::optional<DepthComplexity> depthComplexity() const { return std::nullopt; }
   // Problems found while rendering (e.g. a fragment-list overflow, a layer cap hit).
   virtual std::vector<std::string> warnings(Device& /*dev*/) { return {}; }
+  // Whether its visibility never rises away from the light (checked by
+  // --invariants along the probe ray); fom's Fourier ringing does not promise it.
+  virtual bool monotone() const { return true; }
+  // Numbers about the last frame (read back from the device), for the JSON.
+  virtual std::vector<Counter> counters(Device& /*dev*/) { return {}; }
   // The lookup, declared once: its shader, defines and inputs.
   virtual ShadowLookup lookup() const = 0;
 };

@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include "techniques/common/opacity.h"
+#include "techniques/common/opacity_filter.h"
 #include "techniques/common/shader_library.h"
 
 namespace sb {
@@ -24,11 +25,13 @@ DeepOpacityMaps::Options DeepOpacityMaps::readOptions(const OptionReader& o) {
   Options opt;
   opt.layers = static_cast<uint32_t>(o.integer("layers", 1, kMaxLayers));
   const std::string spacing =
-      o.choice("spacing", {"constant", "linear", "pow2", "fibonacci", "list"});
+      o.choice("spacing", {"constant", "linear", "pow2", "fibonacci", "list", "power"});
   opt.spacing = spacing == "constant"    ? glsl::kDomConstant
                 : spacing == "pow2"      ? glsl::kDomPow2
                 : spacing == "fibonacci" ? glsl::kDomFibonacci
+                : spacing == "power"     ? glsl::kDomPower
                                          : glsl::kDomLinear;
+  opt.filter = readFilter(o);
   if (spacing == "list") {
     const std::string text = o.text("list");
     std::size_t begin = 0;
@@ -82,7 +85,7 @@ void DeepOpacityMaps::setup(Device& dev, const GpuScene& scene, const RenderSett
   Params p{};
   p.viewProj = view.viewProj;
   p.params = glm::vec4(opt_.bias, float(opt_.size), scene.shadowAlpha, float(opt_.depthBits));
-  p.layout = glm::ivec4(K, int(targets()), opt_.beyond, 0);
+  p.layout = glm::ivec4(K, int(targets()), opt_.beyond, opt_.filter);
   for (int k = 0; k <= K; ++k) p.d[k / 4][k % 4] = d_[std::size_t(k)];
   params_ = dev.createBuffer({"dom.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
 

@@ -3,7 +3,7 @@
 layout(std140, binding = SB_SLOT_DOM_PARAMS) uniform DomParams {
   mat4 domViewProj;
   vec4 domParams;   // bias (light depth units), map size, shadow alpha, depth bits
-  ivec4 domLayout;  // layers K, targets, beyond (opacity.glsl kDom*), 0
+  ivec4 domLayout;  // layers K, targets, beyond (opacity.glsl kDom*), filter (opacity_filter.glsl)
   vec4 domD[8];     // d_0..d_K (K <= 31), 4 per vec4
 };
 #define SB_DOM_D(k) domD[(k) / 4][(k) % 4]

@@ -18,7 +18,8 @@ class DeepOpacityMaps : public ShadowTechnique {
  public:
   struct Options {
     uint32_t layers = 3;
-    int spacing = 1;          // kDomConstant | kDomLinear | kDomPow2 | kDomFibonacci
+    int spacing = 1;          // kDomConstant | kDomLinear | kDomPow2 | kDomFibonacci | kDomPower
+    int filter = 0;           // kFilterNone | kFilterPcf2x2 | kFilterPcf6x4 | kFilterPcf6x6
     std::vector<float> list;  // spacing=list: layer sizes as multiples of s
     float sizeAbs = 0.0f;     // layer size s in light depth units (0: use sizeFrac)
     float sizeFrac = 0.1f;    // s as a fraction of the hair's depth range from the light

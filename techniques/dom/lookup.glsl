@@ -17,13 +17,22 @@ float domChannel(int j) {
 #define SB_DOM_LAYER(k) domChannel(k)
 #include "../common/opacity.glsl"
 
+float domZ;  // the point's light depth, less the bias
+
+// The opacity at domZ from texel t's z0 and layers (filters read several).
+float domOpacityAt(ivec2 t) {
+  domTexel = t;
+  return domOpacity(domZ, domChannel(0), domLayout.x);
+}
+#define SB_FILTER_OPACITY(t) domOpacityAt(t)
+#include "../common/opacity_filter.glsl"
+
 float shadowVisibility(vec3 worldPos) {
   vec3 ndc;
   if (!toLightNdc(domViewProj, worldPos, ndc)) return 1.0;
   vec2 uv = ndc.xy * 0.5 + 0.5;
   if (opaqueVisibility(ndc, domParams.x) == 0.0) return 0.0;
-  int size = int(domParams.y);
-  domTexel = min(ivec2(uv * domParams.y), ivec2(size - 1));
-  float omega = domOpacity(ndc.z - domParams.x, domChannel(0), domLayout.x);
+  domZ = ndc.z - domParams.x;
+  float omega = filteredOpacity(uv, int(domParams.y), domLayout.w);
   return opacityVisibility(omega, domParams.z);
 }

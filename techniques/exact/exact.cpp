@@ -105,6 +105,15 @@ Inputs ExactShadow::lists(bool written) const {
   return in;
 }
 
+Inputs ExactShadow::sortedLists() const {
+  Inputs in;
+  in.readStorage(kCounts, counts_)
+      .readStorage(kOffsets, offsets_)
+      .readStorage(kCursor, cursor_)
+      .readStorage(kNodes, nodes_);
+  return in;
+}
+
 // A hair pass from the light into the lists (no attachments: the light map's size).
 Pass ExactShadow::listPass(const std::string& name) const {
   return Pass(name)

@@ -31,6 +31,9 @@ class ExactShadow : public ShadowTechnique {
   };
   Lists readLists(Device& dev);
   std::vector<std::string> warnings(Device& dev) override;
+  // The sorted lists after addPasses' node, read only at their slots (counts,
+  // offsets, cursor, nodes): what a technique built on them reads (dsm).
+  Inputs sortedLists() const;
 
  private:
   Inputs lists(bool written) const;

@@ -21,13 +21,22 @@ float osmStored(int m) {
 #define SB_OSM_MAP(i) osmStored((i) - 1)
 #include "../common/opacity.glsl"
 
+float osmZ;  // the point's light depth, less the bias
+
+// The opacity at osmZ in texel t (filters read several).
+float osmOpacityAt(ivec2 t) {
+  osmTexel = t;
+  return osmOpacity(osmZ, osmLayout.y);
+}
+#define SB_FILTER_OPACITY(t) osmOpacityAt(t)
+#include "../common/opacity_filter.glsl"
+
 float shadowVisibility(vec3 worldPos) {
   vec3 ndc;
   if (!toLightNdc(osmViewProj, worldPos, ndc)) return 1.0;
   vec2 uv = ndc.xy * 0.5 + 0.5;
   if (opaqueVisibility(ndc, osmParams.x) == 0.0) return 0.0;
-  int size = int(osmParams.y);
-  osmTexel = min(ivec2(uv * osmParams.y), ivec2(size - 1));
-  float omega = osmOpacity(ndc.z - osmParams.x, osmLayout.y);
+  osmZ = ndc.z - osmParams.x;
+  float omega = filteredOpacity(uv, int(osmParams.y), osmLayout.w);
   return opacityVisibility(omega / osmParams.w, osmParams.z);
 }

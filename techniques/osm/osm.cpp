@@ -4,6 +4,7 @@
 
 #include "scenes/options.h"
 #include "techniques/common/opacity.h"
+#include "techniques/common/opacity_filter.h"
 #include "techniques/common/shader_library.h"
 
 namespace sb {
@@ -15,7 +16,7 @@ constexpr uint32_t kParams = SB_SLOT_OSM_PARAMS, kPass = SB_SLOT_OSM_PASS,
 struct Params {
   glm::mat4 viewProj;
   glm::vec4 params;   // bias, size, shadow alpha, weight
-  glm::ivec4 layout;  // cols, maps, atlases, 0
+  glm::ivec4 layout;  // cols, maps, atlases, filter
   glm::vec4 slices[65];
 };
 
@@ -79,6 +80,7 @@ OpacityShadowMaps::Options OpacityShadowMaps::readOptions(const OptionReader& o)
   opt.kappa = static_cast<float>(o.number("kappa", 0.0, 100.0));
   opt.size = static_cast<uint32_t>(o.integer("size", 1, 16384));
   opt.bias = static_cast<float>(o.number("bias", 0.0, 1.0));
+  opt.filter = readFilter(o);
   return opt;
 }
 
@@ -112,7 +114,7 @@ void OpacityShadowMaps::setup(Device& dev, const GpuScene& scene, const RenderSe
   Params p{};
   p.viewProj = view.viewProj;
   p.params = glm::vec4(opt_.bias, float(opt_.size), scene.shadowAlpha, weight_);
-  p.layout = glm::ivec4(int(layout_.cols), n, int(layout_.atlases), 0);
+  p.layout = glm::ivec4(int(layout_.cols), n, int(layout_.atlases), opt_.filter);
   for (int i = 0; i <= n; ++i) p.slices[i / 4][i % 4] = slices_[std::size_t(i)];
   params_ = dev.createBuffer({"osm.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
 

@@ -27,6 +27,7 @@ class OpacityShadowMaps : public ShadowTechnique {
     float kappa = 0.0f;  // 8 bits: e^-kappa = 2^-8 when 0 (the paper's choice)
     uint32_t size = 512;
     float bias = 0.002f;
+    int filter = 0;  // kFilterNone | kFilterPcf2x2 | kFilterPcf6x4 | kFilterPcf6x6
   };
   // Atlases (layers) per multi pass. A pass may have 8 targets, but more
   // atlases would lay the maps out differently and change today's images.

@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# Visibility RMSE against the exact visibility and shadow time for every
+# shadow technique on the straight, curly and stray scenes, on both backends:
+# the README's "Shadow techniques: error against time" table.
+#   scripts/shadow-errors.sh [SIZE] [REPEAT]    (defaults 256 and 5; STRANDBENCH=path
+#   runs another binary)
+# Shadow time: the median over the timed frames of the technique's own passes
+# (names starting "<technique>.", and "exact." for dsm, which builds its curves
+# from the exact technique's light-space lists), in ms. Image SIZExSIZE, light
+# maps at the techniques' default size.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+size=${1:-256}
+repeat=${2:-5}
+scenes=("straight:strands=4000,points=16,head=0" "curly:strands=1500,points=48,head=0"
+        "stray:strands=3000,points=16")
+shadows=("shadowmap" "osm:maps=16" "osm:maps=16,filter=pcf6x4" "dc:clusters=4" "dom:layers=3"
+         "dom:layers=3,spacing=power,filter=pcf6x4" "occupancy" "dsm:epsilon=0,max_nodes=65536" "dsm:epsilon=0.02"
+         "dsm:epsilon=0.1" "fom:coefficients=4" "fom:coefficients=16" "adsm" "exact")
+row() {  # scene backend shadow
+  "${STRANDBENCH:-build/strandbench}" render --scene "$1" --backend "$2" --shadow "$3" --size "${size}x${size}" \
+    --repeat "$repeat" --warmup 1 --reference --no-image --json |
+    python3 -c '
+import json, sys, statistics
+r = json.load(sys.stdin)
+tech = r["shadow"].split(":")[0]
+prefixes = (tech + ".",) + (("exact.",) if tech == "dsm" else ())
+ms = sum(p["ms"]["median"] for p in r["passes"] if p["name"].startswith(prefixes))
+rmse = r["error"]["visibility"]["rmse"]
+print("| %s | %s | %s | %.4f | %.2f |" % (sys.argv[1].split(":")[0], sys.argv[2], r["shadow"], rmse, ms))
+' "$1" "$2"
+}
+echo "| scene | backend | shadow | visibility RMSE | shadow ms |"
+echo "|---|---|---|---:|---:|"
+for scene in "${scenes[@]}"; do
+  for backend in gl vulkan; do
+    for shadow in "${shadows[@]}"; do row "$scene" "$backend" "$shadow"; done
+  done
+done

@@ -1,0 +1,104 @@
+#include "techniques/adsm/adsm.h"
+
+#include <cmath>
+#include <cstring>
+
+#include "techniques/common/shader_library.h"
+
+namespace sb {
+
+namespace {
+constexpr uint32_t kParams = SB_SLOT_ADSM_PARAMS, kDepth = SB_SLOT_ADSM_DEPTH;
+
+struct Params {
+  glm::mat4 viewProj;
+  glm::vec4 params;  // bias, size, shadow alpha, 0
+  glm::vec4 fiber;   // world units per light depth unit, spacing x radius, kernel, 0
+};
+
+// Half the mean strand thickness (vec4 w of the points), read back once.
+float meanRadius(Device& dev, const GpuScene& scene) {
+  if (!scene.hasHair()) return 0.0f;
+  const std::vector<uint8_t> bytes = dev.readBuffer(scene.points);
+  const std::size_t n = bytes.size() / sizeof(glm::vec4);
+  double sum = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    glm::vec4 p;
+    std::memcpy(&p, bytes.data() + i * sizeof p, sizeof p);
+    sum += p.w;
+  }
+  return n ? float(0.5 * sum / double(n)) : 0.0f;
+}
+}  // namespace
+
+ApproximatedDeepShadows::Options ApproximatedDeepShadows::readOptions(const OptionReader& o) {
+  Options opt;
+  opt.spacing = static_cast<float>(o.number("spacing", 1e-3, 1e6));
+  opt.kernel = static_cast<uint32_t>(o.integer("kernel", 1, 9));
+  opt.size = static_cast<uint32_t>(o.integer("size", 1, 16384));
+  opt.bias = static_cast<float>(o.number("bias", 0.0, 1.0));
+  return opt;
+}
+
+void ApproximatedDeepShadows::setup(Device& dev, const GpuScene& scene, const RenderSettings& s) {
+  scene_ = &scene;
+  settings_ = s;
+  const ViewUniforms view = lightView(s, opt_.size, opt_.size);
+  lightView_ = createLightViewBuffer(dev, view, "adsm");
+  opaque_.setup(dev, scene, opt_.size, lightView_, "adsm");
+  // Light depth is linear in distance for the directional light's orthographic
+  // projection: one depth unit is 1 / |d ndc.z / d world| world units (the
+  // z row of the view-projection); for a point light an approximation.
+  const glm::vec3 zRow(view.viewProj[0][2], view.viewProj[1][2], view.viewProj[2][2]);
+  worldPerDepth_ = 1.0f / std::max(glm::length(zRow), 1e-12f);
+  radius_ = meanRadius(dev, scene);
+  Params p{};
+  p.viewProj = view.viewProj;
+  p.params = glm::vec4(opt_.bias, float(opt_.size), scene.shadowAlpha, 0.0f);
+  p.fiber = glm::vec4(worldPerDepth_, opt_.spacing * radius_, float(opt_.kernel), 0.0f);
+  params_ = dev.createBuffer({"adsm.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
+  depth_ =
+      dev.createTexture({"adsm.depth", "shadow", Format::Depth32F, opt_.size, opt_.size, false});
+  if (!scene.hasHair()) return;
+  const ShaderCode vert = Geometry::strandVertexShader(s);
+  const ShaderCode frag = loadShader("techniques/common/depth_only.frag");
+  PipelineDesc d;
+  d.name = "adsm.depth";
+  d.technique = "adsm";
+  d.vertex = &vert;
+  d.fragment = &frag;
+  d.topology = Geometry::strandTopology(s);
+  d.hasDepth = d.depthTest = d.depthWrite = true;
+  d.depthCompare = CompareOp::Less;
+  d.bindings = depthPass().slots();
+  pipeline_ = dev.createPipeline(d);
+}
+
+// The hair's front from the light: a depth-only pass.
+Pass ApproximatedDeepShadows::depthPass() const {
+  return Pass("adsm.depth")
+      .depth(depth_, LoadOp::Clear)
+      .inputs(Geometry::inputs(*scene_, lightView_));
+}
+
+void ApproximatedDeepShadows::addPasses(FrameGraph& graph, Device& dev) {
+  opaque_.addPass(graph, dev);
+  const uint32_t vertices = Geometry::strandVertexCount(*scene_, settings_);
+  graph.add(depthPass(),
+            [this, &dev, vertices, p = depthPass()] { p.draw(dev, pipeline_, vertices); });
+}
+
+ShadowLookup ApproximatedDeepShadows::lookup() const {
+  ShadowLookup l{"techniques/adsm/lookup.glsl"};
+  l.inputs.uniform(kParams, params_).sample(kDepth, depth_);
+  opaque_.addTo(l);
+  return l;
+}
+
+std::vector<Counter> ApproximatedDeepShadows::counters(Device& /*dev*/) {
+  return {{"adsm_fiber_radius", double(radius_)},
+          {"adsm_fiber_depth", double(opt_.spacing * radius_)},
+          {"adsm_world_per_depth", double(worldPerDepth_)}};
+}
+
+}  // namespace sb

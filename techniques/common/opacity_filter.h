@@ -1,0 +1,22 @@
+// The filter kernels of opacity_filter.glsl (their numbers, compiled as C++)
+// and the `filter` option that picks one (dom, osm).
+#pragma once
+
+#include <string>
+
+#include "scenes/options.h"
+
+namespace sb {
+namespace glsl {
+#include "techniques/common/opacity_filter.glsl"
+}  // namespace glsl
+
+inline int readFilter(const OptionReader& o) {
+  const std::string f = o.choice("filter", {"none", "pcf2x2", "pcf6x4", "pcf6x6"});
+  return f == "pcf2x2"   ? glsl::kFilterPcf2x2
+         : f == "pcf6x4" ? glsl::kFilterPcf6x4
+         : f == "pcf6x6" ? glsl::kFilterPcf6x6
+                         : glsl::kFilterNone;
+}
+
+}  // namespace sb

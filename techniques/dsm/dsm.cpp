@@ -1,0 +1,145 @@
+#include "techniques/dsm/dsm.h"
+
+#include <cstring>
+
+#include "techniques/common/shader_library.h"
+
+namespace sb {
+
+namespace {
+constexpr uint32_t kParams = SB_SLOT_DSM_PARAMS, kKept = SB_SLOT_DSM_KEPT,
+                   kOffsets = SB_SLOT_DSM_OFFSETS, kNodes = SB_SLOT_DSM_NODES,
+                   kOutKept = SB_SLOT_DSM_OUT_KEPT, kOutOffsets = SB_SLOT_DSM_OUT_OFFSETS,
+                   kOutNodes = SB_SLOT_DSM_OUT_NODES, kOutStatus = SB_SLOT_DSM_OUT_STATUS,
+                   kCompress = SB_SLOT_DSM_COMPRESS;
+
+std::vector<uint32_t> toUints(const std::vector<uint8_t>& bytes) {
+  std::vector<uint32_t> v(bytes.size() / 4);
+  std::memcpy(v.data(), bytes.data(), v.size() * 4);
+  return v;
+}
+}  // namespace
+
+DeepShadowMaps::Options DeepShadowMaps::readOptions(const OptionReader& o) {
+  Options opt;
+  opt.epsilon = static_cast<float>(o.number("epsilon", 0.0, 1.0));
+  opt.maxNodes = static_cast<uint32_t>(o.integer("max_nodes", 2, 65536));
+  opt.size = static_cast<uint32_t>(o.integer("size", 1, 16384));
+  opt.bias = static_cast<float>(o.number("bias", 0.0, 1.0));
+  return opt;
+}
+
+// The lists: every fragment kept (no layer cap), sorted per texel.
+DeepShadowMaps::DeepShadowMaps(const Options& o)
+    : opt_(o), lists_(ExactShadow::Method::ABuffer, o.size, o.bias, 1000000) {}
+
+void DeepShadowMaps::setup(Device& dev, const GpuScene& scene, const RenderSettings& s) {
+  scene_ = &scene;
+  lists_.setup(dev, scene, s);
+  const ViewUniforms view = lightView(s, opt_.size, opt_.size);
+  lightView_ = createLightViewBuffer(dev, view, "dsm");
+  params_ = createLightLookupParams(dev, view, opt_.bias, opt_.size, scene.shadowAlpha, "dsm");
+  const glm::vec4 c(opt_.epsilon, 1.0f - scene.shadowAlpha, float(opt_.size), float(opt_.maxNodes));
+  compress_ = dev.createBuffer({"dsm.compress", "frame", BufferUsage::Uniform, sizeof c}, &c);
+  const std::size_t texels = std::size_t(opt_.size) * opt_.size;
+  kept_ = dev.createBuffer({"dsm.kept", "shadow", BufferUsage::Storage, texels * 4});
+  offsets_ = dev.createBuffer({"dsm.offsets", "shadow", BufferUsage::Storage, texels * 4});
+  status_ = dev.createBuffer({"dsm.status", "shadow", BufferUsage::Storage, 16});
+  opaque_.setup(dev, scene, opt_.size, lightView_, "dsm");
+
+  const ShaderCode comp = loadShader("techniques/dsm/compress.comp");
+  PipelineDesc c2;
+  c2.name = "dsm.compress";
+  c2.technique = "dsm";
+  c2.compute = &comp;
+  c2.bindings = compressPass().slots();
+  pipeline_ = dev.createPipeline(c2);
+}
+
+// The node slots: min(2 n, max nodes) per texel, from the counts the lists'
+// counting pass measured (the same scene every frame).
+void DeepShadowMaps::prepare(Device& dev) {
+  lists_.prepare(dev);
+  complexity_ = lists_.depthComplexity().value_or(DepthComplexity{});
+  const std::vector<uint32_t>& counts = complexity_.counts;
+  std::vector<uint32_t> offsets(counts.size());
+  uint64_t total = 0;
+  for (std::size_t i = 0; i < counts.size(); ++i) {
+    if (total > 0xFFFFFFFFull)
+      throw InputError("shadow technique 'dsm': more than 2^32 nodes; lower size or max_nodes");
+    offsets[i] = static_cast<uint32_t>(total);
+    total += std::min<uint64_t>(2ull * counts[i], opt_.maxNodes);
+  }
+  dev.updateBuffer(offsets_, offsets.data(), offsets.size() * 4);
+  capacity_ = std::max<uint64_t>(total, 1);
+  nodes_ = dev.createBuffer({"dsm.nodes", "shadow", BufferUsage::Storage, capacity_ * 8});
+}
+
+Pass DeepShadowMaps::compressPass() const {
+  return Pass("dsm.compress")
+      .inputs(lists_.sortedLists())
+      .uniform(kCompress, compress_)
+      .storage(kOutKept, kept_)
+      .readStorage(kOutOffsets, offsets_)
+      .storage(kOutNodes, nodes_)
+      .storage(kOutStatus, status_);
+}
+
+void DeepShadowMaps::addPasses(FrameGraph& graph, Device& dev) {
+  lists_.addPasses(graph, dev);
+  opaque_.addPass(graph, dev);
+  const uint32_t texels = opt_.size * opt_.size;
+  graph.add(compressPass(), [this, &dev, texels, p = compressPass()] {
+    dev.fillBuffer(status_, 0);
+    const glm::uvec2 g = dispatchGroups(texels);
+    p.dispatch(dev, pipeline_, g.x, g.y);
+  });
+}
+
+ShadowLookup DeepShadowMaps::lookup() const {
+  ShadowLookup l{"techniques/dsm/lookup.glsl"};
+  l.inputs.uniform(kParams, params_)
+      .readStorage(kKept, kept_)
+      .readStorage(kOffsets, offsets_)
+      .readStorage(kNodes, nodes_);
+  opaque_.addTo(l);
+  return l;
+}
+
+std::vector<uint32_t> DeepShadowMaps::keptNodes(Device& dev) {
+  return toUints(dev.readBuffer(kept_));
+}
+
+std::vector<std::string> DeepShadowMaps::warnings(Device& dev) {
+  std::vector<std::string> w = lists_.warnings(dev);
+  const uint32_t cut = toUints(dev.readBuffer(status_))[0];
+  if (cut)
+    w.push_back("dsm: " + std::to_string(cut) +
+                " texels needed more than max_nodes=" + std::to_string(opt_.maxNodes) +
+                " nodes; their curves are cut (error above epsilon behind the cut)");
+  return w;
+}
+
+// Nodes kept per texel with hair (min / mean / max) and their bytes: the
+// paper's memory, beside the slots allocated.
+std::vector<Counter> DeepShadowMaps::counters(Device& dev) {
+  const std::vector<uint32_t> kept = keptNodes(dev);
+  const std::vector<uint32_t>& counts = complexity_.counts;
+  uint64_t total = 0, covered = 0;
+  uint32_t lo = 0, hi = 0;
+  for (std::size_t i = 0; i < kept.size() && i < counts.size(); ++i) {
+    if (!counts[i]) continue;
+    lo = covered ? std::min(lo, kept[i]) : kept[i];
+    hi = std::max(hi, kept[i]);
+    total += kept[i];
+    ++covered;
+  }
+  return {{"dsm_nodes_min", double(lo)},
+          {"dsm_nodes_mean", covered ? double(total) / double(covered) : 0.0},
+          {"dsm_nodes_max", double(hi)},
+          {"dsm_nodes_total", double(total)},
+          {"dsm_kept_bytes", double(total * 8)},
+          {"dsm_slot_bytes", double(capacity_ * 8)}};
+}
+
+}  // namespace sb

@@ -1,0 +1,95 @@
+#include "techniques/fom/fom.h"
+
+#include "techniques/common/opacity.h"
+#include "techniques/common/shader_library.h"
+
+namespace sb {
+
+namespace {
+constexpr uint32_t kParams = SB_SLOT_FOM_PARAMS, kMaps = SB_SLOT_FOM_MAPS;
+constexpr uint32_t kTargetsPerPass = 8;
+
+struct Params {
+  glm::mat4 viewProj;
+  glm::vec4 params;  // bias, size, shadow alpha, 0
+  glm::vec4 range;   // near, far, n, 0
+};
+}  // namespace
+
+FourierOpacityMaps::Options FourierOpacityMaps::readOptions(const OptionReader& o) {
+  Options opt;
+  opt.coefficients = static_cast<uint32_t>(o.integer("coefficients", 1, kMaxCoefficients));
+  opt.size = static_cast<uint32_t>(o.integer("size", 1, 16384));
+  opt.bias = static_cast<float>(o.number("bias", 0.0, 1.0));
+  return opt;
+}
+
+void FourierOpacityMaps::setup(Device& dev, const GpuScene& scene, const RenderSettings& s) {
+  scene_ = &scene;
+  settings_ = s;
+  const ViewUniforms view = lightView(s, opt_.size, opt_.size);
+  lightView_ = createLightViewBuffer(dev, view, "fom");
+  opaque_.setup(dev, scene, opt_.size, lightView_, "fom");
+  // The series' period: the hair's depth range from the light (CPU, from the
+  // hair points: exact for lines and ribbons), a little wider so that the
+  // farthest fragment stays inside [0, 1).
+  const DepthRange r = depthRange(hairLightDepths(dev, scene, view.viewProj));
+  const float pad = 1e-3f * std::max(r.farZ - r.nearZ, 1e-6f);
+  Params p{};
+  p.viewProj = view.viewProj;
+  p.params = glm::vec4(opt_.bias, float(opt_.size), scene.shadowAlpha, 0.0f);
+  p.range = glm::vec4(r.nearZ - pad, r.farZ + pad, float(opt_.coefficients), 0.0f);
+  params_ = dev.createBuffer({"fom.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
+  maps_ = dev.createTexture(
+      {"fom.coefficients", "shadow", Format::RGBA32F, opt_.size, opt_.size, false, layers()});
+  if (!scene.hasHair()) return;
+  const ShaderCode vert = Geometry::strandVertexShader(s);
+  for (uint32_t first = 0; first < layers(); first += kTargetsPerPass) {
+    const uint32_t count = std::min(kTargetsPerPass, layers() - first);
+    ShaderDefines defs;
+    defs.defines = {{"SB_FOM_FIRST", std::to_string(first)},
+                    {"SB_FOM_TARGETS", std::to_string(count)}};
+    const ShaderCode frag = loadShader("techniques/fom/accumulate.frag", defs);
+    PipelineDesc d;
+    d.name = "fom.accumulate." + std::to_string(first / kTargetsPerPass);
+    d.technique = "fom";
+    d.vertex = &vert;
+    d.fragment = &frag;
+    d.topology = Geometry::strandTopology(s);
+    d.colorFormats.assign(count, Format::RGBA32F);
+    d.blend.assign(count, BlendState::additive());
+    d.bindings = accumulatePass(first, count).slots();
+    pipelines_.push_back(dev.createPipeline(d));
+  }
+}
+
+// Layers first .. first + count - 1 of the coefficients, cleared, then every
+// hair fragment added.
+Pass FourierOpacityMaps::accumulatePass(uint32_t first, uint32_t count) const {
+  Pass p(first == 0 ? "fom.accumulate"
+                    : "fom.accumulate." + std::to_string(first / kTargetsPerPass));
+  for (uint32_t t = 0; t < count; ++t) p.color(maps_, LoadOp::Clear, {0, 0, 0, 0}, first + t);
+  return p.inputs(Geometry::inputs(*scene_, lightView_)).uniform(kParams, params_);
+}
+
+void FourierOpacityMaps::addPasses(FrameGraph& graph, Device& dev) {
+  opaque_.addPass(graph, dev);
+  const uint32_t vertices = Geometry::strandVertexCount(*scene_, settings_);
+  std::vector<Pass> passes;
+  for (uint32_t first = 0; first < layers(); first += kTargetsPerPass)
+    passes.push_back(accumulatePass(first, std::min(kTargetsPerPass, layers() - first)));
+  // One node: the passes write disjoint layers of one texture.
+  graph.add("fom.accumulate", passes, [this, &dev, vertices, passes] {
+    for (std::size_t i = 0; i < passes.size(); ++i)
+      passes[i].draw(dev, i < pipelines_.size() ? pipelines_[i] : Pipeline{}, vertices);
+  });
+}
+
+ShadowLookup FourierOpacityMaps::lookup() const {
+  ShadowLookup l{"techniques/fom/lookup.glsl"};
+  l.inputs.uniform(kParams, params_).sampleArray(kMaps, maps_);
+  opaque_.addTo(l);
+  return l;
+}
+
+}  // namespace sb
