@@ -176,10 +176,10 @@ struct RenderResult {
   std::optional<std::vector<InvariantFailure>> invariants;  // when requested
   std::optional<DepthComplexity> eyeComplexity, lightComplexity;
   std::vector<std::string> warnings;              // the input's, the techniques', the reference's
-  std::vector<Counter> counters;                  // the shadow technique's, after the frames
   std::optional<std::size_t> validationMessages;  // with validation
-  // The transparency technique's counters (OitTechnique::counters) and, when
-  // its timing is an emulation, why (OitTechnique::timingEmulated).
+  // The shadow technique's counters, then the transparency technique's (after
+  // the frames), and, when the timing is an emulation, why
+  // (OitTechnique::timingEmulated).
   std::vector<Counter> counters;
   std::string timingEmulated;
 

@@ -277,7 +277,7 @@ struct Rendered {
   Image image;
   DepthComplexity eye;
   std::vector<std::string> warnings;
-  std::vector<std::pair<std::string, uint64_t>> counters;
+  std::vector<Counter> counters;
   std::string emulated;
 };
 
@@ -298,8 +298,8 @@ Rendered render(Device& dev, const std::string& sceneSpec, uint32_t size,
 }
 
 uint64_t counter(const Rendered& r, const std::string& name) {
-  for (const auto& [n, v] : r.counters)
-    if (n == name) return v;
+  for (const Counter& c : r.counters)
+    if (c.name == name) return uint64_t(c.value);
   ADD_FAILURE() << "no counter " << name;
   return 0;
 }

@@ -135,7 +135,7 @@ Rendered render(Device& dev, const Scene& scene, const std::string& oit, uint32_
   out.image = imageFromRows(r.readColor(), int(size), int(size), PixelType::Float32, 4);
   out.oitBytes = oitBytes() - before;
   if (auto c = r.oit().depthComplexity()) out.maxComplexity = c->max;
-  out.counters = r.oit().counters(dev);
+  for (const Counter& c : r.oit().counters(dev)) out.counters[c.name] = c.value;
   out.warnings = r.warnings();
   return out;
 }
