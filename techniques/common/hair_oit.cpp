@@ -28,9 +28,7 @@ Pass HairOit::hairPass(const std::string& name, bool first) const {
 
 Pipeline HairOit::hairPipeline(Device& dev, const Pass& pass, const std::string& fragShader,
                                ShaderDefines defs) const {
-  const ShaderDefines hair = shading_->hairDefines();
-  for (auto& [alias, file] : hair.aliases) defs.aliases[alias] = file;
-  defs.defines.insert(defs.defines.end(), hair.defines.begin(), hair.defines.end());
+  defs.add(shading_->hairDefines());
   const ShaderCode vert = Geometry::strandVertexShader(settings_);
   const ShaderCode frag = loadShader(fragShader, defs);
   PipelineDesc d;

@@ -3,6 +3,8 @@
 // sizes them, and the accumulation they composite.
 #pragma once
 
+#include <algorithm>
+
 #include "techniques/common/composite.h"
 #include "techniques/common/fragment_lists.h"
 #include "techniques/common/shader_library.h"
@@ -44,6 +46,23 @@ class HairOit : public OitTechnique {
 
  private:
   Pass countPass() const;
+};
+
+// The depth-peeling techniques: they peel as many layers as the deepest pixel
+// has (counted once in prepare(), as an occlusion query per layer would stop),
+// capped by the `layers` option (reported as a warning).
+class PeelingOit : public HairOit {
+ public:
+  explicit PeelingOit(uint32_t maxLayers) : maxLayers_(maxLayers) {}
+  void prepare(Device& dev) override {
+    countFragments(dev);
+    layers_ = std::min(complexity_.max, maxLayers_);
+  }
+  uint32_t layers() const { return layers_; }
+
+ protected:
+  uint32_t maxLayers_;
+  uint32_t layers_ = 0;
 };
 
 }  // namespace sb

@@ -14,6 +14,12 @@ namespace sb {
 struct ShaderDefines {
   std::vector<std::pair<std::string, std::string>> defines;  // #define NAME VALUE
   std::map<std::string, std::string> aliases;                // <alias> -> file path
+  // Adds another set's defines and aliases (e.g. the hair shading's).
+  ShaderDefines& add(const ShaderDefines& more) {
+    defines.insert(defines.end(), more.defines.begin(), more.defines.end());
+    for (const auto& [alias, file] : more.aliases) aliases[alias] = file;
+    return *this;
+  }
 };
 
 // path is relative to the source tree, e.g. "techniques/shadowmap/depth.frag".

@@ -57,11 +57,6 @@ void DualPeelOit::setup(Device& dev, const GpuScene& scene, const RenderSettings
                               {Format::RGBA32F}, {hairOverBlend()}, finalPass().slots());
 }
 
-void DualPeelOit::prepare(Device& dev) {
-  countFragments(dev);
-  layers_ = std::min(complexity_.max, maxLayers_);
-}
-
 // The back accumulation (T = 1), and the opaque depth when nothing opaque was
 // drawn (the geometry passes sample it).
 Pass DualPeelOit::clearPass() const {

@@ -21,18 +21,16 @@
 
 namespace sb {
 
-class DualPeelOit : public HairOit {
+class DualPeelOit : public PeelingOit {
  public:
-  explicit DualPeelOit(uint32_t maxLayers) : maxLayers_(maxLayers) {}
+  using PeelingOit::PeelingOit;
   std::string name() const override { return "dual_peel"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
              const KajiyaKayShading& shading, const OitTargets& targets) override;
-  void prepare(Device& dev) override;
   void addPasses(FrameGraph& graph, Device& dev) override;
   std::vector<std::string> warnings(Device& dev) override;
   std::vector<Counter> counters(Device& dev) override;
-  // Layers peeled and the peel passes that take (ceil(layers / 2)).
-  uint32_t layers() const { return layers_; }
+  // The peel passes the layers take (ceil(layers / 2)).
   uint32_t peelPasses() const { return (layers_ + 1) / 2; }
 
  private:
@@ -42,8 +40,6 @@ class DualPeelOit : public HairOit {
   Pass backPass() const;
   Pass finalPass() const;
 
-  uint32_t maxLayers_;
-  uint32_t layers_ = 0;
   Texture depth_[2], front_[2], backTemp_, back_;
   Pipeline init_, peel_, back_blend_, final_;
 };

@@ -61,10 +61,8 @@ void MomentOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& 
 
   ShaderDefines defs;
   if (highTarget()) defs.defines.push_back({"SB_MBOIT_HIGH", "1"});
-  const ShaderDefines hair = shading.hairDefines();
   ShaderDefines shaded = defs;
-  for (const auto& [alias, file] : hair.aliases) shaded.aliases[alias] = file;
-  shaded.defines.insert(shaded.defines.end(), hair.defines.begin(), hair.defines.end());
+  shaded.add(shading.hairDefines());
   const ShaderCode vert = Geometry::strandVertexShader(s);
   const ShaderCode momentsFrag = loadShader("techniques/mboit/moments.frag", defs);
   const ShaderCode accumFrag = loadShader("techniques/mboit/accumulate.frag", shaded);

@@ -25,11 +25,6 @@ void PeelOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
   advance_ = makePeelAdvancePipeline(dev, advancePass(), kState, kPeeled, 0, 0, "peel");
 }
 
-void PeelOit::prepare(Device& dev) {
-  countFragments(dev);
-  layers_ = std::min(complexity_.max, maxLayers_);
-}
-
 // One of a layer's three hair draws: smallest depth, smallest primitive id at
 // that depth, shade and accumulate.
 Pass PeelOit::stepPass(int step, bool first) const {

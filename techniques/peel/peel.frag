@@ -4,12 +4,13 @@
 // Storage writes are side effects: without early tests they would happen even
 // for fragments the opaque depth test then rejects.
 layout(early_fragment_tests) in;
-#include "../common/view.glsl"
-#include "../common/shading.glsl"
 #include <shadow>
-#include "../kajiya_kay/hair_shading.glsl"
+
 #include "../common/fragment_key.glsl"
+#include "../common/shading.glsl"
 #include "../common/slots.h"
+#include "../common/view.glsl"
+#include "../kajiya_kay/hair_shading.glsl"
 
 layout(std430, binding = SB_SLOT_OIT_ACCUM) buffer Accum { vec4 accum[]; };
 layout(std430, binding = SB_SLOT_PEEL_STATE) buffer PeelState { uvec4 peelState[]; };

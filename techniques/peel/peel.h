@@ -9,13 +9,12 @@ namespace sb {
 // depth, shade and accumulate), for as many layers as the deepest pixel holds
 // (counted once in prepare(), standing in for an occlusion query per layer),
 // capped by layers= (a cap that is reported).
-class PeelOit : public HairOit {
+class PeelOit : public PeelingOit {
  public:
-  explicit PeelOit(uint32_t maxLayers) : maxLayers_(maxLayers) {}
+  using PeelingOit::PeelingOit;
   std::string name() const override { return "peel"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
              const KajiyaKayShading& shading, const OitTargets& targets) override;
-  void prepare(Device& dev) override;
   void addPasses(FrameGraph& graph, Device& dev) override;
   std::vector<std::string> warnings(Device& dev) override;
 
@@ -23,8 +22,6 @@ class PeelOit : public HairOit {
   Pass stepPass(int step, bool first) const;
   Pass advancePass() const;
 
-  uint32_t maxLayers_;
-  uint32_t layers_ = 0;
   Buffer state_, peeled_, sizeUbo_;
   Pipeline step_[3], advance_;
 };

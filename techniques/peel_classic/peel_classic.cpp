@@ -57,11 +57,6 @@ void ClassicPeelOit::setup(Device& dev, const GpuScene& scene, const RenderSetti
                                   {hairOverBlend()}, compositePass().slots());
 }
 
-void ClassicPeelOit::prepare(Device& dev) {
-  countFragments(dev);
-  layers_ = std::min(complexity_.max, maxLayers_);
-}
-
 // Clears the accumulation, the peeled count and the "previous layer" depth
 // (0: every fragment is behind it); the opaque depth too when nothing opaque
 // was drawn (the layer passes sample it).
@@ -146,7 +141,7 @@ std::vector<std::string> ClassicPeelOit::warnings(Device& dev) {
   for (const Counter& c : counters(dev))
     if (c.name == "lost_ties" && c.value > 0)
       w.push_back("classic depth peeling lost " + std::to_string(uint64_t(c.value)) +
-                " fragments at the depth of a peeled one (ties; --oit peel breaks them)");
+                  " fragments at the depth of a peeled one (ties; --oit peel breaks them)");
   return w;
 }
 

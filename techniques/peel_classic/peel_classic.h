@@ -17,17 +17,15 @@
 
 namespace sb {
 
-class ClassicPeelOit : public HairOit {
+class ClassicPeelOit : public PeelingOit {
  public:
-  explicit ClassicPeelOit(uint32_t maxLayers) : maxLayers_(maxLayers) {}
+  using PeelingOit::PeelingOit;
   std::string name() const override { return "peel_classic"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
              const KajiyaKayShading& shading, const OitTargets& targets) override;
-  void prepare(Device& dev) override;
   void addPasses(FrameGraph& graph, Device& dev) override;
   std::vector<std::string> warnings(Device& dev) override;
   std::vector<Counter> counters(Device& dev) override;
-  uint32_t layers() const { return layers_; }
 
  private:
   Pass clearPass() const;
@@ -35,8 +33,6 @@ class ClassicPeelOit : public HairOit {
   Pass blendPass(uint32_t layer) const;
   Pass compositePass() const;
 
-  uint32_t maxLayers_;
-  uint32_t layers_ = 0;
   Texture layerColor_, layerDepth_[2], peelDepth_, under_, peeled_;
   Pipeline layer_, blend_, composite_;
 };

@@ -27,9 +27,7 @@ void ShortCutOit::setup(Device& dev, const GpuScene& scene, const RenderSettings
   ShaderDefines defs;
   defs.defines.push_back({"SB_SHORTCUT_K", std::to_string(k_)});
   ShaderDefines shaded = defs;
-  const ShaderDefines hair = shading.hairDefines();
-  for (const auto& [alias, file] : hair.aliases) shaded.aliases[alias] = file;
-  shaded.defines.insert(shaded.defines.end(), hair.defines.begin(), hair.defines.end());
+  shaded.add(shading.hairDefines());
   const ShaderCode vert = Geometry::strandVertexShader(s);
   const ShaderCode depthsFrag = loadShader("techniques/shortcut/depths.frag", defs);
   const ShaderCode colorsFrag = loadShader("techniques/shortcut/colors.frag", shaded);

@@ -45,10 +45,7 @@ void StochasticOit::setup(Device& dev, const GpuScene& scene, const RenderSettin
   sum_ = dev.createTexture({"stochastic.sum", "oit", Format::RGBA32F, w, h, false});
   alpha_ = dev.createTexture({"stochastic.alpha", "oit", Format::R32F, w, h, false});
 
-  ShaderDefines defs;
-  const ShaderDefines hair = shading.hairDefines();
-  for (const auto& [alias, file] : hair.aliases) defs.aliases[alias] = file;
-  defs.defines = hair.defines;
+  const ShaderDefines defs = shading.hairDefines();
   const ShaderCode vert = Geometry::strandVertexShader(s);
   auto hairPipeline = [&](const std::string& pass, const std::string& shader, const Pass& decl,
                           auto&& fill) {

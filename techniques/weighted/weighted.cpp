@@ -24,9 +24,7 @@ void BlendedOitBase::setup(Device& dev, const GpuScene& scene, const RenderSetti
   // Accumulation: the hair, shaded through the shadow lookup, depth-tested
   // against the opaque depth without writing it.
   ShaderDefines defs = cfg.defines;
-  const ShaderDefines hair = shading.hairDefines();
-  for (const auto& [alias, file] : hair.aliases) defs.aliases[alias] = file;
-  defs.defines.insert(defs.defines.end(), hair.defines.begin(), hair.defines.end());
+  defs.add(shading.hairDefines());
   const ShaderCode vert = Geometry::strandVertexShader(s);
   const ShaderCode frag = loadShader(cfg.accumulateShader, defs);
   PipelineDesc d;
