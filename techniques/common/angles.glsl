@@ -23,4 +23,21 @@ SB_INLINE float sbAcos(float x) {
 }
 
 SB_INLINE float sbAsin(float x) { return 1.57079632679490f - sbAcos(x); }
+
+// The angles of Marschner et al.'s hair models. T: unit tangent (root to tip), L, V: unit
+// directions to the light and the eye. Returns (theta_h, theta_d, phi, sin theta_r): theta_i,
+// theta_r are the angles to the normal plane, theta_h their mean, theta_d half their
+// difference, phi the azimuth between L and V projected onto the normal plane (0..pi).
+SB_INLINE vec4 hairAngles(vec3 T, vec3 L, vec3 V) {
+  float sinI = clamp(dot(L, T), -1.0f, 1.0f);
+  float sinR = clamp(dot(V, T), -1.0f, 1.0f);
+  float thetaI = sbAsin(sinI);
+  float thetaR = sbAsin(sinR);
+  vec3 lp = L - sinI * T;
+  vec3 vp = V - sinR * T;
+  float lpl = length(lp);
+  float vpl = length(vp);
+  float cosPhi = lpl > 1e-6f && vpl > 1e-6f ? clamp(dot(lp, vp) / (lpl * vpl), -1.0f, 1.0f) : 1.0f;
+  return vec4(0.5f * (thetaI + thetaR), 0.5f * (thetaR - thetaI), sbAcos(cosPhi), sinR);
+}
 #endif

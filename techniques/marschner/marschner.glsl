@@ -109,18 +109,11 @@ SB_INLINE vec3 marschnerN(int p, float phi, float etaP, float etaPP, vec3 sigma,
 // alpha_TRT, eta), width = (beta_R, beta_TT, beta_TRT, caustic floor), radians.
 // cos^2(theta_d) is bounded below by 1e-2 so S stays finite looking along the fibre.
 SB_INLINE vec3 marschner(vec3 T, vec3 L, vec3 V, vec3 color, vec4 shift, vec4 width) {
-  float sinI = clamp(dot(L, T), -1.0f, 1.0f);
-  float sinR = clamp(dot(V, T), -1.0f, 1.0f);
-  float thetaI = sbAsin(sinI);
-  float thetaR = sbAsin(sinR);
-  float thetaH = 0.5f * (thetaI + thetaR);
-  float thetaD = 0.5f * (thetaR - thetaI);
-  vec3 lp = L - sinI * T;
-  vec3 vp = V - sinR * T;
-  float lpl = length(lp);
-  float vpl = length(vp);
-  float cosPhi = lpl > 1e-6f && vpl > 1e-6f ? clamp(dot(lp, vp) / (lpl * vpl), -1.0f, 1.0f) : 1.0f;
-  float phi = sbAcos(cosPhi);  // N is symmetric in phi for a round fibre
+  vec4 a = hairAngles(T, L, V);
+  float thetaH = a.x;
+  float thetaD = a.y;
+  float phi = a.z;  // N is symmetric in phi for a round fibre
+  float sinR = a.w;
   float eta = shift.w;
   float sd = sin(thetaD);
   float cd = max(cos(thetaD), 1e-3f);

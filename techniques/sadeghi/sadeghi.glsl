@@ -22,18 +22,10 @@ SB_INLINE float sadeghiGauss(float w, float x) { return exp(-x * x / (2.0f * w *
 // cos^2(theta_d) is bounded below by 1e-2 so f stays finite looking along the fibre.
 SB_INLINE vec3 sadeghi(vec3 T, vec3 L, vec3 V, vec3 color, vec4 shift, vec4 width, vec4 intensity,
                        float glintWidth) {
-  float sinI = clamp(dot(L, T), -1.0f, 1.0f);
-  float sinR = clamp(dot(V, T), -1.0f, 1.0f);
-  float thetaI = sbAsin(sinI);
-  float thetaR = sbAsin(sinR);
-  float thetaH = 0.5f * (thetaI + thetaR);
-  float thetaD = 0.5f * (thetaR - thetaI);
-  vec3 lp = L - sinI * T;
-  vec3 vp = V - sinR * T;
-  float lpl = length(lp);
-  float vpl = length(vp);
-  float cosPhi = lpl > 1e-6f && vpl > 1e-6f ? clamp(dot(lp, vp) / (lpl * vpl), -1.0f, 1.0f) : 1.0f;
-  float phi = sbAcos(cosPhi);
+  vec4 a = hairAngles(T, L, V);
+  float thetaH = a.x;
+  float thetaD = a.y;
+  float phi = a.z;
   float nR = max(cos(0.5f * phi), 0.0f);  // cos(pi/2) rounds to -4e-8 in float
   float nTT = sadeghiGauss(width.w, 3.14159265358979f - phi);
   float nTRT = nR + intensity.w * sadeghiGauss(glintWidth, shift.w - phi);
