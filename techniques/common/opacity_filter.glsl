@@ -39,7 +39,10 @@ float filteredOpacity(vec2 uv, int size, int kernel) {
     return sum / 9.0f;
   }
   if (kernel == kFilterPcf6x6) {
-    ivec2 c = ivec2(floor(p - 0.5f)) - ivec2(2);
+    // The 6x6 block around the point's own texel (3 before it, 2 after): it moves only when the
+    // point crosses a texel edge. Placed from p - 0.5 it jumped at texel centres, where a light
+    // ray through a texel centre sits, and visibility along that ray rose by float rounding.
+    ivec2 c = ivec2(floor(p)) - ivec2(3);
     float sum = 0.0f;
     for (int y = 0; y < 6; ++y)
       for (int x = 0; x < 6; ++x) sum += SB_FILTER_OPACITY(filterClamp(c + ivec2(x, y), size));
