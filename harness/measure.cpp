@@ -1,6 +1,7 @@
 #include "harness/measure.h"
 
 #include <algorithm>
+#include <cmath>
 #include <iomanip>
 #include <sstream>
 
@@ -15,10 +16,11 @@ int Measurement::outlierCount() const {
   return n;
 }
 
-void checkRepetitionOptions(const RepetitionOptions& o) {
-  if (o.minReps < 2)
-    throw InputError("--min-reps " + std::to_string(o.minReps) +
-                     ": at least 2 (an interval needs two samples)");
+void checkRepetitionOptions(const RepetitionOptions& o, int leastMinReps) {
+  if (o.minReps < leastMinReps)
+    throw InputError("--min-reps " + std::to_string(o.minReps) + ": at least " +
+                     std::to_string(leastMinReps) +
+                     (leastMinReps > 1 ? " (an interval needs two samples)" : ""));
   if (o.maxReps < o.minReps)
     throw InputError("--max-reps " + std::to_string(o.maxReps) + ": below --min-reps " +
                      std::to_string(o.minReps));
@@ -27,28 +29,37 @@ void checkRepetitionOptions(const RepetitionOptions& o) {
 }
 
 std::vector<Measurement> measureInterleaved(const std::vector<std::function<double()>>& cases,
-                                            const RepetitionOptions& o) {
-  checkRepetitionOptions(o);
+                                            const RepetitionOptions& o, int leastMinReps) {
+  checkRepetitionOptions(o, leastMinReps);
   const std::size_t n = cases.size();
   std::vector<Measurement> m(n);
+  std::vector<bool> failed(n, false);
   for (int round = 0; round < o.maxReps; ++round) {
     // Rotating the first case: no case always runs right after a warm-up or a cold cache.
     std::vector<double> sample(n);
     for (std::size_t k = 0; k < n; ++k) {
       const std::size_t i = (k + std::size_t(round)) % n;
-      sample[i] = cases[i]();
+      if (!failed[i]) sample[i] = cases[i]();
     }
-    for (std::size_t i = 0; i < n; ++i) m[i].samples.push_back(sample[i]);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (failed[i]) continue;
+      if (std::isnan(sample[i]))
+        failed[i] = true;
+      else
+        m[i].samples.push_back(sample[i]);
+    }
     if (round + 1 < o.minReps) continue;
     if (o.targetCiPct == 0) break;  // no target: exactly --min-reps rounds
     bool precise = true;
-    for (auto& c : m) {
-      c.median = bootstrapMedian(c.samples);
-      precise = precise && c.median.relativeHalfWidth() * 100 <= o.targetCiPct;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (failed[i]) continue;
+      m[i].median = bootstrapMedian(m[i].samples);
+      precise = precise && m[i].median.relativeHalfWidth() * 100 <= o.targetCiPct;
     }
     if (precise) break;
   }
   for (auto& c : m) {
+    if (c.samples.empty()) continue;
     c.median = bootstrapMedian(c.samples);
     c.outliers = tukeyOutliers(c.samples);
   }

@@ -34,10 +34,13 @@ struct Measurement {
 
 // Runs cases[i]() once per round (each call returns one sample, e.g. a frame time in ms) until
 // minReps rounds are done and every median's interval is within targetCiPct, or maxReps.
-// Throws InputError for inconsistent options (naming --min-reps, --max-reps, --target-ci).
+// A case that returns NaN (it failed) is left out of the later rounds and of the target; its
+// samples are the ones before. Throws InputError for inconsistent options (naming --min-reps,
+// --max-reps, --target-ci).
 std::vector<Measurement> measureInterleaved(const std::vector<std::function<double()>>& cases,
-                                            const RepetitionOptions& options);
-void checkRepetitionOptions(const RepetitionOptions& options);
+                                            const RepetitionOptions& options, int leastMinReps = 2);
+// leastMinReps: 2 where an interval is always printed (the benchmarks); a sweep allows 1.
+void checkRepetitionOptions(const RepetitionOptions& options, int leastMinReps = 2);
 
 // The ratio of two cases' medians with a paired bootstrap 95% interval (the rounds resampled
 // together: both samples of a round saw the same state of the machine).

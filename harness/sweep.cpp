@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <new>
 #include <regex>
 #include <set>
@@ -15,6 +16,7 @@
 #include <thread>
 
 #include "harness/image.h"
+#include "harness/measure.h"
 #include "harness/metrics.h"
 #include "harness/stop.h"
 #include "reports/files.h"
@@ -104,16 +106,24 @@ fs::path caseFile(const fs::path& dir, const SweepCase& c) {
   return dir / "cases" / (c.stem + ".json");
 }
 
-// Runs one case and writes its images, then its result file (last, so a
-// result file means its images are complete).
-ojson runCase(const fs::path& dir, const SweepCase& c, RenderCache& cache) {
-  RenderResult out = runRender(c.request, &cache);
+// Runs a case once (its timed frames, images, errors) and writes its images; its result file
+// is written by writeCaseResult, last, once the interleaved rounds have added their timings,
+// so a result file means its images and timings are complete.
+struct CaseRun {
+  RenderResult out;  // images dropped once written
   ojson images = ojson::object();
-  if (c.request.image) {
+};
+
+CaseRun runCase(const fs::path& dir, const SweepCase& c, const RenderRequest& request,
+                RenderCache& cache) {
+  CaseRun run{runRender(request, &cache), ojson::object()};
+  RenderResult& out = run.out;
+  ojson& images = run.images;
+  if (request.image) {
     const std::string base = "images/" + c.stem;
     writeImage(out.image, (dir / (base + ".png")).string());
     images["image"] = base + ".png";
-    if (c.request.reference) {
+    if (request.reference) {
       writeImage(out.referenceImage, (dir / (base + ".reference.png")).string());
       writeImage(diffHeatmap(out.image, out.referenceImage, 0.25),
                  (dir / (base + ".heatmap.png")).string());
@@ -127,9 +137,9 @@ ojson runCase(const fs::path& dir, const SweepCase& c, RenderCache& cache) {
       images["animation"] = base + ".animation.png";
     }
   }
-  if (c.request.invariants) {
+  if (request.invariants) {
     // Identical results run to run: the case again, on a fresh device.
-    const RenderResult again = runRender(c.request, &cache);
+    const RenderResult again = runRender(request, &cache);
     auto curve = [](const RenderResult& r) {
       return r.probe ? r.probe->visibility : std::vector<float>{};
     };
@@ -141,11 +151,43 @@ ojson runCase(const fs::path& dir, const SweepCase& c, RenderCache& cache) {
         out.invariants->push_back({what, "not identical run to run"});
       }
   }
-  ojson result = ojson::parse(renderJson(out).dump());
+  return run;
+}
+
+ojson writeCaseResult(const fs::path& dir, const SweepCase& c, const CaseRun& run,
+                      const ojson& measurement) {
+  ojson result = ojson::parse(renderJson(run.out).dump());
+  if (!measurement.is_null()) result["measurement"] = measurement;
   result["case"] = {{"id", c.id}, {"group", c.group}, {"index", c.index}, {"params", c.params}};
-  result["images"] = images;
+  result["images"] = run.images;
   writeFileAtomic(caseFile(dir, c), result.dump(1) + "\n");
   return result;
+}
+
+// A later round of an interleaved case: its timed frame only (no errors, images, probe or
+// animation; a visibility-only case keeps its reference, which its timed output needs).
+RenderRequest timingRequest(const RenderRequest& q) {
+  RenderRequest t = q;
+  t.repeat = 1;
+  t.reference = !q.image;
+  t.probe.reset();
+  t.animate.reset();
+  t.invariants = false;
+  return t;
+}
+
+// Adds a later round's frames to the case's first run.
+void appendFrames(RenderResult& into, const RenderResult& more) {
+  into.frameMs.insert(into.frameMs.end(), more.frameMs.begin(), more.frameMs.end());
+  for (const PassTimes& p : more.passes) {
+    auto pass = std::find_if(into.passes.begin(), into.passes.end(),
+                             [&](const PassTimes& q) { return q.name == p.name; });
+    if (pass == into.passes.end())
+      into.passes.push_back(p);
+    else
+      pass->ms.insert(pass->ms.end(), p.ms.begin(), p.ms.end());
+  }
+  into.repeat += more.repeat;
 }
 
 // The result file of a case that failed: what it was and why, so the reports
@@ -355,9 +397,59 @@ nlohmann::json runContext() {
   return c;
 }
 
+namespace {
+
+// The rounds of a group: --min-reps (default: the group's largest `repeat`), --max-reps
+// (default: --min-reps, or 15 with --target-ci); back to back: one run of `repeat` frames.
+RepetitionOptions groupRepetitions(const SweepOptions& o,
+                                   const std::vector<const SweepCase*>& batch) {
+  RepetitionOptions r;
+  if (!o.interleave) {
+    r.minReps = r.maxReps = 1;
+    return r;
+  }
+  int repeat = 1;
+  for (const auto* c : batch) repeat = std::max(repeat, c->request.repeat);
+  r.minReps = o.minReps ? o.minReps : (o.maxReps ? std::min(repeat, o.maxReps) : repeat);
+  r.maxReps = o.maxReps ? o.maxReps : (o.targetCiPct > 0 ? std::max(r.minReps, 15) : r.minReps);
+  r.targetCiPct = o.targetCiPct;
+  return r;
+}
+
+// How a case's frame times were taken, with the median's bootstrap 95% interval and the
+// samples Tukey's fences mark as outliers (marked, never dropped).
+ojson measurementJson(const SweepOptions& o, const RenderResult& out,
+                      const std::vector<double>& startS) {
+  const Interval ci = bootstrapMedian(out.frameMs);
+  const std::vector<bool> marks = tukeyOutliers(out.frameMs);
+  ojson outliers = ojson::array();
+  for (std::size_t k = 0; k < marks.size(); ++k)
+    if (marks[k]) outliers.push_back(k);
+  ojson m = {{"mode", o.interleave ? "interleaved" : "back-to-back"},
+             {"samples", out.frameMs.size()},
+             {"median_ms", ci.estimate},
+             {"median_ci95_ms", {ci.low, ci.high}},
+             {"outliers", outliers}};
+  if (o.interleave) m["round_start_s"] = startS;
+  return m;
+}
+
+}  // namespace
+
 int runSweep(const SweepOptions& o) {
   const Suite suite = loadSuite(o.suitePath);
   if (o.out.empty()) throw InputError("--out DIR is required");
+  if (!o.interleave && (o.minReps || o.maxReps || o.targetCiPct > 0))
+    throw InputError(
+        "--min-reps, --max-reps and --target-ci take interleaved rounds: drop --no-interleave "
+        "(back to back, a case takes its `repeat` frames)");
+  if (o.minReps < 0 || o.maxReps < 0)
+    throw InputError("--min-reps and --max-reps: at least 1 (0: the default)");
+  if (o.minReps && o.maxReps && o.maxReps < o.minReps)
+    throw InputError("--max-reps " + std::to_string(o.maxReps) + ": below --min-reps " +
+                     std::to_string(o.minReps));
+  if (!(o.targetCiPct >= 0) || o.targetCiPct > 100)
+    throw InputError("--target-ci: a percentage in 0..100 (0: --min-reps rounds)");
   if (o.shardIndex < 1 || o.shardIndex > o.shardCount) throw InputError("bad --shard");
   std::optional<std::regex> filter;
   if (!o.filter.empty()) {
@@ -419,62 +511,104 @@ int runSweep(const SweepOptions& o) {
   ProgressLine::enable(!o.progressBar);  // the bar is the sweep's one line
   const auto start = std::chrono::steady_clock::now();
   const int startDone = done;
-  for (const auto* c : todo) {
-    const double elapsed =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (o.progressBar) progressLine(done - startDone, total - startDone, c->id, elapsed);
-    const auto t0 = std::chrono::steady_clock::now();
-    throwIfStopped();
-    ojson result;
-    std::string failed;
-    try {
-      result = runCase(dir, *c, cache);
-    } catch (const InputError& e) {
-      if (o.progressBar) std::cout << "\n";
-      throw InputError("case " + c->id + ": " + e.what());
-    } catch (const DeviceError& e) {  // out of memory included
-      failed = e.what();
-    } catch (const std::bad_alloc&) {
-      failed = "out of memory: a host allocation failed";
-    } catch (const Interrupted&) {
-      if (o.progressBar) std::cout << "\n";
-      std::cout << "stopped after " << done << " of " << total
-                << " cases; continue with --resume\n";
-      throw;
-    }
-    ++done;
-    if (!failed.empty()) {
-      result = failedCase(dir, *c, failed);
-      if (o.progressBar) std::cout << "\n";
-      // One line here; the whole message (resources, hint) is in the case file.
-      const std::string line = "case " + c->id + " failed: " + failed.substr(0, failed.find('\n')) +
-                               (failed.find('\n') != std::string::npos
-                                    ? " (the rest in " + caseFile(dir, *c).string() + ")"
-                                    : "");
-      std::cout << line << "\n" << std::flush;
-      failures.push_back(line);
-      if (o.failFast) {
-        std::cout << "--fail-fast: stopping at the first failed case\n";
-        break;
+  auto elapsed = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  struct StopAtFailure {};
+  try {
+    // A group's cases (consecutive in the suite) are measured together: round r renders every
+    // case of the group once (harness/measure.h), so a drift of the machine hits them alike.
+    for (std::size_t g = 0; g < todo.size();) {
+      std::size_t end = g;
+      while (end < todo.size() && todo[end]->group == todo[g]->group) ++end;
+      const std::vector<const SweepCase*> batch(todo.begin() + long(g), todo.begin() + long(end));
+      g = end;
+      const RepetitionOptions reps = groupRepetitions(o, batch);
+      std::vector<CaseRun> runs(batch.size());
+      std::vector<std::vector<double>> startS(batch.size());  // each round's start
+      std::vector<bool> failed(batch.size(), false);
+      std::vector<std::function<double()>> rounds;
+      for (std::size_t i = 0; i < batch.size(); ++i)
+        rounds.push_back([&, i]() -> double {
+          const SweepCase& c = *batch[i];
+          const bool first = startS[i].empty();
+          if (first && o.progressBar)
+            progressLine(done - startDone, total - startDone, c.id, elapsed());
+          const double t = elapsed();
+          throwIfStopped();
+          std::string reason;
+          try {
+            if (first) {
+              RenderRequest q = c.request;
+              if (o.interleave) q.repeat = 1;
+              runs[i] = runCase(dir, c, q, cache);
+              // Written; the rounds to come need only the timings.
+              runs[i].out.image = {};
+              runs[i].out.referenceImage = {};
+            } else {
+              appendFrames(runs[i].out, runRender(timingRequest(c.request), &cache));
+            }
+          } catch (const InputError& e) {
+            if (o.progressBar) std::cout << "\n";
+            throw InputError("case " + c.id + ": " + e.what());
+          } catch (const DeviceError& e) {  // out of memory included
+            reason = e.what();
+          } catch (const std::bad_alloc&) {
+            reason = "out of memory: a host allocation failed";
+          }
+          if (first) ++done;
+          if (!reason.empty()) {
+            failed[i] = true;
+            failedCase(dir, c, reason);
+            if (o.progressBar) std::cout << "\n";
+            // One line here; the whole message (resources, hint) is in the case file.
+            const std::string line = "case " + c.id +
+                                     " failed: " + reason.substr(0, reason.find('\n')) +
+                                     (reason.find('\n') != std::string::npos
+                                          ? " (the rest in " + caseFile(dir, c).string() + ")"
+                                          : "");
+            std::cout << line << "\n" << std::flush;
+            failures.push_back(line);
+            if (o.failFast) throw StopAtFailure{};
+            return std::numeric_limits<double>::quiet_NaN();
+          }
+          startS[i].push_back(t);
+          if (first && !o.progressBar)
+            std::cout << "[" << done << "/" << total << "] " << c.id << "  "
+                      << caseSummary(ojson::parse(renderJson(runs[i].out).dump())) << "  ("
+                      << std::fixed << std::setprecision(1) << elapsed() - t << " s)\n"
+                      << std::flush;
+          return runs[i].out.frameMs.empty() ? 0.0 : median(runs[i].out.frameMs);
+        });
+      measureInterleaved(rounds, reps, /*leastMinReps=*/1);
+      int measured = 0;
+      for (std::size_t i = 0; i < batch.size(); ++i) {
+        if (failed[i]) continue;
+        ++measured;
+        const ojson result =
+            writeCaseResult(dir, *batch[i], runs[i], measurementJson(o, runs[i].out, startS[i]));
+        for (const auto& line : invariantFailures(result)) {
+          if (o.progressBar) std::cout << "\n";
+          std::cout << line << "\n";
+          failures.push_back(line);
+        }
       }
-      continue;
+      if (o.interleave && reps.maxReps > 1 && measured && !o.progressBar)
+        std::cout << "  group " << batch.front()->group << ": " << measured << " cases, "
+                  << (startS.empty() ? 0 : startS.front().size()) << " interleaved rounds each\n"
+                  << std::flush;
     }
-    for (const auto& line : invariantFailures(result)) {
-      if (o.progressBar) std::cout << "\n";
-      std::cout << line << "\n";
-      failures.push_back(line);
-    }
-    if (!o.progressBar) {
-      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      std::cout << "[" << done << "/" << total << "] " << c->id << "  " << caseSummary(result)
-                << "  (" << std::fixed << std::setprecision(1) << s << " s)\n"
-                << std::flush;
-    }
+  } catch (const StopAtFailure&) {
+    std::cout << "--fail-fast: stopping at the first failed case\n";
+  } catch (const Interrupted&) {
+    if (o.progressBar) std::cout << "\n";
+    std::cout << "stopped after " << done << " of " << total
+              << " cases (a group's cases are written once all its rounds are done); continue "
+                 "with --resume\n";
+    throw;
   }
   if (o.progressBar) {
-    const double elapsed =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    progressLine(done - startDone, total - startDone, "done in " + duration(elapsed), elapsed);
+    progressLine(done - startDone, total - startDone, "done in " + duration(elapsed()), elapsed());
     std::cout << "\n";
   }
   std::cout << "references rendered: " << cache.referenceRenders << "\n";

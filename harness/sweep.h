@@ -21,6 +21,14 @@ struct SweepOptions {
   std::string shardSource;             // where --shard auto found it ("SLURM_ARRAY_TASK_ID")
   bool progressBar = false;            // a terminal: one updating line
   bool failFast = false;               // stop at the first failed case (else record it, go on)
+  // Timing (harness/measure.h): a group's cases are measured in interleaved rounds, each
+  // round rendering every case of the group once (a fresh device, its warm-up frames, one
+  // timed frame); the first round also makes the case's images and errors. Back to back
+  // (interleave false): one run of each case with its `repeat` frames, as `render` does.
+  bool interleave = true;
+  int minReps = 0;         // rounds always taken; 0: the group's largest `repeat`
+  int maxReps = 0;         // rounds at most; 0: minReps, or 15 with a target
+  double targetCiPct = 0;  // take rounds until every median's 95% interval is within +-PCT
 };
 
 // Runs the cases and writes the reports; returns the exit status: 0, or 1

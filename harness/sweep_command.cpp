@@ -26,6 +26,17 @@ void registerSweepCommands(CLI::App& app) {
     cmd->add_flag(
         "--fail-fast", o->failFast,
         "stop at the first failed case (default: record it and go on; exit 1 at the end)");
+    cmd->add_option("--min-reps", o->minReps,
+                    "interleaved rounds always taken (each renders every case of a group once); "
+                    "default: the group's largest `repeat`");
+    cmd->add_option("--max-reps", o->maxReps,
+                    "rounds at most; default: --min-reps, or 15 with --target-ci");
+    cmd->add_option("--target-ci", o->targetCiPct,
+                    "PCT: take rounds until every case's median frame time has a 95% interval "
+                    "within +-PCT of it (or --max-reps)");
+    cmd->add_flag("--interleave,!--no-interleave", o->interleave,
+                  "measure a group's cases in interleaved rounds (default), or each case's "
+                  "`repeat` frames back to back in one run");
     cmd->callback([o, shard] {
       runGuarded("sweep", [&] {
         if (shard->rfind("auto", 0) == 0) {

@@ -218,7 +218,7 @@ Group buildGroup(const std::string& name, const json* jgroup,
   g.table.header = g.params;
   // Total: against exact shadows and exact transparency; own: against the exact
   // technique of the other family with this case's own (docs/suites-and-results.md).
-  for (const char* h : {"Frame ms (median ± sd)", "Memory MiB", "Image RMSE (total)",
+  for (const char* h : {"Frame ms (median [95% CI] or ± sd)", "Memory MiB", "Image RMSE (total)",
                         "PSNR dB (total)", "FLIP mean (total)", "Visibility RMSE", "Own error of",
                         "Image RMSE (own)", "FLIP mean (own)"})
     g.table.header.push_back(h);
@@ -239,8 +239,18 @@ Group buildGroup(const std::string& name, const json* jgroup,
       continue;
     }
     Cell frame = num(frameMs(*r));
-    if (const auto sd = number(find(*r, {"frame_ms", "stddev"})); sd && frameMs(*r))
+    // A sweep's bootstrap interval of the median (and its marked outliers); older results: sd.
+    const json* ci = find(*r, {"measurement", "median_ci95_ms"});
+    if (ci && ci->is_array() && ci->size() == 2 && frameMs(*r)) {
+      frame.text += " [" + formatSig((*ci)[0].get<double>(), 3) + ", " +
+                    formatSig((*ci)[1].get<double>(), 3) + "]";
+      const json* out = find(*r, {"measurement", "outliers"});
+      if (out && out->is_array() && !out->empty())
+        frame.text +=
+            " (" + std::to_string(out->size()) + " outlier" + (out->size() > 1 ? "s" : "") + ")";
+    } else if (const auto sd = number(find(*r, {"frame_ms", "stddev"})); sd && frameMs(*r)) {
       frame.text += " ± " + formatSig(*sd, 2);
+    }
     cells.push_back(frame);
     cells.push_back(num(memoryMiB(*r)));
     cells.push_back(num(number(find(*r, {"error", "image", "rmse"}))));

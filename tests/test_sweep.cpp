@@ -40,6 +40,7 @@ json withoutTimings(json doc) {
   doc.erase("context");
   for (auto& r : doc["results"]) {
     r.erase("frame_ms");
+    r.erase("measurement");
     for (auto& p : r["passes"]) p.erase("ms");
   }
   return doc;
@@ -228,6 +229,73 @@ TEST(Sweep, RealReportLoadsInChromium) {
   EXPECT_NE(page.dom.find("data:image/png;base64,"), std::string::npos);
   const sbtest::ScreenshotVerdict shot = sbtest::inspectScreenshot(page.screenshot);
   EXPECT_FALSE(shot.blank) << shot.distinct << " colours, " << shot.inked << " inked";
+  fs::remove_all(dir);
+}
+
+// A group's cases are timed in interleaved rounds: every case's first round starts before any
+// case's second (a slow drift hits them alike); the rounds adapt to --target-ci within
+// --min-reps..--max-reps; --no-interleave takes a case's frames back to back.
+TEST(Sweep, RoundsInterleaveAGroupsCasesAndAdaptToTheTarget) {
+  const fs::path dir = tempDir("sweep-rounds");
+  const fs::path suite = writeSuite(dir, kTinySuite, "tiny.json");
+  auto caseFiles = [](const fs::path& out) {
+    std::vector<json> r;
+    for (const auto& e : fs::directory_iterator(out / "cases"))
+      r.push_back(json::parse(readFile(e.path())));
+    std::sort(r.begin(), r.end(), [](const json& a, const json& b) {
+      return a["case"]["index"].get<int>() < b["case"]["index"].get<int>();
+    });
+    return r;
+  };
+  const std::string base = "sweep " + suite.string() + " --filter '^shadows/' --out ";
+  CliResult r = runCli(base + (dir / "a").string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::vector<json> cases = caseFiles(dir / "a");
+  ASSERT_EQ(cases.size(), 6u);
+  double lastFirstRound = 0, firstSecondRound = 1e9;
+  for (const json& c : cases) {
+    const json& m = c["measurement"];
+    EXPECT_EQ(m["mode"], "interleaved");
+    ASSERT_EQ(m["samples"], 2) << "repeat 2: two rounds";
+    ASSERT_EQ(c["frame_ms"]["samples"].size(), 2u);
+    EXPECT_EQ(c["repeat"], 2);
+    for (const json& p : c["passes"]) EXPECT_EQ(p["ms"]["samples"].size(), 2u) << p["name"];
+    const auto ci = m["median_ci95_ms"].get<std::vector<double>>();
+    EXPECT_LE(ci[0], m["median_ms"].get<double>());
+    EXPECT_GE(ci[1], m["median_ms"].get<double>());
+    const auto start = m["round_start_s"].get<std::vector<double>>();
+    ASSERT_EQ(start.size(), 2u);
+    lastFirstRound = std::max(lastFirstRound, start[0]);
+    firstSecondRound = std::min(firstSecondRound, start[1]);
+  }
+  EXPECT_LT(lastFirstRound, firstSecondRound) << "every case's first round before any second";
+  EXPECT_NE(r.out.find("2 interleaved rounds each"), std::string::npos) << r.out;
+
+  // A target no frame time meets: --max-reps rounds.
+  r = runCli(base + (dir / "b").string() + " --min-reps 3 --max-reps 4 --target-ci 0.0001");
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const json& c : caseFiles(dir / "b")) EXPECT_EQ(c["measurement"]["samples"], 4);
+  // A target every median meets at once: --min-reps rounds.
+  r = runCli(base + (dir / "c").string() + " --min-reps 3 --max-reps 6 --target-ci 100");
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const json& c : caseFiles(dir / "c")) EXPECT_EQ(c["measurement"]["samples"], 3);
+
+  r = runCli(base + (dir / "d").string() + " --no-interleave");
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const json& c : caseFiles(dir / "d")) {
+    EXPECT_EQ(c["measurement"]["mode"], "back-to-back");
+    EXPECT_EQ(c["frame_ms"]["samples"].size(), 2u);
+    EXPECT_FALSE(c["measurement"].contains("round_start_s"));
+  }
+  // The report shows the interval.
+  EXPECT_NE(readFile(dir / "a" / "report.md").find("95% CI"), std::string::npos);
+
+  for (const std::string bad : {"--no-interleave --min-reps 3", "--min-reps 3 --max-reps 2",
+                                "--target-ci 101", "--min-reps -1"}) {
+    r = runCli(base + (dir / "e").string() + " " + bad);
+    EXPECT_EQ(r.status, 2) << bad;
+    EXPECT_FALSE(fs::exists(dir / "e")) << bad;
+  }
   fs::remove_all(dir);
 }
 
