@@ -214,11 +214,9 @@ const std::vector<TechniqueInfo>& oitCatalog() {
        "the rest as a weighted average under the product of (1 - alpha)",
        {{"k", "3", "nearest fragments blended in order per pixel, 1..16"}}},
       {"stochastic",
-       "stochastic transparency (Enderton et al. 2010): random sample masks on multisampled "
-       "targets, depth + accumulate + total alpha passes, alpha-corrected",
-       {{"samples", "8",
-         "samples per pixel S, 1..64: groups of the largest multisample count the device has "
-         "that divides S"},
+       "stochastic transparency (Enderton et al. 2010): random sample masks, S sample depths "
+       "per pixel, total alpha + depth + accumulate passes, alpha-corrected",
+       {{"samples", "8", "samples per pixel S, 1..64 (one pass each, S depths per pixel)"},
         {"seed", "1", "random seed of the coverage masks, 0..4294967295"}}},
       {"peel_classic",
        "depth peeling as the papers time it (Everitt 2001): one geometry pass per layer, "

@@ -126,10 +126,10 @@
 #define SB_SLOT_OOIT_ACCUM 0
 #define SB_SLOT_OOIT_LOG2T 1
 
-// stochastic: the params and the opaque depth in the multisampled hair passes
-// (beside the shadow lookup), the resolve's inputs (a full-screen pass)
+// stochastic: the params and the sample depths in the hair passes (beside the
+// shadow lookup), the resolve's inputs (a full-screen pass)
 #define SB_SLOT_STOCH_PARAMS 16
-#define SB_SLOT_STOCH_OPAQUE_DEPTH 17
+#define SB_SLOT_STOCH_DEPTHS 18
 #define SB_SLOT_STOCH_ACCUM 16
 #define SB_SLOT_STOCH_ALPHA 17
 

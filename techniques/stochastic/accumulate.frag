@@ -1,10 +1,13 @@
 // Stochastic transparency, accumulation: every hair fragment adds (a c, a)
-// to the samples where it is not behind the stochastic depth (test LessEqual,
-// no write); the pass's resolve averages the samples, so the fragment counts
-// with the fraction it passed: its estimated visibility prod(1 - a_j).
+// times the fraction of the S samples where it is not behind the stochastic
+// depth (its own covered samples hold its depth: <= passes), its estimated
+// visibility prod(1 - a_j) (additive blending into one RGBA32F target).
+layout(early_fragment_tests) in;
+#include "../common/view.glsl"
 #include "../common/shading.glsl"
 #include <shadow>
 #include "../kajiya_kay/hair_shading.glsl"
+#include "../common/fragment_key.glsl"
 #include "stochastic_pass.glsl"
 
 layout(location = 0) in vec3 vWorldPos;
@@ -13,7 +16,12 @@ layout(location = 2) in vec4 vColor;
 layout(location = 0) out vec4 outAccum;
 
 void main() {
-  if (behindOpaque()) discard;
+  uint samples = stochParams.y;
+  uint base = pixelIndex(viewViewport.x) * samples;
+  uint depth = floatBitsToUint(gl_FragCoord.z);
+  uint passed = 0u;
+  for (uint k = 0u; k < samples; ++k) passed += depth <= stochDepths[base + k] ? 1u : 0u;
+  float visibility = float(passed) / float(samples);
   vec3 c = shadeHair(vWorldPos, vTangent, vColor.rgb);
-  outAccum = vec4(c * vColor.a, vColor.a);
+  outAccum = vec4(c * vColor.a, vColor.a) * visibility;
 }

@@ -7,7 +7,7 @@
 namespace sb {
 
 namespace {
-constexpr uint32_t kParams = SB_SLOT_STOCH_PARAMS, kOpaqueDepth = SB_SLOT_STOCH_OPAQUE_DEPTH,
+constexpr uint32_t kParams = SB_SLOT_STOCH_PARAMS, kDepths = SB_SLOT_STOCH_DEPTHS,
                    kAccum = SB_SLOT_STOCH_ACCUM, kAlpha = SB_SLOT_STOCH_ALPHA;
 constexpr uint32_t kMaxSamples = 64;
 }  // namespace
@@ -25,28 +25,17 @@ void StochasticOit::setup(Device& dev, const GpuScene& scene, const RenderSettin
   shading_ = &shading;
   settings_ = s;
   targets_ = targets;
-  // The largest multisample count the device has that divides S (a mask has
-  // at most 32 bits); 1 always qualifies.
-  perGroup_ = 1;
-  for (uint32_t m = 2; m <= 32 && m <= options_.samples; m *= 2)
-    if (options_.samples % m == 0 && dev.supportsSamples(m)) perGroup_ = m;
-  const uint32_t m = perGroup_;
-
-  params_.clear();
-  for (uint32_t g = 0; g < groups(); ++g) {
-    const uint32_t p[4] = {options_.seed, g, m, targets.opaqueDrawn ? 1u : 0u};
-    params_.push_back(dev.createBuffer(
-        {"stochastic.params" + std::to_string(g), "frame", BufferUsage::Uniform, sizeof p}, p));
-  }
+  const uint32_t p[4] = {options_.seed, options_.samples, 0, 0};
+  params_ = dev.createBuffer({"stochastic.params", "frame", BufferUsage::Uniform, sizeof p}, p);
   const uint32_t w = s.width, h = s.height;
-  depthMs_ = dev.createTexture({"stochastic.depth", "oit", Format::Depth32F, w, h, false, 1, m});
-  accumMs_ = dev.createTexture({"stochastic.accum_ms", "oit", Format::RGBA32F, w, h, false, 1, m});
+  depths_ = dev.createBuffer({"stochastic.depths", "oit", BufferUsage::Storage,
+                              std::size_t(w) * h * options_.samples * 4});
   accum_ = dev.createTexture({"stochastic.accum", "oit", Format::RGBA32F, w, h, false});
-  sum_ = dev.createTexture({"stochastic.sum", "oit", Format::RGBA32F, w, h, false});
   alpha_ = dev.createTexture({"stochastic.alpha", "oit", Format::R32F, w, h, false});
 
   const ShaderDefines defs = shading.hairDefines();
   const ShaderCode vert = Geometry::strandVertexShader(s);
+  // Every hair pass tests the opaque depth (Less, no write).
   auto hairPipeline = [&](const std::string& pass, const std::string& shader, const Pass& decl,
                           auto&& fill) {
     const ShaderCode frag = loadShader(shader, defs);
@@ -57,37 +46,27 @@ void StochasticOit::setup(Device& dev, const GpuScene& scene, const RenderSettin
     d.fragment = &frag;
     d.topology = Geometry::strandTopology(s);
     d.bindings = decl.slots();
+    d.hasDepth = d.depthTest = true;
+    d.depthCompare = CompareOp::Less;
     fill(d);
     return dev.createPipeline(d);
   };
-  // Total alpha: T *= (1 - a), one sample, against the opaque depth.
+  // Total alpha: T *= (1 - a).
   alphaPipe_ = hairPipeline(
       "stochastic.alpha", "techniques/stochastic/alpha.frag", alphaPass(), [](PipelineDesc& d) {
         d.colorFormats = {Format::R32F};
         d.blend = {{true, BlendFactor::Zero, BlendFactor::OneMinusSrcColor, BlendOp::Add,
                     BlendFactor::Zero, BlendFactor::OneMinusSrcAlpha, BlendOp::Add}};
-        d.hasDepth = d.depthTest = true;
-        d.depthCompare = CompareOp::Less;
       });
-  // The stochastic depth: nearest covering fragment per sample.
-  depthPipe_ = hairPipeline("stochastic.depth", "techniques/stochastic/depth.frag", depthPass(0),
-                            [m](PipelineDesc& d) {
-                              d.hasDepth = d.depthTest = d.depthWrite = true;
-                              d.depthCompare = CompareOp::Less;
-                              d.samples = m;
-                            });
-  // Accumulation: every fragment where it is not behind the stochastic depth.
+  // The stochastic depth: the nearest covering fragment per sample (storage only).
+  depthPipe_ = hairPipeline("stochastic.depth", "techniques/stochastic/depth.frag", depthPass(),
+                            [](PipelineDesc&) {});
+  // Accumulation: every fragment weighted by the samples it is not behind.
   accumulatePipe_ = hairPipeline("stochastic.accumulate", "techniques/stochastic/accumulate.frag",
-                                 accumulatePass(0), [m](PipelineDesc& d) {
+                                 accumulatePass(), [](PipelineDesc& d) {
                                    d.colorFormats = {Format::RGBA32F};
                                    d.blend = {BlendState::additive()};
-                                   d.hasDepth = d.depthTest = true;
-                                   d.depthCompare = CompareOp::LessEqual;
-                                   d.samples = m;
                                  });
-
-  sumPipe_ = fullScreenPipeline(dev, "stochastic.sum", name(), "techniques/stochastic/sum.frag", {},
-                                {Format::RGBA32F}, {BlendState::additive()}, sumPass(0).slots());
   resolvePipe_ =
       fullScreenPipeline(dev, "stochastic.resolve", name(), "techniques/stochastic/resolve.frag",
                          {}, {Format::RGBA32F}, {hairOverBlend()}, resolvePass().slots());
@@ -104,31 +83,18 @@ Pass StochasticOit::alphaPass() const {
   return p.inputs(shading_->hairInputs());
 }
 
-// The multisampled passes test the opaque depth in the shader (its one sample
-// cannot be their attachment); without a mesh there is nothing to test.
-Inputs StochasticOit::hairInputs(uint32_t group) const {
-  Inputs in = shading_->hairInputs();
-  in.uniform(kParams, params_.empty() ? Buffer{} : params_[group]);
-  in.sample(kOpaqueDepth, targets_.depth);
-  return in;
-}
-
-Pass StochasticOit::depthPass(uint32_t group) const {
+Pass StochasticOit::depthPass() const {
   Pass p("stochastic.depth");
-  p.depth(depthMs_, LoadOp::Clear);
-  return p.inputs(hairInputs(group));
+  p.depthReadOnly(targets_.depth);
+  return p.inputs(Geometry::inputs(*scene_, shading_->viewUbo()))
+      .uniform(kParams, params_)
+      .storage(kDepths, depths_);
 }
 
-Pass StochasticOit::accumulatePass(uint32_t group) const {
+Pass StochasticOit::accumulatePass() const {
   Pass p("stochastic.accumulate");
-  p.color(accumMs_, LoadOp::Clear).resolveInto(accum_).depthReadOnly(depthMs_);
-  return p.inputs(hairInputs(group));
-}
-
-Pass StochasticOit::sumPass(uint32_t group) const {
-  Pass p("stochastic.sum");
-  p.color(sum_, group == 0 ? LoadOp::Clear : LoadOp::Load);
-  return p.sample(kAccum, accum_);
+  p.color(accum_, LoadOp::Clear).depthReadOnly(targets_.depth);
+  return p.inputs(shading_->hairInputs()).uniform(kParams, params_).readStorage(kDepths, depths_);
 }
 
 Pass StochasticOit::resolvePass() const {
@@ -136,27 +102,21 @@ Pass StochasticOit::resolvePass() const {
   Pass p("stochastic.resolve");
   p.color(targets_.color, targets_.opaqueDrawn ? LoadOp::Load : LoadOp::Clear,
           {bg.r, bg.g, bg.b, 1.0f});
-  return p.sample(kAccum, sum_).sample(kAlpha, alpha_);
+  return p.sample(kAccum, accum_).sample(kAlpha, alpha_);
 }
 
 void StochasticOit::addPasses(FrameGraph& graph, Device& dev) {
-  std::vector<Pass> passes = {alphaPass()};
-  for (uint32_t g = 0; g < groups(); ++g) {
-    passes.push_back(depthPass(g));
-    passes.push_back(accumulatePass(g));
-    passes.push_back(sumPass(g));
-  }
-  passes.push_back(resolvePass());
+  const Pass alpha = alphaPass(), depth = depthPass(), accumulate = accumulatePass(),
+             resolve = resolvePass();
   const uint32_t vertices = Geometry::strandVertexCount(*scene_, settings_);
-  graph.add(name(), passes, [this, &dev, passes, vertices] {
-    passes.front().draw(dev, alphaPipe_, vertices);
-    for (uint32_t g = 0; g < groups(); ++g) {
-      passes[1 + 3 * g].draw(dev, depthPipe_, vertices);
-      passes[2 + 3 * g].draw(dev, accumulatePipe_, vertices);
-      passes[3 + 3 * g].draw(dev, sumPipe_, 3);
-    }
-    passes.back().draw(dev, resolvePipe_, 3);
-  });
+  graph.add(name(), {alpha, depth, accumulate, resolve},
+            [this, &dev, alpha, depth, accumulate, resolve, vertices] {
+              dev.fillBuffer(depths_, 0xFFFFFFFFu);  // every sample empty (beyond depth 1)
+              alpha.draw(dev, alphaPipe_, vertices);
+              depth.draw(dev, depthPipe_, vertices);
+              accumulate.draw(dev, accumulatePipe_, vertices);
+              resolve.draw(dev, resolvePipe_, 3);
+            });
 }
 
 }  // namespace sb

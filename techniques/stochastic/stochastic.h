@@ -1,20 +1,21 @@
 // Stochastic transparency (Enderton, Sintorn, Shirley & Luebke 2010), the
-// unbiased three-pass version with alpha correction, on multisampled targets:
-//   1. depth: a multisampled depth pass where each hair fragment covers a
-//      random subset of the samples (gl_SampleMask), each with probability
-//      alpha (stochastic_math.glsl);
-//   2. accumulate: the hair again, depth-tested per sample against it (Less
-//      or equal, no write), adding (a c, a) into a multisampled RGBA32F target
-//      that the pass resolves (averages): each fragment weighted by the
-//      fraction of samples it passes, its estimated visibility;
-//   3. alpha: prod(1 - a) exactly (multiplicative blending, one sample);
+// unbiased three-pass version with alpha correction:
+//   1. alpha: prod(1 - a) exactly (multiplicative blending);
+//   2. depth: each hair fragment covers a random subset of the pixel's S
+//      samples, each with probability alpha (stochastic_math.glsl), and keeps
+//      per covered sample the nearest depth;
+//   3. accumulate: the hair again, adding (a c, a) times the fraction of the S
+//      samples it is not behind: its estimated visibility prod(1 - a_j);
 // and a full-screen resolve with the paper's alpha correction.
-// S samples per pixel (`samples`) are made of groups of m multisampled
-// samples, m the largest count the device has that divides S (the paper
-// combines passes the same way for more samples than the hardware has):
-// S/m groups of passes 1-2, their resolved sums added ("stochastic.sum").
-// `seed` changes every random draw. Memory: the m-sample depth and colour
-// targets, the resolved colour, the sum and the total alpha.
+// The S sample depths are a storage buffer (S words per pixel, atomicMin of
+// the depth's bits), not a multisampled depth target: Mesa's CPU drivers
+// rasterize lines in a multisampled pass with one depth for the whole pixel
+// (GL, multisample rasterization off for lines as Vulkan's Bresenham lines:
+// the sample mask did not limit the depth written; Vulkan: one depth test for
+// every sample), so the estimate had 1 sample per group of m on Vulkan and a
+// bias GL's samples did not reduce. The buffer gives every sample its own
+// depth for lines and ribbons alike, S up to 64 in one pass, the same on both
+// APIs. Memory: 4 S bytes per pixel + the accumulation (16) and alpha (4).
 #pragma once
 
 #include "techniques/common/technique.h"
@@ -33,27 +34,22 @@ class StochasticOit : public OitTechnique {
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
              const KajiyaKayShading& shading, const OitTargets& targets) override;
   void addPasses(FrameGraph& graph, Device& dev) override;
-  // The multisampled samples per group and the groups (m, S/m).
-  uint32_t samplesPerGroup() const { return perGroup_; }
-  uint32_t groups() const { return options_.samples / perGroup_; }
 
  private:
   Pass alphaPass() const;
-  Pass depthPass(uint32_t group) const;
-  Pass accumulatePass(uint32_t group) const;
-  Pass sumPass(uint32_t group) const;
+  Pass depthPass() const;
+  Pass accumulatePass() const;
   Pass resolvePass() const;
-  Inputs hairInputs(uint32_t group) const;
 
   Options options_;
-  uint32_t perGroup_ = 1;
   const GpuScene* scene_ = nullptr;
   const KajiyaKayShading* shading_ = nullptr;
   RenderSettings settings_;
   OitTargets targets_;
-  std::vector<Buffer> params_;  // one per group: (seed, group, samples, opaque)
-  Texture depthMs_, accumMs_, accum_, sum_, alpha_;
-  Pipeline alphaPipe_, depthPipe_, accumulatePipe_, sumPipe_, resolvePipe_;
+  Buffer params_;  // (seed, samples)
+  Buffer depths_;  // S sample depths per pixel (uint bits of the window depth)
+  Texture accum_, alpha_;
+  Pipeline alphaPipe_, depthPipe_, accumulatePipe_, resolvePipe_;
 };
 
 }  // namespace sb
