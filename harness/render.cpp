@@ -629,8 +629,11 @@ OwnError ownError(const RenderRequest& req, Device& dev, const Scene& scene,
   e.referenceOit = o.oit.str();
   if (o.technique == "shadow") e.visibility = out.visibilityError;
   if (!req.image) return e;
-  const std::string key =
-      referenceKey(req, settings, o.shadow) + "|own " + o.shadow.str() + " " + o.oit.str();
+  // Exact transparency is exact at pixel centres: one sample, as the full reference.
+  RenderSettings own = settings;
+  if (o.technique == "transparency") own.msaa = 1;
+  const std::string key = referenceKey(req, settings, o.shadow) + "|own " + o.shadow.str() + " " +
+                          o.oit.str() + "|msaa " + std::to_string(own.msaa);
   Image fresh;
   const Image* image = nullptr;
   if (o.shadow.str() == refShadow.str() && o.oit.str() == kReferenceOit) {
@@ -638,10 +641,9 @@ OwnError ownError(const RenderRequest& req, Device& dev, const Scene& scene,
   } else if (cache && cache->ownReferences.count(key)) {
     image = &cache->ownReferences.at(key);
   } else {
-    Renderer r(dev, scene, settings, makeShadowTechnique(o.shadow), makeOitTechnique(o.oit),
-               {"color"});
+    Renderer r(dev, scene, own, makeShadowTechnique(o.shadow), makeOitTechnique(o.oit), {"color"});
     r.renderFrame();
-    fresh = colorImage(r, settings);
+    fresh = colorImage(r, own);
     image = cache ? &(cache->ownReferences[key] = std::move(fresh)) : &fresh;
   }
   e.image = compareImages(out.image, *image);

@@ -510,7 +510,7 @@ std::vector<Setting> buildTable() {
     // is made.
     Setting& s = add(make("msaa", "--msaa", T::Enum, "1",
                           "samples per pixel of the frame (anti-aliasing): 1, 2, 4, 8, as the "
-                          "device supports; only --oit none is multisampled",
+                          "device supports; multisampled: --oit none, wsum, wavg, wboit",
                           "4", "3"));
     s.choices = {"1", "2", "4", "8"};
     s.get = [](const RenderRequest& r) { return ojson(std::to_string(r.msaa)); };

@@ -35,7 +35,8 @@ Renderer::Renderer(Device& dev, const Scene& scene, const RenderSettings& settin
     throw InputError("--msaa " + std::to_string(n) + ": transparency technique '" + oit_->name() +
                      "' keeps per-pixel data (fragment lists, layers, accumulation or occupancy "
                      "targets) that is not multisampled; it runs with --msaa 1 (multisampled: "
-                     "none; stochastic transparency has its own samples= option)");
+                     "none, wsum, wavg, wboit; stochastic transparency has its own samples= "
+                     "option)");
   Texture renderColor = color_, resolved;
   if (n > 1) {
     renderColor = dev.createTexture(

@@ -17,9 +17,19 @@ void BlendedOitBase::setup(Device& dev, const GpuScene& scene, const RenderSetti
   const Config cfg = config();
   targetDescs_ = cfg.targets;
   textures_.clear();
-  for (const Target& t : cfg.targets)
+  samplesTextures_.clear();
+  // --msaa N: the hair accumulates per sample into N-sample targets, averaged into the
+  // single-sampled ones the resolve reads (a per-pixel resolve of the averaged sums: exact
+  // where a pixel's samples see the same fragments, as lines do here; the edges of ribbons
+  // and of the mesh are where the samples differ).
+  const uint32_t n = s.msaa;
+  for (const Target& t : cfg.targets) {
     textures_.push_back(
         dev.createTexture({name() + "." + t.name, "oit", t.format, s.width, s.height, false}));
+    if (n > 1)
+      samplesTextures_.push_back(dev.createTexture(
+          {name() + "." + t.name + "_ms", "oit", t.format, s.width, s.height, false, 1, n}));
+  }
 
   // Accumulation: the hair, shaded through the shadow lookup, depth-tested
   // against the opaque depth without writing it.
@@ -40,6 +50,7 @@ void BlendedOitBase::setup(Device& dev, const GpuScene& scene, const RenderSetti
   d.hasDepth = d.depthTest = true;
   d.depthWrite = false;
   d.depthCompare = CompareOp::Less;
+  d.samples = n;
   d.bindings = accumulatePass().slots();
   accumulate_ = dev.createPipeline(d);
 
@@ -55,6 +66,7 @@ void BlendedOitBase::setup(Device& dev, const GpuScene& scene, const RenderSetti
   r.colorFormats = {Format::RGBA32F};
   r.blend = {{true, BlendFactor::One, BlendFactor::SrcAlpha, BlendOp::Add, BlendFactor::Zero,
               BlendFactor::One, BlendOp::Add}};
+  r.samples = n;  // over the (multisampled) opaque colour, then averaged into the frame
   r.bindings = resolvePass().slots();
   resolve_ = dev.createPipeline(r);
 }
@@ -62,8 +74,14 @@ void BlendedOitBase::setup(Device& dev, const GpuScene& scene, const RenderSetti
 // Nothing opaque drawn: the accumulation, the first pass, clears the depth to 1.
 Pass BlendedOitBase::accumulatePass() const {
   Pass p(name() + ".accumulate");
-  for (std::size_t i = 0; i < textures_.size(); ++i)
-    p.color(textures_[i], LoadOp::Clear, targetDescs_[i].clear);
+  for (std::size_t i = 0; i < textures_.size(); ++i) {
+    if (samplesTextures_.empty()) {
+      p.color(textures_[i], LoadOp::Clear, targetDescs_[i].clear);
+    } else {
+      p.color(samplesTextures_[i], LoadOp::Clear, targetDescs_[i].clear);
+      p.resolveInto(textures_[i]);
+    }
+  }
   if (targets_.opaqueDrawn)
     p.depthReadOnly(targets_.depth);
   else
@@ -76,6 +94,7 @@ Pass BlendedOitBase::resolvePass() const {
   Pass p(name() + ".resolve");
   p.color(targets_.color, targets_.opaqueDrawn ? LoadOp::Load : LoadOp::Clear,
           {bg.r, bg.g, bg.b, 1.0f});
+  if (targets_.resolved) p.resolveInto(targets_.resolved);  // --msaa: the samples averaged
   for (uint32_t i = 0; i < textures_.size(); ++i) p.sample(kFirstTarget + i, textures_[i]);
   return p;
 }

@@ -21,6 +21,8 @@ class BlendedOitBase : public OitTechnique {
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
              const KajiyaKayShading& shading, const OitTargets& targets) override;
   void addPasses(FrameGraph& graph, Device& dev) override;
+  // --msaa N: accumulated per sample, the sums averaged before the per-pixel resolve.
+  bool multisampled() const override { return true; }
 
  protected:
   struct Target {
@@ -46,7 +48,8 @@ class BlendedOitBase : public OitTechnique {
   RenderSettings settings_;
   OitTargets targets_;
   std::vector<Target> targetDescs_;
-  std::vector<Texture> textures_;
+  std::vector<Texture> textures_;         // what the resolve reads
+  std::vector<Texture> samplesTextures_;  // --msaa N > 1: the N-sample accumulation targets
   Pipeline accumulate_, resolve_;
 };
 
