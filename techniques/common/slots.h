@@ -37,9 +37,10 @@
 #define SB_SLOT_SHADOWMAP_DEPTH 8
 #define SB_SLOT_SHADOWMAP_PARAMS 9
 
-// dom: parameters (passes and lookup), the depth map (opacity pass), the maps (lookup)
+// dom: parameters (passes and lookup), the depth map z0 (opacity pass and lookup), the maps
+// (lookup)
 #define SB_SLOT_DOM_PARAMS 8
-#define SB_SLOT_DOM_DEPTH 9
+#define SB_SLOT_DOM_DEPTH 10
 #define SB_SLOT_DOM_MAPS 9
 
 // osm: parameters (passes and lookup), a map pass's parameters, the atlases (lookup)
