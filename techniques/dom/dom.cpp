@@ -73,7 +73,7 @@ void DeepOpacityMaps::setup(Device& dev, const GpuScene& scene, const RenderSett
 
   // The layer size s: absolute, or a fraction of the hair's depth range from
   // the light (from the hair points projected on the CPU).
-  const DepthRange range = depthRange(hairLightDepths(dev, scene, view.viewProj));
+  const DepthRange range = depthRange(hairLightDistances(dev, scene, view.viewProj));
   const float extent = range.farZ - range.nearZ;
   const float size = opt_.sizeAbs > 0.0f ? opt_.sizeAbs : opt_.sizeFrac * extent;
   const int K = static_cast<int>(opt_.layers);

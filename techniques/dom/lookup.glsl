@@ -23,7 +23,7 @@ float domZ;  // the point's light depth, less the bias
 float domOpacityAt(ivec2 t) {
   domTexel = t;
   float z0 =
-      domQuantize(texelFetch(domDepth, t, 0).r, int(domParams.w));
+      domQuantize(lightDistance(domViewProj, texelFetch(domDepth, t, 0).r), int(domParams.w));
   return domOpacity(domZ, z0, domLayout.x);
 }
 #define SB_FILTER_OPACITY(t) domOpacityAt(t)
@@ -34,7 +34,7 @@ float shadowVisibility(vec3 worldPos) {
   if (!toLightNdc(domViewProj, worldPos, ndc)) return 1.0;
   vec2 uv = ndc.xy * 0.5 + 0.5;
   if (opaqueVisibility(ndc, domParams.x) == 0.0) return 0.0;
-  domZ = ndc.z - domParams.x;
+  domZ = lightDistance(domViewProj, ndc.z - domParams.x);  // bias in window depth
   float omega = filteredOpacity(uv, int(domParams.y), domLayout.w);
   return opacityVisibility(omega, domParams.z);
 }
