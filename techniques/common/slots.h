@@ -127,6 +127,11 @@
 #define SB_SLOT_OOIT_ACCUM 0
 #define SB_SLOT_OOIT_LOG2T 1
 
+// fake: the three subset images in the blend (a full-screen pass)
+#define SB_SLOT_FAKE_IMAGE0 16
+#define SB_SLOT_FAKE_IMAGE1 17
+#define SB_SLOT_FAKE_IMAGE2 18
+
 // stochastic: the params and the opaque depth in the multisampled hair passes
 // (beside the shadow lookup), the resolve's inputs (a full-screen pass)
 #define SB_SLOT_STOCH_PARAMS 16
