@@ -16,6 +16,7 @@
 #include "techniques/dsm/dsm.h"
 #include "techniques/dual_peel/dual_peel.h"
 #include "techniques/exact/exact.h"
+#include "techniques/fake/fake.h"
 #include "techniques/fom/fom.h"
 #include "techniques/kbuffer/kbuffer.h"
 #include "techniques/mboit/mboit.h"
@@ -75,8 +76,12 @@ const std::vector<TechniqueInfo>& shadowCatalog() {
         {"slices", "128",
          "occupancy bits per texel, multiple of 32 (128 per RGBA32UI layer), 32..1024"},
         {"slabs", "4", "fragment counts per texel (4 per RGBA32F layer), dividing slices, 1..32"},
-        {"slab_map", "on", "on | off (occupancy only: every set bit counts as one fragment)"},
-        {"jitter", "off", "on | off: lookup jittered by up to half a texel (anti-aliasing)"}}},
+        {"slab_map", "on",
+         "on | off (every set bit counts as one fragment; not the paper's) | count (the paper's "
+         "occupancy-only variant: each set bit counts F/S, F the texel's fragment count, S its "
+         "set bits; one count per texel)"},
+        {"jitter", "off", "on | off: lookup jittered by up to half a texel (anti-aliasing)"},
+        {"jitter_samples", "1", "jitter=on: jittered lookups averaged (the paper's use), 1..64"}}},
       {"dc",
        "density clustering (Mertens et al. 2004): per-texel k-means of fragment depths",
        {{"size", "512", "map resolution (size x size), 1..16384"},
@@ -91,13 +96,15 @@ const std::vector<TechniqueInfo>& shadowCatalog() {
         {"gamma", "2", "slicing=gamma exponent: D_i = near + (far-near)(i/n)^gamma, 0.1..10"},
         {"passes", "multi",
          "single (one hair pass per map, the original) | multi (up to 6 targets x 4 maps a pass)"},
-        {"bits", "32", "8 (RGBA8 unorm, kappa-scaled) | 16 (RGBA16F) | 32 (RGBA32F)"},
+        {"bits", "32",
+         "8 (RGBA8 unorm, kappa-scaled: the paper's limited-bit maps) | 16 (RGBA16F: half "
+         "float counts, not kappa-scaled; exact to 2048 fragments) | 32 (RGBA32F)"},
         {"kappa", "0", "bits=8: e^-kappa at opacity 1; 0 derives 8 ln 2 (the paper), 0..100"},
         {"size", "512", "map resolution (size x size), 1..16384"},
         {"bias", "0.002", "depth bias in light depth units [0,1], 0..1"},
         {"filter", "none",
          "lookup kernel on the opacity (Unreal): none | pcf2x2 | pcf6x4 (3x3 pcf2x2, 2 apart) | "
-         "pcf6x6 (36 texels)"}}},
+         "pcf6x6 (36 texels) | box3x3 (the OSM paper's 3x3 average)"}}},
       {"dom",
        "deep opacity maps (Yuksel & Keyser 2008): layers that follow the hair from its first depth",
        {{"layers", "3", "opacity layers K, 1..31 (K = 4n-1 fills n RGBA layers of one array)"},
@@ -109,10 +116,12 @@ const std::vector<TechniqueInfo>& shadowCatalog() {
         {"size_abs", "0", "layer size in light depth units (0: use size_frac), 0..1"},
         {"size_frac", "0.1", "layer size as a fraction of the hair's depth range from the light"},
         {"beyond", "last", "fragments beyond the last layer: ignore | last | extend"},
-        {"depth_bits", "32", "precision of the depth map z0: 8 | 16 | 32"},
+        {"depth_bits", "32",
+         "precision of z0 (the depth-only pass's 32-bit float depth map), quantized "
+         "where read: 8 | 16 | 32"},
         {"filter", "none",
          "lookup kernel on the opacity (Unreal): none | pcf2x2 | pcf6x4 (3x3 pcf2x2, 2 apart) | "
-         "pcf6x6 (36 texels)"},
+         "pcf6x6 (36 texels) | box3x3 (the OSM paper's 3x3 average)"},
         {"size", "512", "map resolution (size x size), 1..16384"},
         {"bias", "0.002", "depth bias in light depth units [0,1], 0..1"}}},
       {"dsm",
@@ -191,7 +200,12 @@ const std::vector<TechniqueInfo>& oitCatalog() {
        {{"slices", "128",
          "occupancy bits per pixel, multiple of 32 (128 per RGBA32UI layer), 32..1024"},
         {"slabs", "4", "fragment counts per pixel (4 per RGBA32F layer), dividing slices, 1..32"},
-        {"lambda", "on", "on | off: renormalise the hair weights to 1 - prod(1 - alpha)"}}},
+        {"lambda", "on",
+         "on | off: renormalise the hair weights to 1 - prod(1 - alpha) (Lambda / hair.a: the "
+         "printed hair.a / Lambda inverted, see README)"},
+        {"order", "corrected",
+         "corrected (the fragment's own share taken out, spread within its slice) | paper (the "
+         "printed F_i / B_total * B_before)"}}},
       {"mboit",
        "moment-based OIT (Muenstermann et al. 2018): transmittance from power moments of "
        "log depth, the paper's bias; two hair passes",
@@ -222,6 +236,10 @@ const std::vector<TechniqueInfo>& oitCatalog() {
        "depth peeling as the papers time it (Everitt 2001): one geometry pass per layer, "
        "depth ties lost and counted",
        {{"layers", "65536", "most layers peeled (a cap that is reported), 1..1000000"}}},
+      {"fake",
+       "fake transparency (Yuksel & Keyser 2008, section 5): the strands in 3 interleaved "
+       "subsets, each drawn opaque into its own image, the 3 images blended equally",
+       {}},
       {"dual_peel",
        "dual depth peeling (Bavoil & Myers 2008): the nearest and farthest layers per pass, "
        "ceil(layers/2) peel passes after one min/max depth pass",
@@ -251,6 +269,7 @@ std::unique_ptr<OitTechnique> makeOitTechnique(const Spec& spec) {
     return std::make_unique<DualPeelOit>(static_cast<uint32_t>(o.integer("layers", 1, 1000000)));
   if (spec.name == "stochastic")
     return std::make_unique<StochasticOit>(StochasticOit::readOptions(o));
+  if (spec.name == "fake") return std::make_unique<FakeTransparency>();
   if (spec.name == "wsum") return std::make_unique<WeightedOit>(WeightedOit::Mode::Sum);
   if (spec.name == "wavg") return std::make_unique<WeightedOit>(WeightedOit::Mode::Average);
   if (spec.name == "wboit")

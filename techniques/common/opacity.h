@@ -9,6 +9,7 @@
 #include <glm/glm.hpp>
 #include <vector>
 
+#include "techniques/common/light_space.h"
 #include "techniques/common/technique.h"
 
 namespace sb {
@@ -55,6 +56,15 @@ inline std::vector<float> hairLightDepths(Device& dev, const GpuScene& scene,
     const float d = c.z / c.w;
     if (std::isfinite(d)) z.push_back(std::clamp(d, 0.0f, 1.0f));
   }
+  return z;
+}
+
+// hairLightDepths as the opacity techniques slice them: lightDistance
+// (light_space.glsl), linear in distance for a point light.
+inline std::vector<float> hairLightDistances(Device& dev, const GpuScene& scene,
+                                             const glm::mat4& viewProj) {
+  std::vector<float> z = hairLightDepths(dev, scene, viewProj);
+  for (float& d : z) d = std::clamp(glsl::lightDistance(viewProj, d), 0.0f, 1.0f);
   return z;
 }
 

@@ -8,10 +8,16 @@
 //   pcf6x4  Unreal's "PCF_6x4": a 3x3 grid of pcf2x2 samples 2 texels apart,
 //           equal weights (a 6x6 footprint from 9 bilinear samples)
 //   pcf6x6  every texel of the 6x6 footprint, equal weights
+//   box3x3  the opacity shadow maps paper's own lookup (Kim & Neumann 2001,
+//           section 3: "We use a 3x3 averaging kernel"): the point's texel
+//           and its 8 neighbours, equal weights. Averaging each texel's
+//           interpolated opacity is averaging the maps, then interpolating
+//           (interpolation between two slices is linear).
 const int kFilterNone = 0;
 const int kFilterPcf2x2 = 1;
 const int kFilterPcf6x4 = 2;
 const int kFilterPcf6x6 = 3;
+const int kFilterBox3x3 = 4;
 
 #ifdef SB_FILTER_OPACITY
 
@@ -47,6 +53,13 @@ float filteredOpacity(vec2 uv, int size, int kernel) {
     for (int y = 0; y < 6; ++y)
       for (int x = 0; x < 6; ++x) sum += SB_FILTER_OPACITY(filterClamp(c + ivec2(x, y), size));
     return sum / 36.0f;
+  }
+  if (kernel == kFilterBox3x3) {
+    ivec2 c = ivec2(floor(p));
+    float sum = 0.0f;
+    for (int y = -1; y <= 1; ++y)
+      for (int x = -1; x <= 1; ++x) sum += SB_FILTER_OPACITY(filterClamp(c + ivec2(x, y), size));
+    return sum / 9.0f;
   }
   return SB_FILTER_OPACITY(filterClamp(ivec2(p), size));
 }

@@ -12,10 +12,11 @@ namespace glsl {
 }  // namespace glsl
 
 inline int readFilter(const OptionReader& o) {
-  const std::string f = o.choice("filter", {"none", "pcf2x2", "pcf6x4", "pcf6x6"});
+  const std::string f = o.choice("filter", {"none", "pcf2x2", "pcf6x4", "pcf6x6", "box3x3"});
   return f == "pcf2x2"   ? glsl::kFilterPcf2x2
          : f == "pcf6x4" ? glsl::kFilterPcf6x4
          : f == "pcf6x6" ? glsl::kFilterPcf6x6
+         : f == "box3x3" ? glsl::kFilterBox3x3
                          : glsl::kFilterNone;
 }
 

@@ -1,5 +1,7 @@
 #include "techniques/common/pass.h"
 
+#include <stdexcept>
+
 namespace sb {
 
 Inputs& Inputs::uniform(uint32_t slot, Buffer b) {
@@ -30,6 +32,15 @@ Inputs& Inputs::sampleArray(uint32_t slot, Texture t) {
 Inputs& Inputs::add(const Inputs& more) {
   inputs_.insert(inputs_.end(), more.inputs_.begin(), more.inputs_.end());
   return *this;
+}
+
+Inputs& Inputs::replaceBuffer(uint32_t slot, Buffer b) {
+  for (Input& i : inputs_)
+    if (i.slot.binding == slot && !i.texture) {
+      i.buffer = b;
+      return *this;
+    }
+  throw std::logic_error("Inputs::replaceBuffer: no buffer at slot " + std::to_string(slot));
 }
 
 std::vector<BindingSlot> Inputs::slots() const {

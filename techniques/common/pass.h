@@ -36,6 +36,9 @@ class Inputs {
   Inputs& sample(uint32_t slot, Texture t);       // sampler2D
   Inputs& sampleArray(uint32_t slot, Texture t);  // sampler2DArray
   Inputs& add(const Inputs& more);
+  // The buffer bound at `slot` swapped for `b` (e.g. a subset of the scene's
+  // segments); the slot must be bound already (std::logic_error otherwise).
+  Inputs& replaceBuffer(uint32_t slot, Buffer b);
 
   std::vector<BindingSlot> slots() const;
   std::vector<Binding> bindings() const;

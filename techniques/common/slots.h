@@ -37,9 +37,10 @@
 #define SB_SLOT_SHADOWMAP_DEPTH 8
 #define SB_SLOT_SHADOWMAP_PARAMS 9
 
-// dom: parameters (passes and lookup), the depth map (opacity pass), the maps (lookup)
+// dom: parameters (passes and lookup), the depth map z0 (opacity pass and lookup), the maps
+// (lookup)
 #define SB_SLOT_DOM_PARAMS 8
-#define SB_SLOT_DOM_DEPTH 9
+#define SB_SLOT_DOM_DEPTH 10
 #define SB_SLOT_DOM_MAPS 9
 
 // osm: parameters (passes and lookup), a map pass's parameters, the atlases (lookup)
@@ -125,6 +126,11 @@
 #define SB_SLOT_OOIT_SLABS 25
 #define SB_SLOT_OOIT_ACCUM 0
 #define SB_SLOT_OOIT_LOG2T 1
+
+// fake: the three subset images in the blend (a full-screen pass)
+#define SB_SLOT_FAKE_IMAGE0 16
+#define SB_SLOT_FAKE_IMAGE1 17
+#define SB_SLOT_FAKE_IMAGE2 18
 
 // stochastic: the params and the sample depths in the hair passes (beside the
 // shadow lookup), the resolve's inputs (a full-screen pass)

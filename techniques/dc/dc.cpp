@@ -26,6 +26,8 @@ ShadowLookup DensityClusteringShadow::lookup() const {
   ShadowLookup l{"techniques/dc/lookup.glsl"};
   l.defines.defines.push_back({"SB_DC_CLUSTERS", std::to_string(opts_.clusters)});
   l.defines.defines.push_back({"SB_DC_LAYERS", std::to_string(layers())});
+  // The passes place fragments by light distance (light_pass_depth.glsl).
+  l.defines.defines.push_back({"SB_LIGHT_DISTANCE", "1"});
   l.inputs.uniform(kParams, params_)
       .sample(kRange, range_)
       .sampleArray(kCounts, counts_)

@@ -4,6 +4,7 @@
 // targets are the layers of the three arrays, 4 clusters per layer.
 #include "dc_math.glsl"
 #include "../common/slots.h"
+#include "../common/light_pass_depth.glsl"
 
 layout(binding = SB_SLOT_DC_RANGE) uniform sampler2D dcRange;  // x: nearest, y: -furthest depth
 layout(binding = SB_SLOT_DC_CENTRES) uniform sampler2DArray dcCentres;  // one channel per cluster
@@ -14,7 +15,7 @@ layout(location = 0) out vec4 outMaps[3 * SB_DC_LAYERS];
 void main() {
   ivec2 t = ivec2(gl_FragCoord.xy);
   float zMin = texelFetch(dcRange, t, 0).r;
-  float z = gl_FragCoord.z;
+  float z = passDepth();
   // The nearest centre of each layer's clusters, then the nearest of those
   // (ties: the lower index, as within a layer).
   int layer = 0;

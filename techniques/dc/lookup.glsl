@@ -26,10 +26,11 @@ float shadowVisibility(vec3 worldPos) {
   int size = int(dcParams.y);
   ivec2 t = clamp(ivec2(floor(uv * dcParams.y)), ivec2(0), ivec2(size - 1));
   vec2 r = texelFetch(dcRange, t, 0).rg;
+  float zLight = lightDistance(dcViewProj, ndc.z - bias);  // bias in window depth
   float n = 0.0;
   for (int l = 0; l < SB_DC_LAYERS; ++l) {
     ivec3 p = ivec3(t, l);
-    n += dcCount(ndc.z - bias, r.x, -r.y, texelFetch(dcCounts, p, 0), texelFetch(dcSums, p, 0),
+    n += dcCount(zLight, r.x, -r.y, texelFetch(dcCounts, p, 0), texelFetch(dcSums, p, 0),
                  texelFetch(dcSquares, p, 0), min(SB_DC_CLUSTERS - 4 * l, 4));
   }
   return dcVisibility(n, dcParams.z);

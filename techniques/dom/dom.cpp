@@ -73,7 +73,7 @@ void DeepOpacityMaps::setup(Device& dev, const GpuScene& scene, const RenderSett
 
   // The layer size s: absolute, or a fraction of the hair's depth range from
   // the light (from the hair points projected on the CPU).
-  const DepthRange range = depthRange(hairLightDepths(dev, scene, view.viewProj));
+  const DepthRange range = depthRange(hairLightDistances(dev, scene, view.viewProj));
   const float extent = range.farZ - range.nearZ;
   const float size = opt_.sizeAbs > 0.0f ? opt_.sizeAbs : opt_.sizeFrac * extent;
   const int K = static_cast<int>(opt_.layers);
@@ -89,7 +89,9 @@ void DeepOpacityMaps::setup(Device& dev, const GpuScene& scene, const RenderSett
   for (int k = 0; k <= K; ++k) p.d[k / 4][k % 4] = d_[std::size_t(k)];
   params_ = dev.createBuffer({"dom.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
 
-  depth_ = dev.createTexture({"dom.depth", "shadow", Format::R32F, opt_.size, opt_.size, false});
+  // z0: the depth buffer of a depth-only pass (the paper's depth map).
+  depth_ =
+      dev.createTexture({"dom.depth", "shadow", Format::Depth32F, opt_.size, opt_.size, false});
   maps_ = dev.createTexture(
       {"dom.opacity", "shadow", Format::RGBA32F, opt_.size, opt_.size, false, targets()});
   if (!scene.hasHair()) return;
@@ -100,14 +102,15 @@ void DeepOpacityMaps::setup(Device& dev, const GpuScene& scene, const RenderSett
   d.vertex = &vert;
   d.topology = Geometry::strandTopology(s);
   {
-    const ShaderCode frag = loadShader("techniques/dom/depth.frag");
+    const ShaderCode frag = loadShader("techniques/common/depth_only.frag");
     d.name = "dom.depth";
     d.fragment = &frag;
-    d.colorFormats = {Format::R32F, Format::RGBA32F};
-    d.blend = {BlendState::min(), BlendState::min()};
+    d.hasDepth = d.depthTest = d.depthWrite = true;
+    d.depthCompare = CompareOp::Less;
     d.bindings = depthPass().slots();
     depthPipeline_ = dev.createPipeline(d);
   }
+  d.hasDepth = d.depthTest = d.depthWrite = false;
   ShaderDefines defs;
   defs.defines.push_back({"SB_DOM_TARGETS", std::to_string(targets())});
   const ShaderCode frag = loadShader("techniques/dom/opacity.frag", defs);
@@ -119,21 +122,21 @@ void DeepOpacityMaps::setup(Device& dev, const GpuScene& scene, const RenderSett
   opacityPipeline_ = dev.createPipeline(d);
 }
 
-// The nearest hair depth z0 per texel (min blending), also into the first
-// channel of layer 0 of the maps (depth.frag).
+// The paper's first step: the nearest hair depth z0 per texel, a depth-only
+// pass with the depth test (no colour targets), z0 stored once. depth_bits
+// quantizes z0 where it is read (quantizing is monotonic, so the quantized
+// minimum is the minimum of the quantized depths, as the min blending of the
+// colour pass this replaced stored it).
 Pass DeepOpacityMaps::depthPass() const {
   return Pass("dom.depth")
-      .color(depth_, LoadOp::Clear, {1, 0, 0, 0})
-      .color(maps_, LoadOp::Clear, {1, 0, 0, 0}, 0)
-      .inputs(Geometry::inputs(*scene_, lightView_))
-      .uniform(kParams, params_);
+      .depth(depth_, LoadOp::Clear)
+      .inputs(Geometry::inputs(*scene_, lightView_));
 }
 
 // Each fragment adds its opacity to the layers behind it (z - z0 against d_k).
 Pass DeepOpacityMaps::opacityPass() const {
   Pass p("dom.opacity");
-  for (uint32_t t = 0; t < targets(); ++t)
-    p.color(maps_, t == 0 ? LoadOp::Load : LoadOp::Clear, {0, 0, 0, 0}, t);
+  for (uint32_t t = 0; t < targets(); ++t) p.color(maps_, LoadOp::Clear, {0, 0, 0, 0}, t);
   return p.inputs(Geometry::inputs(*scene_, lightView_))
       .uniform(kParams, params_)
       .sample(kDepth, depth_);
@@ -150,7 +153,7 @@ void DeepOpacityMaps::addPasses(FrameGraph& graph, Device& dev) {
 
 ShadowLookup DeepOpacityMaps::lookup() const {
   ShadowLookup l{"techniques/dom/lookup.glsl"};
-  l.inputs.uniform(kParams, params_).sampleArray(kMaps, maps_);
+  l.inputs.uniform(kParams, params_).sampleArray(kMaps, maps_).sample(kDepth, depth_);
   opaque_.addTo(l);
   return l;
 }

@@ -7,11 +7,13 @@
 namespace sb {
 
 // Deep opacity maps (Yuksel & Keyser 2008): a depth map of the hair from the
-// light gives each texel the depth z0 where its hair begins; K opacity layers
-// [z0 + d_(k-1), z0 + d_k) follow the hair's shape. One hair pass accumulates
-// every fragment into its layer and all layers behind it (additive blending);
-// K = 4n - 1 layers are packed in the n RGBA layers of one texture array with
-// z0 in the first channel (the slides' layout), each layer a render target.
+// light (a depth-only pass, the paper's first step) gives each texel the depth
+// z0 where its hair begins; K opacity layers [z0 + d_(k-1), z0 + d_k) follow
+// the hair's shape. One hair pass accumulates every fragment into its layer
+// and all layers behind it (additive blending); K = 4n - 1 layers are packed
+// in the n RGBA layers of one texture array (channel 0 of layer 0, where the
+// slides keep z0, is unused: z0 is read from the depth map), each layer a
+// render target.
 // The lookup interpolates within the point's layer and returns
 // (1 - alpha_s)^opacity.
 class DeepOpacityMaps : public ShadowTechnique {
@@ -24,7 +26,7 @@ class DeepOpacityMaps : public ShadowTechnique {
     float sizeAbs = 0.0f;     // layer size s in light depth units (0: use sizeFrac)
     float sizeFrac = 0.1f;    // s as a fraction of the hair's depth range from the light
     int beyond = 1;           // kDomIgnore | kDomLast | kDomExtend
-    uint32_t depthBits = 32;  // z0 quantized to 8, 16 or 32 bits
+    uint32_t depthBits = 32;  // z0 quantized to 8, 16 or 32 bits where it is read
     uint32_t size = 512;
     float bias = 0.002f;
   };
@@ -39,9 +41,9 @@ class DeepOpacityMaps : public ShadowTechnique {
 
   const std::vector<float>& boundaries() const { return d_; }
   uint32_t targets() const { return (opt_.layers + 4) / 4; }  // layers of the array
+  Pass depthPass() const;  // depth-only: a depth attachment, no colour targets
 
  private:
-  Pass depthPass() const;
   Pass opacityPass() const;
 
   Options opt_;

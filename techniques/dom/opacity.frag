@@ -1,7 +1,9 @@
 // Step 2: every hair fragment adds 1 to the layer it falls in and to every
-// layer behind it (additive blending); channel 0 of target 0 (z0) gets 0.
+// layer behind it (additive blending). Channel 0 of target 0 is unused (0):
+// z0 lives in the depth map only, quantized to the depth bits as it is read.
 #include "dom.glsl"
 #include "../common/opacity.glsl"
+#include "../common/light_space.glsl"
 #include "../common/slots.h"
 
 layout(binding = SB_SLOT_DOM_DEPTH) uniform sampler2D domDepth;
@@ -20,7 +22,8 @@ vec4 domTarget(int t, float dz) {
 }
 
 void main() {
-  float z0 = texelFetch(domDepth, ivec2(gl_FragCoord.xy), 0).r;
-  float dz = max(gl_FragCoord.z - z0, 0.0);
+  float zWin = texelFetch(domDepth, ivec2(gl_FragCoord.xy), 0).r;
+  float z0 = domQuantize(lightDistance(domViewProj, zWin), int(domParams.w));
+  float dz = max(lightDistance(domViewProj, gl_FragCoord.z) - z0, 0.0);
   for (int t = 0; t < SB_DOM_TARGETS; ++t) domOut[t] = domTarget(t, dz);
 }

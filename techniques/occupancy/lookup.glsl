@@ -27,16 +27,13 @@ vec2 occupancyJitter(vec3 texelSpace) {
                     sin(dot(texelSpace, vec3(6.9173, 3.7351, 4.7717))));
 }
 
-float shadowVisibility(vec3 worldPos) {
-  vec3 ndc;
-  if (!toLightNdc(occViewProj, worldPos, ndc)) return 1.0;
-  vec2 uv = ndc.xy * 0.5 + 0.5;
-  float bias = occParams.x;
-  if (opaqueVisibility(ndc, bias) == 0.0) return 0.0;
-  vec2 texelPos = uv * occParams.y;
-#if SB_OCC_JITTER
-  texelPos += occupancyJitter(vec3(texelPos, ndc.z * occParams.y));
+#ifndef SB_OCC_JITTER_SAMPLES
+#define SB_OCC_JITTER_SAMPLES 1
 #endif
+
+// The visibility from the maps of the texel at texelPos (in texels) for a
+// point at light distance z.
+float occupancyVisibilityAt(vec2 texelPos, float z) {
   int size = int(occParams.y);
   ivec2 t = clamp(ivec2(floor(texelPos)), ivec2(0), ivec2(size - 1));
   vec2 r = texelFetch(occRange, t, 0).rg;
@@ -54,7 +51,30 @@ float shadowVisibility(vec3 worldPos) {
     for (int c = 0; c < 4; ++c) slabs[4 * m + c] = f[c];
   }
 #endif
-  float n = occupancyCount(ndc.z - bias, r.x, -r.y, bits, slabs, SB_OCC_SLICES, SB_OCC_SLABS,
+  float n = occupancyCount(z, r.x, -r.y, bits, slabs, SB_OCC_SLICES, SB_OCC_SLABS,
                            SB_OCC_SLAB_TARGETS > 0);
   return occupancyVisibility(n, occParams.z);
+}
+
+float shadowVisibility(vec3 worldPos) {
+  vec3 ndc;
+  if (!toLightNdc(occViewProj, worldPos, ndc)) return 1.0;
+  vec2 uv = ndc.xy * 0.5 + 0.5;
+  float bias = occParams.x;
+  if (opaqueVisibility(ndc, bias) == 0.0) return 0.0;
+  vec2 texelPos = uv * occParams.y;
+  float z = lightDistance(occViewProj, ndc.z - bias);  // bias in window depth
+#if SB_OCC_JITTER
+  // The paper jitters the lookup by up to half a texel and relies on the
+  // many fragments blended per pixel to average it; jitter_samples averages
+  // that many jittered lookups in the one fragment (1: a single lookup).
+  float sum = 0.0;
+  for (int j = 0; j < SB_OCC_JITTER_SAMPLES; ++j) {
+    vec3 seed = vec3(texelPos, ndc.z * occParams.y + 1.618034 * float(j));
+    sum += occupancyVisibilityAt(texelPos + occupancyJitter(seed), z);
+  }
+  return sum / float(SB_OCC_JITTER_SAMPLES);
+#else
+  return occupancyVisibilityAt(texelPos, z);
+#endif
 }

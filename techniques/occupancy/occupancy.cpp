@@ -17,8 +17,12 @@ OccupancyShadow::Options OccupancyShadow::readOptions(const OptionReader& o) {
   opts.bias = static_cast<float>(o.number("bias", 0.0, 1.0));
   opts.slices = static_cast<uint32_t>(o.integer("slices", 32, OccupancyMaps::kMaxSlices));
   opts.slabs = static_cast<uint32_t>(o.integer("slabs", 1, OccupancyMaps::kMaxSlabs));
-  opts.slabMap = o.choice("slab_map", {"on", "off"}) == "on";
+  const std::string slabMap = o.choice("slab_map", {"on", "off", "count"});
+  opts.slabMap = slabMap != "off";
+  opts.countOnly = slabMap == "count";
+  if (opts.countOnly) opts.slabs = 1;  // one count per texel: F of the paper's F / S
   opts.jitter = o.choice("jitter", {"on", "off"}) == "on";
+  opts.jitterSamples = static_cast<uint32_t>(o.integer("jitter_samples", 1, 64));
   const std::string what = "shadow technique 'occupancy': ";
   if (opts.slices % 32 != 0)
     throw InputError(what + "slices=" + std::to_string(opts.slices) +
@@ -32,6 +36,7 @@ OccupancyShadow::Options OccupancyShadow::readOptions(const OptionReader& o) {
 ShadowLookup OccupancyShadow::lookup() const {
   ShadowLookup l{"techniques/occupancy/lookup.glsl", maps_.defines()};
   l.defines.defines.push_back({"SB_OCC_JITTER", opts_.jitter ? "1" : "0"});
+  l.defines.defines.push_back({"SB_OCC_JITTER_SAMPLES", std::to_string(opts_.jitterSamples)});
   l.inputs.uniform(kParams, params_).sample(kRange, maps_.range()).sampleArray(kBits, maps_.bits());
   if (maps_.slabs()) l.inputs.sampleArray(kSlabs, maps_.slabs());
   opaque_.addTo(l);
@@ -50,6 +55,7 @@ void OccupancyShadow::setup(Device& dev, const GpuScene& scene, const RenderSett
   c.slices = opts_.slices;
   c.slabs = opts_.slabs;
   c.slabMap = opts_.slabMap;
+  c.lightDistance = true;
   maps_.setup(dev, scene, s, lightView_, c);
   opaque_.setup(dev, scene, size, lightView_, "occupancy");
 }

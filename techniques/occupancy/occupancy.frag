@@ -3,6 +3,7 @@
 // slices per RGBA32UI.
 #include "occupancy_math.glsl"
 #include "../common/slots.h"
+#include "../common/light_pass_depth.glsl"
 
 layout(binding = SB_SLOT_OCC_RANGE) uniform sampler2D occRange;  // x: nearest, y: -furthest depth
 
@@ -10,7 +11,7 @@ layout(location = 0) out uvec4 outBits[SB_OCC_WORD_TARGETS];
 
 void main() {
   vec2 r = texelFetch(occRange, ivec2(gl_FragCoord.xy), 0).rg;
-  int s = occupancySlice(gl_FragCoord.z, r.x, -r.y, SB_OCC_SLICES);
+  int s = occupancySlice(passDepth(), r.x, -r.y, SB_OCC_SLICES);
   uvec4 word = uvec4(0u);
   word[(s / 32) % 4] = 1u << uint(s % 32);
   int target = s / 128;

@@ -22,7 +22,12 @@ class OccupancyShadow : public ShadowTechnique {
     uint32_t slices = 128;  // multiple of 32, at most 1024 (8 RGBA32UI layers)
     uint32_t slabs = 4;     // divides slices, at most 32; 4 per RGBA32F layer
     bool slabMap = true;    // false: every set bit counts as one fragment
-    bool jitter = false;    // half-texel jitter of the lookup (the paper's anti-aliasing)
+    // slab_map=count, the paper's occupancy-only variant (section 3.1): each
+    // set bit counts F / S, F the texel's fragment count (a count map of one
+    // slab), S its set bits.
+    bool countOnly = false;
+    bool jitter = false;         // half-texel jitter of the lookup (the paper's anti-aliasing)
+    uint32_t jitterSamples = 1;  // jittered lookups averaged (jitter=on)
   };
   // Reads and validates size, bias, slices, slabs, slab_map, jitter (InputError).
   static Options readOptions(const OptionReader& o);

@@ -11,6 +11,7 @@ ShaderDefines OccupancyMaps::defines() const {
   // The arrays of occupancy_math.glsl, sized to these maps.
   d.defines.push_back({"SB_OCC_MAX_WORDS", std::to_string(maxWords())});
   d.defines.push_back({"SB_OCC_MAX_SLABS", std::to_string(maxSlabs())});
+  if (config_.lightDistance) d.defines.push_back({"SB_LIGHT_DISTANCE", "1"});
   return d;
 }
 

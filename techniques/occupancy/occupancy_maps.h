@@ -23,6 +23,9 @@ class OccupancyMaps {
     uint32_t width = 0, height = 0;
     uint32_t slices = 128, slabs = 4;  // at most kMaxSlices, kMaxSlabs
     bool slabMap = true;
+    // From the light: slices in light distance (light_pass_depth.glsl; linear
+    // for point lights); from the eye: window depth.
+    bool lightDistance = false;
     // From the eye: the opaque depth the hair is tested against (none from
     // the light), cleared by the first pass when nothing opaque was drawn.
     Texture depth;

@@ -3,6 +3,7 @@
 // slabs per target.
 #include "occupancy_math.glsl"
 #include "../common/slots.h"
+#include "../common/light_pass_depth.glsl"
 
 layout(binding = SB_SLOT_OCC_RANGE) uniform sampler2D occRange;  // x: nearest, y: -furthest depth
 
@@ -11,7 +12,7 @@ layout(location = 0) out vec4 outSlabs[SB_OCC_SLAB_TARGETS];
 void main() {
   vec2 r = texelFetch(occRange, ivec2(gl_FragCoord.xy), 0).rg;
   // The slab of the fragment's slice, so slab counts and bits always agree.
-  int s = occupancySlice(gl_FragCoord.z, r.x, -r.y, SB_OCC_SLICES);
+  int s = occupancySlice(passDepth(), r.x, -r.y, SB_OCC_SLICES);
   int slab = s / (SB_OCC_SLICES / SB_OCC_SLABS);
   vec4 one = vec4(0.0);
   one[slab % 4] = 1.0;

@@ -43,7 +43,12 @@ void main() {
   }
   // Paper 3.2: slabs before the fragment's own, plus F_i / B_total * B_before
   // within it, interpolated linearly inside the fragment's slice.
+  // order=paper: the printed formula, without the within-slice spread.
+#if SB_OOIT_ORDER_PAPER
+  float o = oitOrderPaper(gl_FragCoord.z, r.x, -r.y, bits, slabs, SB_OOIT_SLICES, SB_OOIT_SLABS);
+#else
   float o = oitOrder(gl_FragCoord.z, r.x, -r.y, bits, slabs, SB_OOIT_SLICES, SB_OOIT_SLABS);
+#endif
   float a = clamp(vColor.a, 0.0, 1.0);
   vec3 c = shadeHair(vWorldPos, vTangent, vColor.rgb);
   // Paper 3.4: color_out = (1 - alpha)^o * alpha * color_in, color_in.a = 1.

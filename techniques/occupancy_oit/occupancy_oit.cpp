@@ -21,6 +21,7 @@ OccupancyOit::Options OccupancyOit::readOptions(const OptionReader& o) {
   opts.slices = static_cast<uint32_t>(o.integer("slices", 32, OccupancyMaps::kMaxSlices));
   opts.slabs = static_cast<uint32_t>(o.integer("slabs", 1, OccupancyMaps::kMaxSlabs));
   opts.lambda = o.choice("lambda", {"on", "off"}) == "on";
+  opts.paperOrder = o.choice("order", {"corrected", "paper"}) == "paper";
   const std::string what = "transparency technique 'occupancy': ";
   if (opts.slices % 32 != 0)
     throw InputError(what + "slices=" + std::to_string(opts.slices) +
@@ -87,7 +88,8 @@ void OccupancyOit::setup(Device& dev, const GpuScene& scene, const RenderSetting
   accumDefs.defines = {{"SB_OOIT_SLICES", std::to_string(opts_.slices)},
                        {"SB_OOIT_SLABS", std::to_string(opts_.slabs)},
                        {"SB_OOIT_WORD_TARGETS", std::to_string(maps_.wordTargets())},
-                       {"SB_OOIT_SLAB_TARGETS", std::to_string(maps_.slabTargets())}};
+                       {"SB_OOIT_SLAB_TARGETS", std::to_string(maps_.slabTargets())},
+                       {"SB_OOIT_ORDER_PAPER", opts_.paperOrder ? "1" : "0"}};
   const ShaderDefines hair = shading.hairDefines();
   for (const auto& [alias, file] : hair.aliases) accumDefs.aliases[alias] = file;
   // One size for occupancy_math.glsl's arrays, which the occupancy shadow's

@@ -72,6 +72,33 @@ SB_INLINE float oitOrder(float z, float zMin, float zMax, uint bits[SB_OCC_MAX_W
   return clamp(count - self, 0.0f, n - 1.0f);
 }
 
+// order=paper: the order as section 3.2 prints it, the slab counts before
+// the fragment's slab plus F_i / B_total * B_before, B_before the set bits of
+// the slices in front of the fragment's own slice: every fragment of a slice
+// gets the same order, the slice's own fragments are not spread (the default,
+// order=corrected, oitOrder above, spreads them and takes out the fragment's
+// own share). Clamped to [0, n - 1] as oitOrder is.
+SB_INLINE float oitOrderPaper(float z, float zMin, float zMax, uint bits[SB_OCC_MAX_WORDS],
+                              float slabCounts[SB_OCC_MAX_SLABS], int slices, int slabs) {
+  float n = 0.0f;
+  for (int i = 0; i < slabs; ++i) n += slabCounts[i];
+  if (!(n > 1.0f)) return 0.0f;
+  float range = zMax - zMin;
+  if (zMax < zMin || z <= zMin) return 0.0f;
+  if (z > zMax || !(range > 0.0f)) return n - 1.0f;
+  int s = min(int((z - zMin) / range * float(slices)), slices - 1);
+  int perSlab = slices / slabs;
+  int slab = s / perSlab;
+  int first = slab * perSlab;
+  float before = 0.0f;
+  for (int i = 0; i < slab; ++i) before += slabCounts[i];
+  int setTotal = occupancyBitsBetween(bits, first, first + perSlab);
+  float within = setTotal > 0 ? slabCounts[slab] / float(setTotal) *
+                                    float(occupancyBitsBetween(bits, first, s))
+                              : 0.0f;
+  return clamp(before + within, 0.0f, n - 1.0f);
+}
+
 // The weight of a fragment of alpha a and order o: (1 - a)^o * a.
 SB_INLINE float oitWeight(float a, float o) {
   return oitTransmittance(a, o) * clamp(a, 0.0f, 1.0f);
@@ -92,7 +119,14 @@ SB_INLINE float oitCoverage(float log2T) {
 // colour and its coverage Lambda, put over the background b as
 //   f = hair.rgb + (1 - Lambda) b.
 // With `lambda` the paper's correction rescales hair.rgb so its weights sum to
-// Lambda: hair.rgb * Lambda / hair.a (guarded: no weight, no colour).
+// Lambda: hair.rgb * Lambda / hair.a (guarded: no weight, no colour). This
+// corrects the printed formula, hair.rgb * hair.a / Lambda (section 3.4),
+// which inverts it: hair.a is the sum of the estimated weights, Lambda what
+// it should be, so scaling by hair.a / Lambda would square the error (weights
+// summing to twice Lambda would double again) instead of removing it; with
+// exact orders hair.a = Lambda and both agree. Lambda / hair.a makes the
+// weights sum to Lambda, the paper's stated aim ("the intensity of the hair
+// colour will be correct").
 SB_INLINE vec4 oitResolve(vec4 acc, float log2T, bool lambda) {
   float coverage = oitCoverage(log2T);
   vec3 rgb = vec3(max(acc.x, 0.0f), max(acc.y, 0.0f), max(acc.z, 0.0f));

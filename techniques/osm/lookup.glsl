@@ -18,7 +18,7 @@ float osmStored(int m) {
   return texelFetch(osmAtlases, ivec3(p, a), 0)[m % 4];
 }
 
-#define SB_OSM_MAP(i) osmStored((i) - 1)
+#define SB_OSM_MAP(i) osmStored((i)-1)
 #include "../common/opacity.glsl"
 
 float osmZ;  // the point's light depth, less the bias
@@ -36,7 +36,7 @@ float shadowVisibility(vec3 worldPos) {
   if (!toLightNdc(osmViewProj, worldPos, ndc)) return 1.0;
   vec2 uv = ndc.xy * 0.5 + 0.5;
   if (opaqueVisibility(ndc, osmParams.x) == 0.0) return 0.0;
-  osmZ = ndc.z - osmParams.x;
+  osmZ = lightDistance(osmViewProj, ndc.z - osmParams.x);  // bias in window depth
   float omega = filteredOpacity(uv, int(osmParams.y), osmLayout.w);
   return opacityVisibility(omega / osmParams.w, osmParams.z);
 }

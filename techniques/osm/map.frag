@@ -3,6 +3,7 @@
 // of slab [D_(i-1), D_i) added to the previous map, since addition commutes).
 // Fragments outside this pass's atlas tile are discarded.
 #include "osm.glsl"
+#include "../common/light_space.glsl"
 #include "../common/slots.h"
 
 layout(std140, binding = SB_SLOT_OSM_PASS) uniform OsmPass {
@@ -43,7 +44,7 @@ vec4 osmTarget(int k, float z) {
 void main() {
   vec2 p = gl_FragCoord.xy;
   if (p.x < osmTile.x || p.y < osmTile.y || p.x >= osmTile.z || p.y >= osmTile.w) discard;
-  float z = gl_FragCoord.z;
+  float z = lightDistance(osmViewProj, gl_FragCoord.z);  // linear for point lights
   osmOut0 = osmTarget(0, z);
 #if SB_OSM_TARGETS > 1
   osmOut1 = osmTarget(1, z);

@@ -98,7 +98,7 @@ void OpacityShadowMaps::setup(Device& dev, const GpuScene& scene, const RenderSe
   // the CPU from the hair points projected into light space (exact for lines
   // and ribbons, whose depth is linear between their end points).
   const int n = static_cast<int>(opt_.maps);
-  slices_ = osmSlices(n, opt_.slicing, opt_.gamma, hairLightDepths(dev, scene, view.viewProj));
+  slices_ = osmSlices(n, opt_.slicing, opt_.gamma, hairLightDistances(dev, scene, view.viewProj));
 
   // Weight per fragment: counts for float maps; with 8 bits the paper's
   // scaling e^-kappa = 2^-8 at opacity 1, w = -ln(1 - alpha_s) / kappa,

@@ -1,0 +1,122 @@
+#include "techniques/fake/fake.h"
+
+#include <cstring>
+
+#include "techniques/common/shader_library.h"
+#include "techniques/kajiya_kay/shading.h"
+
+namespace sb {
+
+namespace {
+constexpr uint32_t kImage0 = SB_SLOT_FAKE_IMAGE0;
+}  // namespace
+
+void FakeTransparency::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
+                             const KajiyaKayShading& shading, const OitTargets& targets) {
+  scene_ = &scene;
+  shading_ = &shading;
+  settings_ = s;
+  targets_ = targets;
+
+  // The subsets' segment lists: a strand's segments have consecutive first
+  // points, so a new strand begins wherever the first point jumps.
+  std::array<std::vector<uint32_t>, kSubsets> subsets;
+  if (scene.hasHair()) {
+    const std::vector<uint8_t> bytes = dev.readBuffer(scene.segments);
+    std::vector<uint32_t> all(bytes.size() / sizeof(uint32_t));
+    std::memcpy(all.data(), bytes.data(), all.size() * sizeof(uint32_t));
+    all.resize(std::min<std::size_t>(all.size(), scene.segmentCount));
+    uint32_t strand = 0;
+    for (std::size_t j = 0; j < all.size(); ++j) {
+      if (j > 0 && all[j] != all[j - 1] + 1) ++strand;
+      subsets[strand % kSubsets].push_back(all[j]);
+    }
+  }
+  for (uint32_t k = 0; k < kSubsets; ++k) {
+    counts_[k] = static_cast<uint32_t>(subsets[k].size());
+    if (subsets[k].empty()) subsets[k].push_back(0);  // a buffer is never empty; not drawn
+    segments_[k] = dev.createBuffer({"fake.segments" + std::to_string(k), "oit",
+                                     BufferUsage::Storage, subsets[k].size() * sizeof(uint32_t)},
+                                    subsets[k].data());
+    images_[k] = dev.createTexture(
+        {"fake.image" + std::to_string(k), "oit", Format::RGBA32F, s.width, s.height, false});
+  }
+  depth_ = dev.createTexture({"fake.depth", "oit", Format::Depth32F, s.width, s.height, false});
+
+  // Each subset: opaque hair, shaded as --oit none shades it, depth-tested.
+  const ShaderCode vert = Geometry::strandVertexShader(s);
+  const ShaderCode frag = loadShader("techniques/kajiya_kay/hair.frag", shading.hairDefines());
+  PipelineDesc d;
+  d.name = "fake.subset";
+  d.technique = "fake+" + shading.shadow().name();
+  d.vertex = &vert;
+  d.fragment = &frag;
+  d.topology = Geometry::strandTopology(s);
+  d.colorFormats = {Format::RGBA32F};
+  d.hasDepth = d.depthTest = d.depthWrite = true;
+  d.depthCompare = CompareOp::Less;
+  d.bindings = subsetPass(0).slots();
+  hairPipeline_ = dev.createPipeline(d);
+  if (scene.hasMesh()) {
+    const ShaderCode meshVert = Geometry::meshVertexShader();
+    const ShaderCode meshFrag = loadShader("techniques/fake/mesh.frag");
+    d.name = "fake.mesh";
+    d.vertex = &meshVert;
+    d.fragment = &meshFrag;
+    d.topology = Topology::Triangles;
+    meshPipeline_ = dev.createPipeline(d);
+  }
+
+  // The blend: C = hair + (1 - coverage) C_dst; the destination alpha kept.
+  const ShaderCode fullScreen = loadShader("techniques/common/composite.vert");
+  const ShaderCode blend = loadShader("techniques/fake/blend.frag");
+  PipelineDesc b;
+  b.name = "fake.blend";
+  b.technique = "fake";
+  b.vertex = &fullScreen;
+  b.fragment = &blend;
+  b.colorFormats = {Format::RGBA32F};
+  b.hasDepth = !targets.opaqueDrawn;  // clears the frame depth (no test, no write)
+  b.blend = {{true, BlendFactor::One, BlendFactor::SrcAlpha, BlendOp::Add, BlendFactor::Zero,
+              BlendFactor::One, BlendOp::Add}};
+  b.bindings = blendPass().slots();
+  blendPipeline_ = dev.createPipeline(b);
+}
+
+// Subset k into its own image, cleared to (0, 0, 0, 0), with its own depth.
+Pass FakeTransparency::subsetPass(uint32_t k) const {
+  Inputs in = shading_->hairInputs();
+  in.replaceBuffer(bind::kSegments, segments_[k]);
+  return Pass("fake.subset" + std::to_string(k))
+      .color(images_[k], LoadOp::Clear, {0, 0, 0, 0})
+      .depth(depth_, LoadOp::Clear)
+      .inputs(in);
+}
+
+// Nothing opaque drawn: the blend also clears the frame's depth to 1, as the
+// other blending techniques leave it (the hair writes no frame depth).
+Pass FakeTransparency::blendPass() const {
+  const glm::vec3 bg = settings_.background;
+  Pass p("fake.blend");
+  p.color(targets_.color, targets_.opaqueDrawn ? LoadOp::Load : LoadOp::Clear,
+          {bg.r, bg.g, bg.b, 1.0f});
+  if (!targets_.opaqueDrawn) p.depth(targets_.depth, LoadOp::Clear);
+  for (uint32_t k = 0; k < kSubsets; ++k) p.sample(kImage0 + k, images_[k]);
+  return p;
+}
+
+void FakeTransparency::addPasses(FrameGraph& graph, Device& dev) {
+  const uint32_t perSegment =
+      Geometry::strandVertexCount(*scene_, settings_) / std::max(scene_->segmentCount, 1u);
+  for (uint32_t k = 0; k < kSubsets; ++k) {
+    graph.add(subsetPass(k), [this, &dev, k, perSegment, p = subsetPass(k)] {
+      std::vector<Pass::Draw> draws;
+      if (meshPipeline_) draws.push_back({meshPipeline_, scene_->meshTriangles * 3});
+      if (counts_[k] > 0) draws.push_back({hairPipeline_, counts_[k] * perSegment});
+      p.draw(dev, draws);
+    });
+  }
+  graph.add(blendPass(), [this, &dev, p = blendPass()] { p.draw(dev, blendPipeline_, 3); });
+}
+
+}  // namespace sb
