@@ -1,0 +1,19 @@
+// Voxelized hair density lookup: the hair count marched from the point
+// towards the light through the grid (voxel_math.glsl), normalised to
+// fragments per map texel; 0 behind the opaque mesh.
+#include "../common/opaque_shadow.glsl"
+#include "voxel.glsl"
+#define SB_VOXEL_COUNT(x, y, s) float(voxelCounts[((s) * int(voxelRange.z) + (y)) * int(voxelRange.z) + (x)])
+#include "voxel_math.glsl"
+
+float shadowVisibility(vec3 worldPos) {
+  vec3 ndc;
+  if (!toLightNdc(voxelViewProj, worldPos, ndc)) return 1.0;
+  if (opaqueVisibility(ndc, voxelParams.x) == 0.0) return 0.0;
+  int g = int(voxelRange.z);
+  vec2 cell = (ndc.xy * 0.5 + 0.5) * float(g) - 0.5;
+  float n = voxelHairCount(cell.x, cell.y, voxelDepth(ndc.z - voxelParams.x), g, int(voxelRange.w));
+  // A voxel's count over the (size / grid)^2 map texels of its column.
+  float perTexel = float(g) / voxelParams.y;
+  return voxelVisibility(n * perTexel * perTexel, voxelParams.z, voxelParams.w);
+}

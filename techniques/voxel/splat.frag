@@ -1,0 +1,11 @@
+// Every hair fragment from the light (at the splat size) adds 1 to its voxel:
+// the map texel's column of the grid, the slice of its depth.
+#include "voxel.glsl"
+
+void main() {
+  int g = int(voxelRange.z);
+  float scale = float(g) / voxelParams.y;
+  ivec2 c = min(ivec2(gl_FragCoord.xy * scale), ivec2(g - 1));
+  int s = clamp(int(floor(voxelDepth(gl_FragCoord.z) * float(g))), 0, g - 1);
+  atomicAdd(voxelCounts[(s * g + c.y) * g + c.x], 1u);
+}
