@@ -744,9 +744,9 @@ RenderResult runRender(const RenderRequest& req, RenderCache* cache, Device* dev
   for (const auto& w : renderer.warnings()) out.warnings.push_back(w);
   out.counters = renderer.counters();
   // Either technique's emulation (the shadow's, then the transparency's).
-  for (const std::string& why : {renderer.shadow().timingEmulated(), renderer.oit().timingEmulated()})
-    if (!why.empty())
-      out.timingEmulated += (out.timingEmulated.empty() ? "" : "; ") + why;
+  for (const std::string& why :
+       {renderer.shadow().timingEmulated(), renderer.oit().timingEmulated()})
+    if (!why.empty()) out.timingEmulated += (out.timingEmulated.empty() ? "" : "; ") + why;
   if (!out.timingEmulated.empty())
     out.warnings.push_back("timing emulated, not a real cost: " + out.timingEmulated);
 

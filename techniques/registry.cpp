@@ -28,10 +28,10 @@
 #include "techniques/osm/osm.h"
 #include "techniques/peel/peel.h"
 #include "techniques/peel_classic/peel_classic.h"
-#include "techniques/voxel/voxel.h"
 #include "techniques/shadowmap/shadowmap.h"
 #include "techniques/shortcut/shortcut.h"
 #include "techniques/stochastic/stochastic.h"
+#include "techniques/voxel/voxel.h"
 #include "techniques/wboit/wboit.h"
 #include "techniques/weighted/weighted.h"
 

@@ -101,7 +101,7 @@ TEST(AvsmMath, BruteForceCheckCatchesAWrongRemoval) {
   AvsmCurve c = glsl::avsmEmpty();
   c.count = 4;
   c.n[0] = {0.0f, 1.0f};
-  c.n[1] = {0.1f, 0.2f};  // a deep dent: large area change
+  c.n[1] = {0.1f, 0.2f};   // a deep dent: large area change
   c.n[2] = {0.5f, 0.15f};  // nearly on the line from 1 to 3
   c.n[3] = {0.9f, 0.1f};
   EXPECT_EQ(leastAreaNode(c), 2);
@@ -210,7 +210,7 @@ struct Grid {
   float& at(int x, int y, int s) { return counts[(s * g + y) * g + x]; }
   void use() {
     glsl::voxelCountsCpu = counts.data();
-    glsl::voxelGridCpu = g;
+    glsl::voxelColumnsCpu = g;
   }
 };
 
@@ -221,19 +221,19 @@ TEST(VoxelMath, MarchingTheWholeColumnCountsEveryFragment) {
   grid.use();
   // At a voxel centre, steps = grid: the march sums the column's slices.
   for (const int steps : {8, 16, 64}) {
-    EXPECT_NEAR(glsl::voxelHairCount(3.0f, 4.0f, 1.0f, 8, steps), 5.0f, 1e-4f) << steps;
-    EXPECT_NEAR(glsl::voxelHairCount(3.0f, 4.0f, 0.0f, 8, steps), 0.0f, 1e-6f);
+    EXPECT_NEAR(glsl::voxelHairCount(3.0f, 4.0f, 1.0f, 8, 8, steps), 5.0f, 1e-4f) << steps;
+    EXPECT_NEAR(glsl::voxelHairCount(3.0f, 4.0f, 0.0f, 8, 8, steps), 0.0f, 1e-6f);
   }
   // Between the two slices: the first's count (slice 1 ends at 2/8).
-  EXPECT_NEAR(glsl::voxelHairCount(3.0f, 4.0f, 0.5f, 8, 8), 2.0f, 1e-4f);
+  EXPECT_NEAR(glsl::voxelHairCount(3.0f, 4.0f, 0.5f, 8, 8, 8), 2.0f, 1e-4f);
   // With density_scale 1 the visibility is (1 - alpha)^n.
   EXPECT_NEAR(glsl::voxelVisibility(5.0f, 0.3f, 1.0f), std::pow(0.7f, 5.0f), 1e-6f);
   EXPECT_EQ(glsl::voxelVisibility(5.0f, 0.3f, 0.0f), 1.0f);
   EXPECT_EQ(glsl::voxelVisibility(5.0f, 1.0f, 1.0f) >= 0.0f, true);
   // A column without hair beside it: bilinear weights reach it half way.
-  EXPECT_NEAR(glsl::voxelHairCount(3.5f, 4.0f, 1.0f, 8, 8), 2.5f, 1e-4f);
+  EXPECT_NEAR(glsl::voxelHairCount(3.5f, 4.0f, 1.0f, 8, 8, 8), 2.5f, 1e-4f);
   // The comparison fails on a wrong column.
-  EXPECT_GT(std::abs(glsl::voxelHairCount(5.0f, 4.0f, 1.0f, 8, 8) - 5.0f), 1.0f);
+  EXPECT_GT(std::abs(glsl::voxelHairCount(5.0f, 4.0f, 1.0f, 8, 8, 8) - 5.0f), 1.0f);
 }
 
 TEST(VoxelMath, CountNeverFallsAlongTheRayAndStaysFinite) {
@@ -247,7 +247,7 @@ TEST(VoxelMath, CountNeverFallsAlongTheRayAndStaysFinite) {
       const float cx = u(rng) * g - 0.5f, cy = u(rng) * g - 0.5f;
       float prev = 0.0f;
       for (float z = -0.1f; z <= 1.1f; z += 1e-3f) {
-        const float n = glsl::voxelHairCount(cx, cy, z, g, steps);
+        const float n = glsl::voxelHairCount(cx, cy, z, g, g, steps);
         ASSERT_TRUE(std::isfinite(n));
         ASSERT_GE(n, prev - 1e-4f * std::max(prev, 1.0f)) << g << " " << steps << " " << z;
         prev = n;
@@ -345,7 +345,8 @@ TEST_P(ShadowAvsm, VoxelRendersWithinItsInvariantsAndGridHelps) {
   EXPECT_GT(coarse.visibilityError->rmse, 0.0);
   EXPECT_LT(fine.visibilityError->rmse, coarse.visibilityError->rmse);
   // density_scale 0: no shadow from the hair at all, a larger error.
-  const RenderResult none = run(request("stray:strands=1500", "voxel:grid=64,density_scale=0,size=128"));
+  const RenderResult none =
+      run(request("stray:strands=1500", "voxel:grid=64,density_scale=0,size=128"));
   EXPECT_GT(none.visibilityError->rmse, fine.visibilityError->rmse);
 }
 

@@ -51,8 +51,9 @@ void AdaptiveVolumetricShadowMaps::setup(Device& dev, const GpuScene& scene,
   opaque_.setup(dev, scene, opt_.size, lightView_, "avsm");
   // No interlock path is written (it could not run here): with or without the
   // extension the curves are built in the resolve, in primitive order.
-  emulated_ = std::string("avsm streams fragments into its curves in a resolve pass, in "
-                          "primitive order (device ") +
+  emulated_ = std::string(
+                  "avsm streams fragments into its curves in a resolve pass, in "
+                  "primitive order (device ") +
               (dev.info().fragmentShaderInterlock
                    ? "has fragment-shader interlock; the interlock path is not written)"
                    : "has no fragment-shader interlock)");

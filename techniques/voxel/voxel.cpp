@@ -13,7 +13,8 @@ constexpr uint32_t kParams = SB_SLOT_VOXEL_PARAMS, kGrid = SB_SLOT_VOXEL_GRID;
 struct Params {
   glm::mat4 viewProj;
   glm::vec4 params;  // bias, splat size, shadow alpha, density_scale
-  glm::vec4 range;   // near, far, grid, steps
+  glm::vec4 range;   // near, far, steps, 0
+  glm::vec4 cells;   // columns per side, slices, 0, 0
 };
 }  // namespace
 
@@ -41,9 +42,10 @@ void VoxelDensityShadow::setup(Device& dev, const GpuScene& scene, const RenderS
   Params p{};
   p.viewProj = view.viewProj;
   p.params = glm::vec4(opt_.bias, float(opt_.size), scene.shadowAlpha, opt_.densityScale);
-  p.range = glm::vec4(r.nearZ - pad, r.farZ + pad, float(opt_.grid), float(opt_.steps));
+  p.range = glm::vec4(r.nearZ - pad, r.farZ + pad, float(opt_.steps), 0.0f);
+  p.cells = glm::vec4(float(columns()), float(opt_.grid), 0.0f, 0.0f);
   params_ = dev.createBuffer({"voxel.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
-  const std::size_t voxels = std::size_t(opt_.grid) * opt_.grid * opt_.grid;
+  const std::size_t voxels = std::size_t(columns()) * columns() * opt_.grid;
   grid_ = dev.createBuffer({"voxel.grid", "shadow", BufferUsage::Storage, voxels * 4});
   if (!scene.hasHair()) return;
   const ShaderCode vert = Geometry::strandVertexShader(s);

@@ -8,13 +8,15 @@ namespace sb {
 
 // Voxelized hair density, as Unreal's hair strands voxelization (and vkhr's
 // density volume) do it: one hair pass from the light splats every fragment
-// into a grid^3 volume of uint counters (a storage buffer, atomic adds; x and
-// y follow the light map, z cuts the hair's depth range from the light into
-// grid slices), and the lookup marches from the point towards the light
-// through the volume (techniques/voxel/voxel_math.glsl):
+// into a volume of uint counters (a storage buffer, atomic adds; x and y
+// follow the light map, min(grid, size) columns per side so that a column is
+// never narrower than a map texel; z cuts the hair's depth range from the
+// light into grid slices), and the lookup marches from the point towards the
+// light through the volume (techniques/voxel/voxel_math.glsl):
 // V = exp(-density_scale w n), n the marched hair count, w = -ln(1 - alpha).
-// Memory: grid^3 x 4 bytes, whatever the hair. Visibility never rises along a
-// light ray (the march's partial step is linear in depth).
+// Memory: columns^2 x grid x 4 bytes (grid^3 x 4 for size >= grid), whatever
+// the hair. Visibility never rises along a light ray (the march's partial
+// step is linear in depth).
 class VoxelDensityShadow : public ShadowTechnique {
  public:
   struct Options {
@@ -34,6 +36,7 @@ class VoxelDensityShadow : public ShadowTechnique {
 
  private:
   Pass splatPass() const;
+  uint32_t columns() const { return std::min(opt_.grid, opt_.size); }
 
   Options opt_;
   const GpuScene* scene_ = nullptr;
