@@ -25,14 +25,14 @@ using glsl::AvsmCurve;
 // --- AVSM: the curve (techniques/avsm/avsm_math.glsl) ---
 
 AvsmCurve streamed(const std::vector<float>& depths, float t, int budget, int* removed = nullptr) {
-  AvsmCurve c = glsl::avsmEmpty();
+  AvsmCurve c = AvsmCurve{};
   int r = 0;
-  for (float d : depths) r += glsl::avsmInsert(c, d, t, budget);
+  for (float d : depths) r += avsmStream(c, d, t, budget);
   if (removed) *removed = r;
   return c;
 }
 
-float lookup(const AvsmCurve& c, float z) { return glsl::avsmValue(c, z, false); }
+float lookup(AvsmCurve c, float z) { return avsmValue(c, z, false); }
 
 // Area under the piecewise-linear curve between its first and last node.
 double area(const std::vector<glm::vec2>& n) {
@@ -70,7 +70,7 @@ AvsmCurve randomCurve(std::mt19937& rng, int count) {
   std::sort(x.begin(), x.end());
   std::sort(y.begin(), y.end(), std::greater<float>());
   y[0] = 1.0f;
-  AvsmCurve c = glsl::avsmEmpty();
+  AvsmCurve c = AvsmCurve{};
   for (int i = 0; i < count; ++i) c.n[i] = {x[i], y[i]};
   c.count = count;
   return c;
@@ -82,7 +82,7 @@ TEST(AvsmMath, RemovalPicksTheLeastAreaNodeAsABruteForceSearch) {
     AvsmCurve c = randomCurve(rng, 4 + trial % 15);
     const int expected = leastAreaNode(c);
     const AvsmCurve before = c;
-    const int removed = glsl::avsmRemoveOne(c);
+    const int removed = avsmRemoveOne(c);
     ASSERT_EQ(removed, expected) << "trial " << trial;
     // The curve lost exactly that node, the others unmoved.
     ASSERT_EQ(c.count, before.count - 1);
@@ -98,7 +98,7 @@ TEST(AvsmMath, RemovalPicksTheLeastAreaNodeAsABruteForceSearch) {
 // The brute-force comparison can fail: a curve whose least-area node is the
 // last interior one, against a removal that took the first.
 TEST(AvsmMath, BruteForceCheckCatchesAWrongRemoval) {
-  AvsmCurve c = glsl::avsmEmpty();
+  AvsmCurve c = AvsmCurve{};
   c.count = 4;
   c.n[0] = {0.0f, 1.0f};
   c.n[1] = {0.1f, 0.2f};   // a deep dent: large area change
@@ -106,7 +106,7 @@ TEST(AvsmMath, BruteForceCheckCatchesAWrongRemoval) {
   c.n[3] = {0.9f, 0.1f};
   EXPECT_EQ(leastAreaNode(c), 2);
   EXPECT_NE(leastAreaNode(c), 1);
-  EXPECT_EQ(glsl::avsmRemoveOne(c), 2);
+  EXPECT_EQ(avsmRemoveOne(c), 2);
 }
 
 TEST(AvsmMath, OneFragmentIsAStepAtItsDepth) {
@@ -141,8 +141,7 @@ TEST(AvsmMath, AlphaZeroAndOne) {
   const AvsmCurve opaque = streamed(depths, 0.0f, 8);
   for (float z = -0.1f; z <= 1.1f; z += 0.001f) {
     EXPECT_EQ(lookup(clear, z), 1.0f) << z;
-    if (z > front) EXPECT_EQ(lookup(opaque, z), 0.0f) << z;
-    if (z <= front) EXPECT_EQ(lookup(opaque, z), 1.0f) << z;
+    EXPECT_EQ(lookup(opaque, z), z > front ? 0.0f : 1.0f) << z;
   }
 }
 
@@ -221,19 +220,20 @@ TEST(VoxelMath, MarchingTheWholeColumnCountsEveryFragment) {
   grid.use();
   // At a voxel centre, steps = grid: the march sums the column's slices.
   for (const int steps : {8, 16, 64}) {
-    EXPECT_NEAR(glsl::voxelHairCount(3.0f, 4.0f, 1.0f, 8, 8, steps), 5.0f, 1e-4f) << steps;
-    EXPECT_NEAR(glsl::voxelHairCount(3.0f, 4.0f, 0.0f, 8, 8, steps), 0.0f, 1e-6f);
+    EXPECT_NEAR(glsl::voxelHairCount(3, 4, 1.0f, 8, steps), 5.0f, 1e-4f) << steps;
+    EXPECT_NEAR(glsl::voxelHairCount(3, 4, 0.0f, 8, steps), 0.0f, 1e-6f);
   }
   // Between the two slices: the first's count (slice 1 ends at 2/8).
-  EXPECT_NEAR(glsl::voxelHairCount(3.0f, 4.0f, 0.5f, 8, 8, 8), 2.0f, 1e-4f);
+  EXPECT_NEAR(glsl::voxelHairCount(3, 4, 0.5f, 8, 8), 2.0f, 1e-4f);
   // With density_scale 1 the visibility is (1 - alpha)^n.
   EXPECT_NEAR(glsl::voxelVisibility(5.0f, 0.3f, 1.0f), std::pow(0.7f, 5.0f), 1e-6f);
   EXPECT_EQ(glsl::voxelVisibility(5.0f, 0.3f, 0.0f), 1.0f);
   EXPECT_EQ(glsl::voxelVisibility(5.0f, 1.0f, 1.0f) >= 0.0f, true);
-  // A column without hair beside it: bilinear weights reach it half way.
-  EXPECT_NEAR(glsl::voxelHairCount(3.5f, 4.0f, 1.0f, 8, 8, 8), 2.5f, 1e-4f);
+  // Half way into slice 5: slice 1's 2 and half of slice 5's 3 (the partial
+  // step takes the density of its whole step's middle).
+  EXPECT_NEAR(glsl::voxelHairCount(3, 4, 5.5f / 8.0f, 8, 8), 2.0f + 0.5f * 3.0f, 1e-4f);
   // The comparison fails on a wrong column.
-  EXPECT_GT(std::abs(glsl::voxelHairCount(5.0f, 4.0f, 1.0f, 8, 8, 8) - 5.0f), 1.0f);
+  EXPECT_GT(std::abs(glsl::voxelHairCount(5, 4, 1.0f, 8, 8) - 5.0f), 1.0f);
 }
 
 TEST(VoxelMath, CountNeverFallsAlongTheRayAndStaysFinite) {
@@ -244,10 +244,10 @@ TEST(VoxelMath, CountNeverFallsAlongTheRayAndStaysFinite) {
     for (float& c : grid.counts) c = u(rng) < 0.3f ? std::floor(u(rng) * 20.0f) : 0.0f;
     grid.use();
     for (const int steps : {1, 7, g, 3 * g}) {
-      const float cx = u(rng) * g - 0.5f, cy = u(rng) * g - 0.5f;
+      const int cx = int(u(rng) * float(g - 1)), cy = int(u(rng) * float(g - 1));
       float prev = 0.0f;
       for (float z = -0.1f; z <= 1.1f; z += 1e-3f) {
-        const float n = glsl::voxelHairCount(cx, cy, z, g, g, steps);
+        const float n = glsl::voxelHairCount(cx, cy, z, g, steps);
         ASSERT_TRUE(std::isfinite(n));
         ASSERT_GE(n, prev - 1e-4f * std::max(prev, 1.0f)) << g << " " << steps << " " << z;
         prev = n;

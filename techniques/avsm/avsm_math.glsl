@@ -27,85 +27,98 @@
 // node always has transmittance 1 (nothing lies in front of the frontmost
 // fragment), so in front of the curve the visibility is 1.
 //
-// SB_AVSM_CAP: the array size, at least budget + 2 (the two nodes an
-// insertion adds before the compression runs).
+// The curve is reached through two macros the includer defines:
+// SB_AVSM_N(i), node i (a vec2 lvalue: depth, transmittance), and
+// SB_AVSM_COUNT, the node count (an int lvalue), with room for budget + 2
+// nodes (the two an insertion adds before the compression runs). The resolve
+// keeps the curve in the storage buffer itself: in a local array (a struct
+// passed inout, or a global), Mesa's GL compiled the dynamically indexed
+// removal wrong (GL's curves stopped changing at the first removal; Vulkan's
+// and the CPU's were right).
 #ifndef SB_INLINE
 #define SB_INLINE
 #endif
-#ifndef SB_INOUT
-#define SB_INOUT(T) inout T
+// The removal compares areas that are often nearly equal: computed without
+// fused multiply-adds (GLSL `precise`; plain arithmetic in the C++), so GL,
+// Vulkan and the CPU round them alike and remove the same node.
+#ifndef SB_PRECISE
+#define SB_PRECISE precise
 #endif
-
-struct AvsmCurve {
-  vec2 n[SB_AVSM_CAP];  // (depth, transmittance), front to back
-  int count;
-};
-
-SB_INLINE AvsmCurve avsmEmpty() {
-  AvsmCurve c;
-  for (int i = 0; i < SB_AVSM_CAP; ++i) c.n[i] = vec2(0.0f, 1.0f);
-  c.count = 0;
-  return c;
-}
 
 // Linear interpolation between two nodes at depth z (a.x <= z <= b.x).
 SB_INLINE float avsmLerp(vec2 a, vec2 b, float z) {
-  float w = clamp((z - a.x) / max(b.x - a.x, 1e-30f), 0.0f, 1.0f);
-  return clamp(a.y + (b.y - a.y) * w, 0.0f, 1.0f);
+  SB_PRECISE float w = clamp((z - a.x) / max(b.x - a.x, 1e-30f), 0.0f, 1.0f);
+  SB_PRECISE float v = a.y + (b.y - a.y) * w;
+  return clamp(v, 0.0f, 1.0f);
 }
 
 // The curve at depth z: `behind` false looks up a receiver at z (nodes at z
 // count as behind it: a fragment at exactly the receiver's depth does not
 // shadow it, as in the exact visibility); true gives the value behind every
 // node at or in front of z (the value an insertion at z starts from).
-SB_INLINE float avsmValue(AvsmCurve c, float z, bool behind) {
-  if (c.count == 0) return 1.0f;
+SB_INLINE float avsmValue(float z, bool behind) {
+  int count = SB_AVSM_COUNT;
+  if (count == 0) return 1.0f;
   int i = 0;  // the first node deeper than z (behind) or at or deeper than z
-  while (i < c.count && (behind ? c.n[i].x <= z : c.n[i].x < z)) ++i;
-  if (i == 0) return clamp(c.n[0].y, 0.0f, 1.0f);
-  if (i == c.count) return clamp(c.n[c.count - 1].y, 0.0f, 1.0f);
-  return avsmLerp(c.n[i - 1], c.n[i], z);
+  while (i < count && (behind ? SB_AVSM_N(i).x <= z : SB_AVSM_N(i).x < z)) ++i;
+  if (i == 0) return clamp(SB_AVSM_N(0).y, 0.0f, 1.0f);
+  if (i == count) return clamp(SB_AVSM_N(count - 1).y, 0.0f, 1.0f);
+  return avsmLerp(SB_AVSM_N(i - 1), SB_AVSM_N(i), z);
 }
 
+#ifndef SB_AVSM_READ_ONLY
 // The change of the area under the curve when interior node i is removed:
 // the triangle of nodes i-1, i, i+1.
-SB_INLINE float avsmRemovalArea(AvsmCurve c, int i) {
-  vec2 a = c.n[i - 1], b = c.n[i], d = c.n[i + 1];
-  return 0.5f * abs((b.x - a.x) * (d.y - a.y) - (d.x - a.x) * (b.y - a.y));
+SB_INLINE float avsmRemovalArea(int i) {
+  float ax = SB_AVSM_N(i - 1).x, ay = SB_AVSM_N(i - 1).y;
+  float bx = SB_AVSM_N(i).x, by = SB_AVSM_N(i).y;
+  float dx = SB_AVSM_N(i + 1).x, dy = SB_AVSM_N(i + 1).y;
+  SB_PRECISE float p = (bx - ax) * (dy - ay);
+  SB_PRECISE float q = (dx - ax) * (by - ay);
+  SB_PRECISE float twice = p - q;
+  return 0.5f * (twice < 0.0f ? -twice : twice);
 }
 
-// Removes the interior node of least removal area (the frontmost of equals).
-SB_INLINE int avsmRemoveOne(SB_INOUT(AvsmCurve) c) {
+// Removes the interior node of least removal area (the frontmost of equals);
+// returns its index.
+SB_INLINE int avsmRemoveOne() {
+  int count = SB_AVSM_COUNT;
   int best = 1;
-  float bestArea = avsmRemovalArea(c, 1);
-  for (int i = 2; i < c.count - 1; ++i) {
-    float a = avsmRemovalArea(c, i);
+  float bestArea = avsmRemovalArea(1);
+  for (int i = 2; i + 1 < count; ++i) {
+    float a = avsmRemovalArea(i);
     if (a < bestArea) {
       bestArea = a;
       best = i;
     }
   }
-  for (int i = best; i < c.count - 1; ++i) c.n[i] = c.n[i + 1];
-  c.count -= 1;
+  for (int i = best; i < count - 1; ++i) SB_AVSM_N(i) = SB_AVSM_N(i + 1);
+  SB_AVSM_COUNT = count - 1;
   return best;
 }
 
 // Streams one fragment at depth d of transmittance t = 1 - alpha into the
-// curve, then compresses it to `budget` nodes (budget >= 3, <= SB_AVSM_CAP - 2).
-// Returns the nodes removed.
-SB_INLINE int avsmInsert(SB_INOUT(AvsmCurve) c, float d, float t, int budget) {
+// curve (two nodes more). Then removes nodes until it has at most `budget`
+// (3 <= budget, and room for budget + 2); returns the nodes removed.
+SB_INLINE int avsmInsert(float d, float t, int budget) {
   t = clamp(t, 0.0f, 1.0f);
-  float v = avsmValue(c, d, true);
+  float v = avsmValue(d, true);
+  int count = SB_AVSM_COUNT;
   int at = 0;
-  while (at < c.count && c.n[at].x <= d) ++at;
-  for (int i = c.count - 1; i >= at; --i) c.n[i + 2] = vec2(c.n[i].x, c.n[i].y * t);
-  c.n[at] = vec2(d, v);
-  c.n[at + 1] = vec2(d, v * t);
-  c.count += 2;
+  while (at < count && SB_AVSM_N(at).x <= d) ++at;
+  for (int i = count - 1; i >= at; --i) {
+    SB_PRECISE float behind = SB_AVSM_N(i).y * t;
+    SB_AVSM_N(i + 2) = vec2(SB_AVSM_N(i).x, behind);
+  }
+  SB_PRECISE float after = v * t;
+  SB_AVSM_N(at) = vec2(d, v);
+  SB_AVSM_N(at + 1) = vec2(d, after);
+  SB_AVSM_COUNT = count + 2;
   int removed = 0;
-  while (c.count > budget) {
-    avsmRemoveOne(c);
+  while (SB_AVSM_COUNT > budget) {
+    avsmRemoveOne();
     removed += 1;
   }
   return removed;
 }
+#endif

@@ -2,8 +2,6 @@
 // (avsm_math.glsl); 0 behind the opaque mesh.
 #include "../common/opaque_shadow.glsl"
 #include "../common/slots.h"
-#define SB_AVSM_CAP SB_AVSM_NODES
-#include "avsm_math.glsl"
 
 layout(std140, binding = SB_SLOT_AVSM_PARAMS) uniform AvsmLookupParams {
   mat4 avsmViewProj;
@@ -11,6 +9,13 @@ layout(std140, binding = SB_SLOT_AVSM_PARAMS) uniform AvsmLookupParams {
 };
 layout(std430, binding = SB_SLOT_AVSM_COUNT) readonly buffer AvsmCount { uint avsmCount[]; };
 layout(std430, binding = SB_SLOT_AVSM_NODES) readonly buffer AvsmNodes { vec2 avsmNodes[]; };
+// The texel's curve, read in place.
+uint avsmBase;
+int avsmTexelCount;
+#define SB_AVSM_N(i) avsmNodes[avsmBase + uint(i)]
+#define SB_AVSM_COUNT avsmTexelCount
+#define SB_AVSM_READ_ONLY
+#include "avsm_math.glsl"
 
 float shadowVisibility(vec3 worldPos) {
   vec3 ndc;
@@ -20,8 +25,7 @@ float shadowVisibility(vec3 worldPos) {
   uint size = uint(avsmParams.y);
   uvec2 t = min(uvec2(uv * avsmParams.y), uvec2(size - 1u));
   uint texel = t.y * size + t.x;
-  AvsmCurve c;
-  c.count = int(avsmCount[texel]);
-  for (int k = 0; k < c.count; ++k) c.n[k] = avsmNodes[texel * uint(SB_AVSM_NODES) + uint(k)];
-  return avsmValue(c, ndc.z - avsmParams.x, false);
+  avsmBase = texel * uint(SB_AVSM_NODES + 2);
+  avsmTexelCount = int(avsmCount[texel]);
+  return avsmValue(ndc.z - avsmParams.x, false);
 }

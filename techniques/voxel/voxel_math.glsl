@@ -19,8 +19,9 @@
 // The march: the depth range u in [0, 1] is cut into `steps` steps of length
 // h = 1 / steps on a fixed lattice; from the receiver towards the light, the
 // partial step it lies in, then every full step, each adding its length times
-// the density at the step's middle (trilinear: bilinear across the voxel
-// columns, linear between slice centres). The partial step takes the density
+// the density at the step's middle in the point's own column (the column
+// holding the light ray, as the other maps look up their texel), linear
+// between slice centres. The partial step takes the density
 // of the middle of the full step it lies in, so n(u) is continuous and never
 // falls as u grows (the density is never negative): the visibility never
 // rises away from the light (promised, and checked by --invariants).
@@ -32,35 +33,27 @@
 #endif
 
 #ifdef SB_VOXEL_COUNT
-// Hair count per slice at grid cell coordinates (cx, cy) (continuous, voxel
-// centres at integers) and normalised depth u: trilinear, clamped to the grid.
-SB_INLINE float voxelDensity(float cx, float cy, float u, int gx, int gz) {
+// Hair count per slice in column (x, y) at normalised depth u: linear between
+// slice centres, constant beyond the first and the last.
+SB_INLINE float voxelDensity(int x, int y, float u, int gz) {
   float cz = u * float(gz) - 0.5f;
-  float fx = floor(cx), fy = floor(cy), fz = floor(cz);
-  float wx = cx - fx, wy = cy - fy, wz = cz - fz;
-  float sum = 0.0f;
-  for (int k = 0; k < 8; ++k) {
-    int dx = k & 1, dy = (k >> 1) & 1, dz = (k >> 2) & 1;
-    int x = clamp(int(fx) + dx, 0, gx - 1), y = clamp(int(fy) + dy, 0, gx - 1),
-        z = clamp(int(fz) + dz, 0, gz - 1);
-    float w = (dx == 1 ? wx : 1.0f - wx) * (dy == 1 ? wy : 1.0f - wy) *
-              (dz == 1 ? wz : 1.0f - wz);
-    if (w > 0.0f) sum += w * SB_VOXEL_COUNT(x, y, z);
-  }
-  return sum;
+  float fz = floor(cz);
+  float wz = cz - fz;
+  int z0 = clamp(int(fz), 0, gz - 1), z1 = clamp(int(fz) + 1, 0, gz - 1);
+  return (1.0f - wz) * SB_VOXEL_COUNT(x, y, z0) + wz * SB_VOXEL_COUNT(x, y, z1);
 }
 
-// The hair count in front of normalised depth u (the march, from the
-// receiver towards the light), in stored counts; the caller normalises it.
-SB_INLINE float voxelHairCount(float cx, float cy, float u, int gx, int gz, int steps) {
+// The hair count in column (x, y) in front of normalised depth u (the march,
+// from the receiver towards the light), in stored counts; the caller
+// normalises it.
+SB_INLINE float voxelHairCount(int x, int y, float u, int gz, int steps) {
   u = clamp(u, 0.0f, 1.0f);
   float h = 1.0f / float(steps);
   int k = min(int(floor(u / h)), steps - 1);
   // A count per slice times gz is a density per unit u.
   float perU = float(gz);
-  float n = (u - float(k) * h) * perU * voxelDensity(cx, cy, (float(k) + 0.5f) * h, gx, gz);
-  for (int i = k - 1; i >= 0; --i)
-    n += h * perU * voxelDensity(cx, cy, (float(i) + 0.5f) * h, gx, gz);
+  float n = (u - float(k) * h) * perU * voxelDensity(x, y, (float(k) + 0.5f) * h, gz);
+  for (int i = k - 1; i >= 0; --i) n += h * perU * voxelDensity(x, y, (float(i) + 0.5f) * h, gz);
   return n;
 }
 #endif
