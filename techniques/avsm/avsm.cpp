@@ -45,8 +45,8 @@ void AdaptiveVolumetricShadowMaps::setup(Device& dev, const GpuScene& scene,
   resolve_ = dev.createBuffer({"avsm.resolve", "frame", BufferUsage::Uniform, sizeof r}, &r);
   const std::size_t texels = std::size_t(opt_.size) * opt_.size;
   count_ = dev.createBuffer({"avsm.count", "shadow", BufferUsage::Storage, texels * 4});
-  nodes_ = dev.createBuffer(
-      {"avsm.nodes", "shadow", BufferUsage::Storage, texels * (opt_.nodes + 2) * sizeof(glm::vec2)});
+  nodes_ = dev.createBuffer({"avsm.nodes", "shadow", BufferUsage::Storage,
+                             texels * (opt_.nodes + 2) * sizeof(glm::vec2)});
   status_ = dev.createBuffer({"avsm.status", "shadow", BufferUsage::Storage, 16});
   opaque_.setup(dev, scene, opt_.size, lightView_, "avsm");
   // No interlock path is written (it could not run here): with or without the
