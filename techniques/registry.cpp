@@ -146,10 +146,10 @@ const std::vector<TechniqueInfo>& shadowCatalog() {
         {"size", "512", "map resolution (size x size), 1..16384"},
         {"bias", "0.002", "depth bias in light depth units [0,1], 0..1"}}},
       {"voxel",
-       "voxelized hair density (as Unreal ships it): fragment counts splatted into a grid^3 "
-       "volume over the light's view, visibility by marching to the light, "
-       "exp(-density_scale w sum(density step))",
-       {{"grid", "128", "voxels per side of the density volume (uint counters), 4..256"},
+       "voxelized hair density (as Unreal ships it): fragment counts splatted into a volume of "
+       "uint counters over the light's view, visibility exp(-density_scale w n), n the hair "
+       "count marched to the light",
+       {{"grid", "128", "slices over the hair's depth range, columns per side (<= size), 4..256"},
         {"steps", "128", "march steps over the hair's depth range from the light, 1..4096"},
         {"density_scale", "1", "scale of the marched hair count (1: w per fragment), 0..100"},
         {"size", "512", "resolution the hair is splatted at (size x size fragments), 1..16384"},
