@@ -745,7 +745,10 @@ RenderResult runRender(const RenderRequest& req, RenderCache* cache, Device* dev
   out.warnings = scene.warnings;  // the input's, then the techniques'
   for (const auto& w : renderer.warnings()) out.warnings.push_back(w);
   out.counters = renderer.counters();
-  out.timingEmulated = renderer.oit().timingEmulated();
+  // Either technique's emulation (the shadow's, then the transparency's).
+  for (const std::string& why :
+       {renderer.shadow().timingEmulated(), renderer.oit().timingEmulated()})
+    if (!why.empty()) out.timingEmulated += (out.timingEmulated.empty() ? "" : "; ") + why;
   if (!out.timingEmulated.empty())
     out.warnings.push_back("timing emulated, not a real cost: " + out.timingEmulated);
 

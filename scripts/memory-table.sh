@@ -38,6 +38,21 @@ print("  %s nodes kept per texel with hair min/mean/max %d/%.2f/%d: %d bytes (%.
       % (sys.argv[1], c["dsm_nodes_min"], c["dsm_nodes_mean"], c["dsm_nodes_max"],
          c["dsm_kept_bytes"], c["dsm_kept_bytes"] / 1048576, c["dsm_slot_bytes"]))' "$spec"
 done
+# Adaptive volumetric shadow maps: the paper's memory is the nodes (a count and
+# `nodes` (depth, transmittance) pairs per texel); without fragment-shader
+# interlock the curves are built from the exact lists, counted apart.
+for nodes in 4 8 16; do
+  spec="avsm:nodes=$nodes,size=512"
+  row "$spec" "-"
+  build/strandbench render --scene "$scene" --shadow "$spec" --size 64x64 --json | python3 -c '
+import json, sys
+c = json.load(sys.stdin)["counters"]
+print("  %s curves (the paper'"'"'s memory) %d bytes (%.2f MiB), the emulation'"'"'s lists %d bytes (%.2f MiB)"
+      % (sys.argv[1], c["avsm_map_bytes"], c["avsm_map_bytes"] / 1048576, c["avsm_list_bytes"],
+         c["avsm_list_bytes"] / 1048576))' "$spec"
+done
+# Voxelized density: grid^3 uint counters, whatever the map size.
+for grid in 64 128 256; do row "voxel:grid=$grid,size=512" "-"; done
 occ=$(bytes "occupancy:slices=128,slabs=4,size=512")
 osm=$(bytes "osm:maps=128,size=512,bits=32")
 echo "OSM(128) / occupancy = $(awk -v a="$osm" -v b="$occ" 'BEGIN{printf "%.1f", a/b}') (paper: 13)"

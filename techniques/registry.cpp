@@ -10,6 +10,7 @@
 #include "scenes/options.h"
 #include "techniques/abuffer/abuffer.h"
 #include "techniques/adsm/adsm.h"
+#include "techniques/avsm/avsm.h"
 #include "techniques/common/technique.h"
 #include "techniques/dc/dc.h"
 #include "techniques/dom/dom.h"
@@ -31,6 +32,7 @@
 #include "techniques/shadowmap/shadowmap.h"
 #include "techniques/shortcut/shortcut.h"
 #include "techniques/stochastic/stochastic.h"
+#include "techniques/voxel/voxel.h"
 #include "techniques/wboit/wboit.h"
 #include "techniques/weighted/weighted.h"
 
@@ -145,6 +147,22 @@ const std::vector<TechniqueInfo>& shadowCatalog() {
         {"kernel", "5", "PCF taps per side, Gaussian weights sigma = kernel/2/2.4 (TressFX), 1..9"},
         {"size", "512", "map resolution (size x size), 1..16384"},
         {"bias", "0.002", "depth bias in light depth units [0,1], 0..1"}}},
+      {"avsm",
+       "adaptive volumetric shadow maps (Salvi et al. 2010): per texel a curve of at most `nodes` "
+       "nodes, each fragment streamed in and the least-area node removed (timing emulated: "
+       "resolve in primitive order)",
+       {{"nodes", "8", "most nodes per texel curve: 4 | 8 | 16"},
+        {"size", "512", "map resolution (size x size), 1..16384"},
+        {"bias", "0.002", "depth bias in light depth units [0,1], 0..1"}}},
+      {"voxel",
+       "voxelized hair density (as Unreal ships it): fragment counts splatted into a volume of "
+       "uint counters over the light's view, visibility exp(-density_scale w n), n the hair "
+       "count marched to the light",
+       {{"grid", "128", "slices over the hair's depth range, columns per side (<= size), 4..256"},
+        {"steps", "128", "march steps over the hair's depth range from the light, 1..4096"},
+        {"density_scale", "1", "scale of the marched hair count (1: w per fragment), 0..100"},
+        {"size", "512", "resolution the hair is splatted at (size x size fragments), 1..16384"},
+        {"bias", "0.002", "depth bias in light depth units [0,1], 0..1"}}},
   };
   return catalog;
 }
@@ -164,6 +182,11 @@ std::unique_ptr<ShadowTechnique> makeShadowTechnique(const Spec& spec) {
     return std::make_unique<FourierOpacityMaps>(FourierOpacityMaps::readOptions(o));
   if (spec.name == "adsm")
     return std::make_unique<ApproximatedDeepShadows>(ApproximatedDeepShadows::readOptions(o));
+  if (spec.name == "avsm")
+    return std::make_unique<AdaptiveVolumetricShadowMaps>(
+        AdaptiveVolumetricShadowMaps::readOptions(o));
+  if (spec.name == "voxel")
+    return std::make_unique<VoxelDensityShadow>(VoxelDensityShadow::readOptions(o));
   if (spec.name == "dsm") return std::make_unique<DeepShadowMaps>(DeepShadowMaps::readOptions(o));
   if (spec.name == "dom") return std::make_unique<DeepOpacityMaps>(DeepOpacityMaps::readOptions(o));
   if (spec.name == "exact")

@@ -93,6 +93,20 @@
 #define SB_SLOT_FOM_PARAMS 8
 #define SB_SLOT_FOM_MAPS 9
 
+// avsm: the lookup (params, nodes per texel, the nodes); the resolve pass
+// (compute) reads exact's lists at the EXACT slots and writes at 0..3
+#define SB_SLOT_AVSM_PARAMS 8
+#define SB_SLOT_AVSM_COUNT 9
+#define SB_SLOT_AVSM_NODES 10
+#define SB_SLOT_AVSM_OUT_COUNT 0
+#define SB_SLOT_AVSM_OUT_NODES 1
+#define SB_SLOT_AVSM_OUT_STATUS 2
+#define SB_SLOT_AVSM_RESOLVE 3
+
+// voxel: parameters (splat and lookup), the density grid
+#define SB_SLOT_VOXEL_PARAMS 8
+#define SB_SLOT_VOXEL_GRID 9
+
 // --- transparency techniques and outputs: 16.. ---
 // The exact ones (abuffer, peel): the accumulation they composite
 // (common/composite.frag) and the per-pixel fragment counts (common/count.frag)

@@ -150,6 +150,9 @@ class ShadowTechnique {
   virtual bool monotone() const { return true; }
   // Numbers about the last frame (read back from the device), for the JSON.
   virtual std::vector<Counter> counters(Device& /*dev*/) { return {}; }
+  // Non-empty (the reason) when part of the timed work is an emulation (avsm
+  // without fragment-shader interlock), as OitTechnique::timingEmulated.
+  virtual std::string timingEmulated() const { return {}; }
   // The lookup, declared once: its shader, defines and inputs.
   virtual ShadowLookup lookup() const = 0;
 };

@@ -52,7 +52,9 @@ void ExactShadow::setup(Device& dev, const GpuScene& scene, const RenderSettings
     d.name = "exact.fill";
     d.fragment = &frag;
     fill_ = dev.createPipeline(d);
-    const ShaderCode comp = loadShader("techniques/exact/sort.comp");
+    ShaderDefines order;
+    if (bySubmission_) order.defines.push_back({"SB_EXACT_BY_SUBMISSION", "1"});
+    const ShaderCode comp = loadShader("techniques/exact/sort.comp", order);
     PipelineDesc c;
     c.name = "exact.sort";
     c.technique = "exact";

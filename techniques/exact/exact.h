@@ -34,6 +34,12 @@ class ExactShadow : public ShadowTechnique {
   // The sorted lists after addPasses' node, read only at their slots (counts,
   // offsets, cursor, nodes): what a technique built on them reads (dsm).
   Inputs sortedLists() const;
+  // Before setup: sort each texel's list in submission order (primitive id,
+  // then depth) instead of depth order, the order ordered fragment-shader
+  // interlock would process the fragments in (avsm's streaming resolve). The
+  // technique's own lookup is then not the exact visibility: only for lists
+  // another technique reads.
+  void sortBySubmission() { bySubmission_ = true; }
 
  private:
   Inputs lists(bool written) const;
@@ -47,6 +53,7 @@ class ExactShadow : public ShadowTechnique {
   float bias_;
   uint32_t maxLayers_;
   uint32_t layers_ = 0;
+  bool bySubmission_ = false;
   const GpuScene* scene_ = nullptr;
   RenderSettings settings_;
   DepthComplexity complexity_;

@@ -1,9 +1,16 @@
 // Sorts each texel's fragment keys (insertion sort: lists are short on
-// average, and any length works).
+// average, and any length works). By depth (the exact visibility), or with
+// SB_EXACT_BY_SUBMISSION by primitive id then depth: the order ordered
+// interlock processes fragments in, for a streaming resolve (avsm).
 #include "../common/key_order.glsl"
 #include "exact.glsl"
 #include "../common/invocation.glsl"
 layout(local_size_x = 64) in;
+#ifdef SB_EXACT_BY_SUBMISSION
+#define SB_EXACT_ORDER(k) (k).yx
+#else
+#define SB_EXACT_ORDER(k) (k)
+#endif
 
 void main() {
   uint size = uint(exactParams.y);
@@ -14,7 +21,7 @@ void main() {
   for (uint i = 1u; i < n; ++i) {
     uvec2 key = exactNodes[base + i];
     uint j = i;
-    while (j > 0u && keyLess(key, exactNodes[base + j - 1u])) {
+    while (j > 0u && keyLess(SB_EXACT_ORDER(key), SB_EXACT_ORDER(exactNodes[base + j - 1u]))) {
       exactNodes[base + j] = exactNodes[base + j - 1u];
       --j;
     }

@@ -1,0 +1,103 @@
+#include "techniques/voxel/voxel.h"
+
+#include <cstring>
+
+#include "techniques/common/opacity.h"
+#include "techniques/common/shader_library.h"
+
+namespace sb {
+
+namespace {
+constexpr uint32_t kParams = SB_SLOT_VOXEL_PARAMS, kGrid = SB_SLOT_VOXEL_GRID;
+
+struct Params {
+  glm::mat4 viewProj;
+  glm::vec4 params;  // bias, splat size, shadow alpha, density_scale
+  glm::vec4 range;   // near, far, steps, 0
+  glm::vec4 cells;   // columns per side, slices, 0, 0
+};
+}  // namespace
+
+VoxelDensityShadow::Options VoxelDensityShadow::readOptions(const OptionReader& o) {
+  Options opt;
+  opt.grid = static_cast<uint32_t>(o.integer("grid", 4, 256));
+  opt.steps = static_cast<uint32_t>(o.integer("steps", 1, 4096));
+  opt.densityScale = static_cast<float>(o.number("density_scale", 0.0, 100.0));
+  opt.size = static_cast<uint32_t>(o.integer("size", 1, 16384));
+  opt.bias = static_cast<float>(o.number("bias", 0.0, 1.0));
+  return opt;
+}
+
+void VoxelDensityShadow::setup(Device& dev, const GpuScene& scene, const RenderSettings& s) {
+  scene_ = &scene;
+  settings_ = s;
+  const ViewUniforms view = lightView(s, opt_.size, opt_.size);
+  lightView_ = createLightViewBuffer(dev, view, "voxel");
+  opaque_.setup(dev, scene, opt_.size, lightView_, "voxel");
+  // The volume's depth: the hair's range from the light (from the hair
+  // points, exact for lines and ribbons), a little wider so that the farthest
+  // fragment falls inside the last slice.
+  const DepthRange r = depthRange(hairLightDepths(dev, scene, view.viewProj));
+  const float pad = 1e-3f * std::max(r.farZ - r.nearZ, 1e-6f);
+  Params p{};
+  p.viewProj = view.viewProj;
+  p.params = glm::vec4(opt_.bias, float(opt_.size), scene.shadowAlpha, opt_.densityScale);
+  p.range = glm::vec4(r.nearZ - pad, r.farZ + pad, float(opt_.steps), 0.0f);
+  p.cells = glm::vec4(float(columns()), float(opt_.grid), 0.0f, 0.0f);
+  params_ = dev.createBuffer({"voxel.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
+  const std::size_t voxels = std::size_t(columns()) * columns() * opt_.grid;
+  grid_ = dev.createBuffer({"voxel.grid", "shadow", BufferUsage::Storage, voxels * 4});
+  if (!scene.hasHair()) return;
+  const ShaderCode vert = Geometry::strandVertexShader(s);
+  const ShaderCode frag = loadShader("techniques/voxel/splat.frag");
+  PipelineDesc d;
+  d.name = "voxel.splat";
+  d.technique = "voxel";
+  d.vertex = &vert;
+  d.fragment = &frag;
+  d.topology = Geometry::strandTopology(s);
+  d.bindings = splatPass().slots();
+  pipeline_ = dev.createPipeline(d);
+}
+
+// A hair pass from the light at the splat size (no attachments) into the grid.
+Pass VoxelDensityShadow::splatPass() const {
+  return Pass("voxel.splat")
+      .size(opt_.size, opt_.size)
+      .inputs(Geometry::inputs(*scene_, lightView_))
+      .uniform(kParams, params_)
+      .storage(kGrid, grid_);
+}
+
+void VoxelDensityShadow::addPasses(FrameGraph& graph, Device& dev) {
+  opaque_.addPass(graph, dev);
+  const uint32_t vertices = Geometry::strandVertexCount(*scene_, settings_);
+  graph.add(splatPass(), [this, &dev, vertices, p = splatPass()] {
+    dev.fillBuffer(grid_, 0);
+    p.draw(dev, pipeline_, vertices);
+  });
+}
+
+ShadowLookup VoxelDensityShadow::lookup() const {
+  ShadowLookup l{"techniques/voxel/lookup.glsl"};
+  l.inputs.uniform(kParams, params_).readStorage(kGrid, grid_);
+  opaque_.addTo(l);
+  return l;
+}
+
+// Voxels with hair and the fragments splatted (the grid's total).
+std::vector<Counter> VoxelDensityShadow::counters(Device& dev) {
+  const std::vector<uint8_t> bytes = dev.readBuffer(grid_);
+  uint64_t occupied = 0, fragments = 0;
+  for (std::size_t i = 0; i + 4 <= bytes.size(); i += 4) {
+    uint32_t c = 0;
+    std::memcpy(&c, bytes.data() + i, 4);
+    occupied += c != 0;
+    fragments += c;
+  }
+  return {{"voxel_occupied", double(occupied)},
+          {"voxel_fragments", double(fragments)},
+          {"voxel_grid_bytes", double(bytes.size())}};
+}
+
+}  // namespace sb
