@@ -190,7 +190,9 @@ SB_INLINE float mboitTransmittance(int n, float b0, vec4 low, vec4 high, float z
   SB_PRECISE float invB0 = mboitRcp(b0);
   b[0] = 1.0f;
   for (int k = 1; k <= 2 * SB_MBOIT_MAX_N; ++k) {
-    SB_PRECISE float m = k <= 4 ? low[k - 1] : high[k - 5];
+    // Both sides of ?: are evaluated: the indices stay in bounds (an
+    // out-of-range vector index is undefined in GLSL and differed by driver).
+    SB_PRECISE float m = k <= 4 ? low[min(k - 1, 3)] : high[max(k - 5, 0)];
     b[k] = (m * invB0) * (1.0f - bias) + mboitBiasVector(n, k) * bias;  // mix, spelled out
   }
   // Hankel system B c = (1, zf, .., zf^n), Gaussian elimination (B is positive
