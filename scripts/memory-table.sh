@@ -25,6 +25,8 @@ row "shadowmap:size=512" "-"
 row "adsm:size=512" "- (TressFX: one depth map)"
 row "fom:coefficients=8,size=512" "-"
 row "fom:coefficients=16,size=512" "-"
+row "msm:moments=4,size=512" "-"
+row "msm:moments=8,size=512" "-"
 row "dom:layers=3,size=512,spacing=power,filter=pcf6x4" "- (Unreal: 4 layers)"
 # Deep shadow maps depend on the hair: the exact technique's light-space lists
 # they are built from, plus node slots; the paper's memory is the nodes kept.

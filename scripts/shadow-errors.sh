@@ -18,8 +18,9 @@ scenes=("straight:strands=4000,points=16,head=0" "curly:strands=1500,points=48,h
         "stray:strands=3000,points=16")
 shadows=("shadowmap" "osm:maps=16" "osm:maps=16,filter=pcf6x4" "dc:clusters=4" "dom:layers=3"
          "dom:layers=3,spacing=power,filter=pcf6x4" "occupancy" "dsm:epsilon=0,max_nodes=65536" "dsm:epsilon=0.02"
-         "dsm:epsilon=0.1" "fom:coefficients=4" "fom:coefficients=16" "adsm" "avsm:nodes=4" "avsm:nodes=8"
-         "avsm:nodes=16" "voxel:grid=64,steps=64" "voxel" "exact")
+         "dsm:epsilon=0.1" "fom:coefficients=4" "fom:coefficients=16" "msm:moments=4" "msm:moments=8"
+         "msm:moments=8,kind=trig" "adsm" "avsm:nodes=4" "avsm:nodes=8" "avsm:nodes=16"
+         "voxel:grid=64,steps=64" "voxel" "exact")
 if [ -n "${SHADOWS:-}" ]; then read -ra shadows <<< "$SHADOWS"; fi
 row() {  # scene backend shadow
   "${STRANDBENCH:-build/strandbench}" render --scene "$1" --backend "$2" --shadow "$3" --size "${size}x${size}" \

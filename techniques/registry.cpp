@@ -22,6 +22,7 @@
 #include "techniques/kbuffer/kbuffer.h"
 #include "techniques/mboit/mboit.h"
 #include "techniques/mlab/mlab.h"
+#include "techniques/msm/msm.h"
 #include "techniques/none/none.h"
 #include "techniques/occupancy/occupancy.h"
 #include "techniques/occupancy_oit/occupancy_oit.h"
@@ -140,6 +141,15 @@ const std::vector<TechniqueInfo>& shadowCatalog() {
          "frequencies n (2n+1 floats per texel, 4 per RGBA32F layer, 8 layers a hair pass), 1..31"},
         {"size", "512", "map resolution (size x size), 1..16384"},
         {"bias", "0.002", "depth bias in light depth units [0,1], 0..1"}}},
+      {"msm",
+       "moment shadow maps for semi-transparent occluders (Muenstermann et al. 2018's shadow "
+       "variant; Peters & Klein 2015): absorbance-weighted moments of light depth, mboit's "
+       "reconstruction with the paper's bias",
+       {{"moments", "6",
+         "real moments beyond b0: 4 | 6 | 8 (kind=trig: 2, 3, 4 complex trigonometric moments)"},
+        {"kind", "power", "power | trig: power moments of depth or trigonometric moments"},
+        {"size", "512", "map resolution (size x size), 1..16384"},
+        {"bias", "0.002", "depth bias in light depth units [0,1], 0..1"}}},
       {"adsm",
        "approximated deep shadows (TressFX, Tomb Raider 2013): one front-depth map, "
        "(1-alpha)^(dz/(spacing x radius) + 1), Gaussian PCF",
@@ -180,6 +190,8 @@ std::unique_ptr<ShadowTechnique> makeShadowTechnique(const Spec& spec) {
     return std::make_unique<OpacityShadowMaps>(OpacityShadowMaps::readOptions(o));
   if (spec.name == "fom")
     return std::make_unique<FourierOpacityMaps>(FourierOpacityMaps::readOptions(o));
+  if (spec.name == "msm")
+    return std::make_unique<MomentShadowMaps>(MomentShadowMaps::readOptions(o));
   if (spec.name == "adsm")
     return std::make_unique<ApproximatedDeepShadows>(ApproximatedDeepShadows::readOptions(o));
   if (spec.name == "avsm")
@@ -230,9 +242,11 @@ const std::vector<TechniqueInfo>& oitCatalog() {
          "corrected (the fragment's own share taken out, spread within its slice) | paper (the "
          "printed F_i / B_total * B_before)"}}},
       {"mboit",
-       "moment-based OIT (Muenstermann et al. 2018): transmittance from power moments of "
-       "log depth, the paper's bias; two hair passes",
-       {{"moments", "6", "power moments: 4 | 6 | 8"},
+       "moment-based OIT (Muenstermann et al. 2018): transmittance from power or "
+       "trigonometric moments of log depth, the paper's bias; two hair passes",
+       {{"moments", "6",
+         "real moments beyond b0: 4 | 6 | 8 (kind=trig: 2, 3, 4 complex trigonometric moments)"},
+        {"kind", "power", "power | trig: power moments of depth or trigonometric moments"},
         {"precision", "32",
          "moment target bits: 16 (RGBA16F, the paper's 16-bit bias) | 32 (RGBA32F)"}}},
       {"kbuffer",

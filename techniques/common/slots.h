@@ -107,6 +107,12 @@
 #define SB_SLOT_VOXEL_PARAMS 8
 #define SB_SLOT_VOXEL_GRID 9
 
+// msm: parameters (light pass and lookup), b0 and the moment targets (lookup)
+#define SB_SLOT_MSM_PARAMS 8
+#define SB_SLOT_MSM_B0 9
+#define SB_SLOT_MSM_LOW 10
+#define SB_SLOT_MSM_HIGH 11
+
 // --- transparency techniques and outputs: 16.. ---
 // The exact ones (abuffer, peel): the accumulation they composite
 // (common/composite.frag) and the per-pixel fragment counts (common/count.frag)

@@ -21,13 +21,14 @@ layout(location = 0) out vec4 outAccum;
 
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
-  float z = mboitWarpDepth(dot(vWorldPos - viewEye.xyz, viewForward.xyz), mboitWarp.x, mboitWarp.y);
+  precise float z =
+      mboitWarpDepth(dot(vWorldPos - viewEye.xyz, viewForward.xyz), mboitWarp.x, mboitWarp.y);
   vec4 high = vec4(0.0);
 #ifdef SB_MBOIT_HIGH
   high = texelFetch(highTex, p, 0);
 #endif
-  float t = mboitTransmittance(mboitN.x, texelFetch(b0Tex, p, 0).x, texelFetch(lowTex, p, 0), high,
-                               z, mboitWarp.z, mboitWarp.w);
+  float t = mboitTransmittanceOf(mboitN.z, 2 * mboitN.x, texelFetch(b0Tex, p, 0).x,
+                                 texelFetch(lowTex, p, 0), high, z, mboitWarp.z, mboitWarp.w);
   float a = vColor.a;
   vec3 c = shadeHair(vWorldPos, vTangent, vColor.rgb);
   outAccum = vec4(c * a, a) * t;

@@ -38,6 +38,7 @@ MomentOit::Options MomentOit::readOptions(const OptionReader& o) {
   Options r;
   r.moments = std::stoi(o.choice("moments", {"4", "6", "8"}));
   r.bits = std::stoi(o.choice("precision", {"16", "32"}));
+  r.trig = o.choice("kind", {"power", "trig"}) == "trig";
   return r;
 }
 
@@ -48,9 +49,10 @@ void MomentOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& 
   settings_ = s;
   targets_ = targets;
   const glm::vec2 range = depthRange(scene.bounds, cameraView(s));
+  const int kind = o_.trig ? SB_MBOIT_TRIG : SB_MBOIT_POWER;
   Params p{{std::log(range.x), 1.0f / (std::log(range.y) - std::log(range.x)),
-            glsl::mboitBias(o_.moments / 2, o_.bits), 0.25f},
-           {o_.moments / 2, o_.bits, 0, 0}};
+            glsl::mboitKindBias(kind, o_.moments, o_.bits), SB_MBOIT_OVERESTIMATION},
+           {o_.moments / 2, o_.bits, kind, 0}};
   params_ = dev.createBuffer({"mboit.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
   const Format f = o_.bits == 16 ? Format::RGBA16F : Format::RGBA32F;
   b0_ = dev.createTexture({"mboit.b0", "oit", Format::R32F, s.width, s.height, false});

@@ -21,8 +21,9 @@ class OptionReader;
 class MomentOit : public OitTechnique {
  public:
   struct Options {
-    int moments = 6;  // 4, 6 or 8 power moments
-    int bits = 32;    // 16 or 32
+    int moments = 6;    // 4, 6 or 8 real moments beyond b0 (trig: 2, 3, 4 complex)
+    bool trig = false;  // trigonometric instead of power moments
+    int bits = 32;      // 16 or 32
   };
   explicit MomentOit(Options o) : o_(o) {}
   static Options readOptions(const OptionReader& o);
@@ -30,6 +31,9 @@ class MomentOit : public OitTechnique {
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
              const KajiyaKayShading& shading, const OitTargets& targets) override;
   void addPasses(FrameGraph& graph, Device& dev) override;
+  // The additive targets after a frame: b0, (b1..b4), (b5..b8) if drawn and the
+  // accumulated (c a T, a T), for tests comparing the backends stage by stage.
+  std::vector<Texture> targets() const { return {b0_, low_, high_, accum_}; }
 
  private:
   Pass momentsPass() const;

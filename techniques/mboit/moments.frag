@@ -1,5 +1,5 @@
 // mboit pass 1: every visible hair fragment adds its absorbance A to b0 and
-// A z^k to the moment targets (additive blending; mboit_math.glsl).
+// A z^k (power) or A e^(i k phi) (trigonometric) to the moment targets (additive blending; mboit_math.glsl).
 #include "../common/view.glsl"
 #include "mboit.glsl"
 #include "mboit_math.glsl"
@@ -14,12 +14,13 @@ layout(location = 2) out vec4 outHigh;
 #endif
 
 void main() {
-  float z = mboitWarpDepth(dot(vWorldPos - viewEye.xyz, viewForward.xyz), mboitWarp.x, mboitWarp.y);
+  precise float z =
+      mboitWarpDepth(dot(vWorldPos - viewEye.xyz, viewForward.xyz), mboitWarp.x, mboitWarp.y);
   float a = mboitAbsorbance(vColor.a);
   outB0 = vec4(a, 0.0, 0.0, 0.0);
-  outLow = a * mboitPowersLow(z);
+  outLow = a * mboitMomentsLow(mboitN.z, z);
 #ifdef SB_MBOIT_HIGH
-  outHigh = a * mboitPowersHigh(z);
-  if (mboitN.x == 3) outHigh.zw = vec2(0.0);  // 6 moments: b5, b6 only
+  outHigh = a * mboitMomentsHigh(mboitN.z, z);
+  if (mboitN.x == 3) outHigh.zw = vec2(0.0);  // 6 moments: b5, b6 (or t3) only
 #endif
 }
