@@ -1,5 +1,6 @@
 #include "reports/figure_report.h"
 
+#include <cmath>
 #include <set>
 #include <sstream>
 
@@ -28,6 +29,12 @@ std::optional<double> at(const json* r, std::initializer_list<std::string_view> 
 Cell numCell(std::optional<double> v, int digits = 3) {
   if (!v) return {kNone, true};
   return {formatSig(*v, digits), true};
+}
+
+// A count (segments) in full: 150000, not 1.50e+05.
+Cell countCell(std::optional<double> v) {
+  if (!v) return {kNone, true};
+  return {std::to_string(std::llround(*v)), true};
 }
 
 }  // namespace
@@ -177,7 +184,7 @@ std::string renderFigureMarkdown(const FigureGrid& g, const json& results,
       t.rows.push_back({{c.row},
                         {c.column},
                         {r ? caseId(*r) : std::string(kNone)},
-                        numCell(at(r, {"scene", "segments"}), 6),
+                        countCell(at(r, {"scene", "segments"})),
                         numCell(r ? frameMs(*r) : std::nullopt),
                         numCell(at(r, {"error", "image", "rmse"})),
                         numCell(at(r, {"error", "image", "flip", "mean"})),

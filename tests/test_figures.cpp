@@ -141,13 +141,15 @@ TEST_P(FigureSmall, WritesItsGridAndTableOnBothBackends) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Figures, FigureSmall, ::testing::ValuesIn(sb::figureNames()),
-                         [](const auto& info) {
-                           std::string n = info.param;
-                           for (char& c : n)
-                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                           return n;
-                         });
+// Test names: the figure's name with '-' as '_'.
+std::string testName(const ::testing::TestParamInfo<std::string>& p) {
+  std::string n = p.param;
+  for (char& c : n)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return n;
+}
+
+INSTANTIATE_TEST_SUITE_P(Figures, FigureSmall, ::testing::ValuesIn(sb::figureNames()), testName);
 
 TEST(Figure, EveryPaperFigureHasAFile) {
   const auto names = sb::figureNames();
