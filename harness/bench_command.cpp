@@ -102,8 +102,8 @@ int runBench(const BenchOptions& o) {
   std::vector<std::string> specs;
   for (const auto& row : kFig1) specs.push_back(row.first);
   for (int maps : o.osmMaps) {
-    if (maps < 1 || maps > 256)
-      throw InputError("--osm-maps " + std::to_string(maps) + ": map counts must be in 1..256");
+    if (maps < 1 || maps > 512)
+      throw InputError("--osm-maps " + std::to_string(maps) + ": map counts must be in 1..512");
     specs.push_back("osm:passes=single,maps=" + std::to_string(maps));
   }
   if (std::set<int>(o.osmMaps.begin(), o.osmMaps.end()).size() < 2)

@@ -283,6 +283,7 @@ void registerCommands(CLI::App& app) {
   registerCompareRunsCommand(app);
   registerHistoryCommand(app);
   registerViewCommand(app);
+  registerFigureCommand(app);
   // Unknown options get the closest valid one, for every command.
   for (CLI::App* cmd : app.get_subcommands([](CLI::App*) { return true; }))
     cmd->parse_complete_callback([cmd] { rejectUnknownArguments(*cmd); });

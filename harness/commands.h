@@ -27,6 +27,8 @@ void registerCompareRunsCommand(CLI::App& app);
 void registerHistoryCommand(CLI::App& app);
 // `view` (harness/view_command.cpp).
 void registerViewCommand(CLI::App& app);
+// `figure` (harness/figure_command.cpp).
+void registerFigureCommand(CLI::App& app);
 int lastCommandStatus();
 // Runs a command's body and records its exit status; bad input (InputError) and
 // unavailable backends (DeviceError) print "strandbench <command>: <message>"

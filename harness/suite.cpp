@@ -16,8 +16,10 @@ namespace {
 
 using ojson = nlohmann::ordered_json;
 
-const std::vector<std::string> kSuiteKeys = {"name",    "description", "defaults",
-                                             "presets", "groups",      "tables"};
+// "figure" and "small": a figure's grid and its --small overrides (harness/figure.h); a sweep
+// of a figure file runs its full size and ignores both.
+const std::vector<std::string> kSuiteKeys = {"name",   "description", "defaults", "presets",
+                                             "groups", "tables",      "figure",   "small"};
 const std::vector<std::string> kGroupKeys = {"name", "description", "preset", "axes"};
 // Settings: the table's keys (harness/settings.h), and "backends", a list: one case per backend.
 std::vector<std::string> suiteSettings() {

@@ -27,6 +27,8 @@ Cell num(std::optional<double> v, int digits = 3) {
 // JSON or read the same (4 and "4", so a hand-written suite need not match types).
 bool sameValue(const json& a, const json& b) { return a == b || text(&a) == text(&b); }
 
+}  // namespace
+
 bool matches(const json& r, const std::string& group, const json* match) {
   if (groupOf(r) != group) return false;
   if (!match || !match->is_object()) return true;
@@ -37,6 +39,8 @@ bool matches(const json& r, const std::string& group, const json* match) {
   }
   return true;
 }
+
+namespace {
 
 // The unit a metric is shown in: "ms", "MiB", or "" for an unknown metric.
 std::string metricUnit(const std::string& metric) {

@@ -6,6 +6,7 @@
 #include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <ostream>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -116,6 +117,13 @@ struct ReportData {
 // Throws InputError when `doc` is not a JSON object; anything missing inside it
 // is shown as absent.
 ReportData buildReport(const json& doc);
+
+// Whether result r is of `group` and its case.params hold every key and value of `match`
+// (an object; null or absent matches all): a paper table row's and a figure cell's match.
+bool matches(const json& r, const std::string& group, const json* match);
+// Markdown inline text with markup characters escaped, and a table (report.md, figure.md).
+std::string md(const std::string& s);
+void mdTable(std::ostream& o, const Table& t);
 
 std::string renderCsv(const ReportData& data);
 std::string renderMarkdown(const ReportData& data);

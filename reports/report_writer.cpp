@@ -22,6 +22,8 @@ std::string csvField(const std::string& s) {
   return out + "\"";
 }
 
+}  // namespace
+
 // Markdown inline text: characters that would start markup, or end a table
 // cell, are backslash-escaped; line breaks become spaces.
 std::string md(const std::string& s) {
@@ -55,8 +57,6 @@ void mdTable(std::ostream& o, const Table& t) {
   }
   o << "\n";
 }
-
-}  // namespace
 
 std::string renderCsv(const ReportData& d) {
   std::ostringstream o;

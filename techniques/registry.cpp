@@ -93,7 +93,7 @@ const std::vector<TechniqueInfo>& shadowCatalog() {
         {"iterations", "2", "k-means iterations (passes over the hair), 1..64"}}},
       {"osm",
        "opacity shadow maps (Kim & Neumann 2001): planar opacity maps, linear interpolation",
-       {{"maps", "16", "number of opacity maps, 1..256"},
+       {{"maps", "16", "number of opacity maps, 1..512"},
         {"slicing", "uniform",
          "uniform | density (equal hair points per slice) | gamma (tighter near the light)"},
         {"gamma", "2", "slicing=gamma exponent: D_i = near + (far-near)(i/n)^gamma, 0.1..10"},

@@ -186,7 +186,7 @@ TEST(BadInput, OutOfRangeValues) {
   s.expectRejected("render --scene curly:points=-1 --out {dir}/x.png",
                    {"scene 'curly'", "points=-1", "out of range"});
   s.expectRejected(render + "--shadow osm:maps=-3",
-                   {"shadow technique 'osm'", "maps=-3", "out of range [1, 256]"});
+                   {"shadow technique 'osm'", "maps=-3", "out of range [1, 512]"});
   s.expectRejected("render --size 0x0 --out {dir}/x.png", {"--size 0x0", "1..16384"});
   s.expectRejected(render + "--warmup -1", {"--warmup", "at least 0"});
   s.expectRejected("compare {dir}/a.png {dir}/b.png --ppd 0", {"--ppd", "positive"});
@@ -196,7 +196,7 @@ TEST(BadInput, OutOfRangeValues) {
   s.expectRejected("probe --map-size -1 --out {dir}/p.csv", {"--map-size -1", "1..16384"});
   s.expectRejected("probe --shadow dom:layers=0 --out {dir}/p.csv", {"dom", "layers=0"});
   const std::string bench = " --scene " + kScene + " --size 16x16 --repeat 1";
-  s.expectRejected("bench-shadows" + bench + " --osm-maps 1 -3", {"--osm-maps -3", "1..256"});
+  s.expectRejected("bench-shadows" + bench + " --osm-maps 1 -3", {"--osm-maps -3", "1..512"});
   s.expectRejected("bench-shadows --size 0x0", {"--size 0x0"});
   s.expectRejected("bench-oit --scene " + kScene + " --repeat 0", {"--repeat", "at least 1"});
   s.expectRejected("bench-oit --scene straight:strands=-5", {"strands=-5", "out of range"});

@@ -17,7 +17,8 @@ struct Params {
   glm::mat4 viewProj;
   glm::vec4 params;   // bias, size, shadow alpha, weight
   glm::ivec4 layout;  // cols, maps, atlases, filter
-  glm::vec4 slices[65];
+  // D_0..D_n, n <= 512 (the OSM paper's Plate 3 uses 500 maps)
+  glm::vec4 slices[129];
 };
 
 struct PassParams {
@@ -69,7 +70,7 @@ OpacityShadowMaps::Layout OpacityShadowMaps::layoutFor(uint32_t maps, bool multi
 
 OpacityShadowMaps::Options OpacityShadowMaps::readOptions(const OptionReader& o) {
   Options opt;
-  opt.maps = static_cast<uint32_t>(o.integer("maps", 1, 256));
+  opt.maps = static_cast<uint32_t>(o.integer("maps", 1, 512));
   const std::string slicing = o.choice("slicing", {"uniform", "density", "gamma"});
   opt.slicing = slicing == "density" ? glsl::kOsmDensity
                 : slicing == "gamma" ? glsl::kOsmGamma

@@ -1,0 +1,42 @@
+// `strandbench figure NAME`: one command per figure and table of the papers. A figure is a
+// suite file in suites/figures/NAME.json with two more keys (docs/suites-and-results.md
+// "Figures"): "figure" (the paper's grid: rows, columns, each cell a case match) and "small"
+// (overrides for a run in under a minute, `--small`). The command runs the suite (a sweep),
+// then writes figure.png (the grid: our image and its error heatmap per cell, labelled),
+// figure.md (our numbers beside the paper's) and figure.json beside the sweep's files.
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace sb {
+
+struct FigureOptions {
+  std::string name;    // a figure of figureNames(), or a path to a figure file (.json)
+  bool small = false;  // apply the figure's "small" overrides
+  std::string backend = "gl";
+  std::string out;  // the folder written (default: figures/NAME, or NAME-small)
+  bool progressBar = false;
+};
+
+// suites/figures of the source tree.
+std::filesystem::path figuresDir();
+// Where the figures' models are: $SB_MODELS_DIR, else ../shared/models beside the source tree.
+std::filesystem::path modelsDir();
+// The figures' names (the stems of suites/figures/*.json), sorted.
+std::vector<std::string> figureNames();
+
+// The suite a figure runs: the file with its "small" overrides applied (when `small`), every
+// case on `backend`, and "../shared/models/" in scene specs replaced by modelsDir(). Throws
+// InputError for an unknown name (listing the figures), a malformed figure, or a model that
+// is missing (naming it).
+nlohmann::ordered_json figureSuite(const std::string& name, bool small, const std::string& backend);
+
+// Runs the figure into o.out (written in a temporary folder beside it and renamed into place:
+// an existing figure folder there is replaced, anything else is refused). Returns 0, or 1
+// when a case failed (its cell says so).
+int runFigure(const FigureOptions& o);
+
+}  // namespace sb

@@ -1,0 +1,244 @@
+// `strandbench figure`: every figure's --small variant on both backends writes its grid
+// (figure.png with the paper's rows x columns, each cell our image and its error heatmap) and
+// its table (figure.md, figure.json); a bad name is refused with the list of figures; the grid
+// check fails on a grid of the wrong shape. One ctest entry per figure (ctest -j2 splits them).
+#include <OpenImageIO/imagebuf.h>
+#include <gtest/gtest.h>
+
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "harness/figure.h"
+#include "reports/figure_report.h"
+#include "test_util.h"
+
+namespace {
+
+using namespace sbtest;
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+// The papers' grids, written here apart from the figure files: rows x columns.
+const std::map<std::string, std::pair<int, int>> kPaperShapes = {
+    {"dom-fig1", {1, 4}},     {"dom-fig3", {1, 4}},   {"dom-fig5", {1, 4}},
+    {"dom-fig7", {1, 1}},     {"dom-fig8", {1, 3}},   {"occ-fig1", {1, 2}},
+    {"occ-fig2", {1, 4}},     {"occ-steps", {1, 1}},  {"occ-fig6", {1, 2}},
+    {"occ-fig9", {1, 2}},     {"occ-fig10", {1, 3}},  {"occ-memory", {1, 5}},
+    {"osm-fig4", {1, 6}},     {"osm-plate3", {1, 2}}, {"thesis-table1", {3, 3}},
+    {"thesis-table2", {3, 2}}};
+
+json figureFile(const std::string& name) {
+  return json::parse(readFile(sb::figuresDir() / (name + ".json")));
+}
+
+// A rectangle of figure.png holds more than one colour: something was pasted there.
+bool varied(const OIIO::ImageBuf& img, int x0, int y0, int w, int h) {
+  float first[3], p[3];
+  img.getpixel(x0, y0, first, 3);
+  for (int y = y0; y < y0 + h; y += 2)
+    for (int x = x0; x < x0 + w; x += 2) {
+      img.getpixel(x, y, p, 3);
+      for (int c = 0; c < 3; ++c)
+        if (std::abs(p[c] - first[c]) > 0.02f) return true;
+    }
+  return false;
+}
+
+// Checks a figure folder against its figure file; returns the problems found.
+std::vector<std::string> checkFigureFolder(const fs::path& dir, const json& file,
+                                           const std::string& backend) {
+  std::vector<std::string> problems;
+  auto fail = [&](const std::string& s) { problems.push_back(s); };
+  for (const char* f : {"figure.png", "figure.md", "figure.json", "results.json", "report.md"})
+    if (!fs::is_regular_file(dir / f)) fail(std::string("missing ") + f);
+  if (!problems.empty()) return problems;
+  const json fig = json::parse(readFile(dir / "figure.json"));
+  if (fig["backend"] != backend) fail("backend " + fig["backend"].dump());
+  if (fig["rows"] != file["figure"]["rows"]) fail("rows differ from the figure file");
+  if (fig["columns"] != file["figure"]["columns"]) fail("columns differ from the figure file");
+  const std::size_t rows = fig["rows"].size(), cols = fig["columns"].size();
+  if (fig["cells"].size() != rows) fail("cells: not one row per label");
+  OIIO::ImageBuf png((dir / "figure.png").string());
+  if (!png.read(0, 0, true, OIIO::TypeDesc::FLOAT)) return {"figure.png unreadable"};
+  const json& L = fig["layout"];
+  if (png.spec().width != L["width"].get<int>() || png.spec().height != L["height"].get<int>())
+    fail("figure.png is not the layout's size");
+  if (L["width"].get<int>() !=
+      L["x0"].get<int>() +
+          static_cast<int>(cols) * (L["cell_width"].get<int>() + L["margin"].get<int>()))
+    fail("figure.png does not hold one cell per column");
+  if (L["height"].get<int>() !=
+      L["y0"].get<int>() +
+          static_cast<int>(rows) * (L["cell_height"].get<int>() + L["margin"].get<int>()))
+    fail("figure.png does not hold one cell per row");
+  const std::string md = readFile(dir / "figure.md");
+  for (std::size_t r = 0; r < fig["cells"].size(); ++r) {
+    if (fig["cells"][r].size() != cols) fail("cells row " + std::to_string(r) + ": wrong size");
+    for (std::size_t c = 0; c < fig["cells"][r].size(); ++c) {
+      const json& cell = fig["cells"][r][c];
+      const std::string where =
+          cell["row"].get<std::string>() + " / " + cell["column"].get<std::string>() + ": ";
+      if (file["figure"]["cells"][r][c].is_null()) continue;
+      if (cell["case"].is_null()) {
+        fail(where + "no case");
+        continue;
+      }
+      if (cell.contains("note")) fail(where + cell["note"].get<std::string>());
+      for (const char* k : {"image", "heatmap"})
+        if (!cell["images"].contains(k) ||
+            !fs::is_regular_file(dir / cell["images"][k].get<std::string>()))
+          fail(where + "no " + k);
+      if (!cell["frame_ms"].is_number()) fail(where + "no frame time");
+      if (!cell["image_rmse"].is_number()) fail(where + "no image error");
+      const int x = L["x0"].get<int>() +
+                    static_cast<int>(c) * (L["cell_width"].get<int>() + L["margin"].get<int>());
+      const int y = L["y0"].get<int>() +
+                    static_cast<int>(r) * (L["cell_height"].get<int>() + L["margin"].get<int>());
+      if (!varied(png, x, y, L["tile"].get<int>(), L["tile"].get<int>()))
+        fail(where + "the image tile is flat");
+      if (md.find(cell["case"].get<std::string>()) == std::string::npos)
+        fail(where + "figure.md does not name the case");
+    }
+  }
+  for (const json& t : file.value("tables", json::array()))
+    if (md.find(t["title"].get<std::string>()) == std::string::npos)
+      fail("figure.md lacks the paper table " + t["title"].get<std::string>());
+  return problems;
+}
+
+std::vector<std::string> missingModels(const json& file) {
+  std::vector<std::string> missing;
+  for (const json& m : file["figure"].value("models", json::array()))
+    if (!fs::is_regular_file(sb::modelsDir() / m.get<std::string>()))
+      missing.push_back((sb::modelsDir() / m.get<std::string>()).string());
+  return missing;
+}
+
+class FigureSmall : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(FigureSmall, WritesItsGridAndTableOnBothBackends) {
+  const std::string name = GetParam();
+  const json file = figureFile(name);
+  ASSERT_TRUE(kPaperShapes.contains(name)) << name << ": add the paper's grid shape to the test";
+  EXPECT_EQ(file["figure"]["rows"].size(), static_cast<std::size_t>(kPaperShapes.at(name).first));
+  EXPECT_EQ(file["figure"]["columns"].size(),
+            static_cast<std::size_t>(kPaperShapes.at(name).second));
+  if (const auto missing = missingModels(file); !missing.empty())
+    GTEST_SKIP() << name << " needs " << missing[0] << ", which is not there (../shared/models)";
+  for (const std::string backend : {"gl", "vulkan"}) {
+    const fs::path dir = tempDir("figure-" + name);
+    const fs::path out = dir / "out";
+    const CliResult r =
+        runCli("figure " + name + " --small --backend " + backend + " --out " + out.string());
+    EXPECT_EQ(r.status, 0) << backend << "\n" << r.out << r.err;
+    for (const std::string& p : checkFigureFolder(out, file, backend))
+      ADD_FAILURE() << name << " on " << backend << ": " << p;
+    // Only the figure folder is left: no temporary folder beside it.
+    int entries = 0;
+    for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++entries;
+    EXPECT_EQ(entries, 1) << "a temporary folder was left in " << dir;
+    fs::remove_all(dir);
+  }
+}
+
+// Test names: the figure's name with '-' as '_'.
+std::string testName(const ::testing::TestParamInfo<std::string>& p) {
+  std::string n = p.param;
+  for (char& c : n)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return n;
+}
+
+INSTANTIATE_TEST_SUITE_P(Figures, FigureSmall, ::testing::ValuesIn(sb::figureNames()), testName);
+
+TEST(Figure, EveryPaperFigureHasAFile) {
+  const auto names = sb::figureNames();
+  for (const auto& [name, shape] : kPaperShapes)
+    EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
+}
+
+TEST(Figure, BadNameIsRefusedWithTheListAndWritesNothing) {
+  const fs::path dir = tempDir("figure-bad");
+  const CliResult r = runCli("figure dom-fig99 --small --out " + (dir / "out").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("unknown figure 'dom-fig99'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("dom-fig1"), std::string::npos) << r.err;  // the list
+  EXPECT_NE(r.err.find("osm-plate3"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  const CliResult b =
+      runCli("figure dom-fig1 --small --backend metal --out " + (dir / "out").string());
+  EXPECT_EQ(b.status, 2);
+  EXPECT_NE(b.err.find("--backend metal"), std::string::npos) << b.err;
+  const CliResult none = runCli("figure");
+  EXPECT_EQ(none.status, 2);
+  EXPECT_NE(none.err.find("dom-fig1"), std::string::npos) << none.err;
+  // An existing folder that is not a figure's is left alone.
+  fs::create_directories(dir / "mine");
+  std::ofstream(dir / "mine" / "keep.txt") << "x";
+  const CliResult o = runCli("figure dom-fig1 --small --out " + (dir / "mine").string());
+  EXPECT_EQ(o.status, 2);
+  EXPECT_NE(o.err.find("not a figure folder"), std::string::npos) << o.err;
+  EXPECT_TRUE(fs::is_regular_file(dir / "mine" / "keep.txt"));
+  const CliResult l = runCli("figure --list");
+  EXPECT_EQ(l.status, 0);
+  EXPECT_NE(l.out.find("thesis-table1"), std::string::npos) << l.out;
+  fs::remove_all(dir);
+}
+
+const char* kSuite = R"({
+  "name": "f", "groups": [{"name": "a"}, {"name": "b"}],
+  "figure": {"title": "T", "rows": ["r1", "r2"], "columns": ["c1", "c2"],
+             "cells": [[{"group": "a"}, {"group": "b"}], [null, {"group": "a", "match": {"shadow": "x"}}]]}
+})";
+
+TEST(Figure, FigureBlockMustHaveThePapersShape) {
+  json s = json::parse(kSuite);
+  EXPECT_NO_THROW(sb::report::checkFigureBlock(s, "f.json"));
+  json bad = s;
+  bad["figure"]["cells"][1] = json::array({nullptr});  // a row one cell short
+  expectInputError([&] { sb::report::checkFigureBlock(bad, "f.json"); },
+                   {"f.json", "cells row 2", "must hold 2 cells"});
+  bad = s;
+  bad["figure"]["cells"].erase(1);
+  expectInputError([&] { sb::report::checkFigureBlock(bad, "f.json"); }, {"2 rows"});
+  bad = s;
+  bad["figure"]["cells"][0][0]["group"] = "nope";
+  expectInputError([&] { sb::report::checkFigureBlock(bad, "f.json"); },
+                   {"(r1, c1)", "group \"nope\""});
+  bad = s;
+  bad["figure"].erase("rows");
+  expectInputError([&] { sb::report::checkFigureBlock(bad, "f.json"); }, {"\"figure\".rows"});
+}
+
+TEST(Figure, GridPicksEachCellsResultOnItsBackend) {
+  const json s = json::parse(kSuite);
+  auto result = [](const char* group, const char* shadow, const char* backend) {
+    return json{{"backend", backend},
+                {"case",
+                 {{"id", std::string(group) + "/" + backend},
+                  {"group", group},
+                  {"params", {{"shadow", shadow}, {"backend", backend}}}}},
+                {"frame_ms", {{"median", 2.0}}}};
+  };
+  const json results = {{"results", json::array({result("a", "x", "vulkan"), result("a", "x", "gl"),
+                                                 result("b", "y", "gl")})}};
+  const auto g = sb::report::buildFigureGrid(s["figure"], results, "f", "gl");
+  ASSERT_EQ(g.cells.size(), 2u);
+  ASSERT_EQ(g.cells[0].size(), 2u);
+  ASSERT_NE(g.cells[0][0].result, nullptr);
+  EXPECT_EQ((*g.cells[0][0].result)["backend"], "gl");
+  ASSERT_NE(g.cells[0][1].result, nullptr);
+  EXPECT_EQ(g.cells[1][0].result, nullptr);  // null: the paper has no image there
+  EXPECT_EQ(g.cells[1][0].note, "no image in the paper");
+  ASSERT_NE(g.cells[1][1].result, nullptr);
+  // On vulkan, group b has no result: the cell says so.
+  const auto v = sb::report::buildFigureGrid(s["figure"], results, "f", "vulkan");
+  EXPECT_EQ(v.cells[0][1].result, nullptr);
+  EXPECT_NE(v.cells[0][1].note.find("no result of group b on vulkan"), std::string::npos);
+  const json j = sb::report::figureJson(g, json::object());
+  EXPECT_EQ(j["cells"][0][0]["case"], "a/gl");
+  EXPECT_EQ(j["cells"][0][0]["frame_ms"], 2.0);
+  EXPECT_TRUE(j["cells"][1][0]["case"].is_null());
+}
+
+}  // namespace
