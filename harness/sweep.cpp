@@ -526,7 +526,19 @@ int runSweep(const SweepOptions& o) {
       const RepetitionOptions reps = groupRepetitions(o, batch);
       std::vector<CaseRun> runs(batch.size());
       std::vector<std::vector<double>> startS(batch.size());  // each round's start
-      std::vector<bool> failed(batch.size(), false);
+      std::vector<bool> failed(batch.size(), false), written(batch.size(), false);
+      // A case's result file is written once its rounds are done: at once when the group
+      // takes one round (a stopped sweep then resumes at the case), else at the group's end.
+      auto writeResult = [&](std::size_t i) {
+        const ojson result =
+            writeCaseResult(dir, *batch[i], runs[i], measurementJson(o, runs[i].out, startS[i]));
+        written[i] = true;
+        for (const auto& line : invariantFailures(result)) {
+          if (o.progressBar) std::cout << "\n";
+          std::cout << line << "\n";
+          failures.push_back(line);
+        }
+      };
       std::vector<std::function<double()>> rounds;
       for (std::size_t i = 0; i < batch.size(); ++i)
         rounds.push_back([&, i]() -> double {
@@ -573,6 +585,7 @@ int runSweep(const SweepOptions& o) {
             return std::numeric_limits<double>::quiet_NaN();
           }
           startS[i].push_back(t);
+          if (first && reps.maxReps == 1) writeResult(i);
           if (first && !o.progressBar)
             std::cout << "[" << done << "/" << total << "] " << c.id << "  "
                       << caseSummary(ojson::parse(renderJson(runs[i].out).dump())) << "  ("
@@ -585,13 +598,7 @@ int runSweep(const SweepOptions& o) {
       for (std::size_t i = 0; i < batch.size(); ++i) {
         if (failed[i]) continue;
         ++measured;
-        const ojson result =
-            writeCaseResult(dir, *batch[i], runs[i], measurementJson(o, runs[i].out, startS[i]));
-        for (const auto& line : invariantFailures(result)) {
-          if (o.progressBar) std::cout << "\n";
-          std::cout << line << "\n";
-          failures.push_back(line);
-        }
+        if (!written[i]) writeResult(i);
       }
       if (o.interleave && reps.maxReps > 1 && measured && !o.progressBar)
         std::cout << "  group " << batch.front()->group << ": " << measured << " cases, "
@@ -603,8 +610,8 @@ int runSweep(const SweepOptions& o) {
   } catch (const Interrupted&) {
     if (o.progressBar) std::cout << "\n";
     std::cout << "stopped after " << done << " of " << total
-              << " cases (a group's cases are written once all its rounds are done); continue "
-                 "with --resume\n";
+              << " cases (a case of several rounds is written once its group's rounds are "
+                 "done); continue with --resume\n";
     throw;
   }
   if (o.progressBar) {
