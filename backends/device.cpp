@@ -195,7 +195,9 @@ void Device::requireFrame(const std::string& where, bool inFrame, bool inPass) c
     throw DeviceError(where + ": inside pass '" + pass_->name + "' (call endPass first)");
 }
 
-Buffer Device::createBuffer(const BufferDesc& desc, const void* data) {
+Buffer Device::createBuffer(const BufferDesc& given, const void* data) {
+  BufferDesc desc = given;
+  desc.name = labelPrefix_ + given.name;
   const std::string where = quoted("createBuffer", desc.name);
   if (desc.bytes == 0) throw DeviceError(where + ": zero size");
   // Created now only when it has contents to take; otherwise when first used.
@@ -230,7 +232,9 @@ void Device::fillBuffer(Buffer b, uint32_t value) {
   driver_->fillBuffer(*created(r), r.desc, value);
 }
 
-Texture Device::createTexture(const TextureDesc& desc) {
+Texture Device::createTexture(const TextureDesc& given) {
+  TextureDesc desc = given;
+  desc.name = labelPrefix_ + given.name;
   if (desc.width == 0 || desc.height == 0)
     throw DeviceError(quoted("createTexture", desc.name) + ": zero size (" +
                       std::to_string(desc.width) + "x" + std::to_string(desc.height) + ")");
@@ -312,14 +316,15 @@ void Device::beginFrame() {
 }
 
 void Device::beginPass(const PassDesc& pd) {
-  if (passObserver_) passObserver_(pd.name);
-  const std::string where = quoted("beginPass", pd.name);
+  const std::string name = labelPrefix_ + pd.name;
+  if (passObserver_) passObserver_(name);
+  const std::string where = quoted("beginPass", name);
   requireFrame(where, true, false);
   checkColorCount(where, pd.color.size(), maxColorAttachments_);
   auto open = std::make_unique<OpenPass>();
-  open->name = pd.name;
+  open->name = name;
   DriverPass dp;
-  dp.name = pd.name;
+  dp.name = name;
   dp.color.reserve(pd.color.size());  // resolveTargets points into it
   struct ResolveTarget {
     DriverColorTarget* target;
@@ -492,8 +497,9 @@ void Device::endPass() {
   driver_->endPass();
 }
 
-void Device::dispatch(const std::string& passName, Pipeline pipe,
+void Device::dispatch(const std::string& givenName, Pipeline pipe,
                       const std::vector<Binding>& bindings, uint32_t x, uint32_t y, uint32_t z) {
+  const std::string passName = labelPrefix_ + givenName;
   if (passObserver_) passObserver_(passName);
   const std::string where = quoted("dispatch", passName);
   requireFrame(where, true, false);

@@ -374,6 +374,12 @@ class Device {
   void setPassObserver(std::function<void(const std::string& pass)> observer) {
     passObserver_ = std::move(observer);
   }
+  // Puts `prefix` before the name of every buffer and texture created and every
+  // pass begun or dispatched from now on ("" stops): the renderer's extra lights
+  // run the same techniques again, and their memory and times stand apart by
+  // name ("light2.osm.atlases", "light2.osm.map"). LabelScope sets it for a block.
+  void setLabelPrefix(std::string prefix) { labelPrefix_ = std::move(prefix); }
+  const std::string& labelPrefix() const { return labelPrefix_; }
 
  private:
   struct BufferRec;
@@ -404,6 +410,7 @@ class Device {
   bool inFrame_ = false, inPass_ = false;
   std::unique_ptr<OpenPass> pass_;
   std::function<void(const std::string&)> passObserver_;
+  std::string labelPrefix_;
 };
 
 struct DeviceOptions {
@@ -425,5 +432,20 @@ MemoryBudget hostMemoryBudget();
 
 // Validation messages seen by Vulkan devices in this process (0 for GL).
 std::size_t validationMessageCount();
+
+// Device::setLabelPrefix for the lifetime of the scope, then the previous prefix again.
+class LabelScope {
+ public:
+  LabelScope(Device& dev, std::string prefix) : dev_(dev), previous_(dev.labelPrefix()) {
+    dev_.setLabelPrefix(std::move(prefix));
+  }
+  ~LabelScope() { dev_.setLabelPrefix(previous_); }
+  LabelScope(const LabelScope&) = delete;
+  LabelScope& operator=(const LabelScope&) = delete;
+
+ private:
+  Device& dev_;
+  std::string previous_;
+};
 
 }  // namespace sb

@@ -281,13 +281,27 @@ void addRepetitionOptions(CLI::App& cmd, RepetitionOptions& reps) {
 }
 
 // The settings the benchmarks take; the technique under test is theirs.
-const std::vector<std::string> kBenchSettings = {"scene",       "backend",        "platform",
-                                                 "size",        "primitive",      "ribbon_width",
-                                                 "repeat",      "warmup",         "validation",
-                                                 "camera_eye",  "camera_target",  "camera_up",
-                                                 "fov",         "near",           "far",
-                                                 "light",       "light_position", "light_direction",
-                                                 "light_color", "light_intensity"};
+const std::vector<std::string> kBenchSettings = {"scene",
+                                                 "backend",
+                                                 "platform",
+                                                 "size",
+                                                 "primitive",
+                                                 "ribbon_width",
+                                                 "repeat",
+                                                 "warmup",
+                                                 "validation",
+                                                 "camera_eye",
+                                                 "camera_target",
+                                                 "camera_up",
+                                                 "fov",
+                                                 "near",
+                                                 "far",
+                                                 "light",
+                                                 "light_position",
+                                                 "light_direction",
+                                                 "light_color",
+                                                 "light_intensity",
+                                                 "extra_lights"};
 
 }  // namespace
 

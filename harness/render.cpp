@@ -24,6 +24,27 @@
 
 namespace sb {
 
+namespace {
+// A light of `type` fitted to the scene, then moved to the given direction
+// and position (a point light given only a position looks at the scene's centre).
+Light placeLight(const Bounds& b, LightType type, const std::optional<glm::vec3>& direction,
+                 const std::optional<glm::vec3>& position) {
+  Light l = fitLight(b, type);
+  if (direction) {
+    l.direction = glm::normalize(*direction);
+    if (type == LightType::Directional)
+      l.position = b.center() - l.direction * (2.0f * b.radius() + 1e-6f);
+  }
+  if (position) {
+    l.position = *position;
+    if (!direction && glm::length(b.center() - l.position) > 0)
+      l.direction = glm::normalize(b.center() - l.position);
+  }
+  if (direction || position) fitLightFrustum(l, b);
+  return l;
+}
+}  // namespace
+
 RenderSettings makeRenderSettings(const RenderRequest& req, const Scene& scene) {
   checkRequest(req, Spelling::Cli);  // every value in its range: the checks below are the fit's
   RenderSettings s;
@@ -51,21 +72,19 @@ RenderSettings makeRenderSettings(const RenderRequest& req, const Scene& scene) 
   if (glm::length(s.camera.target - s.camera.eye) <= 0)
     throw InputError("camera eye and target coincide");
 
-  const LightType type = o.lightType == "point" ? LightType::Point : LightType::Directional;
-  s.light = fitLight(b, type);
-  if (o.lightDirection) {
-    s.light.direction = glm::normalize(*o.lightDirection);
-    if (type == LightType::Directional)
-      s.light.position = b.center() - s.light.direction * (2.0f * b.radius() + 1e-6f);
-  }
-  if (o.lightPosition) {
-    s.light.position = *o.lightPosition;
-    if (!o.lightDirection && glm::length(b.center() - s.light.position) > 0)
-      s.light.direction = glm::normalize(b.center() - s.light.position);
-  }
-  if (o.lightDirection || o.lightPosition) fitLightFrustum(s.light, b);
+  s.light = placeLight(b, o.lightType == "point" ? LightType::Point : LightType::Directional,
+                       o.lightDirection, o.lightPosition);
   if (o.lightColor) s.light.color = *o.lightColor;
   if (o.lightIntensity) s.light.intensity = *o.lightIntensity;
+  for (const ExtraLight& e : req.extraLights) {
+    const bool point = e.type == "point";
+    Light l = placeLight(b, point ? LightType::Point : LightType::Directional,
+                         point ? std::nullopt : std::optional(e.at),
+                         point ? std::optional(e.at) : std::nullopt);
+    l.color = e.color;
+    l.intensity = e.intensity;
+    s.extraLights.push_back(l);
+  }
   return s;
 }
 
@@ -239,7 +258,15 @@ std::string referenceKey(const RenderRequest& req, const RenderSettings& s, cons
   v3(s.light.position);
   v3(s.light.direction);
   v3(s.light.color);
-  k << s.light.intensity << "|" << req.image;
+  k << s.light.intensity << "|";
+  for (const Light& l : s.extraLights) {
+    k << int(l.type) << ";";
+    v3(l.position);
+    v3(l.direction);
+    v3(l.color);
+    k << l.intensity << "|";
+  }
+  k << req.image;
   if (req.probe)
     k << "|probe " << req.probe->texel.x << "," << req.probe->texel.y << "," << req.probe->mapSize
       << "," << req.probe->samples;
@@ -355,8 +382,7 @@ RenderCache::Reference renderReference(Device& dev, const Scene& scene,
   // --msaa the run has (its error then includes what anti-aliasing changed).
   RenderSettings exactSettings = settings;
   exactSettings.msaa = 1;
-  Renderer ref(dev, scene, exactSettings, makeShadowTechnique(refShadow),
-               makeOitTechnique(Spec::parse(kReferenceOit)), outputs);
+  Renderer ref(dev, scene, exactSettings, refShadow, Spec::parse(kReferenceOit), outputs);
   checkMemory(dev.allocationsAfterUsing(ref.graphResources(outputs)), dev.allocations(), 0,
               dev.memoryBudget(), "the reference", req.image ? imageHostBytes(settings) : 0);
   ref.renderFrame();
@@ -526,8 +552,7 @@ AnimationResult runAnimation(const RenderRequest& req, const Scene& scene,
     // the frames' memory stays that of one frame (declared before the renderer,
     // which it outlives).
     const std::unique_ptr<Device> dev = makeRequestDevice(req);
-    Renderer r(*dev, scene, st, makeShadowTechnique(shadowSpec), makeOitTechnique(oitSpec),
-               outputs);
+    Renderer r(*dev, scene, st, shadowSpec, oitSpec, outputs);
     r.renderFrame();
     Image img;
     if (req.image) img = colorImage(r, st);
@@ -607,6 +632,37 @@ std::vector<LayerBucket> errorByLayers(const RenderResult& out, const DepthCompl
   return buckets;
 }
 
+// Which light a pass or resource is (Renderer::lightPrefix): an extra light's
+// index, else 0 (the key light); -1 for the sum of the lights.
+int lightOfName(const std::string& name, std::size_t lights) {
+  if (name == "lights.sum") return -1;
+  for (std::size_t i = 1; i < lights; ++i)
+    if (name.rfind(Renderer::lightPrefix(i), 0) == 0) return static_cast<int>(i);
+  return 0;
+}
+
+std::vector<RenderResult::LightShare> lightShares(const RenderSettings& s, const RenderResult& r) {
+  if (s.extraLights.empty()) return {};
+  std::vector<RenderResult::LightShare> shares(1 + s.extraLights.size());
+  for (std::size_t i = 0; i < shares.size(); ++i) {
+    shares[i].light = i == 0 ? s.light : s.extraLights[i - 1];
+    shares[i].ms.assign(r.frameMs.size(), 0.0);
+  }
+  for (const PassTimes& p : r.passes) {
+    const int i = lightOfName(p.name, shares.size());
+    if (i < 0) continue;
+    for (std::size_t f = 0; f < p.ms.size() && f < shares[i].ms.size(); ++f)
+      shares[i].ms[f] += p.ms[f];
+  }
+  for (const ResourceBytes& res : r.resources) {
+    const int i = lightOfName(res.name, shares.size());
+    if (i < 0 || (i == 0 && res.owner == "scene")) continue;
+    shares[i].bytes += res.bytes;
+    if (res.owner == "shadow") shares[i].shadowBytes += res.bytes;
+  }
+  return shares;
+}
+
 // Which technique a case's own error judges, and its reference: exact in the
 // other family only (README "Ground truth and error").
 struct OwnReference {
@@ -641,7 +697,7 @@ OwnError ownError(const RenderRequest& req, Device& dev, const Scene& scene,
   } else if (cache && cache->ownReferences.count(key)) {
     image = &cache->ownReferences.at(key);
   } else {
-    Renderer r(dev, scene, own, makeShadowTechnique(o.shadow), makeOitTechnique(o.oit), {"color"});
+    Renderer r(dev, scene, own, o.shadow, o.oit, {"color"});
     r.renderFrame();
     fresh = colorImage(r, own);
     image = cache ? &(cache->ownReferences[key] = std::move(fresh)) : &fresh;
@@ -659,8 +715,9 @@ RenderResult runRender(const RenderRequest& req, RenderCache* cache, Device* dev
   const Scene& scene = *scenePtr;
   const Spec shadowSpec = Spec::parse(req.shadow);
   const Spec oitSpec = Spec::parse(req.oit);
-  auto shadow = makeShadowTechnique(shadowSpec);
-  auto oit = makeOitTechnique(oitSpec);
+  // Unknown names and options are refused before any device is made.
+  makeShadowTechnique(shadowSpec);
+  makeOitTechnique(oitSpec);
   RenderSettings settings = makeRenderSettings(req, scene);
   std::vector<float> probeDepths;
   if (req.probe) settings.probePoints = probeRay(settings.light, *req.probe, probeDepths);
@@ -681,7 +738,7 @@ RenderResult runRender(const RenderRequest& req, RenderCache* cache, Device* dev
   std::set<std::string> outputs = timed;
   if (req.reference) outputs.insert("visibility");
   if (req.probe) outputs.insert("probe");
-  Renderer renderer(*dev, scene, settings, std::move(shadow), std::move(oit), outputs);
+  Renderer renderer(*dev, scene, settings, shadowSpec, oitSpec, outputs);
   // What the timed frames will hold, known before their resources are made.
   RenderResult out;
   const auto planned = dev->allocationsAfterUsing(renderer.graphResources(timed));
@@ -768,6 +825,7 @@ RenderResult runRender(const RenderRequest& req, RenderCache* cache, Device* dev
   out.repeat = req.repeat;
   out.warmup = req.warmup;
   out.graph = renderer.graphPasses(timed);
+  out.lights = lightShares(settings, out);
 
   out.eyeComplexity = renderer.oit().depthComplexity();
   out.lightComplexity = renderer.shadow().depthComplexity();
@@ -886,6 +944,24 @@ nlohmann::json renderJson(const RenderResult& r) {
                  {"estimated_bytes", r.estimatedBytes},
                  {"resources", resources}};
 
+  if (!r.lights.empty()) {
+    auto v3 = [](const glm::vec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); };
+    nlohmann::json lights = nlohmann::json::array();
+    for (std::size_t i = 0; i < r.lights.size(); ++i) {
+      const Light& l = r.lights[i].light;
+      const bool point = l.type == LightType::Point;
+      lights.push_back({{"light", i + 1},
+                        {"type", point ? "point" : "directional"},
+                        {point ? "position" : "direction", v3(point ? l.position : l.direction)},
+                        {"color", v3(l.color)},
+                        {"intensity", l.intensity},
+                        {"prefix", Renderer::lightPrefix(i)},
+                        {"ms", statsJson(r.lights[i].ms)},
+                        {"shadow_bytes", r.lights[i].shadowBytes},
+                        {"bytes", r.lights[i].bytes}});
+    }
+    j["lights"] = lights;
+  }
   if (r.measurementGraph) j["measurement_graph"] = *r.measurementGraph;
   if (r.reference) j["reference"] = {{"shadow", r.reference->first}, {"oit", r.reference->second}};
   if (r.visibilityError) j["error"] = errorJson(r);

@@ -54,6 +54,17 @@ struct AnimateSpec {
   bool operator==(const AnimateSpec&) const = default;
 };
 
+// A light beside the key light (--extra-lights): it gets its own instance of
+// the shadow technique, and the image sums every light's shading
+// (techniques/common/renderer.h). Its frustum is fitted to the scene.
+struct ExtraLight {
+  std::string type = "directional";  // directional | point
+  glm::vec3 at{0, -1, 0};            // point: its position; directional: the direction it travels
+  glm::vec3 color{1, 1, 1};
+  float intensity = 1.0f;
+  bool operator==(const ExtraLight&) const = default;
+};
+
 struct RenderRequest {
   std::string scene = "straight";
   std::string shadow = "none";
@@ -76,6 +87,7 @@ struct RenderRequest {
   // would take more bytes than this, before they are made; 0: no limit.
   long long memoryLimit = 0;
   ViewOverrides view;
+  std::vector<ExtraLight> extraLights;  // lights 2, 3, ... beside the key light of `view`
   // Every frame rendered by the technique and by the reference (needs reference).
   std::optional<AnimateSpec> animate;
   bool operator==(const RenderRequest&) const = default;
@@ -182,6 +194,17 @@ struct RenderResult {
   // (OitTechnique::timingEmulated).
   std::vector<Counter> counters;
   std::string timingEmulated;
+
+  // With extra lights: each light's share of the timed frames (the key light
+  // first), told apart by the names of passes and resources
+  // (Renderer::lightPrefix); "lights.sum" belongs to none.
+  struct LightShare {
+    Light light;
+    std::vector<double> ms;       // per timed frame: the sum of its passes
+    std::size_t shadowBytes = 0;  // its shadow technique's resources
+    std::size_t bytes = 0;  // all its own (the key light's: all but the scene's and the others')
+  };
+  std::vector<LightShare> lights;
 
   // A window platform: each timed frame was shown in the window (Device::present).
   struct Presented {

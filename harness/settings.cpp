@@ -83,6 +83,9 @@ constexpr long long kMaxSamples = 1000000;
 constexpr long long kMaxFrames = 1000;
 constexpr double kMaxDegrees = 360;
 const std::vector<std::string> kAnimationKinds = {"light-orbit", "camera-orbit"};
+// Extra lights: the key light and these make at most 8, each with its own shadow maps.
+constexpr std::size_t kMaxExtraLights = 7;
+const std::vector<std::string> kLightTypes = {"directional", "point"};
 
 // ------------------------------------------------------------------ text and JSON forms
 
@@ -180,6 +183,88 @@ ojson animationFromJson(const ojson& v) {
   return a;
 }
 
+// One extra light, canonical: {"type", "position" or "direction", "color", "intensity"}.
+ojson lightJson(const std::string& type, const ojson& at, const ojson& color, double intensity) {
+  return {{"type", type},
+          {type == "point" ? "position" : "direction", at},
+          {"color", color},
+          {"intensity", intensity}};
+}
+
+ojson numbersFromText(const std::string& t, std::size_t count) {
+  const std::vector<std::string> parts = splitCommas(t);
+  ojson v = ojson::array();
+  for (const auto& p : parts)
+    if (const auto d = parseNumber(p)) v.push_back(*d);
+  if (parts.size() != count || v.size() != count) return nullptr;
+  return v;
+}
+
+// "TYPE:X,Y,Z[:R,G,B[:INTENSITY]]" -> one canonical light.
+ojson lightFromText(const std::string& t) {
+  const std::string shape =
+      "expected TYPE:X,Y,Z[:R,G,B[:INTENSITY]] (X,Y,Z: a point light's position, a "
+      "directional light's direction)";
+  std::vector<std::string> parts;
+  for (std::size_t start = 0;;) {
+    const std::size_t colon = t.find(':', start);
+    parts.push_back(t.substr(start, colon - start));
+    if (colon == std::string::npos) break;
+    start = colon + 1;
+  }
+  if (parts.size() < 2 || parts.size() > 4) throw Problem{"'" + t + "': " + shape};
+  const ojson at = numbersFromText(parts[1], 3);
+  const ojson color = parts.size() > 2 ? numbersFromText(parts[2], 3) : ojson::array({1, 1, 1});
+  const ojson intensity = parts.size() > 3 ? numbersFromText(parts[3], 1) : ojson::array({1});
+  if (at.is_null() || color.is_null() || intensity.is_null())
+    throw Problem{"'" + t + "': " + shape};
+  return lightJson(parts[0], at, color, intensity[0].get<double>());
+}
+
+ojson lightsFromText(const std::string& t) {
+  ojson lights = ojson::array();
+  if (t.empty()) return lights;
+  for (std::size_t start = 0;;) {
+    const std::size_t semi = t.find(';', start);
+    lights.push_back(lightFromText(t.substr(start, semi - start)));
+    if (semi == std::string::npos) return lights;
+    start = semi + 1;
+  }
+}
+
+ojson lightFromJson(const ojson& v) {
+  if (v.is_string()) return lightFromText(v.get<std::string>());
+  if (!v.is_object())
+    throw Problem{
+        "each light is \"TYPE:X,Y,Z[:R,G,B[:INTENSITY]]\" or {\"type\", "
+        "\"position\" | \"direction\", \"color\", \"intensity\"}"};
+  try {
+    checkKeys(v, {"type", "position", "direction", "color", "intensity"}, "light", "light");
+  } catch (const InputError& e) {
+    throw Problem{std::string(e.what()).substr(std::string("light: ").size())};
+  }
+  if (!v.contains("type") || !v["type"].is_string()) throw Problem{"a light needs a \"type\""};
+  const std::string type = v["type"].get<std::string>();
+  const char* where = type == "point" ? "position" : "direction";
+  auto vec3 = [&](const char* key) -> ojson {
+    const ojson& x = v[key];
+    if (!x.is_array() || x.size() != 3 ||
+        !std::all_of(x.begin(), x.end(), [](const ojson& n) { return n.is_number(); }))
+      throw Problem{std::string("a light's \"") + key + "\" must be [x, y, z]"};
+    return ojson::array({x[0].get<double>(), x[1].get<double>(), x[2].get<double>()});
+  };
+  if (!v.contains(where))
+    throw Problem{"a " + type + " light needs \"" + where +
+                  "\" (and no other of position, "
+                  "direction)"};
+  if (v.contains(type == "point" ? "direction" : "position"))
+    throw Problem{std::string("a ") + type + " light takes \"" + where + "\" only"};
+  if (v.contains("intensity") && !v["intensity"].is_number())
+    throw Problem{"a light's \"intensity\" must be a number"};
+  return lightJson(type, vec3(where), v.contains("color") ? vec3("color") : ojson::array({1, 1, 1}),
+                   v.contains("intensity") ? v["intensity"].get<double>() : 1.0);
+}
+
 ojson fromText(const Setting& s, const std::string& t) {
   switch (s.type) {
     case SettingType::Spec:
@@ -216,6 +301,8 @@ ojson fromText(const Setting& s, const std::string& t) {
       return probeFromText(t);
     case SettingType::Animation:
       return animationFromText(t);
+    case SettingType::Lights:
+      return lightsFromText(t);
   }
   return nullptr;
 }
@@ -260,6 +347,13 @@ ojson fromJson(const Setting& s, const ojson& v) {
       throw Problem{
           "expected \"KIND:frames=N,degrees=D\" or {\"kind\": ..., \"frames\": N, "
           "\"degrees\": D}"};
+    case SettingType::Lights: {
+      if (v.is_string()) return fromText(s, v.get<std::string>());
+      if (!v.is_array()) throw Problem{"expected a list of lights or \"TYPE:X,Y,Z;...\""};
+      ojson lights = ojson::array();
+      for (const ojson& l : v) lights.push_back(lightFromJson(l));
+      return lights;
+    }
   }
   return nullptr;
 }
@@ -289,6 +383,20 @@ std::string textOf(const Setting& s, const ojson& v) {
     case SettingType::Animation:
       return v["kind"].get<std::string>() + ":frames=" + v["frames"].dump() +
              ",degrees=" + numberText(v["degrees"].get<double>());
+    case SettingType::Lights: {
+      std::string t;
+      auto vec3 = [](const ojson& x) {
+        return numberText(x[0].get<double>()) + "," + numberText(x[1].get<double>()) + "," +
+               numberText(x[2].get<double>());
+      };
+      for (const ojson& l : v) {
+        const std::string type = l["type"].get<std::string>();
+        t += (t.empty() ? "" : ";") + type + ":" +
+             vec3(l[type == "point" ? "position" : "direction"]) + ":" + vec3(l["color"]) + ":" +
+             numberText(l["intensity"].get<double>());
+      }
+      return t;
+    }
   }
   return "";
 }
@@ -366,6 +474,26 @@ void checkValue(const Setting& s, const ojson& v) {
         throw Problem{"frames must be in 2.." + std::to_string(kMaxFrames)};
       const double degrees = v["degrees"].get<double>();
       if (!(std::fabs(degrees) <= kMaxDegrees)) throw Problem{"degrees must be in [-360, 360]"};
+      return;
+    }
+    case SettingType::Lights: {
+      if (v.size() > kMaxExtraLights)
+        throw Problem{std::to_string(v.size()) + " lights: at most " +
+                      std::to_string(kMaxExtraLights) + " beside the key light"};
+      for (const ojson& l : v) {
+        const std::string type = l["type"].get<std::string>();
+        if (std::find(kLightTypes.begin(), kLightTypes.end(), type) == kLightTypes.end())
+          throw Problem{unknownChoice("light type", type, kLightTypes)};
+        if (type == "directional") {
+          const ojson& d = l.at("direction");
+          if (d[0] == 0.0 && d[1] == 0.0 && d[2] == 0.0)
+            throw Problem{"a directional light's direction must be non-zero"};
+        }
+        for (const ojson& c : l["color"])
+          if (!(c.get<double>() >= 0)) throw Problem{"a light's colour must be >= 0"};
+        if (!(l["intensity"].get<double>() >= 0) || !std::isfinite(l["intensity"].get<double>()))
+          throw Problem{"a light's intensity must be >= 0"};
+      }
       return;
     }
     case SettingType::Spec:
@@ -636,6 +764,28 @@ std::vector<Setting> buildTable() {
                             "light intensity", "2", "-1"),
                        kAtLeast0)),
             &ViewOverrides::lightIntensity);
+  {
+    Setting& s = add(make("extra_lights", "--extra-lights", T::Lights, "none",
+                          "lights beside the key light, each with its own instance of the shadow "
+                          "technique; the image sums their shading",
+                          "point:1,2,3:1,0.9,0.8:0.5;directional:1,-1,0", "spot:1,2,3"));
+    s.get = [](const RenderRequest& r) -> ojson {
+      if (r.extraLights.empty()) return nullptr;
+      ojson lights = ojson::array();
+      for (const ExtraLight& l : r.extraLights)
+        lights.push_back(lightJson(l.type, vec3Json(l.at), vec3Json(l.color), l.intensity));
+      return lights;
+    };
+    s.set = [](RenderRequest& r, const ojson& v) {
+      r.extraLights.clear();
+      for (const ojson& l : v) {
+        const std::string type = l["type"].get<std::string>();
+        r.extraLights.push_back({type, jsonVec3(l[type == "point" ? "position" : "direction"]),
+                                 jsonVec3(l["color"]),
+                                 static_cast<float>(l["intensity"].get<double>())});
+      }
+    };
+  }
   return t;
 }
 
@@ -659,8 +809,9 @@ constexpr TypeNames kTypeNames[] = {
     {"size", "WxH"},
     {"probe", "X,Y[,MAP[,SAMPLES]]"},
     {"animation", "KIND[:frames=N,degrees=D]"},
+    {"lights", "TYPE:X,Y,Z[:R,G,B[:I]];..."},
 };
-static_assert(std::size(kTypeNames) == static_cast<std::size_t>(SettingType::Animation) + 1);
+static_assert(std::size(kTypeNames) == static_cast<std::size_t>(SettingType::Lights) + 1);
 const TypeNames& typeNames(SettingType t) { return kTypeNames[static_cast<std::size_t>(t)]; }
 }  // namespace
 
@@ -691,6 +842,8 @@ std::string Setting::rangeText() const {
     case SettingType::Animation:
       return "light-orbit or camera-orbit; frames 2.." + std::to_string(kMaxFrames) +
              "; degrees [-360, 360]";
+    case SettingType::Lights:
+      return "0.." + std::to_string(kMaxExtraLights) + " lights, directional or point";
     case SettingType::Spec:
       return key == "scene" ? "a scene of `strandbench list`" : "a technique of `strandbench list`";
     case SettingType::String:

@@ -30,6 +30,8 @@ enum class SettingType {
   Size,       // "WxH"; in JSON also a number N for NxN
   Probe,      // "X,Y[,MAP_SIZE[,SAMPLES]]"; in JSON also {"texel": [x, y], "map_size", "samples"}
   Animation,  // "KIND[:frames=N,degrees=D]"; in JSON also {"kind", "frames", "degrees"}
+  Lights,     // "TYPE:X,Y,Z[:R,G,B[:INTENSITY]];..."; in JSON also a list of those or of
+              // {"type", "position" | "direction", "color", "intensity"}
 };
 
 struct Setting {

@@ -615,7 +615,8 @@ void registerViewCommand(CLI::App& app) {
                                          "light_position",
                                          "light_direction",
                                          "light_color",
-                                         "light_intensity"};
+                                         "light_intensity",
+                                         "extra_lights"};
   auto settings = std::make_shared<CliSettings>(*cmd, keys, *req);
   auto script = std::make_shared<std::string>();
   auto shotDir = std::make_shared<std::string>(".");

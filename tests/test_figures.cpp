@@ -20,12 +20,12 @@ using json = nlohmann::json;
 
 // The papers' grids, written here apart from the figure files: rows x columns.
 const std::map<std::string, std::pair<int, int>> kPaperShapes = {
-    {"dom-fig1", {1, 4}},     {"dom-fig3", {1, 4}},   {"dom-fig5", {1, 4}},
-    {"dom-fig7", {1, 1}},     {"dom-fig8", {1, 3}},   {"occ-fig1", {1, 2}},
-    {"occ-fig2", {1, 4}},     {"occ-steps", {1, 1}},  {"occ-fig6", {1, 2}},
-    {"occ-fig9", {1, 2}},     {"occ-fig10", {1, 3}},  {"occ-memory", {1, 5}},
-    {"osm-fig4", {1, 6}},     {"osm-plate3", {1, 2}}, {"thesis-table1", {3, 3}},
-    {"thesis-table2", {3, 2}}};
+    {"dom-fig1", {1, 4}},      {"dom-fig3", {1, 4}},     {"dom-fig5", {1, 4}},
+    {"dom-fig7", {1, 1}},      {"dom-fig8", {1, 3}},     {"occ-fig1", {1, 2}},
+    {"occ-fig2", {1, 4}},      {"occ-steps", {1, 1}},    {"occ-fig6", {1, 2}},
+    {"occ-fig9", {1, 2}},      {"occ-fig10", {1, 3}},    {"occ-memory", {1, 5}},
+    {"osm-fig4", {1, 6}},      {"osm-plate2", {1, 4}},   {"osm-plate3", {1, 2}},
+    {"thesis-table1", {3, 3}}, {"thesis-table2", {3, 2}}};
 
 json figureFile(const std::string& name) {
   return json::parse(readFile(sb::figuresDir() / (name + ".json")));

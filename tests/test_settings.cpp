@@ -177,9 +177,10 @@ TEST(Settings, TableIsComplete) {
                         "light_position",
                         "light_direction",
                         "light_color",
-                        "light_intensity"})
+                        "light_intensity",
+                        "extra_lights"})
     EXPECT_EQ(keys.count(k), 1u) << k;
-  EXPECT_EQ(keys.size(), 30u);
+  EXPECT_EQ(keys.size(), 31u);
 }
 
 // Every setting through the three front ends: the same value lands in the same

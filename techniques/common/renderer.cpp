@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "techniques/common/composite.h"
+
 namespace sb {
 
 namespace {
@@ -17,63 +19,139 @@ Buffer makeBuffer(Device& dev, const std::string& name, const void* data, std::s
 Renderer::Renderer(Device& dev, const Scene& scene, const RenderSettings& settings,
                    std::unique_ptr<ShadowTechnique> shadow, std::unique_ptr<OitTechnique> oit,
                    const std::set<std::string>& outputs)
-    : dev_(dev),
-      settings_(settings),
-      shadow_(std::move(shadow)),
-      oit_(std::move(oit)),
-      graph_([&dev](GraphResource r) {
+    : Renderer(dev, scene, settings, one(std::move(shadow), std::move(oit), settings), outputs) {}
+
+Renderer::Renderer(Device& dev, const Scene& scene, const RenderSettings& settings,
+                   const Spec& shadow, const Spec& oit, const std::set<std::string>& outputs)
+    : Renderer(dev, scene, settings, perLight(shadow, oit, settings), outputs) {}
+
+std::vector<Renderer::Techniques> Renderer::one(std::unique_ptr<ShadowTechnique> shadow,
+                                                std::unique_ptr<OitTechnique> oit,
+                                                const RenderSettings& settings) {
+  if (!settings.extraLights.empty())
+    throw DeviceError("renderer: " + std::to_string(settings.extraLights.size()) +
+                      " extra lights need techniques per light (make the renderer from specs)");
+  std::vector<Techniques> t;
+  t.push_back({std::move(shadow), std::move(oit)});
+  return t;
+}
+
+std::vector<Renderer::Techniques> Renderer::perLight(const Spec& shadow, const Spec& oit,
+                                                     const RenderSettings& settings) {
+  std::vector<Techniques> t;
+  for (std::size_t i = 0; i <= settings.extraLights.size(); ++i)
+    t.push_back({makeShadowTechnique(shadow), makeOitTechnique(oit)});
+  return t;
+}
+
+std::string Renderer::lightPrefix(std::size_t i) {
+  return i == 0 ? "" : "light" + std::to_string(i + 1) + ".";
+}
+
+Renderer::Renderer(Device& dev, const Scene& scene, const RenderSettings& settings,
+                   std::vector<Techniques> techniques, const std::set<std::string>& outputs)
+    : dev_(dev), settings_(settings), graph_([&dev](GraphResource r) {
         return r.texture ? dev.describe(Texture{r.id}).name : dev.describe(Buffer{r.id}).name;
       }) {
   upload(scene);
-  color_ = dev.createTexture(
-      {"frame.color", "frame", Format::RGBA32F, settings.width, settings.height, false});
+  for (std::size_t i = 0; i < techniques.size(); ++i) {
+    auto light = std::make_unique<LightChain>();
+    light->settings = settings;
+    if (i > 0) {  // its own light only: ambient light and the background count once
+      light->settings.light = settings.extraLights[i - 1];
+      light->settings.extraLights.clear();
+      light->settings.ambient = false;
+      light->settings.background = glm::vec3(0.0f);
+    }
+    light->shadow = std::move(techniques[i].shadow);
+    light->oit = std::move(techniques[i].oit);
+    lights_.push_back(std::move(light));
+  }
   // --msaa N: the mesh and the hair render into N-sample colour and depth,
   // resolved into frame.color by the technique's last pass; techniques whose
   // per-pixel data is not multisampled are refused (InputError, before any work).
   const uint32_t n = settings.msaa;
-  if (n > 1 && !oit_->multisampled())
-    throw InputError("--msaa " + std::to_string(n) + ": transparency technique '" + oit_->name() +
+  if (n > 1 && !oit().multisampled())
+    throw InputError("--msaa " + std::to_string(n) + ": transparency technique '" + oit().name() +
                      "' keeps per-pixel data (fragment lists, layers, accumulation or occupancy "
                      "targets) that is not multisampled; it runs with --msaa 1 (multisampled: "
                      "none, wsum, wavg, wboit; stochastic transparency has its own samples= "
                      "option)");
-  Texture renderColor = color_, resolved;
+  for (std::size_t i = 0; i < lights_.size(); ++i) setupLight(*lights_[i], i, outputs);
+  color_ = lights_[0]->color;
+  addSumPass();
+  passes_ = graph_.compile(resources(outputs));
+}
+
+void Renderer::setupLight(LightChain& light, std::size_t index,
+                          const std::set<std::string>& outputs) {
+  Device& dev = dev_;
+  LabelScope scope(dev, lightPrefix(index));
+  const RenderSettings& s = light.settings;
+  const uint32_t n = s.msaa;
+  light.color =
+      dev.createTexture({"frame.color", "frame", Format::RGBA32F, s.width, s.height, false});
+  Texture renderColor = light.color, resolved;
   if (n > 1) {
     renderColor = dev.createTexture(
-        {"frame.color_ms", "frame", Format::RGBA32F, settings.width, settings.height, false, 1, n});
-    resolved = color_;
+        {"frame.color_ms", "frame", Format::RGBA32F, s.width, s.height, false, 1, n});
+    resolved = light.color;
   }
-  depth_ = dev.createTexture({n > 1 ? "frame.depth_ms" : "frame.depth", "frame", Format::Depth32F,
-                              settings.width, settings.height, false, 1, n});
-  shadow_->setup(dev, gpu_, settings_);
-  shading_.setup(dev, gpu_, settings_, *shadow_, renderColor, depth_);
-  oit_->setup(dev, gpu_, settings_, shading_,
-              {renderColor, depth_, shading_.drawsMesh(), resolved});
-  wantVisibility_ = outputs.count("visibility") > 0;
-  if (wantVisibility_) visibility_.setup(dev, gpu_, settings_, shading_);
-  wantProbe_ = outputs.count("probe") > 0;
-  if (wantProbe_) {
-    if (settings_.probePoints.empty()) throw InputError("probe output without probe points");
-    probe_.setup(dev, settings_.probePoints, shading_);
+  // Every light draws its mesh into the same depth, before its hair reads it.
+  if (index == 0)
+    depth_ = dev.createTexture({n > 1 ? "frame.depth_ms" : "frame.depth", "frame", Format::Depth32F,
+                                s.width, s.height, false, 1, n});
+  light.shadow->setup(dev, gpu_, s);
+  light.shading.setup(dev, gpu_, s, *light.shadow, renderColor, depth_);
+  light.oit->setup(dev, gpu_, s, light.shading,
+                   {renderColor, depth_, light.shading.drawsMesh(), resolved});
+  // The visibility and probe outputs are the key light's.
+  const bool key = index == 0;
+  wantVisibility_ = key ? outputs.count("visibility") > 0 : wantVisibility_;
+  if (key && wantVisibility_) visibility_.setup(dev, gpu_, s, light.shading);
+  wantProbe_ = key ? outputs.count("probe") > 0 : wantProbe_;
+  if (key && wantProbe_) {
+    if (s.probePoints.empty()) throw InputError("probe output without probe points");
+    probe_.setup(dev, s.probePoints, light.shading);
   }
 
-  shadow_->prepare(dev);
-  shadow_->addPasses(graph_, dev);
-  shading_.addMeshPass(graph_, dev);
-  if (oit_->needsPrepare()) {
+  light.shadow->prepare(dev);
+  light.shadow->addPasses(graph_, dev);
+  light.shading.addMeshPass(graph_, dev);
+  if (light.oit->needsPrepare()) {
     // The transparency technique sizes itself against the opaque depth.
-    if (shading_.drawsMesh()) {
+    if (light.shading.drawsMesh()) {
       const auto opaque = graph_.compile({GraphResource::of(depth_)});
       dev.beginFrame();
       for (const auto* p : opaque) p->execute();
       dev.endFrame();
     }
-    oit_->prepare(dev);
+    light.oit->prepare(dev);
   }
-  oit_->addPasses(graph_, dev);
-  if (wantVisibility_) visibility_.addPasses(graph_, dev);
-  if (wantProbe_) probe_.addPasses(graph_, dev);
-  passes_ = graph_.compile(resources(outputs));
+  light.oit->addPasses(graph_, dev);
+  if (key && wantVisibility_) visibility_.addPasses(graph_, dev);
+  if (key && wantProbe_) probe_.addPasses(graph_, dev);
+  light.endNode = graph_.nodes().size();
+}
+
+// An extra light's colour added into the frame's: blend One, One on colour,
+// the frame's alpha kept.
+void Renderer::addSumPass() {
+  if (lights_.size() < 2) return;
+  std::vector<Pass> passes;
+  for (std::size_t i = 1; i < lights_.size(); ++i)
+    passes.push_back(Pass("lights.sum")
+                         .color(color_, LoadOp::Load)
+                         .sample(SB_SLOT_LIGHTS_SUM_COLOR, lights_[i]->color));
+  const BlendState add = {true,         BlendFactor::One,  BlendFactor::One,
+                          BlendOp::Add, BlendFactor::Zero, BlendFactor::One,
+                          BlendOp::Add};
+  sumPipeline_ =
+      fullScreenPipeline(dev_, "lights.sum", "renderer", "techniques/common/lights_sum.frag", {},
+                         {Format::RGBA32F}, {add}, passes[0].slots());
+  graph_.add("lights.sum", passes, [this, passes] {
+    for (const Pass& p : passes) p.draw(dev_, sumPipeline_, 3);
+  });
 }
 
 std::vector<GraphResource> Renderer::resources(const std::set<std::string>& outputs) const {
@@ -159,7 +237,15 @@ std::vector<PassTime> Renderer::renderFrame(const std::set<std::string>& outputs
 
 std::vector<PassTime> Renderer::run(const std::vector<const PassNode*>& passes) {
   dev_.beginFrame();
-  for (const auto* p : passes) p->execute();
+  const PassNode* first = graph_.nodes().data();
+  for (const auto* p : passes) {
+    // An extra light's passes carry its prefix; the sum is the frame's.
+    const auto index = static_cast<std::size_t>(p - first);
+    std::size_t light = 0;
+    while (light < lights_.size() && index >= lights_[light]->endNode) ++light;
+    LabelScope scope(dev_, lightPrefix(light < lights_.size() ? light : 0));
+    p->execute();
+  }
   dev_.endFrame();
   std::vector<PassTime> out;
   for (const auto& t : dev_.lastFrameTimings()) {
@@ -185,9 +271,24 @@ std::vector<float> Renderer::readProbe() {
 }
 
 std::vector<std::string> Renderer::warnings() {
-  auto w = shadow_->warnings(dev_);
-  for (auto& x : oit_->warnings(dev_)) w.push_back(x);
-  return w;
+  std::vector<std::string> all;
+  for (std::size_t i = 0; i < lights_.size(); ++i) {
+    const std::string who = i == 0 ? "" : "light " + std::to_string(i + 1) + ": ";
+    for (auto& w : lights_[i]->shadow->warnings(dev_)) all.push_back(who + w);
+    for (auto& w : lights_[i]->oit->warnings(dev_)) all.push_back(who + w);
+  }
+  return all;
+}
+
+std::vector<Counter> Renderer::counters() {
+  std::vector<Counter> all;
+  for (std::size_t i = 0; i < lights_.size(); ++i) {
+    for (Counter& c : lights_[i]->shadow->counters(dev_))
+      all.push_back({lightPrefix(i) + c.name, c.value});
+    for (Counter& c : lights_[i]->oit->counters(dev_))
+      all.push_back({lightPrefix(i) + c.name, c.value});
+  }
+  return all;
 }
 
 }  // namespace sb

@@ -2,6 +2,16 @@
 // passes, the opaque mesh, the transparency technique and the optional
 // visibility and probe outputs, as a frame graph culled to the requested
 // outputs ("color", "visibility", "probe"). Runs frames and reads back the images.
+//
+// Several lights (RenderSettings::extraLights) are drawn as multipass lighting:
+// each extra light gets its own shadow technique, shading and transparency
+// technique, drawn into its own colour with no ambient term and a black
+// background, and pass "lights.sum" adds those colours into the key light's.
+// Every transparency technique composites linearly in the hair's colour, so
+// the sum is the image of all lights at once; the camera-side passes run once
+// per light, which is the cost of this way of lighting, not of the shadow
+// technique. An extra light's passes and resources are named with its prefix
+// ("light2.osm.map"), so their times and memory stand apart.
 #pragma once
 
 #include <memory>
@@ -24,9 +34,17 @@ struct PassTime {
 
 class Renderer {
  public:
+  // One light: settings.extraLights must be empty.
   Renderer(Device& dev, const Scene& scene, const RenderSettings& settings,
            std::unique_ptr<ShadowTechnique> shadow, std::unique_ptr<OitTechnique> oit,
            const std::set<std::string>& outputs = {"color"});
+  // Any number of lights: the techniques are made from their specs once per light.
+  Renderer(Device& dev, const Scene& scene, const RenderSettings& settings, const Spec& shadow,
+           const Spec& oit, const std::set<std::string>& outputs = {"color"});
+  // The names of light i's passes and resources begin with this: "" for the
+  // key light (i = 0), "light2." for the first extra light, and so on.
+  static std::string lightPrefix(std::size_t i);
+  std::size_t lightCount() const { return lights_.size(); }
   // The graph nodes that run, in order (those no output needs are left out).
   std::vector<std::string> graphPasses() const;
   // Records and runs one frame; device passes with the same name are summed.
@@ -47,17 +65,38 @@ class Renderer {
   // The shadow technique's visibility at settings.probePoints ("probe" output).
   std::vector<float> readProbe();
   const GpuScene& gpuScene() const { return gpu_; }
-  ShadowTechnique& shadow() { return *shadow_; }
-  OitTechnique& oit() { return *oit_; }
+  // The key light's techniques.
+  ShadowTechnique& shadow() { return *lights_[0]->shadow; }
+  OitTechnique& oit() { return *lights_[0]->oit; }
+  // Every light's (an extra light's with "light N: " before them).
   std::vector<std::string> warnings();
-  // The shadow technique's counters, then the transparency technique's.
-  std::vector<Counter> counters() {
-    std::vector<Counter> all = shadow_->counters(dev_);
-    for (Counter& c : oit_->counters(dev_)) all.push_back(std::move(c));
-    return all;
-  }
+  // Per light, the shadow technique's counters, then the transparency
+  // technique's (an extra light's names with its prefix).
+  std::vector<Counter> counters();
 
  private:
+  // One light's share of the frame.
+  struct LightChain {
+    RenderSettings settings;  // the light's: its light, and for an extra one no ambient, black
+    std::unique_ptr<ShadowTechnique> shadow;
+    std::unique_ptr<OitTechnique> oit;
+    KajiyaKayShading shading;
+    Texture color;            // where it composites: the frame's (key light) or its own
+    std::size_t endNode = 0;  // its graph nodes end here (they start where the previous end)
+  };
+  struct Techniques {
+    std::unique_ptr<ShadowTechnique> shadow;
+    std::unique_ptr<OitTechnique> oit;
+  };
+  Renderer(Device& dev, const Scene& scene, const RenderSettings& settings,
+           std::vector<Techniques> techniques, const std::set<std::string>& outputs);
+  static std::vector<Techniques> one(std::unique_ptr<ShadowTechnique> shadow,
+                                     std::unique_ptr<OitTechnique> oit,
+                                     const RenderSettings& settings);
+  static std::vector<Techniques> perLight(const Spec& shadow, const Spec& oit,
+                                          const RenderSettings& settings);
+  void setupLight(LightChain& light, std::size_t index, const std::set<std::string>& outputs);
+  void addSumPass();
   void upload(const Scene& scene);
   // The graph resources behind the outputs "color", "visibility" and "probe".
   std::vector<GraphResource> resources(const std::set<std::string>& outputs) const;
@@ -66,9 +105,8 @@ class Renderer {
   Device& dev_;
   RenderSettings settings_;
   GpuScene gpu_;
-  std::unique_ptr<ShadowTechnique> shadow_;
-  std::unique_ptr<OitTechnique> oit_;
-  KajiyaKayShading shading_;
+  std::vector<std::unique_ptr<LightChain>> lights_;  // the key light first
+  Pipeline sumPipeline_;
   VisibilityOutput visibility_;
   ProbeOutput probe_;
   bool wantVisibility_ = false, wantProbe_ = false;

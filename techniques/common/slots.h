@@ -199,4 +199,7 @@
 #define SB_SLOT_SHORTCUT_TAIL 21
 #define SB_SLOT_SHORTCUT_REVEALAGE 22
 
+// the renderer's sum of the lights (a full-screen pass): an extra light's colour
+#define SB_SLOT_LIGHTS_SUM_COLOR 0
+
 #endif  // SB_SLOTS_H

@@ -33,7 +33,12 @@ struct RenderSettings {
   // the device supports; only techniques that are multisampled() take more.
   uint32_t msaa = 1;
   Camera camera;
-  Light light;
+  Light light;  // the key light: its shadows are the visibility and probe outputs
+  // Lights 2, 3, ...: each gets its own instance of the shadow technique and
+  // its own shading; the frame's colour is the sum over lights
+  // (techniques/common/renderer.h). Ambient light and the background count once.
+  std::vector<Light> extraLights;
+  bool ambient = true;  // false in the shading of an extra light
   glm::vec3 background{0.0f, 0.0f, 0.0f};
   std::vector<glm::vec3> probePoints;  // world points for the "probe" output
 };

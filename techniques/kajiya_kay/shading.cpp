@@ -7,12 +7,19 @@
 namespace sb {
 
 float KajiyaKayShading::maxRadiance(const RenderSettings& s) {
-  const glm::vec3 light = s.light.color * s.light.intensity;
-  const float l = std::max({light.r, light.g, light.b, 0.0f});
+  // Every light's shading adds up; the ambient term counts once.
+  float l = 0;
+  auto add = [&l](const Light& light) {
+    const glm::vec3 c = light.color * light.intensity;
+    l += std::max({c.r, c.g, c.b, 0.0f});
+  };
+  add(s.light);
+  for (const Light& e : s.extraLights) add(e);
   const glm::vec4 m = s.shading.material;
-  const float hair = m.w + (m.x + m.y * s.shading.maxSpecular()) * l;
+  const float ambient = s.ambient ? 1.0f : 0.0f;
+  const float hair = ambient * m.w + (m.x + m.y * s.shading.maxSpecular()) * l;
   const float albedo = std::max({kMeshMaterial.r, kMeshMaterial.g, kMeshMaterial.b});
-  const float mesh = albedo * (kMeshMaterial.w + l);
+  const float mesh = albedo * (ambient * kMeshMaterial.w + l);
   return std::max({hair, mesh, s.background.r, s.background.g, s.background.b});
 }
 
@@ -32,6 +39,7 @@ void KajiyaKayShading::setup(Device& dev, const GpuScene& scene, const RenderSet
   u.lightColor = glm::vec4(s.light.color * s.light.intensity, 1);
   u.hairMaterial = s.shading.material;
   u.meshMaterial = kMeshMaterial;
+  if (!s.ambient) u.hairMaterial.w = u.meshMaterial.w = 0;  // an extra light's shading
   u.sceneParams = glm::vec4(scene.hairAlpha, scene.shadowAlpha, s.shading.glintWidth, 0);
   u.lobeShift = s.shading.shift;
   u.lobeWidth = s.shading.width;
