@@ -49,7 +49,8 @@
 // on Vulkan where the CPU and a double-precision evaluation of the paper's
 // algorithm give 1.7e-4, on a pixel of b0 = 14.8); over 1e-3 apart in 8735
 // of 17424 probes (Vulkan, 4 moments) and 10667 of 16236 (GL, 6
-// trigonometric). With constant bounds the three agree (README).
+// trigonometric). With constant bounds the three agree
+// (MboitParity.ReconstructionIsTheSameOnGlVulkanAndCpu).
 // Absorbance of one fragment is capped (alpha 1 would be infinite), as the
 // paper's code does: e^-10 is below 16-bit precision.
 #define SB_MBOIT_MAX_ABSORBANCE 10.0f
