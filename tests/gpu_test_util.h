@@ -4,11 +4,15 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <initializer_list>
+#include <iostream>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "backends/device.h"
+#include "harness/metrics.h"
+#include "harness/render.h"
 #include "scenes/view.h"
 #include "techniques/common/technique.h"
 
@@ -65,6 +69,29 @@ inline std::vector<float> floats(const std::vector<uint8_t>& bytes) {
   std::vector<float> v(bytes.size() / sizeof(float));
   std::memcpy(v.data(), bytes.data(), v.size() * sizeof(float));
   return v;
+}
+
+// Renders each shadow technique on curly hair (300 strands, 96x96, with the
+// exact reference) on GL and on Vulkan, prints their visibility's max
+// difference and expects it within `tolerance`.
+inline void expectShadowParity(const BothBackends& both, std::initializer_list<std::string> shadows,
+                               double tolerance = 1e-4) {
+  for (const std::string& shadow : shadows) {
+    sb::RenderRequest r;
+    r.scene = "curly:strands=300";
+    r.shadow = shadow;
+    r.width = r.height = 96;
+    r.warmup = 0;
+    r.reference = true;
+    r.backend = "gl";
+    const sb::RenderResult gl = sb::runRender(r, nullptr, both.gl.get());
+    r.backend = "vulkan";
+    const sb::RenderResult vk = sb::runRender(r, nullptr, both.vk.get());
+    const sb::VisibilityError d =
+        sb::compareVisibility(floats(gl.visibility), floats(vk.visibility));
+    std::cout << "[ measured ] " << shadow << ": GL vs Vulkan visibility max " << d.max << "\n";
+    EXPECT_LE(d.max, tolerance) << shadow;
+  }
 }
 
 // Square image, camera and directional light fitted to the scene.

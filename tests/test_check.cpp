@@ -192,7 +192,7 @@ TEST(Baselines, ManifestCoversScenesTechniquesAndPrimitives) {
   // Every technique of the catalogs, the ground truths included, except those whose GL and
   // Vulkan images differ beyond the baselines' tolerance (README, "Transparency techniques"):
   // a baseline could not hold both.
-  const std::set<std::string> noBaseline = {"mboit", "msm"};
+  const std::set<std::string> noBaseline = {"msm"};
   std::set<std::string> allShadows, allOits;
   for (const auto& t : sb::shadowCatalog())
     if (!noBaseline.count(t.name)) allShadows.insert(t.name);

@@ -381,22 +381,7 @@ TEST(ShadowAvsmInvariants, BothPromiseToFall) {
 TEST(ShadowAvsmParity, GlAndVulkanAgree) {
   const sbtest::BothBackends both = sbtest::makeBothBackends();
   if (!both.unavailable.empty()) GTEST_SKIP() << both.unavailable;
-  for (const std::string shadow : {"avsm:size=128,nodes=8", "voxel:size=128,grid=64,steps=64"}) {
-    RenderRequest r;
-    r.scene = "curly:strands=300";
-    r.shadow = shadow;
-    r.width = r.height = 96;
-    r.warmup = 0;
-    r.reference = true;
-    r.backend = "gl";
-    const RenderResult gl = runRender(r, nullptr, both.gl.get());
-    r.backend = "vulkan";
-    const RenderResult vk = runRender(r, nullptr, both.vk.get());
-    const VisibilityError d =
-        compareVisibility(sbtest::floats(gl.visibility), sbtest::floats(vk.visibility));
-    std::cout << "[ measured ] " << shadow << ": GL vs Vulkan visibility max " << d.max << "\n";
-    EXPECT_LE(d.max, 1e-4) << shadow;
-  }
+  sbtest::expectShadowParity(both, {"avsm:size=128,nodes=8", "voxel:size=128,grid=64,steps=64"});
 }
 
 }  // namespace

@@ -425,24 +425,9 @@ INSTANTIATE_TEST_SUITE_P(Backends, ShadowMore, ::testing::Values("gl", "vulkan")
 TEST(ShadowMoreParity, GlAndVulkanAgree) {
   const sbtest::BothBackends both = sbtest::makeBothBackends();
   if (!both.unavailable.empty()) GTEST_SKIP() << both.unavailable;
-  for (const std::string shadow :
-       {"dsm:epsilon=0.02,size=128", "adsm:size=128", "fom:size=128,coefficients=16",
-        "dom:layers=3,size=128,spacing=power,filter=pcf6x4"}) {
-    RenderRequest r;
-    r.scene = "curly:strands=300";
-    r.shadow = shadow;
-    r.width = r.height = 96;
-    r.warmup = 0;
-    r.reference = true;
-    r.backend = "gl";
-    const RenderResult gl = runRender(r, nullptr, both.gl.get());
-    r.backend = "vulkan";
-    const RenderResult vk = runRender(r, nullptr, both.vk.get());
-    const VisibilityError d =
-        compareVisibility(sbtest::floats(gl.visibility), sbtest::floats(vk.visibility));
-    std::cout << "[ measured ] " << shadow << ": GL vs Vulkan visibility max " << d.max << "\n";
-    EXPECT_LE(d.max, 1e-4) << shadow;
-  }
+  sbtest::expectShadowParity(
+      both, {"dsm:epsilon=0.02,size=128", "adsm:size=128", "fom:size=128,coefficients=16",
+             "dom:layers=3,size=128,spacing=power,filter=pcf6x4"});
 }
 
 }  // namespace

@@ -41,11 +41,7 @@ ApproximatedDeepShadows::Options ApproximatedDeepShadows::readOptions(const Opti
 }
 
 void ApproximatedDeepShadows::setup(Device& dev, const GpuScene& scene, const RenderSettings& s) {
-  scene_ = &scene;
-  settings_ = s;
-  const ViewUniforms view = lightView(s, opt_.size, opt_.size);
-  lightView_ = createLightViewBuffer(dev, view, "adsm");
-  opaque_.setup(dev, scene, opt_.size, lightView_, "adsm");
+  const ViewUniforms view = setupLight(dev, scene, s, opt_.size);
   // Light depth is linear in distance for the directional light's orthographic
   // projection: one depth unit is 1 / |d ndc.z / d world| world units (the
   // z row of the view-projection); for a point light an approximation.

@@ -15,7 +15,7 @@ namespace sb {
 // error grows where the hair is not evenly packed (a stray strand in front of
 // a clump darkens everything behind it as if the gap were full of hair).
 // The fiber radius is half the scene's mean strand thickness.
-class ApproximatedDeepShadows : public ShadowTechnique {
+class ApproximatedDeepShadows : public LightMapShadow {
  public:
   struct Options {
     float spacing = 4.0f;  // fiber spacing, in fiber radii
@@ -35,12 +35,9 @@ class ApproximatedDeepShadows : public ShadowTechnique {
   Pass depthPass() const;
 
   Options opt_;
-  const GpuScene* scene_ = nullptr;
-  RenderSettings settings_;
   Texture depth_;
-  Buffer params_, lightView_;
+  Buffer params_;
   Pipeline pipeline_;
-  OpaqueShadow opaque_;
   float radius_ = 0.0f, worldPerDepth_ = 0.0f;
 };
 

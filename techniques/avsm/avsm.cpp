@@ -36,10 +36,8 @@ ShaderDefines AdaptiveVolumetricShadowMaps::defines() const {
 
 void AdaptiveVolumetricShadowMaps::setup(Device& dev, const GpuScene& scene,
                                          const RenderSettings& s) {
-  scene_ = &scene;
   lists_.setup(dev, scene, s);
-  const ViewUniforms view = lightView(s, opt_.size, opt_.size);
-  lightView_ = createLightViewBuffer(dev, view, "avsm");
+  const ViewUniforms view = setupLight(dev, scene, s, opt_.size);
   params_ = createLightLookupParams(dev, view, opt_.bias, opt_.size, scene.shadowAlpha, "avsm");
   const glm::vec4 r(1.0f - scene.shadowAlpha, float(opt_.size), 0.0f, 0.0f);
   resolve_ = dev.createBuffer({"avsm.resolve", "frame", BufferUsage::Uniform, sizeof r}, &r);
@@ -48,7 +46,6 @@ void AdaptiveVolumetricShadowMaps::setup(Device& dev, const GpuScene& scene,
   nodes_ = dev.createBuffer({"avsm.nodes", "shadow", BufferUsage::Storage,
                              texels * (opt_.nodes + 2) * sizeof(glm::vec2)});
   status_ = dev.createBuffer({"avsm.status", "shadow", BufferUsage::Storage, 16});
-  opaque_.setup(dev, scene, opt_.size, lightView_, "avsm");
   // No interlock path is written (it could not run here): with or without the
   // extension the curves are built in the resolve, in primitive order.
   emulated_ = std::string(
@@ -81,12 +78,7 @@ Pass AdaptiveVolumetricShadowMaps::resolvePass() const {
 void AdaptiveVolumetricShadowMaps::addPasses(FrameGraph& graph, Device& dev) {
   lists_.addPasses(graph, dev);
   opaque_.addPass(graph, dev);
-  const uint32_t texels = opt_.size * opt_.size;
-  graph.add(resolvePass(), [this, &dev, texels, p = resolvePass()] {
-    dev.fillBuffer(status_, 0);
-    const glm::uvec2 g = dispatchGroups(texels);
-    p.dispatch(dev, pipeline_, g.x, g.y);
-  });
+  lists_.addTexelPass(graph, dev, resolvePass(), pipeline_, status_);
 }
 
 ShadowLookup AdaptiveVolumetricShadowMaps::lookup() const {

@@ -25,7 +25,7 @@ namespace sb {
 // Memory: the paper's is the nodes (count per texel + nodes x 8 bytes per
 // texel, resource "avsm.nodes" and "avsm.count"); the lists are the
 // emulation's (resources "exact.*"), counted apart (counters).
-class AdaptiveVolumetricShadowMaps : public ShadowTechnique {
+class AdaptiveVolumetricShadowMaps : public LightMapShadow {
  public:
   struct Options {
     uint32_t nodes = 8;  // 4, 8 or 16
@@ -52,10 +52,8 @@ class AdaptiveVolumetricShadowMaps : public ShadowTechnique {
 
   Options opt_;
   ExactShadow lists_;
-  const GpuScene* scene_ = nullptr;
-  Buffer params_, resolve_, lightView_, count_, nodes_, status_;
+  Buffer params_, resolve_, count_, nodes_, status_;
   Pipeline pipeline_;
-  OpaqueShadow opaque_;
   std::string emulated_;
 };
 

@@ -5,6 +5,19 @@
 
 namespace sb {
 
+PipelineDesc transparentHairDesc(const std::string& name, const std::string& technique,
+                                 const ShaderCode& vert, const RenderSettings& s) {
+  PipelineDesc d;
+  d.name = name;
+  d.technique = technique;
+  d.vertex = &vert;
+  d.topology = Geometry::strandTopology(s);
+  d.hasDepth = d.depthTest = true;
+  d.depthWrite = false;
+  d.depthCompare = CompareOp::Less;
+  return d;
+}
+
 void HairOit::setupCommon(Device& dev, const GpuScene& scene, const RenderSettings& s,
                           const KajiyaKayShading& shading, const OitTargets& targets) {
   scene_ = &scene;
@@ -31,14 +44,9 @@ Pipeline HairOit::hairPipeline(Device& dev, const Pass& pass, const std::string&
   defs.add(shading_->hairDefines());
   const ShaderCode vert = Geometry::strandVertexShader(settings_);
   const ShaderCode frag = loadShader(fragShader, defs);
-  PipelineDesc d;
-  d.name = pass.name();
-  d.technique = this->name() + "+" + shading_->shadow().name();
-  d.vertex = &vert;
+  PipelineDesc d = transparentHairDesc(pass.name(), this->name() + "+" + shading_->shadow().name(),
+                                       vert, settings_);
   d.fragment = &frag;
-  d.topology = Geometry::strandTopology(settings_);
-  d.hasDepth = d.depthTest = true;  // hair behind the opaque mesh is left out
-  d.depthCompare = CompareOp::Less;
   d.bindings = pass.slots();
   return dev.createPipeline(d);
 }

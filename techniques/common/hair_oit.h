@@ -12,6 +12,13 @@
 
 namespace sb {
 
+// What every transparent hair pass's pipeline shares: the strands (`vert`,
+// the settings' topology), depth-tested against the opaque depth (Less)
+// without writing it, so that hair behind the opaque mesh is left out. The
+// caller adds the fragment shader, targets, blend and bindings.
+PipelineDesc transparentHairDesc(const std::string& name, const std::string& technique,
+                                 const ShaderCode& vert, const RenderSettings& s);
+
 class HairOit : public OitTechnique {
  public:
   static constexpr uint32_t kCountsBinding = SB_SLOT_OIT_COUNTS;

@@ -77,6 +77,15 @@ inline DepthRange depthRange(const std::vector<float>& z) {
   return {*lo, *hi};
 }
 
+// The hair's depth range from the light (hairLightDepths), widened by 1e-3 of
+// its extent on both sides so that no fragment sits on its ends.
+inline DepthRange paddedHairDepthRange(Device& dev, const GpuScene& scene,
+                                       const glm::mat4& viewProj) {
+  const DepthRange r = depthRange(hairLightDepths(dev, scene, viewProj));
+  const float pad = 1e-3f * std::max(r.farZ - r.nearZ, 1e-6f);
+  return {r.nearZ - pad, r.farZ + pad};
+}
+
 // OSM slice depths D_0..D_n. D_n is nudged past the farthest hair so that
 // the last map counts every fragment. Density slicing (the paper's 1D BSP):
 // equal numbers of hair points per slice, from the sorted point depths.

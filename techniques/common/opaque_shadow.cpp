@@ -22,6 +22,16 @@ void OpaqueShadow::setup(Device& dev, const GpuScene& scene, uint32_t size, Buff
   pipeline_ = dev.createPipeline(d);
 }
 
+ViewUniforms LightMapShadow::setupLight(Device& dev, const GpuScene& scene, const RenderSettings& s,
+                                        uint32_t size) {
+  scene_ = &scene;
+  settings_ = s;
+  const ViewUniforms view = lightView(s, size, size);
+  lightView_ = createLightViewBuffer(dev, view, name());
+  opaque_.setup(dev, scene, size, lightView_, name());
+  return view;
+}
+
 Pass OpaqueShadow::pass() const {
   return Pass(technique_ + ".opaque")
       .depth(depth_, LoadOp::Clear)

@@ -29,4 +29,21 @@ class OpaqueShadow {
   Pipeline pipeline_;
 };
 
+// A shadow technique that draws from the light into maps of size x size
+// texels, and what it keeps from setup(): the scene, the settings, the light's
+// view at the map size (uniform buffer "<name>.light_view") and the opaque
+// mesh's shadow drawn with that view.
+class LightMapShadow : public ShadowTechnique {
+ protected:
+  // Keeps the scene and settings, creates the light's view buffer and sets up
+  // the opaque shadow; returns the light's view.
+  ViewUniforms setupLight(Device& dev, const GpuScene& scene, const RenderSettings& s,
+                          uint32_t size);
+
+  const GpuScene* scene_ = nullptr;
+  RenderSettings settings_;
+  Buffer lightView_;
+  OpaqueShadow opaque_;
+};
+
 }  // namespace sb

@@ -65,11 +65,7 @@ DeepOpacityMaps::Options DeepOpacityMaps::readOptions(const OptionReader& o) {
 }
 
 void DeepOpacityMaps::setup(Device& dev, const GpuScene& scene, const RenderSettings& s) {
-  scene_ = &scene;
-  settings_ = s;
-  const ViewUniforms view = lightView(s, opt_.size, opt_.size);
-  lightView_ = createLightViewBuffer(dev, view, "dom");
-  opaque_.setup(dev, scene, opt_.size, lightView_, "dom");
+  const ViewUniforms view = setupLight(dev, scene, s, opt_.size);
 
   // The layer size s: absolute, or a fraction of the hair's depth range from
   // the light (from the hair points projected on the CPU).

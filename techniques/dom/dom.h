@@ -16,7 +16,7 @@ namespace sb {
 // render target.
 // The lookup interpolates within the point's layer and returns
 // (1 - alpha_s)^opacity.
-class DeepOpacityMaps : public ShadowTechnique {
+class DeepOpacityMaps : public LightMapShadow {
  public:
   struct Options {
     uint32_t layers = 3;
@@ -47,14 +47,11 @@ class DeepOpacityMaps : public ShadowTechnique {
   Pass opacityPass() const;
 
   Options opt_;
-  const GpuScene* scene_ = nullptr;
-  RenderSettings settings_;
   std::vector<float> d_;
   Texture depth_;
   Texture maps_;  // RGBA32F array of targets() layers
-  Buffer params_, lightView_;
+  Buffer params_;
   Pipeline depthPipeline_, opacityPipeline_;
-  OpaqueShadow opaque_;
 };
 
 }  // namespace sb

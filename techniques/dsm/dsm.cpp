@@ -34,10 +34,8 @@ DeepShadowMaps::DeepShadowMaps(const Options& o)
     : opt_(o), lists_(ExactShadow::Method::ABuffer, o.size, o.bias, 1000000) {}
 
 void DeepShadowMaps::setup(Device& dev, const GpuScene& scene, const RenderSettings& s) {
-  scene_ = &scene;
   lists_.setup(dev, scene, s);
-  const ViewUniforms view = lightView(s, opt_.size, opt_.size);
-  lightView_ = createLightViewBuffer(dev, view, "dsm");
+  const ViewUniforms view = setupLight(dev, scene, s, opt_.size);
   params_ = createLightLookupParams(dev, view, opt_.bias, opt_.size, scene.shadowAlpha, "dsm");
   const glm::vec4 c(opt_.epsilon, 1.0f - scene.shadowAlpha, float(opt_.size), float(opt_.maxNodes));
   compress_ = dev.createBuffer({"dsm.compress", "frame", BufferUsage::Uniform, sizeof c}, &c);
@@ -45,7 +43,6 @@ void DeepShadowMaps::setup(Device& dev, const GpuScene& scene, const RenderSetti
   kept_ = dev.createBuffer({"dsm.kept", "shadow", BufferUsage::Storage, texels * 4});
   offsets_ = dev.createBuffer({"dsm.offsets", "shadow", BufferUsage::Storage, texels * 4});
   status_ = dev.createBuffer({"dsm.status", "shadow", BufferUsage::Storage, 16});
-  opaque_.setup(dev, scene, opt_.size, lightView_, "dsm");
 
   const ShaderCode comp = loadShader("techniques/dsm/compress.comp");
   PipelineDesc c2;
@@ -88,12 +85,7 @@ Pass DeepShadowMaps::compressPass() const {
 void DeepShadowMaps::addPasses(FrameGraph& graph, Device& dev) {
   lists_.addPasses(graph, dev);
   opaque_.addPass(graph, dev);
-  const uint32_t texels = opt_.size * opt_.size;
-  graph.add(compressPass(), [this, &dev, texels, p = compressPass()] {
-    dev.fillBuffer(status_, 0);
-    const glm::uvec2 g = dispatchGroups(texels);
-    p.dispatch(dev, pipeline_, g.x, g.y);
-  });
+  lists_.addTexelPass(graph, dev, compressPass(), pipeline_, status_);
 }
 
 ShadowLookup DeepShadowMaps::lookup() const {

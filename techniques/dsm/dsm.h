@@ -17,7 +17,7 @@ namespace sb {
 // each texel has room for min(2 n, max_nodes) nodes (n its fragments, 2 n
 // what epsilon = 0 needs); the nodes actually kept are counted per texel
 // (counters: nodes min / mean / max, kept bytes).
-class DeepShadowMaps : public ShadowTechnique {
+class DeepShadowMaps : public LightMapShadow {
  public:
   struct Options {
     float epsilon = 0.01f;
@@ -44,12 +44,10 @@ class DeepShadowMaps : public ShadowTechnique {
 
   Options opt_;
   ExactShadow lists_;
-  const GpuScene* scene_ = nullptr;
-  Buffer params_, compress_, lightView_, kept_, offsets_, nodes_, status_;
+  Buffer params_, compress_, kept_, offsets_, nodes_, status_;
   std::size_t capacity_ = 0;    // node slots in all
   DepthComplexity complexity_;  // the lists' (counted in prepare)
   Pipeline pipeline_;
-  OpaqueShadow opaque_;
 };
 
 }  // namespace sb

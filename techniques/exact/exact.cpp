@@ -171,6 +171,16 @@ void ExactShadow::addPasses(FrameGraph& graph, Device& dev) {
   });
 }
 
+void ExactShadow::addTexelPass(FrameGraph& graph, Device& dev, const Pass& pass, Pipeline pipeline,
+                               Buffer status) const {
+  const uint32_t texels = size_ * size_;
+  graph.add(pass, [&dev, texels, pass, pipeline, status] {
+    dev.fillBuffer(status, 0);
+    const glm::uvec2 g = dispatchGroups(texels);
+    pass.dispatch(dev, pipeline, g.x, g.y);
+  });
+}
+
 ShadowLookup ExactShadow::lookup() const {
   ShadowLookup l{"techniques/exact/lookup.glsl"};
   l.inputs = lists(false);

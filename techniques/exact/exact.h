@@ -40,6 +40,11 @@ class ExactShadow : public ShadowTechnique {
   // technique's own lookup is then not the exact visibility: only for lists
   // another technique reads.
   void sortBySubmission() { bySubmission_ = true; }
+  // For a technique built on these lists (dsm, avsm), after addPasses():
+  // records `pass`, a compute pass with one invocation per texel that reads
+  // sortedLists(), its `status` buffer cleared first.
+  void addTexelPass(FrameGraph& graph, Device& dev, const Pass& pass, Pipeline pipeline,
+                    Buffer status) const;
 
  private:
   Inputs lists(bool written) const;

@@ -25,20 +25,15 @@ FourierOpacityMaps::Options FourierOpacityMaps::readOptions(const OptionReader& 
 }
 
 void FourierOpacityMaps::setup(Device& dev, const GpuScene& scene, const RenderSettings& s) {
-  scene_ = &scene;
-  settings_ = s;
-  const ViewUniforms view = lightView(s, opt_.size, opt_.size);
-  lightView_ = createLightViewBuffer(dev, view, "fom");
-  opaque_.setup(dev, scene, opt_.size, lightView_, "fom");
+  const ViewUniforms view = setupLight(dev, scene, s, opt_.size);
   // The series' period: the hair's depth range from the light (CPU, from the
   // hair points: exact for lines and ribbons), a little wider so that the
   // farthest fragment stays inside [0, 1).
-  const DepthRange r = depthRange(hairLightDepths(dev, scene, view.viewProj));
-  const float pad = 1e-3f * std::max(r.farZ - r.nearZ, 1e-6f);
+  const DepthRange r = paddedHairDepthRange(dev, scene, view.viewProj);
   Params p{};
   p.viewProj = view.viewProj;
   p.params = glm::vec4(opt_.bias, float(opt_.size), scene.shadowAlpha, 0.0f);
-  p.range = glm::vec4(r.nearZ - pad, r.farZ + pad, float(opt_.coefficients), 0.0f);
+  p.range = glm::vec4(r.nearZ, r.farZ, float(opt_.coefficients), 0.0f);
   params_ = dev.createBuffer({"fom.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
   maps_ = dev.createTexture(
       {"fom.coefficients", "shadow", Format::RGBA32F, opt_.size, opt_.size, false, layers()});

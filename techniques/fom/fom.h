@@ -13,7 +13,7 @@ namespace sb {
 // RGBA32F texture array); the lookup integrates the series up to the point and
 // clamps exp(-I) to [0, 1] (the paper's answer to ringing). Not monotone
 // along a light ray: the ringing the clamping bounds but does not remove.
-class FourierOpacityMaps : public ShadowTechnique {
+class FourierOpacityMaps : public LightMapShadow {
  public:
   struct Options {
     uint32_t coefficients = 8;  // frequencies n: a_0 and n (a_k, b_k) pairs
@@ -36,12 +36,9 @@ class FourierOpacityMaps : public ShadowTechnique {
   Pass accumulatePass(uint32_t first, uint32_t count) const;
 
   Options opt_;
-  const GpuScene* scene_ = nullptr;
-  RenderSettings settings_;
   Texture maps_;
-  Buffer params_, lightView_;
+  Buffer params_;
   std::vector<Pipeline> pipelines_;  // one per 8 layers
-  OpaqueShadow opaque_;
 };
 
 }  // namespace sb

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "scenes/options.h"
+#include "techniques/common/hair_oit.h"
 #include "techniques/kajiya_kay/shading.h"
 #include "techniques/mboit/mboit_math.h"
 
@@ -71,14 +72,7 @@ void MomentOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& 
 
   // Both hair passes: depth-tested against the opaque depth without writing it,
   // additive into their targets.
-  PipelineDesc d;
-  d.technique = "mboit";
-  d.vertex = &vert;
-  d.topology = Geometry::strandTopology(s);
-  d.hasDepth = d.depthTest = true;
-  d.depthWrite = false;
-  d.depthCompare = CompareOp::Less;
-  d.name = "mboit.moments";
+  PipelineDesc d = transparentHairDesc("mboit.moments", "mboit", vert, s);
   d.fragment = &momentsFrag;
   d.colorFormats = {Format::R32F, f};
   if (highTarget()) d.colorFormats.push_back(f);
@@ -94,18 +88,8 @@ void MomentOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& 
   d.bindings = accumulatePass().slots();
   accumulate_ = dev.createPipeline(d);
 
-  const ShaderCode fullScreen = loadShader("techniques/common/composite.vert");
-  const ShaderCode resolve = loadShader("techniques/mboit/resolve.frag");
-  PipelineDesc r;
-  r.name = "mboit.resolve";
-  r.technique = "mboit";
-  r.vertex = &fullScreen;
-  r.fragment = &resolve;
-  r.colorFormats = {Format::RGBA32F};
-  r.blend = {{true, BlendFactor::One, BlendFactor::SrcAlpha, BlendOp::Add, BlendFactor::Zero,
-              BlendFactor::One, BlendOp::Add}};
-  r.bindings = resolvePass().slots();
-  resolve_ = dev.createPipeline(r);
+  resolve_ = fullScreenPipeline(dev, "mboit.resolve", "mboit", "techniques/mboit/resolve.frag", {},
+                                {Format::RGBA32F}, {hairOverBlend()}, resolvePass().slots());
 }
 
 // The first pass clears the depth when nothing opaque was drawn.

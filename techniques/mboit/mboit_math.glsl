@@ -37,6 +37,20 @@
 
 // Largest n (2n power moments).
 #define SB_MBOIT_MAX_N 4
+
+// Every loop below runs over the constant bounds 0..SB_MBOIT_MAX_N and skips
+// the indices past the pixel's n (the loop body under `if`), so that the
+// compilers unroll it and every array index is a constant. Measured (the
+// probe in tests/test_mboit_parity.cpp: the same moments and depths on GL,
+// Vulkan and the CPU): with loops bounded by the run-time n, Mesa 22.3's
+// llvmpipe (both its GLSL and its SPIR-V front end) computed wrong Newton
+// divided differences, and GL wrong polynomial coefficients, from correct
+// roots: d[0] changed where no iteration writes it (T 1.0 on GL and 3.7e-7
+// on Vulkan where the CPU and a double-precision evaluation of the paper's
+// algorithm give 1.7e-4, on a pixel of b0 = 14.8); over 1e-3 apart in 8735
+// of 17424 probes (Vulkan, 4 moments) and 10667 of 16236 (GL, 6
+// trigonometric). With constant bounds the three agree
+// (MboitParity.ReconstructionIsTheSameOnGlVulkanAndCpu).
 // Absorbance of one fragment is capped (alpha 1 would be infinite), as the
 // paper's code does: e^-10 is below 16-bit precision.
 #define SB_MBOIT_MAX_ABSORBANCE 10.0f
@@ -153,27 +167,32 @@ SB_INLINE MboitPoly mboitRootsMonic(int n, MboitPoly a) {
     gr = t;
   }
   for (int it = 0; it < 48; ++it) {
-    for (int l = 0; l < n; ++l) {
-      // p(z_l) by Horner, monic.
-      SB_PRECISE float zr = z.v[l].x, zi = z.v[l].y;
-      SB_PRECISE float pr = 1.0f, pi = 0.0f;
-      for (int j = n - 1; j >= 0; --j) {
-        SB_PRECISE float t = pr * zr - pi * zi + a.v[j].x;
-        pi = pr * zi + pi * zr + a.v[j].y;
-        pr = t;
+    for (int l = 0; l < SB_MBOIT_MAX_N; ++l) {
+      if (l < n) {
+        // p(z_l) by Horner, monic.
+        SB_PRECISE float zr = z.v[l].x, zi = z.v[l].y;
+        SB_PRECISE float pr = 1.0f, pi = 0.0f;
+        for (int j = SB_MBOIT_MAX_N - 1; j >= 0; --j) {
+          if (j < n) {
+            SB_PRECISE float t = pr * zr - pi * zi + a.v[j].x;
+            pi = pr * zi + pi * zr + a.v[j].y;
+            pr = t;
+          }
+        }
+        // q = prod over the other roots of (z_l - z_m).
+        SB_PRECISE float qr = 1.0f, qi = 0.0f;
+        for (int m = 0; m < SB_MBOIT_MAX_N; ++m) {
+          if (m < n && m != l) {
+            SB_PRECISE float dr = zr - z.v[m].x, di = zi - z.v[m].y;
+            SB_PRECISE float t = qr * dr - qi * di;
+            qi = qr * di + qi * dr;
+            qr = t;
+          }
+        }
+        SB_PRECISE float den = max(qr * qr + qi * qi, 1e-30f);
+        SB_PRECISE float invDen = mboitRcp(den);
+        z.v[l] = vec2(zr - (pr * qr + pi * qi) * invDen, zi - (pi * qr - pr * qi) * invDen);
       }
-      // q = prod over the other roots of (z_l - z_m).
-      SB_PRECISE float qr = 1.0f, qi = 0.0f;
-      for (int m = 0; m < n; ++m) {
-        if (m == l) continue;
-        SB_PRECISE float dr = zr - z.v[m].x, di = zi - z.v[m].y;
-        SB_PRECISE float t = qr * dr - qi * di;
-        qi = qr * di + qi * dr;
-        qr = t;
-      }
-      SB_PRECISE float den = max(qr * qr + qi * qi, 1e-30f);
-      SB_PRECISE float invDen = mboitRcp(den);
-      z.v[l] = vec2(zr - (pr * qr + pi * qi) * invDen, zi - (pi * qr - pr * qi) * invDen);
     }
   }
   return z;
@@ -202,67 +221,83 @@ SB_INLINE float mboitTransmittance(int n, float b0, vec4 low, vec4 high, float z
   SB_PRECISE float B[(SB_MBOIT_MAX_N + 1) * (SB_MBOIT_MAX_N + 1)];
   SB_PRECISE float c[SB_MBOIT_MAX_N + 1];
   SB_PRECISE float zp = 1.0f;
-  for (int i = 0; i <= n; ++i) {
-    for (int j = 0; j <= n; ++j) B[i * N + j] = b[i + j];
+  for (int i = 0; i <= SB_MBOIT_MAX_N; ++i) {
+    for (int j = 0; j <= SB_MBOIT_MAX_N; ++j) B[i * N + j] = b[i + j];
     c[i] = zp;
     zp *= zf;
   }
   SB_PRECISE float threshold = SB_MBOIT_PIVOT_SHARE * bias;
   int full = n;
-  for (int i = 0; i <= n; ++i) {
-    if (!(B[i * N + i] > threshold)) {
-      full = i - 1;
-      break;
-    }
-    SB_PRECISE float inv = mboitRcp(B[i * N + i]);
-    for (int r = i + 1; r <= n; ++r) {
-      SB_PRECISE float f = B[r * N + i] * inv;
-      for (int j = i; j <= n; ++j) B[r * N + j] -= f * B[i * N + j];
-      c[r] -= f * c[i];
+  for (int i = 0; i <= SB_MBOIT_MAX_N; ++i) {
+    if (i <= full && !(B[i * N + i] > threshold)) full = i - 1;
+    if (i <= full) {
+      SB_PRECISE float inv = mboitRcp(B[i * N + i]);
+      for (int r = 1; r <= SB_MBOIT_MAX_N; ++r) {
+        if (r > i && r <= n) {
+          SB_PRECISE float f = B[r * N + i] * inv;
+          for (int j = 0; j <= SB_MBOIT_MAX_N; ++j)
+            if (j >= i && j <= n) B[r * N + j] -= f * B[i * N + j];
+          c[r] -= f * c[i];
+        }
+      }
     }
   }
   n = full;
   if (n < 1) return mboitPointTransmittance(b0, b[1], zf, overestimation);  // one point
-  for (int i = n; i >= 0; --i) {
-    SB_PRECISE float s = c[i];
-    for (int j = i + 1; j <= n; ++j) s -= B[i * N + j] * c[j];
-    c[i] = s * mboitRcp(B[i * N + i]);
+  for (int i = SB_MBOIT_MAX_N; i >= 0; --i) {
+    if (i <= n) {
+      SB_PRECISE float s = c[i];
+      for (int j = 1; j <= SB_MBOIT_MAX_N; ++j)
+        if (j > i && j <= n) s -= B[i * N + j] * c[j];
+      c[i] = s * mboitRcp(B[i * N + i]);
+    }
   }
   SB_PRECISE float cmax = 0.0f;
-  for (int j = 0; j < n; ++j) cmax = max(cmax, abs(c[j]));
-  while (n > 0 && !(abs(c[n]) > SB_MBOIT_LEAD_SHARE * cmax)) --n;
+  for (int j = 0; j < SB_MBOIT_MAX_N; ++j)
+    if (j < n) cmax = max(cmax, abs(c[j]));
+  for (int j = SB_MBOIT_MAX_N; j >= 1; --j)
+    if (j == n && !(abs(c[j]) > SB_MBOIT_LEAD_SHARE * cmax)) n = j - 1;
   if (n < 1) return mboitPointTransmittance(b0, b[1], zf, overestimation);
   // Roots of c_0 + c_1 z + .. + c_n z^n (real for a positive definite B).
+  SB_PRECISE float lead = 1.0f;
+  for (int j = 1; j <= SB_MBOIT_MAX_N; ++j)
+    if (j == n) lead = c[j];
   SB_PRECISE MboitPoly a;
-  SB_PRECISE float invLead = mboitRcp(c[n]);
-  for (int j = 0; j <= n; ++j) a.v[j] = vec2(c[j] * invLead, 0.0f);
+  SB_PRECISE float invLead = mboitRcp(lead);
+  for (int j = 0; j <= SB_MBOIT_MAX_N; ++j) a.v[j] = vec2(j <= n ? c[j] * invLead : 0.0f, 0.0f);
   SB_PRECISE MboitPoly roots = mboitRootsMonic(n, a);
-  SB_PRECISE float re[SB_MBOIT_MAX_N];
-  for (int l = 0; l < n; ++l) re[l] = roots.v[l].x;
   // Interpolate f at x_0 = zf and the roots (Newton divided differences),
   // then expand to monomial coefficients p and take sum p_j b_j.
   SB_PRECISE float x[SB_MBOIT_MAX_N + 1], d[SB_MBOIT_MAX_N + 1];
   x[0] = zf;
   d[0] = overestimation;
-  for (int l = 1; l <= n; ++l) {
-    x[l] = re[l - 1];
+  for (int l = 1; l <= SB_MBOIT_MAX_N; ++l) {
+    x[l] = roots.v[l - 1].x;
     d[l] = x[l] < zf ? 1.0f : 0.0f;
   }
-  for (int level = 1; level <= n; ++level)
-    for (int l = n; l >= level; --l) {
-      SB_PRECISE float dx = x[l] - x[l - level];
-      d[l] = (d[l] - d[l - 1]) * mboitRcp(abs(dx) > 1e-7f ? dx : (dx < 0.0f ? -1e-7f : 1e-7f));
+  for (int level = 1; level <= SB_MBOIT_MAX_N; ++level) {
+    for (int l = SB_MBOIT_MAX_N; l >= 1; --l) {
+      if (level <= n && l >= level && l <= n) {
+        SB_PRECISE float dx = x[l] - x[l - level];
+        d[l] = (d[l] - d[l - 1]) * mboitRcp(abs(dx) > 1e-7f ? dx : (dx < 0.0f ? -1e-7f : 1e-7f));
+      }
     }
+  }
   SB_PRECISE float p[SB_MBOIT_MAX_N + 1];
-  for (int j = 0; j <= n; ++j) p[j] = 0.0f;
-  p[0] = d[n];
-  for (int l = n - 1; l >= 0; --l) {
-    // p = p * (z - x_l) + d_l
-    for (int j = n; j >= 1; --j) p[j] = p[j - 1] - x[l] * p[j];
-    p[0] = -x[l] * p[0] + d[l];
+  for (int j = 0; j <= SB_MBOIT_MAX_N; ++j) p[j] = 0.0f;
+  for (int j = 1; j <= SB_MBOIT_MAX_N; ++j)
+    if (j == n) p[0] = d[j];
+  for (int l = SB_MBOIT_MAX_N - 1; l >= 0; --l) {
+    if (l < n) {
+      // p = p * (z - x_l) + d_l
+      for (int j = SB_MBOIT_MAX_N; j >= 1; --j)
+        if (j <= n) p[j] = p[j - 1] - x[l] * p[j];
+      p[0] = -x[l] * p[0] + d[l];
+    }
   }
   SB_PRECISE float absorbance = 0.0f;
-  for (int j = 0; j <= n; ++j) absorbance += p[j] * b[j];
+  for (int j = 0; j <= SB_MBOIT_MAX_N; ++j)
+    if (j <= n) absorbance += p[j] * b[j];
   // Round-off can leave it a little outside [0, 1] of b0; a NaN from a
   // degenerate system counts as the overestimated own share only.
   if (!mboitFinite(absorbance)) absorbance = overestimation;
@@ -386,18 +421,23 @@ SB_INLINE float mboitTrigTransmittance(int m, float b0, vec4 low, vec4 high, flo
   SB_PRECISE float D[SB_MBOIT_MAX_N + 1];
   SB_PRECISE float threshold = SB_MBOIT_PIVOT_SHARE * bias;
   int full = m;
-  for (int j = 0; j <= m; ++j) {
-    SB_PRECISE float d = 1.0f;
-    for (int k = 0; k < j; ++k) d -= D[k] * dot(L[j * N + k], L[j * N + k]);
-    if (!(d > threshold)) {  // noise: the leading system is what is known
-      full = j - 1;
-      break;
-    }
-    D[j] = d;
-    for (int i = j + 1; i <= m; ++i) {
-      SB_PRECISE vec2 v = b[i - j];
-      for (int k = 0; k < j; ++k) v -= D[k] * mboitCmul(L[i * N + k], mboitConj(L[j * N + k]));
-      L[i * N + j] = v * mboitRcp(d);
+  for (int j = 0; j <= SB_MBOIT_MAX_N; ++j) {
+    if (j <= full) {
+      SB_PRECISE float d = 1.0f;
+      for (int k = 0; k < SB_MBOIT_MAX_N; ++k)
+        if (k < j) d -= D[k] * dot(L[j * N + k], L[j * N + k]);
+      if (!(d > threshold)) full = j - 1;  // noise: the leading system is what is known
+      if (j <= full) {
+        D[j] = d;
+        for (int i = 1; i <= SB_MBOIT_MAX_N; ++i) {
+          if (i > j && i <= m) {
+            SB_PRECISE vec2 v = b[i - j];
+            for (int k = 0; k < SB_MBOIT_MAX_N; ++k)
+              if (k < j) v -= D[k] * mboitCmul(L[i * N + k], mboitConj(L[j * N + k]));
+            L[i * N + j] = v * mboitRcp(d);
+          }
+        }
+      }
     }
   }
   SB_PRECISE vec2 w = mboitCosSin(mboitTrigPhase(zf));
@@ -408,51 +448,68 @@ SB_INLINE float mboitTrigTransmittance(int m, float b0, vec4 low, vec4 high, flo
   // Solve B c = (1, w, .., w^m), w the point of zf on the circle.
   SB_PRECISE vec2 c[SB_MBOIT_MAX_N + 1];
   c[0] = vec2(1.0f, 0.0f);
-  for (int i = 1; i <= m; ++i) c[i] = mboitCmul(c[i - 1], w);
-  for (int i = 1; i <= m; ++i)
-    for (int k = 0; k < i; ++k) c[i] -= mboitCmul(L[i * N + k], c[k]);
-  for (int i = 0; i <= m; ++i) c[i] *= mboitRcp(D[i]);
-  for (int i = m - 1; i >= 0; --i)
-    for (int k = i + 1; k <= m; ++k) c[i] -= mboitCmul(mboitConj(L[k * N + i]), c[k]);
+  for (int i = 1; i <= SB_MBOIT_MAX_N; ++i) c[i] = mboitCmul(c[i - 1], w);
+  for (int i = 1; i <= SB_MBOIT_MAX_N; ++i)
+    if (i <= m)
+      for (int k = 0; k < SB_MBOIT_MAX_N; ++k)
+        if (k < i) c[i] -= mboitCmul(L[i * N + k], c[k]);
+  for (int i = 0; i <= SB_MBOIT_MAX_N; ++i)
+    if (i <= m) c[i] *= mboitRcp(D[i]);
+  for (int i = SB_MBOIT_MAX_N - 1; i >= 0; --i)
+    if (i < m)
+      for (int k = 1; k <= SB_MBOIT_MAX_N; ++k)
+        if (k > i && k <= m) c[i] -= mboitCmul(mboitConj(L[k * N + i]), c[k]);
   SB_PRECISE float cmax = 0.0f;
-  for (int j = 0; j < m; ++j) cmax = max(cmax, length(c[j]));
-  while (m > 0 && !(length(c[m]) > SB_MBOIT_LEAD_SHARE * cmax)) --m;
+  for (int j = 0; j < SB_MBOIT_MAX_N; ++j)
+    if (j < m) cmax = max(cmax, length(c[j]));
+  for (int j = SB_MBOIT_MAX_N; j >= 1; --j)
+    if (j == m && !(length(c[j]) > SB_MBOIT_LEAD_SHARE * cmax)) m = j - 1;
   if (m < 1)
     return mboitPointTransmittance(b0, mboitCircleParameter(b[1]), mboitCircleParameter(w),
                                    overestimation);
   // Roots of sum conj(c_j) z^j (on the unit circle).
-  SB_PRECISE vec2 lead = mboitConj(c[m]);
+  SB_PRECISE vec2 lead = vec2(1.0f, 0.0f);
+  for (int j = 1; j <= SB_MBOIT_MAX_N; ++j)
+    if (j == m) lead = mboitConj(c[j]);
   SB_PRECISE MboitPoly a;
-  for (int j = 0; j <= m; ++j) a.v[j] = mboitCdiv(mboitConj(c[j]), lead);
+  for (int j = 0; j <= SB_MBOIT_MAX_N; ++j)
+    a.v[j] = j <= m ? mboitCdiv(mboitConj(c[j]), lead) : vec2(0.0f);
   SB_PRECISE MboitPoly roots = mboitRootsMonic(m, a);
   SB_PRECISE vec2 z[SB_MBOIT_MAX_N + 1];
   z[0] = w;
-  for (int l = 1; l <= m; ++l) z[l] = roots.v[l - 1];
+  for (int l = 1; l <= SB_MBOIT_MAX_N; ++l) z[l] = roots.v[l - 1];
   // Weights: 1 for roots in front of zf, the ramp in the wrapping zone, the
   // overestimation at zf itself.
   SB_PRECISE vec2 ramp = mboitWrapRamp();
   SB_PRECISE float ref = mboitCircleParameter(w);
   SB_PRECISE float f[SB_MBOIT_MAX_N + 1];
   f[0] = overestimation;
-  for (int l = 1; l <= m; ++l) {
+  for (int l = 1; l <= SB_MBOIT_MAX_N; ++l) {
     SB_PRECISE float rp = mboitCircleParameter(z[l]);
     f[l] = (rp < ref ? 1.0f : 0.0f) + clamp(rp * ramp.x + ramp.y, 0.0f, 1.0f);
   }
   // Newton divided differences through (z_l, f_l), expanded to monomial
   // coefficients p, then the absorbance Re(sum p_j b_j).
   SB_PRECISE vec2 d[SB_MBOIT_MAX_N + 1];
-  for (int l = 0; l <= m; ++l) d[l] = vec2(f[l], 0.0f);
-  for (int level = 1; level <= m; ++level)
-    for (int l = m; l >= level; --l) d[l] = mboitCdiv(d[l] - d[l - 1], z[l] - z[l - level]);
+  for (int l = 0; l <= SB_MBOIT_MAX_N; ++l) d[l] = vec2(f[l], 0.0f);
+  for (int level = 1; level <= SB_MBOIT_MAX_N; ++level)
+    for (int l = SB_MBOIT_MAX_N; l >= 1; --l)
+      if (level <= m && l >= level && l <= m)
+        d[l] = mboitCdiv(d[l] - d[l - 1], z[l] - z[l - level]);
   SB_PRECISE vec2 p[SB_MBOIT_MAX_N + 1];
-  for (int j = 0; j <= m; ++j) p[j] = vec2(0.0f);
-  p[0] = d[m];
-  for (int l = m - 1; l >= 0; --l) {
-    for (int j = m; j >= 1; --j) p[j] = p[j - 1] - mboitCmul(z[l], p[j]);
-    p[0] = d[l] - mboitCmul(z[l], p[0]);
+  for (int j = 0; j <= SB_MBOIT_MAX_N; ++j) p[j] = vec2(0.0f);
+  for (int j = 1; j <= SB_MBOIT_MAX_N; ++j)
+    if (j == m) p[0] = d[j];
+  for (int l = SB_MBOIT_MAX_N - 1; l >= 0; --l) {
+    if (l < m) {
+      for (int j = SB_MBOIT_MAX_N; j >= 1; --j)
+        if (j <= m) p[j] = p[j - 1] - mboitCmul(z[l], p[j]);
+      p[0] = d[l] - mboitCmul(z[l], p[0]);
+    }
   }
   SB_PRECISE float absorbance = 0.0f;
-  for (int j = 0; j <= m; ++j) absorbance += mboitCmul(p[j], b[j]).x;
+  for (int j = 0; j <= SB_MBOIT_MAX_N; ++j)
+    if (j <= m) absorbance += mboitCmul(p[j], b[j]).x;
   if (!mboitFinite(absorbance)) absorbance = overestimation;
   SB_PRECISE float t = clamp(exp(-b0 * clamp(absorbance, 0.0f, 1.0f)), 0.0f, 1.0f);
   return t;

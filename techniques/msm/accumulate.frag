@@ -1,8 +1,10 @@
 // Moment shadow maps, light pass: every hair fragment adds its absorbance to
 // b0 and its absorbance times its moments of depth to the moment targets
 // (additive blending; mboit_math.glsl).
-#include "msm.glsl"
 #include "../mboit/mboit_math.glsl"
+#include "msm.glsl"
+
+layout(location = 0) in vec3 vWorldPos;
 
 layout(location = 0) out vec4 outB0;
 layout(location = 1) out vec4 outLow;
@@ -11,7 +13,7 @@ layout(location = 2) out vec4 outHigh;
 #endif
 
 void main() {
-  precise float z = msmDepth(gl_FragCoord.z);
+  precise float z = msmDepth(msmLightDepth(vWorldPos));
   float a = mboitAbsorbance(msmParams.z);
   outB0 = vec4(a, 0.0, 0.0, 0.0);
   outLow = a * mboitMomentsLow(msmN.y, z);

@@ -3,8 +3,8 @@
 // and overestimation); 0 behind the opaque mesh, 1 outside the map.
 #include "../common/opaque_shadow.glsl"
 #include "../common/slots.h"
-#include "msm.glsl"
 #include "../mboit/mboit_math.glsl"
+#include "msm.glsl"
 
 layout(binding = SB_SLOT_MSM_B0) uniform sampler2D msmB0;
 layout(binding = SB_SLOT_MSM_LOW) uniform sampler2D msmLow;
@@ -24,5 +24,6 @@ float shadowVisibility(vec3 worldPos) {
   high = texelFetch(msmHigh, t, 0);
 #endif
   return mboitTransmittanceOf(msmN.y, msmN.x, texelFetch(msmB0, t, 0).x, texelFetch(msmLow, t, 0),
-                              high, msmDepth(ndc.z - msmParams.x), msmParams.w, msmRange.z);
+                              high, msmDepth(msmLightDepth(worldPos) - msmParams.x), msmParams.w,
+                              msmRange.z);
 }

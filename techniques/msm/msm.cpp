@@ -30,20 +30,15 @@ MomentShadowMaps::Options MomentShadowMaps::readOptions(const OptionReader& o) {
 }
 
 void MomentShadowMaps::setup(Device& dev, const GpuScene& scene, const RenderSettings& s) {
-  scene_ = &scene;
-  settings_ = s;
-  const ViewUniforms view = lightView(s, opt_.size, opt_.size);
-  lightView_ = createLightViewBuffer(dev, view, "msm");
-  opaque_.setup(dev, scene, opt_.size, lightView_, "msm");
+  const ViewUniforms view = setupLight(dev, scene, s, opt_.size);
   // The moments' depth interval: the hair's depth range from the light (as
   // fom's series period), a little wider so that no fragment sits on its end.
-  const DepthRange r = depthRange(hairLightDepths(dev, scene, view.viewProj));
-  const float pad = 1e-3f * std::max(r.farZ - r.nearZ, 1e-6f);
+  const DepthRange r = paddedHairDepthRange(dev, scene, view.viewProj);
   Params p{};
   p.viewProj = view.viewProj;
   p.params = glm::vec4(opt_.bias, float(opt_.size), scene.shadowAlpha,
                        glsl::mboitKindBias(kind(opt_), opt_.moments, 32));
-  p.range = glm::vec4(r.nearZ - pad, r.farZ + pad, SB_MBOIT_OVERESTIMATION, 0.0f);
+  p.range = glm::vec4(r.nearZ, r.farZ, SB_MBOIT_OVERESTIMATION, 0.0f);
   p.n = glm::ivec4(opt_.moments, kind(opt_), 0, 0);
   params_ = dev.createBuffer({"msm.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
   b0_ = dev.createTexture({"msm.b0", "shadow", Format::R32F, opt_.size, opt_.size, false});

@@ -6,8 +6,33 @@ layout(std140, binding = SB_SLOT_MSM_PARAMS) uniform MsmParams {
   vec4 msmRange;   // the hair's near and far light depth, overestimation, 0
   ivec4 msmN;      // x: real moments beyond b0 (4, 6, 8), y: kind (0 power, 1 trig)
 };
+// Both passes compute a point's light depth with msmLightDepth: `precise`,
+// the matrix product's sums in one written order and the division as a
+// reciprocal product (mboitRcp: include mboit_math.glsl first), so that GL and
+// Vulkan round alike. Measured: the lookup's depth (ndc.z of toLightNdc) was
+// up to 2.4e-7 apart between the backends, with this it is bit for bit equal.
+// The light pass reads it from the interpolated world position instead of
+// gl_FragCoord.z (both differ by 1-2 ulp between the APIs' line rasterizers:
+// MomentShadowsParity's note in tests/test_moments.cpp).
+
+// The light's window depth of a world position.
+float msmLightDepth(vec3 worldPos) {
+  // Rows z and w of msmViewProj * (worldPos, 1), the sums in one order.
+  precise float cz = ((msmViewProj[0].z * worldPos.x + msmViewProj[1].z * worldPos.y) +
+                      msmViewProj[2].z * worldPos.z) +
+                     msmViewProj[3].z;
+  precise float cw = ((msmViewProj[0].w * worldPos.x + msmViewProj[1].w * worldPos.y) +
+                      msmViewProj[2].w * worldPos.z) +
+                     msmViewProj[3].w;
+  precise float z = cz * mboitRcp(cw);
+  return z;
+}
+
 // Light window depth to [-1, 1] over the hair's depth range (linear: the
 // light's depth is already what the moments should resolve).
 float msmDepth(float z) {
-  return clamp((z - msmRange.x) / max(msmRange.y - msmRange.x, 1e-12), 0.0, 1.0) * 2.0 - 1.0;
+  precise float u =
+      clamp((z - msmRange.x) * mboitRcp(max(msmRange.y - msmRange.x, 1e-12)), 0.0, 1.0);
+  precise float d = u * 2.0 - 1.0;
+  return d;
 }

@@ -14,7 +14,7 @@ namespace sb {
 // floats (additive blending into RGBA32F targets); the lookup reconstructs the
 // transmittance in front of the receiver's depth with mboit's math
 // (techniques/mboit/mboit_math.glsl: one moment library for both).
-class MomentShadowMaps : public ShadowTechnique {
+class MomentShadowMaps : public LightMapShadow {
  public:
   struct Options {
     int moments = 6;      // 4, 6 or 8 real moments beyond b0
@@ -40,12 +40,9 @@ class MomentShadowMaps : public ShadowTechnique {
   bool highTarget() const { return opt_.moments > 4; }
 
   Options opt_;
-  const GpuScene* scene_ = nullptr;
-  RenderSettings settings_;
   Texture b0_, low_, high_;
-  Buffer params_, lightView_;
+  Buffer params_;
   Pipeline pipeline_;
-  OpaqueShadow opaque_;
 };
 
 }  // namespace sb

@@ -89,11 +89,7 @@ OpacityShadowMaps::OpacityShadowMaps(const Options& o)
     : opt_(o), layout_(layoutFor(o.maps, o.multi, o.size)) {}
 
 void OpacityShadowMaps::setup(Device& dev, const GpuScene& scene, const RenderSettings& s) {
-  scene_ = &scene;
-  settings_ = s;
-  const ViewUniforms view = lightView(s, opt_.size, opt_.size);
-  lightView_ = createLightViewBuffer(dev, view, "osm");
-  opaque_.setup(dev, scene, opt_.size, lightView_, "osm");
+  const ViewUniforms view = setupLight(dev, scene, s, opt_.size);
 
   // Slices between the hair's near and far depth from the light, computed on
   // the CPU from the hair points projected into light space (exact for lines

@@ -16,7 +16,7 @@ namespace sb {
 // projection at a tile and discarding outside it. passes=single draws the
 // hair once per map (the original); passes=multi draws it once per tile row
 // of up to 6 render targets (atlas layers) x 4 channels.
-class OpacityShadowMaps : public ShadowTechnique {
+class OpacityShadowMaps : public LightMapShadow {
  public:
   struct Options {
     uint32_t maps = 16;
@@ -64,16 +64,13 @@ class OpacityShadowMaps : public ShadowTechnique {
 
   Options opt_;
   Layout layout_;
-  const GpuScene* scene_ = nullptr;
-  RenderSettings settings_;
   float weight_ = 1.0f;
   std::vector<float> slices_;
   Texture atlases_;                // layout_.atlases layers
   std::vector<Buffer> tileViews_;  // the light's view pointed at each tile
   std::vector<MapPass> passes_;
   std::vector<Pipeline> pipelines_;  // by target count - 1
-  Buffer params_, lightView_;
-  OpaqueShadow opaque_;
+  Buffer params_;
 };
 
 }  // namespace sb

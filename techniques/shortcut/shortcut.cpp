@@ -1,5 +1,6 @@
 #include "techniques/shortcut/shortcut.h"
 
+#include "techniques/common/hair_oit.h"
 #include "techniques/kajiya_kay/shading.h"
 
 namespace sb {
@@ -32,14 +33,7 @@ void ShortCutOit::setup(Device& dev, const GpuScene& scene, const RenderSettings
   const ShaderCode depthsFrag = loadShader("techniques/shortcut/depths.frag", defs);
   const ShaderCode colorsFrag = loadShader("techniques/shortcut/colors.frag", shaded);
 
-  PipelineDesc d;
-  d.technique = "shortcut";
-  d.vertex = &vert;
-  d.topology = Geometry::strandTopology(s);
-  d.hasDepth = d.depthTest = true;
-  d.depthWrite = false;
-  d.depthCompare = CompareOp::Less;
-  d.name = "shortcut.depths";
+  PipelineDesc d = transparentHairDesc("shortcut.depths", "shortcut", vert, s);
   d.fragment = &depthsFrag;
   d.colorFormats = {Format::R32F};
   // dst *= (1 - alpha): the product of (1 - alpha) over the pixel's fragments.
@@ -56,18 +50,9 @@ void ShortCutOit::setup(Device& dev, const GpuScene& scene, const RenderSettings
   d.bindings = colorsPass().slots();
   colorsPipeline_ = dev.createPipeline(d);
 
-  const ShaderCode fullScreen = loadShader("techniques/common/composite.vert");
-  const ShaderCode resolve = loadShader("techniques/shortcut/resolve.frag", defs);
-  PipelineDesc r;
-  r.name = "shortcut.resolve";
-  r.technique = "shortcut";
-  r.vertex = &fullScreen;
-  r.fragment = &resolve;
-  r.colorFormats = {Format::RGBA32F};
-  r.blend = {{true, BlendFactor::One, BlendFactor::SrcAlpha, BlendOp::Add, BlendFactor::Zero,
-              BlendFactor::One, BlendOp::Add}};
-  r.bindings = resolvePass().slots();
-  resolvePipeline_ = dev.createPipeline(r);
+  resolvePipeline_ =
+      fullScreenPipeline(dev, "shortcut.resolve", "shortcut", "techniques/shortcut/resolve.frag",
+                         defs, {Format::RGBA32F}, {hairOverBlend()}, resolvePass().slots());
 }
 
 Inputs ShortCutOit::slots() const {

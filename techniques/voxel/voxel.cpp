@@ -29,20 +29,15 @@ VoxelDensityShadow::Options VoxelDensityShadow::readOptions(const OptionReader& 
 }
 
 void VoxelDensityShadow::setup(Device& dev, const GpuScene& scene, const RenderSettings& s) {
-  scene_ = &scene;
-  settings_ = s;
-  const ViewUniforms view = lightView(s, opt_.size, opt_.size);
-  lightView_ = createLightViewBuffer(dev, view, "voxel");
-  opaque_.setup(dev, scene, opt_.size, lightView_, "voxel");
+  const ViewUniforms view = setupLight(dev, scene, s, opt_.size);
   // The volume's depth: the hair's range from the light (from the hair
   // points, exact for lines and ribbons), a little wider so that the farthest
   // fragment falls inside the last slice.
-  const DepthRange r = depthRange(hairLightDepths(dev, scene, view.viewProj));
-  const float pad = 1e-3f * std::max(r.farZ - r.nearZ, 1e-6f);
+  const DepthRange r = paddedHairDepthRange(dev, scene, view.viewProj);
   Params p{};
   p.viewProj = view.viewProj;
   p.params = glm::vec4(opt_.bias, float(opt_.size), scene.shadowAlpha, opt_.densityScale);
-  p.range = glm::vec4(r.nearZ - pad, r.farZ + pad, float(opt_.steps), 0.0f);
+  p.range = glm::vec4(r.nearZ, r.farZ, float(opt_.steps), 0.0f);
   p.cells = glm::vec4(float(columns()), float(opt_.grid), 0.0f, 0.0f);
   params_ = dev.createBuffer({"voxel.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
   const std::size_t voxels = std::size_t(columns()) * columns() * opt_.grid;

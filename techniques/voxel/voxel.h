@@ -17,7 +17,7 @@ namespace sb {
 // Memory: columns^2 x grid x 4 bytes (grid^3 x 4 for size >= grid), whatever
 // the hair. Visibility never rises along a light ray (the march's partial
 // step is linear in depth).
-class VoxelDensityShadow : public ShadowTechnique {
+class VoxelDensityShadow : public LightMapShadow {
  public:
   struct Options {
     uint32_t grid = 128;
@@ -39,11 +39,8 @@ class VoxelDensityShadow : public ShadowTechnique {
   uint32_t columns() const { return std::min(opt_.grid, opt_.size); }
 
   Options opt_;
-  const GpuScene* scene_ = nullptr;
-  RenderSettings settings_;
-  Buffer params_, lightView_, grid_;
+  Buffer params_, grid_;
   Pipeline pipeline_;
-  OpaqueShadow opaque_;
 };
 
 }  // namespace sb
