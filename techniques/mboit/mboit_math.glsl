@@ -42,9 +42,9 @@
 // the indices past the pixel's n (the loop body under `if`), so that the
 // compilers unroll it and every array index is a constant. Measured (the
 // probe in tests/test_mboit_parity.cpp: the same moments and depths on GL,
-// Vulkan and the CPU): with loops bounded by the run-time n, Mesa 22.3's
-// llvmpipe (both its GLSL and its SPIR-V front end) computed wrong Newton
-// divided differences, and GL wrong polynomial coefficients, from correct
+// Vulkan and the CPU): with loops bounded by the run-time n, Mesa 22.3.6
+// (llvmpipe GL and lavapipe Vulkan alike) computed wrong Newton divided
+// differences, and GL also wrong polynomial coefficients, from correct
 // roots: d[0] changed where no iteration writes it (T 1.0 on GL and 3.7e-7
 // on Vulkan where the CPU and a double-precision evaluation of the paper's
 // algorithm give 1.7e-4, on a pixel of b0 = 14.8); over 1e-3 apart in 8735
