@@ -281,27 +281,12 @@ void addRepetitionOptions(CLI::App& cmd, RepetitionOptions& reps) {
 }
 
 // The settings the benchmarks take; the technique under test is theirs.
-const std::vector<std::string> kBenchSettings = {"scene",
-                                                 "backend",
-                                                 "platform",
-                                                 "size",
-                                                 "primitive",
-                                                 "ribbon_width",
-                                                 "repeat",
-                                                 "warmup",
-                                                 "validation",
-                                                 "camera_eye",
-                                                 "camera_target",
-                                                 "camera_up",
-                                                 "fov",
-                                                 "near",
-                                                 "far",
-                                                 "light",
-                                                 "light_position",
-                                                 "light_direction",
-                                                 "light_color",
-                                                 "light_intensity",
-                                                 "extra_lights"};
+std::vector<std::string> benchSettings() {
+  std::vector<std::string> keys = {"scene",        "backend", "platform", "size",      "primitive",
+                                   "ribbon_width", "repeat",  "warmup",   "validation"};
+  for (std::string& k : viewSettingKeys()) keys.push_back(std::move(k));
+  return keys;
+}
 
 }  // namespace
 
@@ -313,7 +298,7 @@ void registerBenchCommand(CLI::App& app) {
     base->scene = "clustered:strands=2000,points=8,head=0,alpha=0.2";  // complexity 125
     base->repeat = 1;
     base->width = base->height = 128;
-    std::vector<std::string> keys = kBenchSettings;
+    std::vector<std::string> keys = benchSettings();
     keys.push_back("shadow");
     auto settings = std::make_shared<CliSettings>(*cmd, keys, *base);
     auto reps = std::make_shared<RepetitionOptions>();
@@ -331,7 +316,7 @@ void registerBenchCommand(CLI::App& app) {
   auto o = std::make_shared<BenchOptions>();
   o->base.scene = "straight:strands=20000,points=16,head=0";  // 300k segments
   o->base.repeat = 1;
-  auto settings = std::make_shared<CliSettings>(*cmd, kBenchSettings, o->base);
+  auto settings = std::make_shared<CliSettings>(*cmd, benchSettings(), o->base);
   cmd->add_option("--osm-maps", o->osmMaps, "map counts for the OSM time-vs-maps fit");
   addRepetitionOptions(*cmd, o->reps);
   cmd->callback([o, settings] {

@@ -877,6 +877,12 @@ std::vector<std::string> settingKeys() {
   return keys;
 }
 
+std::vector<std::string> viewSettingKeys() {
+  std::vector<std::string> keys = settingKeys();
+  keys.erase(keys.begin(), std::find(keys.begin(), keys.end(), "camera_eye"));
+  return keys;
+}
+
 std::string settingLabel(const Setting& s, Spelling spelling) {
   return spelling == Spelling::Cli ? s.flag : "\"" + s.key + "\"";
 }

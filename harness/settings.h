@@ -60,6 +60,9 @@ const std::vector<Setting>& settingsTable();
 // By JSON key; nullptr when there is none.
 const Setting* findSetting(const std::string& key);
 std::vector<std::string> settingKeys();
+// The camera and light settings, camera_eye to extra_lights in table order: a
+// render's view, which the benchmarks and the viewer take whole.
+std::vector<std::string> viewSettingKeys();
 
 // How a front end spells settings in messages.
 enum class Spelling { Cli, Json };

@@ -597,26 +597,9 @@ void registerViewCommand(CLI::App& app) {
   auto req = std::make_shared<RenderRequest>();
   req->width = req->height = 512;
   // The settings of the picture (not timing, measurement or the platform: always a window).
-  const std::vector<std::string> keys = {"scene",
-                                         "shadow",
-                                         "oit",
-                                         "backend",
-                                         "size",
-                                         "primitive",
-                                         "ribbon_width",
-                                         "validation",
-                                         "camera_eye",
-                                         "camera_target",
-                                         "camera_up",
-                                         "fov",
-                                         "near",
-                                         "far",
-                                         "light",
-                                         "light_position",
-                                         "light_direction",
-                                         "light_color",
-                                         "light_intensity",
-                                         "extra_lights"};
+  std::vector<std::string> keys = {"scene", "shadow",    "oit",          "backend",
+                                   "size",  "primitive", "ribbon_width", "validation"};
+  for (std::string& k : viewSettingKeys()) keys.push_back(std::move(k));
   auto settings = std::make_shared<CliSettings>(*cmd, keys, *req);
   auto script = std::make_shared<std::string>();
   auto shotDir = std::make_shared<std::string>(".");
