@@ -77,14 +77,16 @@ Renderer::Renderer(Device& dev, const Scene& scene, const RenderSettings& settin
                      "targets) that is not multisampled; it runs with --msaa 1 (multisampled: "
                      "none, wsum, wavg, wboit; stochastic transparency has its own samples= "
                      "option)");
-  for (std::size_t i = 0; i < lights_.size(); ++i) setupLight(*lights_[i], i, outputs);
+  // The visibility and probe outputs are the key light's.
+  wantVisibility_ = outputs.count("visibility") > 0;
+  wantProbe_ = outputs.count("probe") > 0;
+  for (std::size_t i = 0; i < lights_.size(); ++i) setupLight(*lights_[i], i);
   color_ = lights_[0]->color;
   addSumPass();
   passes_ = graph_.compile(resources(outputs));
 }
 
-void Renderer::setupLight(LightChain& light, std::size_t index,
-                          const std::set<std::string>& outputs) {
+void Renderer::setupLight(LightChain& light, std::size_t index) {
   Device& dev = dev_;
   LabelScope scope(dev, lightPrefix(index));
   const RenderSettings& s = light.settings;
@@ -105,11 +107,8 @@ void Renderer::setupLight(LightChain& light, std::size_t index,
   light.shading.setup(dev, gpu_, s, *light.shadow, renderColor, depth_);
   light.oit->setup(dev, gpu_, s, light.shading,
                    {renderColor, depth_, light.shading.drawsMesh(), resolved});
-  // The visibility and probe outputs are the key light's.
   const bool key = index == 0;
-  wantVisibility_ = key ? outputs.count("visibility") > 0 : wantVisibility_;
   if (key && wantVisibility_) visibility_.setup(dev, gpu_, s, light.shading);
-  wantProbe_ = key ? outputs.count("probe") > 0 : wantProbe_;
   if (key && wantProbe_) {
     if (s.probePoints.empty()) throw InputError("probe output without probe points");
     probe_.setup(dev, s.probePoints, light.shading);

@@ -95,7 +95,7 @@ class Renderer {
                                      const RenderSettings& settings);
   static std::vector<Techniques> perLight(const Spec& shadow, const Spec& oit,
                                           const RenderSettings& settings);
-  void setupLight(LightChain& light, std::size_t index, const std::set<std::string>& outputs);
+  void setupLight(LightChain& light, std::size_t index);
   void addSumPass();
   void upload(const Scene& scene);
   // The graph resources behind the outputs "color", "visibility" and "probe".
