@@ -189,15 +189,10 @@ TEST(Baselines, ManifestCoversScenesTechniquesAndPrimitives) {
   int both = 0;
   for (const auto& [g, p] : primitives) both += p.size() == 2 ? 1 : 0;
   EXPECT_GE(both, 2);
-  // Every technique of the catalogs, the ground truths included, except those whose GL and
-  // Vulkan images differ beyond the baselines' tolerance (README, "Transparency techniques"):
-  // a baseline could not hold both.
-  const std::set<std::string> noBaseline = {"msm"};
+  // Every technique of the catalogs, the ground truths included.
   std::set<std::string> allShadows, allOits;
-  for (const auto& t : sb::shadowCatalog())
-    if (!noBaseline.count(t.name)) allShadows.insert(t.name);
-  for (const auto& t : sb::oitCatalog())
-    if (!noBaseline.count(t.name)) allOits.insert(t.name);
+  for (const auto& t : sb::shadowCatalog()) allShadows.insert(t.name);
+  for (const auto& t : sb::oitCatalog()) allOits.insert(t.name);
   EXPECT_EQ(shadows, allShadows);
   EXPECT_EQ(oits, allOits);
 }

@@ -223,32 +223,18 @@ TEST_P(MomentShadows, RejectsBadOptionsNamingThem) {
 INSTANTIATE_TEST_SUITE_P(Backends, MomentShadows, ::testing::Values("gl", "vulkan"),
                          [](const auto& param) { return param.param; });
 
-// GL and Vulkan compute the same visibility.
-// KNOWN FAILING (disabled, reported). Curly hair at 96x96, 128x128 maps,
-// visibility max difference GL vs Vulkan, as measured:
-//   moments=4: 0.99 at first; 0.055 once mboit's reconstruction computed the
-//   same bits on both backends (its loops miscompiled by Mesa:
-//   MboitParity.ReconstructionIsTheSameOnGlVulkanAndCpu); 0.022 now;
-//   moments=8: 0.9995, 6.2e-5, 1.0e-5 now (passes);
-//   moments=6,kind=trig: 0.94, 0.18, 0.017 now.
-// What differs (each input written to the visibility target in place of the
-// visibility, SB_SHADER_DIR): the receiver's depth was 1-2 ulp apart (2.4e-7)
-// until both passes computed the light depth with msmLightDepth (explicit
-// sum order, precise, reciprocal product): now bit-equal. b0 and the texel
-// are equal. The moment targets still differ by 1-2 ulp (up to 1e-6 power,
-// 6.6e-6 trigonometric): the two APIs' line rasterizers interpolate the
-// light pass's world position differently, in 55 of 293 single-fragment
-// texels (gl_FragCoord.z differed the same way). The paper's 32-bit bias
-// (5e-7 for 4 moments) is of that noise's order, so a texel with fewer
-// fragments than the moments' support points (a Hankel/Toeplitz matrix of
-// rank below n+1 but for the bias) reconstructs differently: the worst
-// pixel, 2 fragments with the receiver between them, has last pivots
-// 1.05e-6 (GL) and 1.23e-6 (Vulkan) against the 2 x bias fallback of
-// mboit_math.glsl, and T 0.564 against 0.490 (exact 0.5). Tried, not kept:
-// no pivot fallback (0.011, 0.018, 0.011), the bias x10 (0.0074, 0.0014,
-// 0.0008) and x60 (0.0014, 0.0002, 0.0002) without fallback: smaller, not
-// within 1e-4, and not the paper's bias.
-TEST(MomentShadowsParity, DISABLED_GlAndVulkanAgree) {
+// GL and Vulkan compute the same visibility. History, measured on curly hair
+// at 96x96 with 128x128 maps (visibility max difference GL against Vulkan,
+// moments=4 / 8 / 6 trigonometric): 0.99 / 0.9995 / 0.94 at first; 0.022 /
+// 1e-5 / 0.017 once mboit's reconstruction computed the same bits on both
+// (Mesa miscompiled its loops: MboitParity.ReconstructionIsTheSameOnGlVulkanAndCpu)
+// and both passes computed the light depth with msmLightDepth. The rest was
+// the light pass's interpolated position, 1-2 ulp apart between the APIs'
+// line rasterizers (55 of 293 single-fragment texels), amplified by the
+// solve where a texel has fewer fragments than the moments' support points.
+// The light pass now places each fragment on its segment itself
+// (msmSegmentPoint): 9.8e-7 / 4.2e-7 / 4.8e-7.
+TEST(MomentShadowsParity, GlAndVulkanAgree) {
   const sbtest::BothBackends both = sbtest::makeBothBackends();
   if (!both.unavailable.empty()) GTEST_SKIP() << both.unavailable;
   sbtest::expectShadowParity(both, {"msm:moments=4,size=128", "msm:moments=8,size=128",
