@@ -229,11 +229,11 @@ INSTANTIATE_TEST_SUITE_P(Backends, MomentShadows, ::testing::Values("gl", "vulka
 // 1e-5 / 0.017 once mboit's reconstruction computed the same bits on both
 // (Mesa miscompiled its loops: MboitParity.ReconstructionIsTheSameOnGlVulkanAndCpu)
 // and both passes computed the light depth with msmLightDepth. The rest was
-// the light pass's interpolated position, 1-2 ulp apart between the APIs'
-// line rasterizers (55 of 293 single-fragment texels), amplified by the
-// solve where a texel has fewer fragments than the moments' support points.
-// The light pass now places each fragment on its segment itself
-// (msmSegmentPoint): 9.8e-7 / 4.2e-7 / 4.8e-7.
+// the light pass's interpolated position, 1-2 ulp apart (55 of 293
+// single-fragment texels), amplified by the solve where a texel has fewer
+// fragments than the moments' support points: the vertex shaders' clip
+// positions rounded differently under the two GLSL front ends. With
+// toViewClip (techniques/common/view.glsl): 7.3e-6 / 4.2e-7 / 1.3e-6.
 TEST(MomentShadowsParity, GlAndVulkanAgree) {
   const sbtest::BothBackends both = sbtest::makeBothBackends();
   if (!both.unavailable.empty()) GTEST_SKIP() << both.unavailable;

@@ -38,10 +38,9 @@ Buffer createLightLookupParams(Device& dev, const ViewUniforms& view, float bias
   return dev.createBuffer({technique + ".params", "frame", BufferUsage::Uniform, sizeof p}, &p);
 }
 
-ShaderCode Geometry::strandVertexShader(const RenderSettings& s, bool segmentEnds) {
+ShaderCode Geometry::strandVertexShader(const RenderSettings& s) {
   ShaderDefines d;
   if (s.primitive == Primitive::Ribbons) d.defines.push_back({"SB_RIBBONS", "1"});
-  if (segmentEnds) d.defines.push_back({"SB_SEGMENT_ENDS", "1"});
   return loadShader("techniques/common/strands.vert", d);
 }
 

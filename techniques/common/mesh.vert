@@ -8,5 +8,5 @@ void main() {
   uint index = meshIndices[uint(gl_VertexIndex)];
   vWorldPos = meshPositions[index].xyz;
   vNormal = meshNormals[index].xyz;
-  gl_Position = viewProj * vec4(vWorldPos, 1.0);
+  gl_Position = toViewClip(vWorldPos);
 }

@@ -34,10 +34,10 @@ void main() {
   vEnd0 = p0;
   vEnd1 = p1;
 #endif
-  vec4 clip = viewProj * vec4(p, 1.0);
+  vec4 clip = toViewClip(p);
 #ifdef SB_RIBBONS
-  vec4 c0 = viewProj * vec4(p0, 1.0);
-  vec4 c1 = viewProj * vec4(p1, 1.0);
+  vec4 c0 = toViewClip(p0);
+  vec4 c1 = toViewClip(p1);
   vec2 s = (c1.xy / c1.w - c0.xy / c0.w) * viewViewport.xy;
   vec2 dir = dot(s, s) > 1e-12 ? normalize(s) : vec2(1.0, 0.0);
   vec2 normal = vec2(-dir.y, dir.x);

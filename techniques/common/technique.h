@@ -103,10 +103,7 @@ constexpr uint32_t kView = SB_SLOT_VIEW, kShading = SB_SLOT_SHADING, kPoints = S
 
 // Drawing strands and the mesh: the shared vertex shaders and their bindings.
 struct Geometry {
-  // segmentEnds: also pass the segment's two world end points, flat
-  // (SB_SEGMENT_ENDS), for passes that place a fragment on its segment
-  // themselves rather than trust the rasterizer's interpolation.
-  static ShaderCode strandVertexShader(const RenderSettings& s, bool segmentEnds = false);
+  static ShaderCode strandVertexShader(const RenderSettings& s);
   static ShaderCode meshVertexShader();
   static Topology strandTopology(const RenderSettings& s);
   static uint32_t strandVertexCount(const GpuScene& g, const RenderSettings& s);

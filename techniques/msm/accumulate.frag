@@ -5,8 +5,6 @@
 #include "msm.glsl"
 
 layout(location = 0) in vec3 vWorldPos;
-layout(location = 3) flat in vec3 vEnd0;
-layout(location = 4) flat in vec3 vEnd1;
 
 layout(location = 0) out vec4 outB0;
 layout(location = 1) out vec4 outLow;
@@ -15,8 +13,7 @@ layout(location = 2) out vec4 outHigh;
 #endif
 
 void main() {
-  precise float z =
-      msmDepth(msmLightDepth(msmSegmentPoint(vEnd0, vEnd1, gl_FragCoord.xy, vWorldPos)));
+  precise float z = msmDepth(msmLightDepth(vWorldPos));
   float a = mboitAbsorbance(msmParams.z);
   outB0 = vec4(a, 0.0, 0.0, 0.0);
   outLow = a * mboitMomentsLow(msmN.y, z);

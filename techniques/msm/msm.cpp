@@ -50,7 +50,7 @@ void MomentShadowMaps::setup(Device& dev, const GpuScene& scene, const RenderSet
   if (!scene.hasHair()) return;
   ShaderDefines defs;
   if (highTarget()) defs.defines.push_back({"SB_MSM_HIGH", "1"});
-  const ShaderCode vert = Geometry::strandVertexShader(s, /*segmentEnds=*/true);
+  const ShaderCode vert = Geometry::strandVertexShader(s);
   const ShaderCode frag = loadShader("techniques/msm/accumulate.frag", defs);
   PipelineDesc d;
   d.name = "msm.accumulate";
