@@ -35,6 +35,16 @@ SB_INLINE float lightDistance(mat4 vp, float windowZ) {
 }
 
 #ifndef SB_LIGHT_SPACE_CPU
+// m * (p, 1), the sums in one written order and `precise` (no fused
+// multiply-adds): GL's GLSL compiler and glslang's SPIR-V otherwise round the
+// product differently in the last bit, and the rasterizers then interpolate
+// every attribute (and gl_FragCoord.z) 1-2 ulp apart between the APIs, which
+// moment shadow maps amplify (MomentShadowsParity in tests/test_moments.cpp).
+vec4 clipOf(mat4 m, vec3 p) {
+  precise vec4 c = ((m[0] * p.x + m[1] * p.y) + m[2] * p.z) + m[3];
+  return c;
+}
+
 // A point in the light's normalized device coordinates. Outside the light's
 // frustum nothing the light's maps saw can occlude it: every lookup returns 1.
 bool toLightNdc(mat4 lightViewProj, vec3 worldPos, out vec3 ndc) {

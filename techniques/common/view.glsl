@@ -1,6 +1,7 @@
 // The current view (binding 0): camera or light. Kept apart from the scene's
 // storage buffers because GL counts every std430 block a fragment shader
 // declares against its limit (16 on llvmpipe), used or not.
+#include "light_space.glsl"
 #include "slots.h"
 layout(std140, binding = SB_SLOT_VIEW) uniform View {
   mat4 viewProj;
@@ -9,12 +10,5 @@ layout(std140, binding = SB_SLOT_VIEW) uniform View {
   vec4 viewViewport;  // width, height, ribbon width in pixels, 0
 };
 
-// viewProj * (p, 1), the sums in one written order and `precise` (no fused
-// multiply-adds): GL's GLSL compiler and glslang's SPIR-V otherwise round the
-// product differently in the last bit, and the rasterizers then interpolate
-// every attribute (and gl_FragCoord.z) 1-2 ulp apart between the APIs, which
-// moment shadow maps amplify (MomentShadowsParity in tests/test_moments.cpp).
-vec4 toViewClip(vec3 p) {
-  precise vec4 c = ((viewProj[0] * p.x + viewProj[1] * p.y) + viewProj[2] * p.z) + viewProj[3];
-  return c;
-}
+// viewProj * (p, 1) as clipOf computes it: the same bits on both APIs.
+vec4 toViewClip(vec3 p) { return clipOf(viewProj, p); }

@@ -1,4 +1,5 @@
 // Parameters of moment shadow maps, for the light pass and the lookup.
+#include "../common/light_space.glsl"
 #include "../common/slots.h"
 layout(std140, binding = SB_SLOT_MSM_PARAMS) uniform MsmParams {
   mat4 msmViewProj;
@@ -7,7 +8,7 @@ layout(std140, binding = SB_SLOT_MSM_PARAMS) uniform MsmParams {
   ivec4 msmN;      // x: real moments beyond b0 (4, 6, 8), y: kind (0 power, 1 trig)
 };
 // Both passes compute a point's light depth with msmLightDepth: `precise`,
-// the matrix product's sums in one written order and the division as a
+// the matrix product's sums in one written order (clipOf) and the division as a
 // reciprocal product (mboitRcp: include mboit_math.glsl first), so that GL and
 // Vulkan round alike. Measured: the lookup's depth (ndc.z of toLightNdc) was
 // up to 2.4e-7 apart between the backends, with this it is bit for bit equal.
@@ -17,14 +18,8 @@ layout(std140, binding = SB_SLOT_MSM_PARAMS) uniform MsmParams {
 
 // The light's window depth of a world position.
 float msmLightDepth(vec3 worldPos) {
-  // Rows z and w of msmViewProj * (worldPos, 1), the sums in one order.
-  precise float cz = ((msmViewProj[0].z * worldPos.x + msmViewProj[1].z * worldPos.y) +
-                      msmViewProj[2].z * worldPos.z) +
-                     msmViewProj[3].z;
-  precise float cw = ((msmViewProj[0].w * worldPos.x + msmViewProj[1].w * worldPos.y) +
-                      msmViewProj[2].w * worldPos.z) +
-                     msmViewProj[3].w;
-  precise float z = cz * mboitRcp(cw);
+  precise vec4 c = clipOf(msmViewProj, worldPos);
+  precise float z = c.z * mboitRcp(c.w);
   return z;
 }
 
