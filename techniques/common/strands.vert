@@ -6,10 +6,6 @@
 layout(location = 0) out vec3 vWorldPos;
 layout(location = 1) out vec3 vTangent;
 layout(location = 2) out vec4 vColor;
-#ifdef SB_SEGMENT_ENDS
-layout(location = 3) flat out vec3 vEnd0;
-layout(location = 4) flat out vec3 vEnd1;
-#endif
 
 void main() {
 #ifdef SB_RIBBONS
@@ -30,10 +26,6 @@ void main() {
   vTangent = dot(d, d) > 1e-30 ? normalize(d) : vec3(0.0, 1.0, 0.0);
   vColor = colors[first + end];
   vWorldPos = p;
-#ifdef SB_SEGMENT_ENDS
-  vEnd0 = p0;
-  vEnd1 = p1;
-#endif
   vec4 clip = toViewClip(p);
 #ifdef SB_RIBBONS
   vec4 c0 = toViewClip(p0);
