@@ -1,9 +1,7 @@
 // `strandbench figure NAME` (harness/figure.h): the figure's suite is swept into a temporary
-// folder, the grid image is composed with OpenImageIO (ImageBufAlgo::fit, paste, render_text)
+// folder, the grid image is composed with OpenImageIO (fit, paste, text: harness/oiio/)
 // and figure.md / figure.json are written (reports/figure_report.h), then the folder is renamed
 // into place, so a stopped or failed run leaves nothing half written.
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -16,6 +14,7 @@
 #include "harness/errors.h"
 #include "harness/figure.h"
 #include "harness/image.h"
+#include "harness/oiio/oiio_api.h"
 #include "harness/sweep.h"
 #include "reports/figure_report.h"
 #include "reports/files.h"
@@ -132,12 +131,8 @@ struct Layout {
 
 // Text in DejaVu Sans (the font Debian installs with fontconfig); false where there is no
 // font: the labels are then only in figure.md.
-bool drawText(OIIO::ImageBuf& buf, int x, int y, const std::string& s, int size,
-              std::initializer_list<float> colour = {0.0f, 0.0f, 0.0f}) {
-  const bool ok = OIIO::ImageBufAlgo::render_text(
-      buf, x, y, s, size, "DejaVuSans", OIIO::cspan<float>(colour.begin(), colour.size()));
-  if (!ok) (void)buf.geterror();
-  return ok;
+bool drawText(oiio::Canvas* canvas, int x, int y, const std::string& s, int size) {
+  return oiio::api().canvasText(canvas, x, y, s, size, 0.0f, 0.0f, 0.0f);
 }
 
 // Words joined into lines of at most `width` characters (a longer word stands alone).
@@ -157,20 +152,8 @@ std::vector<std::string> wrapWords(const std::string& text, std::size_t width) {
 }
 
 // One image fitted into a tile x tile box at (x, y), letterboxed; false when it cannot be read.
-bool pasteFitted(OIIO::ImageBuf& canvas, const fs::path& file, int x, int y, int tile) {
-  OIIO::ImageBuf src(file.string());
-  if (!src.read(0, 0, true, OIIO::TypeDesc::FLOAT)) {
-    (void)src.geterror();
-    return false;
-  }
-  const OIIO::ROI box(0, tile, 0, tile, 0, 1, 0, 3);
-  OIIO::ImageBuf rgb = OIIO::ImageBufAlgo::channels(src, 3, {0, 1, 2});
-  OIIO::ImageBuf fitted = OIIO::ImageBufAlgo::fit(rgb, "", 0.0f, "letterbox", false, box);
-  if (fitted.has_error()) {
-    (void)fitted.geterror();
-    return false;
-  }
-  return OIIO::ImageBufAlgo::paste(canvas, x, y, 0, 0, fitted);
+bool pasteFitted(oiio::Canvas* canvas, const fs::path& file, int x, int y, int tile) {
+  return oiio::api().canvasPaste(canvas, file.string(), x, y, tile);
 }
 
 std::string caption(const nlohmann::json& r) {
@@ -188,8 +171,10 @@ nlohmann::json composeGrid(const report::FigureGrid& g, const fs::path& dir) {
   Layout L;
   L.rows = static_cast<int>(g.rows.size());
   L.columns = static_cast<int>(g.columns.size());
-  OIIO::ImageBuf canvas(OIIO::ImageSpec(L.width(), L.height(), 3, OIIO::TypeDesc::FLOAT));
-  OIIO::ImageBufAlgo::fill(canvas, {1.0f, 1.0f, 1.0f});
+  const oiio::Api& io = oiio::api();
+  const std::unique_ptr<oiio::Canvas, void (*)(oiio::Canvas*)> owned(
+      io.canvasCreate(L.width(), L.height()), io.canvasFree);
+  oiio::Canvas* canvas = owned.get();
   bool labels = drawText(canvas, L.margin, L.margin + 22,
                          g.title + " (" + g.backend + "; each cell: ours | error heatmap)", 20);
   for (int c = 0; c < L.columns; ++c)
@@ -211,15 +196,13 @@ nlohmann::json composeGrid(const report::FigureGrid& g, const fs::path& dir) {
         labels &= drawText(canvas, x, y + L.tile + 15, caption(*cell.result), 13);
       }
       if (!pasted) {  // grey: the paper has no image here, or we have none
-        OIIO::ImageBufAlgo::fill(canvas, {0.5f, 0.5f, 0.5f},
-                                 OIIO::ROI(x, x + L.cellWidth(), y, y + L.tile, 0, 1, 0, 3));
+        io.canvasFill(canvas, x, x + L.cellWidth(), y, y + L.tile, 0.5f, 0.5f, 0.5f);
         labels &= drawText(canvas, x + 8, y + 24, cell.note.substr(0, 60), 13);
       }
     }
   }
   Image img(L.width(), L.height(), 3);
-  canvas.get_pixels(OIIO::ROI(0, L.width(), 0, L.height(), 0, 1, 0, 3), OIIO::TypeDesc::FLOAT,
-                    img.pixels.data());
+  io.canvasPixels(canvas, img.pixels.data());
   writeImage(img, (dir / "figure.png").string());
   return {{"width", L.width()}, {"height", L.height()},        {"tile", L.tile},
           {"gap", L.gap},       {"margin", L.margin},          {"x0", L.x0()},

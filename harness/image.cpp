@@ -1,6 +1,5 @@
 #include "harness/image.h"
 
-#include <OpenImageIO/imageio.h>
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -16,6 +15,7 @@
 #include <system_error>
 
 #include "harness/errors.h"
+#include "harness/oiio/oiio_api.h"
 #include "scenes/scene.h"
 
 namespace sb {
@@ -87,13 +87,6 @@ std::string inQuotes(const std::string& s) { return "'" + s + "'"; }
   throw InputError("cannot write image " + inQuotes(path) + ": " + problem);
 }
 
-// OIIO's error text, without trailing newlines.
-std::string oiioError(const std::string& fromObject) {
-  std::string e = fromObject.empty() ? OIIO::geterror() : fromObject;
-  while (!e.empty() && (e.back() == '\n' || e.back() == ' ')) e.pop_back();
-  return e.empty() ? std::string("unknown OpenImageIO error") : e;
-}
-
 [[noreturn]] void failReading(const std::string& path, const std::string& problem) {
   throw InputError("cannot read image " + inQuotes(path) + ": " + problem);
 }
@@ -158,53 +151,6 @@ void writeImageFile(const Image& img, const std::string& path, ImageBitDepth dep
     fail(path, "unknown image extension " + inQuotes(ext) + " (use .png or .exr)");
   }
 
-  OIIO::TypeDesc fileType = OIIO::TypeDesc::UINT8;
-  switch (depth) {
-    case ImageBitDepth::U8:
-      fileType = OIIO::TypeDesc::UINT8;
-      break;
-    case ImageBitDepth::U16:
-      fileType = OIIO::TypeDesc::UINT16;
-      break;
-    case ImageBitDepth::F16:
-      fileType = OIIO::TypeDesc::HALF;
-      break;
-    case ImageBitDepth::F32:
-    case ImageBitDepth::Default:
-      fileType = OIIO::TypeDesc::FLOAT;
-      break;
-  }
-
-  OIIO::ImageSpec spec(img.width, img.height, img.channels, fileType);
-  switch (img.channels) {
-    case 1:
-      spec.channelnames = {"Y"};
-      spec.alpha_channel = -1;
-      break;
-    case 2:
-      spec.channelnames = {"Y", "A"};
-      spec.alpha_channel = 1;
-      break;
-    case 3:
-      spec.channelnames = {"R", "G", "B"};
-      spec.alpha_channel = -1;
-      break;
-    case 4:
-      spec.channelnames = {"R", "G", "B", "A"};
-      spec.alpha_channel = 3;
-      break;
-    default:
-      break;  // OIIO's default names
-  }
-  // Samples are stored as given: no premultiplication / unpremultiplication.
-  spec.attribute("oiio:UnassociatedAlpha", 1);
-  if (format == "openexr") {
-    spec.attribute("compression", "zip");
-    // OIIO's EXR writer stores the current time as capDate unless DateTime is
-    // given; an empty one keeps the bytes independent of when they were written.
-    spec.attribute("DateTime", "");
-  }
-
   // --- temporary file in the same folder (so rename is atomic) ---
   const fs::path target(path);
   fs::path folder = target.parent_path();
@@ -230,26 +176,20 @@ void writeImageFile(const Image& img, const std::string& path, ImageBitDepth dep
   ::close(fd);
 
   // --- encode ---
-  auto out = OIIO::ImageOutput::create(format);
-  if (!out) fail(path, "no OpenImageIO writer for " + format + ": " + oiioError(""));
-  if (!out->open(tmp.path, spec)) fail(path, oiioError(out->geterror()));
-  bool ok = false;
+  std::string error;
+  const auto& io = oiio::api();
   if (depth == ImageBitDepth::U8) {
     const auto data = quantize<std::uint8_t>(img.pixels, 255.0f);
-    ok = out->write_image(OIIO::TypeDesc::UINT8, data.data());
+    error = io.write(tmp.path, format, img.width, img.height, img.channels, 0, data.data());
   } else if (depth == ImageBitDepth::U16) {
     const auto data = quantize<std::uint16_t>(img.pixels, 65535.0f);
-    ok = out->write_image(OIIO::TypeDesc::UINT16, data.data());
+    error = io.write(tmp.path, format, img.width, img.height, img.channels, 1, data.data());
   } else {
-    ok = out->write_image(OIIO::TypeDesc::FLOAT, img.pixels.data());
+    const int type = depth == ImageBitDepth::F16 ? 2 : 3;
+    error =
+        io.write(tmp.path, format, img.width, img.height, img.channels, type, img.pixels.data());
   }
-  if (!ok) {
-    std::string e = oiioError(out->geterror());
-    out->close();
-    fail(path, e);
-  }
-  if (!out->close()) fail(path, oiioError(out->geterror()));
-  out.reset();
+  if (!error.empty()) fail(path, error);
 
   // --- publish ---
   std::error_code ec;
@@ -278,26 +218,12 @@ Image readImage(const std::string& path) {
   if (!fs::exists(path, ec)) failRead("no such file");
   if (fs::is_directory(path, ec)) failRead("it is a folder");
 
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);  // give samples as stored
-  auto in = OIIO::ImageInput::open(path, &config);
-  if (!in) failRead(oiioError(""));
-  const OIIO::ImageSpec& spec = in->spec();
-  if (spec.deep) failRead("deep images are not supported");
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) failRead("empty image");
-  if (spec.depth > 1) failRead("volume images are not supported");
+  int w = 0, h = 0, nch = 0;
+  std::vector<float> raw;
+  if (const std::string e = oiio::api().read(path, w, h, nch, raw); !e.empty()) failRead(e);
 
-  const int nch = spec.nchannels;
-  std::vector<float> raw(static_cast<std::size_t>(spec.width) *
-                         static_cast<std::size_t>(spec.height) * static_cast<std::size_t>(nch));
-  if (!in->read_image(0, 0, 0, nch, OIIO::TypeDesc::FLOAT, raw.data())) {
-    failRead(oiioError(in->geterror()));
-  }
-  in->close();
-
-  Image img(spec.width, spec.height, 4);
-  const std::size_t n =
-      static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height);
+  Image img(w, h, 4);
+  const std::size_t n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
   for (std::size_t i = 0; i < n; ++i) {
     const float* s = raw.data() + i * static_cast<std::size_t>(nch);
     float* d = img.pixels.data() + i * 4;

@@ -74,6 +74,7 @@ struct RenderRequest {
   bool image = true;  // false: no final shading; only the visibility error (needs reference)
   std::optional<ProbeSpec> probe;  // also report visibility along a light ray
   bool invariants = false;         // check the outputs and maps (harness/invariants.h)
+  bool runToRun = true;            // sweeps with invariants: the case twice, outputs identical
   std::string backend = defaultBackend();
   std::string platform;  // empty: egl for gl, headless for vulkan
   uint32_t width = 512, height = 512;

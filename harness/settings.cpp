@@ -700,6 +700,11 @@ std::vector<Setting> buildTable() {
                  "check the outputs and maps (finite, in range; needs the reference)", "true",
                  "maybe")),
         &RenderRequest::invariants);
+  plain(add(make("run_to_run", "--no-run-to-run", T::Flag, "true",
+                 "sweeps with invariants: run each case again on a fresh device and require "
+                 "identical outputs; false (--no-run-to-run): once",
+                 "false", "maybe")),
+        &RenderRequest::runToRun);
   plain(add(make("validation", "--validation", T::Flag, "false",
                  "Vulkan validation layers on (messages counted)", "true", "maybe")),
         &RenderRequest::validation);

@@ -137,7 +137,7 @@ CaseRun runCase(const fs::path& dir, const SweepCase& c, const RenderRequest& re
       images["animation"] = base + ".animation.png";
     }
   }
-  if (request.invariants) {
+  if (request.invariants && request.runToRun) {
     // Identical results run to run: the case again, on a fresh device.
     const RenderResult again = runRender(request, &cache);
     auto curve = [](const RenderResult& r) {

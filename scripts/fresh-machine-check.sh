@@ -41,13 +41,15 @@ fi
 
 start=$(date +%s)
 current="start"
+declare -A took  # seconds per step, for the README's block
 step() {  # step NAME COMMAND...: runs it, prints its time; stops the script at the first failure
   current=$1
   shift
   local t0=$(date +%s)
   echo "== $current"
   if "$@"; then
-    echo "== $current: done in $(($(date +%s) - t0)) s"
+    took[$current]=$(($(date +%s) - t0))
+    echo "== $current: done in ${took[$current]} s"
   else
     echo "== $current: FAILED after $(($(date +%s) - t0)) s"
     echo "fresh machine: FAILED at $current"
@@ -129,12 +131,41 @@ step "install mmdebstrap" install_mmdebstrap
 step "build a Debian 12 root" build_root
 step "copy the committed tree" copy_tree
 step "mount /proc /dev /sys" mount_system
+# The README's block between the fresh-machine markers, rewritten by a full run that passed:
+# its numbers come from the run that measured them, never from a hand.
+write_readme_block() {
+  local log=$root/root/test.log
+  local ctest_line skips
+  ctest_line=$(grep -E "tests passed|tests failed" "$log" | tail -n 1)
+  skips=$(sed -n '/^== skipped tests:/,/^== slowest/p' "$log" | sed '1s/^== //;$d' | sed 's/^ *//' |
+    paste -sd ';' | sed 's/;/; /g')
+  local block
+  block=$(
+    cat <<TXT
+Measured by \`sudo scripts/fresh-machine-check.sh\` on commit $(git rev-parse --short HEAD), $(date -u '+%Y-%m-%d %H:%M') UTC,
+$(nproc) cores, load average $load0 before it started: the main command took
+${took["README main command (scripts/main-job.sh)"]} s (report written), the test command
+${took["README test command (scripts/test.sh)"]} s (ctest: "$ctest_line"; $skips; the fuzzers
+included).
+TXT
+  )
+  awk -v block="$block" '
+    /^<!-- fresh-machine:begin/ {print; print block; skip=1; next}
+    /^<!-- fresh-machine:end/ {skip=0}
+    !skip {print}' README.md >README.md.new && mv README.md.new README.md
+  echo "fresh-machine-check: README.md's measured block rewritten (commit it)"
+}
+
+load0=$(cut -d' ' -f1 /proc/loadavg)
 step "README main command (scripts/main-job.sh)" inside "scripts/main-job.sh"
+step "main command wrote its report" test -s "$root/root/strandbench/out/quick/report.html"
 if ((quick)); then
   step "tests matching $tests (--quick)" \
-    inside "cd build && ctest --output-on-failure -j \"\$(nproc)\" -R '$tests' 2>&1 | tail -n 40; exit \${PIPESTATUS[0]}"
+    inside "scripts/setup.sh --tests && cd build && ctest --output-on-failure -j \"\$(nproc)\" -R '$tests' 2>&1 | tail -n 40; exit \${PIPESTATUS[0]}"
 else
-  step "README test command (scripts/test.sh)" inside "scripts/test.sh 2>&1 | tail -n 60; exit \${PIPESTATUS[0]}"
+  step "README test command (scripts/test.sh)" \
+    inside "scripts/test.sh >/root/test.log 2>&1; s=\$?; tail -n 60 /root/test.log; exit \$s"
+  write_readme_block
 fi
 echo "== total: $(($(date +%s) - start)) s"
 echo "fresh machine: OK"

@@ -2,13 +2,13 @@
 // (figure.png with the paper's rows x columns, each cell our image and its error heatmap) and
 // its table (figure.md, figure.json); a bad name is refused with the list of figures; the grid
 // check fails on a grid of the wrong shape. One ctest entry per figure (ctest -j2 splits them).
-#include <OpenImageIO/imagebuf.h>
 #include <gtest/gtest.h>
 
 #include <map>
 #include <nlohmann/json.hpp>
 
 #include "harness/figure.h"
+#include "harness/image.h"
 #include "reports/figure_report.h"
 #include "test_util.h"
 
@@ -32,15 +32,11 @@ json figureFile(const std::string& name) {
 }
 
 // A rectangle of figure.png holds more than one colour: something was pasted there.
-bool varied(const OIIO::ImageBuf& img, int x0, int y0, int w, int h) {
-  float first[3], p[3];
-  img.getpixel(x0, y0, first, 3);
+bool varied(const sb::Image& img, int x0, int y0, int w, int h) {
   for (int y = y0; y < y0 + h; y += 2)
-    for (int x = x0; x < x0 + w; x += 2) {
-      img.getpixel(x, y, p, 3);
+    for (int x = x0; x < x0 + w; x += 2)
       for (int c = 0; c < 3; ++c)
-        if (std::abs(p[c] - first[c]) > 0.02f) return true;
-    }
+        if (std::abs(img.at(x, y, c) - img.at(x0, y0, c)) > 0.02f) return true;
   return false;
 }
 
@@ -58,10 +54,9 @@ std::vector<std::string> checkFigureFolder(const fs::path& dir, const json& file
   if (fig["columns"] != file["figure"]["columns"]) fail("columns differ from the figure file");
   const std::size_t rows = fig["rows"].size(), cols = fig["columns"].size();
   if (fig["cells"].size() != rows) fail("cells: not one row per label");
-  OIIO::ImageBuf png((dir / "figure.png").string());
-  if (!png.read(0, 0, true, OIIO::TypeDesc::FLOAT)) return {"figure.png unreadable"};
+  const sb::Image png = sb::readImage((dir / "figure.png").string());
   const json& L = fig["layout"];
-  if (png.spec().width != L["width"].get<int>() || png.spec().height != L["height"].get<int>())
+  if (png.width != L["width"].get<int>() || png.height != L["height"].get<int>())
     fail("figure.png is not the layout's size");
   if (L["width"].get<int>() !=
       L["x0"].get<int>() +

@@ -165,6 +165,7 @@ TEST(Settings, TableIsComplete) {
                         "probe",
                         "animate",
                         "invariants",
+                        "run_to_run",
                         "validation",
                         "memory_limit",
                         "camera_eye",
@@ -180,7 +181,7 @@ TEST(Settings, TableIsComplete) {
                         "light_intensity",
                         "extra_lights"})
     EXPECT_EQ(keys.count(k), 1u) << k;
-  EXPECT_EQ(keys.size(), 31u);
+  EXPECT_EQ(keys.size(), 32u);
 }
 
 // Every setting through the three front ends: the same value lands in the same
@@ -428,7 +429,7 @@ TEST(Settings, BaselineCameraAndLightChangeTheImage) {
 // The docs' settings table is the table's (regenerate: `strandbench list --settings-markdown`).
 TEST(Settings, DocsHoldTheTable) {
   const std::string table = sb::settingsMarkdown();
-  for (const char* doc : {"docs/suites-and-results.md", "README.md"}) {
+  for (const char* doc : {"docs/suites-and-results.md", "docs/usage.md"}) {
     const std::string text = sbtest::readFile(fs::path(SB_SOURCE_DIR) / doc);
     EXPECT_NE(text.find(table), std::string::npos)
         << doc << " lacks the settings table; paste `strandbench list --settings-markdown`:\n"
