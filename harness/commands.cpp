@@ -17,6 +17,7 @@
 #include "harness/render.h"
 #include "harness/settings.h"
 #include "harness/stop.h"
+#include "harness/technique_list.h"
 #include "scenes/options.h"
 #include "scenes/scene.h"
 #include "techniques/common/technique.h"
@@ -33,36 +34,64 @@ void printOptions(const std::vector<OptionInfo>& options) {
     std::cout << "      " << o.name << "=" << o.defaultValue << "  " << o.help << "\n";
 }
 
+constexpr Family kFamilies[] = {Family::Shadow, Family::Transparency, Family::Shading};
+
+// `list NAME`: every technique of that name (none and occupancy are in two families).
+int listOne(const std::string& name) {
+  std::vector<std::string> names;
+  bool found = false;
+  for (Family f : kFamilies)
+    for (const TechniqueDescriptor* d : techniques(f)) {
+      names.push_back(d->name);
+      if (d->name != name) continue;
+      std::cout << heading(f) << " (--" << familyFlag(f) << " " << name << ":key=value,...):\n";
+      printTechnique(std::cout, *d, true);
+      found = true;
+    }
+  if (!found) throw InputError(unknownNameMessage("technique", name, names));
+  return 0;
+}
+
 void registerList(CLI::App& app) {
-  auto* cmd = app.add_subcommand("list", "list scenes, techniques, their options and defaults");
+  auto* cmd = app.add_subcommand(
+      "list", "list scenes, techniques, their options and defaults (list NAME: one technique)");
   auto json = std::make_shared<bool>(false);
   auto markdown = std::make_shared<bool>(false);
+  auto techniquesMd = std::make_shared<bool>(false);
+  auto name = std::make_shared<std::string>();
+  cmd->add_option("name", *name, "a technique or shading model: show it alone, in detail");
   cmd->add_flag("--json", *json, "print as JSON");
   cmd->add_flag("--settings-markdown", *markdown,
                 "print only the render settings as the Markdown table of the docs");
-  cmd->callback([json, markdown] {
+  cmd->add_flag("--markdown", *techniquesMd,
+                "print docs/techniques.md (strandbench list --markdown > docs/techniques.md)");
+  cmd->callback([json, markdown, techniquesMd, name] {
     runGuarded("list", [&] {
       if (*markdown) {
         std::cout << settingsMarkdown();
         return 0;
       }
+      if (*techniquesMd) {
+        std::cout << techniquesMarkdown();
+        return 0;
+      }
+      if (!name->empty() && !*json) return listOne(*name);
       if (*json) {
         nlohmann::json j;
-        auto opts = [](const std::vector<OptionInfo>& v) {
-          nlohmann::json a = nlohmann::json::array();
-          for (const auto& o : v)
-            a.push_back({{"name", o.name}, {"default", o.defaultValue}, {"help", o.help}});
-          return a;
-        };
+        if (!name->empty()) {
+          for (Family f : kFamilies)
+            if (const TechniqueDescriptor* d = tryFindTechnique(f, *name))
+              j[familyFlag(f)].push_back(techniqueJson(*d));
+          if (j.is_null()) listOne(*name);  // throws the unknown-name error
+          std::cout << j.dump(2) << "\n";
+          return 0;
+        }
         for (const auto& s : sceneCatalog())
-          j["scenes"].push_back({{"name", s.name}, {"help", s.help}, {"options", opts(s.options)}});
-        for (const auto& t : shadowCatalog())
-          j["shadow"].push_back({{"name", t.name}, {"help", t.help}, {"options", opts(t.options)}});
-        for (const auto& t : oitCatalog())
-          j["oit"].push_back({{"name", t.name}, {"help", t.help}, {"options", opts(t.options)}});
-        for (const auto& t : shadingCatalog())
-          j["shading"].push_back(
-              {{"name", t.name}, {"help", t.help}, {"options", opts(t.options)}});
+          j["scenes"].push_back(
+              {{"name", s.name}, {"help", s.help}, {"options", optionsJson(s.options)}});
+        for (Family f : kFamilies)
+          for (const TechniqueDescriptor* d : techniques(f))
+            j[familyFlag(f)].push_back(techniqueJson(*d));
         for (const auto& b : backendCatalog())
           j["backends"].push_back({{"name", b.name}, {"platforms", b.platforms}});
         j["primitives"] = findSetting("primitive")->choices;
@@ -75,20 +104,9 @@ void registerList(CLI::App& app) {
         std::cout << "  " << s.name << "  " << s.help << "\n";
         printOptions(s.options);
       }
-      std::cout << "shadow techniques (--shadow NAME:key=value,...):\n";
-      for (const auto& t : shadowCatalog()) {
-        std::cout << "  " << t.name << "  " << t.help << "\n";
-        printOptions(t.options);
-      }
-      std::cout << "transparency techniques (--oit NAME:key=value,...):\n";
-      for (const auto& t : oitCatalog()) {
-        std::cout << "  " << t.name << "  " << t.help << "\n";
-        printOptions(t.options);
-      }
-      std::cout << "hair shading models (--shading NAME:key=value,...):\n";
-      for (const auto& t : shadingCatalog()) {
-        std::cout << "  " << t.name << "  " << t.help << "\n";
-        printOptions(t.options);
+      for (Family f : kFamilies) {
+        std::cout << heading(f) << " (--" << familyFlag(f) << " NAME:key=value,...):\n";
+        for (const TechniqueDescriptor* d : techniques(f)) printTechnique(std::cout, *d, false);
       }
       std::cout << "backends (--backend):";
       for (const auto& b : backendCatalog()) {
@@ -365,9 +383,7 @@ void checkRenderRequest(const RenderRequest& req, bool device, RenderCache* cach
           [&] { scene = std::make_shared<const Scene>(makeScene(Spec::parse(req.scene))); });
     if (cache) cache->scenes[req.scene] = scene;
   }
-  named("shadow", req.shadow, [&] { makeShadowTechnique(Spec::parse(req.shadow)); });
-  named("oit", req.oit, [&] { makeOitTechnique(Spec::parse(req.oit)); });
-  named("shading", req.shading, [&] { ShadingModel::fromSpec(req.shading); });
+  checkTechniqueSpecs(req, spelling);
   makeRenderSettings(req, *scene);
   if (device) makeRequestDevice(req);
 }

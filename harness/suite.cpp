@@ -5,6 +5,7 @@
 
 #include "harness/json_keys.h"
 #include "harness/settings.h"
+#include "harness/technique_list.h"
 #include "reports/files.h"
 #include "reports/json_file.h"
 #include "scenes/options.h"
@@ -68,21 +69,7 @@ RenderRequest toRequest(const ojson& s, const std::string& where) {
       if (s.contains(setting.key)) setFromJson(r, setting, s.at(setting.key));
     checkRequest(r, Spelling::Json);
     // Technique specs are checked now, not half way through a sweep.
-    for (const char* key : {"shadow", "oit", "shading"}) {
-      const Setting& setting = *findSetting(key);
-      try {
-        const Spec spec = Spec::parse(settingText(r, setting));
-        if (setting.key == "shadow")
-          makeShadowTechnique(spec);
-        else if (setting.key == "oit")
-          makeOitTechnique(spec);
-        else
-          ShadingModel::fromSpec(settingText(r, setting));
-      } catch (const InputError& e) {
-        throw InputError(
-            settingMessage(setting, Spelling::Json, settingText(r, setting), e.what()));
-      }
-    }
+    checkTechniqueSpecs(r, Spelling::Json);
     const Spec scene = Spec::parse(r.scene);
     std::vector<std::string> scenes;
     for (const auto& info : sceneCatalog()) scenes.push_back(info.name);

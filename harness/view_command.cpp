@@ -28,6 +28,7 @@
 #include "harness/render.h"
 #include "harness/settings.h"
 #include "reports/stats.h"
+#include "techniques/common/unit.h"
 
 namespace sb {
 namespace {
@@ -121,51 +122,31 @@ std::vector<ScriptAction> parseScript(const std::string& path) {
 
 // ---- the main option of each technique, stepped with the arrow keys ----
 
-struct MainOption {
-  std::string technique, option;
-  bool doubling;  // x2 / /2, else +1 / -1
-  long long min, max;
-};
-// The option that most changes cost and quality, per technique (the issue's
-// "layers, maps, slices, k"); the ranges are the registry's, kept small where
-// the registry allows more than a viewer can render interactively.
-const std::vector<MainOption>& mainOptions() {
-  static const std::vector<MainOption> table = {
-      {"shadowmap", "size", true, 16, 4096},   {"osm", "maps", true, 1, 256},
-      {"dom", "layers", false, 1, 31},         {"dc", "clusters", false, 1, 8},
-      {"occupancy", "slices", true, 32, 1024}, {"exact", "size", true, 16, 4096},
-      {"peel", "layers", true, 1, 65536}};
-  return table;
-}
-
-// The next name in a catalog (wrapping), options dropped.
-std::string cycle(const std::vector<TechniqueInfo>& catalog, const std::string& spec, int step) {
+// The next name in a family (wrapping), options dropped.
+std::string cycle(Family family, const std::string& spec, int step) {
+  const std::vector<const TechniqueDescriptor*> all = techniques(family);
   const std::string name = Spec::parse(spec).name;
   std::size_t i = 0;
-  while (i < catalog.size() && catalog[i].name != name) ++i;
-  const long long n = static_cast<long long>(catalog.size());
-  return catalog[static_cast<std::size_t>(((static_cast<long long>(i) + step) % n + n) % n)].name;
+  while (i < all.size() && all[i]->name != name) ++i;
+  const long long n = static_cast<long long>(all.size());
+  return all[static_cast<std::size_t>(((static_cast<long long>(i) + step) % n + n) % n)]->name;
 }
 
-// The spec with its main option stepped; unchanged when it has none.
-std::string stepMain(const std::vector<TechniqueInfo>& catalog, const std::string& specText,
-                     int step) {
+// The spec with the option its descriptor names as stepped (the one that most
+// changes cost and quality) stepped; unchanged when it has none.
+std::string stepMain(Family family, const std::string& specText, int step) {
   Spec spec = Spec::parse(specText);
-  for (const MainOption& m : mainOptions()) {
-    if (m.technique != spec.name) continue;
-    for (const TechniqueInfo& t : catalog) {
-      if (t.name != spec.name) continue;
-      auto opt = std::find_if(t.options.begin(), t.options.end(),
-                              [&](const OptionInfo& o) { return o.name == m.option; });
-      if (opt == t.options.end()) return specText;
-      const auto given = spec.options.find(m.option);
-      long long v = std::stoll(given != spec.options.end() ? given->second : opt->defaultValue);
-      v = m.doubling ? (step > 0 ? v * 2 : v / 2) : v + step;
-      spec.options[m.option] = std::to_string(std::clamp(v, m.min, m.max));
-      return spec.str();
-    }
-  }
-  return specText;
+  const TechniqueDescriptor* t = tryFindTechnique(family, spec.name);
+  if (!t || !t->stepped) return specText;
+  const SteppedOption& m = *t->stepped;
+  auto opt = std::find_if(t->options.begin(), t->options.end(),
+                          [&](const OptionInfo& o) { return o.name == m.option; });
+  if (opt == t->options.end()) return specText;
+  const auto given = spec.options.find(m.option);
+  long long v = std::stoll(given != spec.options.end() ? given->second : opt->defaultValue);
+  v = m.doubling ? (step > 0 ? v * 2 : v / 2) : v + step;
+  spec.options[m.option] = std::to_string(std::clamp(v, m.min, m.max));
+  return spec.str();
 }
 
 // ---- the reproducing command line and suite case ----
@@ -340,13 +321,13 @@ class Viewer {
   void key(const InputEvent& e) {
     const int step = e.shift ? -1 : 1;
     if (e.key == "S") {
-      req_.shadow = cycle(shadowCatalog(), req_.shadow, step);
+      req_.shadow = cycle(Family::Shadow, req_.shadow, step);
     } else if (e.key == "T") {
-      req_.oit = cycle(oitCatalog(), req_.oit, step);
+      req_.oit = cycle(Family::Transparency, req_.oit, step);
     } else if (e.key == "Up" || e.key == "Down") {
-      req_.shadow = stepMain(shadowCatalog(), req_.shadow, e.key == "Up" ? 1 : -1);
+      req_.shadow = stepMain(Family::Shadow, req_.shadow, e.key == "Up" ? 1 : -1);
     } else if (e.key == "Right" || e.key == "Left") {
-      req_.oit = stepMain(oitCatalog(), req_.oit, e.key == "Right" ? 1 : -1);
+      req_.oit = stepMain(Family::Transparency, req_.oit, e.key == "Right" ? 1 : -1);
     } else if (e.key == "C") {
       mode_ = Mode((int(mode_) + (e.shift ? 2 : 1)) % 3);
       if (mode_ != Mode::Technique && !referenceWanted_) {

@@ -55,16 +55,72 @@ OptionReader::OptionReader(const Spec& spec, const std::vector<OptionInfo>& know
     if (names.empty()) msg += " none";
     throw InputError(msg);
   }
+  for (const auto& o : known_) validate(o);
 }
+
+const char* optionKindName(OptionKind k) {
+  switch (k) {
+    case OptionKind::Integer:
+      return "integer";
+    case OptionKind::Number:
+      return "number";
+    case OptionKind::Choice:
+      return "choice";
+    case OptionKind::Flag:
+      return "flag";
+    case OptionKind::Text:
+      break;
+  }
+  return "text";
+}
+
+const OptionInfo& OptionReader::declared(const std::string& name) const {
+  for (const auto& o : known_)
+    if (o.name == name) return o;
+  throw InputError("internal: option '" + name + "' not declared for " + what_);
+}
+
+void OptionReader::validate(const OptionInfo& o) const {
+  switch (o.kind) {
+    case OptionKind::Integer:
+      integer(o.name);
+      break;
+    case OptionKind::Number:
+      number(o.name);
+      break;
+    case OptionKind::Choice:
+    case OptionKind::Flag:
+      choice(o.name);
+      break;
+    case OptionKind::Text:
+      break;
+  }
+}
+
+double OptionReader::number(const std::string& name) const {
+  const OptionInfo& o = declared(name);
+  return number(name, o.min, o.max);
+}
+
+long long OptionReader::integer(const std::string& name) const {
+  const OptionInfo& o = declared(name);
+  return integer(name, static_cast<long long>(o.min), static_cast<long long>(o.max));
+}
+
+std::string OptionReader::choice(const std::string& name) const {
+  const OptionInfo& o = declared(name);
+  return choice(name,
+                o.kind == OptionKind::Flag ? std::vector<std::string>{"on", "off"} : o.choices);
+}
+
+bool OptionReader::flag(const std::string& name) const { return choice(name) == "on"; }
 
 bool OptionReader::has(const std::string& name) const { return spec_.options.count(name) > 0; }
 
 std::string OptionReader::raw(const std::string& name) const {
   auto it = spec_.options.find(name);
   if (it != spec_.options.end()) return it->second;
-  for (const auto& o : known_)
-    if (o.name == name) return o.defaultValue;
-  throw InputError("internal: option '" + name + "' not declared for " + what_);
+  return declared(name).defaultValue;
 }
 
 std::string OptionReader::text(const std::string& name) const { return raw(name); }

@@ -62,12 +62,19 @@ struct Spec {
   std::string str() const;
 };
 
-// Description of an option for `strandbench list` and validation.
+// Description of an option for `strandbench list` and validation. Typed options
+// (techniques, shading models) are validated by OptionReader when it is made, so
+// a bad value is refused before any work; Text options are read as given.
+enum class OptionKind { Text, Integer, Number, Choice, Flag };
 struct OptionInfo {
   std::string name;
   std::string defaultValue;
   std::string help;
+  OptionKind kind = OptionKind::Text;
+  double min = 0, max = 0;           // Integer, Number: the valid range
+  std::vector<std::string> choices;  // Choice ("on", "off" for Flag)
 };
+const char* optionKindName(OptionKind k);  // "text", "integer", "number", "choice", "flag"
 struct SceneInfo {
   std::string name;
   std::string help;

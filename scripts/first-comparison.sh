@@ -11,7 +11,8 @@ build/strandbench render --scene curly:strands=2000,points=24 --shadow dom:layer
   --oit wboit --size 256x256 --reference --out "$tmp/dom.png" --reference-out "$tmp/exact.png" \
   --heatmap "$tmp/diff.png"
 build/strandbench compare "$tmp/dom.png" "$tmp/exact.png"
-oiiotool "$tmp/dom.png" "$tmp/exact.png" "$tmp/diff.png" --ch R,G,B --mosaic:pad=4 3x1 \
+oiiotool "$tmp/dom.png" --ch R,G,B "$tmp/exact.png" --ch R,G,B "$tmp/diff.png" --ch R,G,B \
+  --mosaic:pad=4 3x1 \
   -o "$tmp/all.png"
 mv "$tmp/all.png" "$out"
 echo "wrote $out"

@@ -10,8 +10,10 @@ bytes() {
     sed -n 's/.*"shadow_bytes": \([0-9]*\).*/\1/p'
 }
 printf '%-34s %14s %10s %s\n' technique bytes MiB "paper (MB)"
+declare -A shown=()  # techniques with a row
 row() {
   local b
+  shown[${1%%:*}]=1
   b=$(bytes "$1")
   printf '%-34s %14s %10.2f %s\n' "$1" "$b" "$(awk -v b="$b" 'BEGIN{print b/1048576}')" "$2"
 }
@@ -55,6 +57,13 @@ print("  %s curves (the paper'"'"'s memory) %d bytes (%.2f MiB), the emulation'"
 done
 # Voxelized density: grid^3 uint counters, whatever the map size.
 for grid in 64 128 256; do row "voxel:grid=$grid,size=512" "-"; done
+# Every other registered shadow technique with a light map (`strandbench list --json`).
+while read -r name; do
+  [ -n "${shown[$name]:-}" ] || row "$name:size=512" "-"
+done < <(build/strandbench list --json | python3 -c '
+import json, sys
+for t in json.load(sys.stdin)["shadow"]:
+    if any(o["name"] == "size" for o in t["options"]): print(t["name"])')
 occ=$(bytes "occupancy:slices=128,slabs=4,size=512")
 osm=$(bytes "osm:maps=128,size=512,bits=32")
 echo "OSM(128) / occupancy = $(awk -v a="$osm" -v b="$occ" 'BEGIN{printf "%.1f", a/b}') (paper: 13)"

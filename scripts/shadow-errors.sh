@@ -16,14 +16,26 @@ size=${1:-256}
 repeat=${2:-5}
 scenes=("straight:strands=4000,points=16,head=0" "curly:strands=1500,points=48,head=0"
         "stray:strands=3000,points=16")
-shadows=("shadowmap" "osm:maps=16" "osm:maps=16,filter=pcf6x4" "dc:clusters=4" "dom:layers=3"
-         "dom:layers=3,spacing=power,filter=pcf6x4" "occupancy" "dsm:epsilon=0,max_nodes=65536" "dsm:epsilon=0.02"
-         "dsm:epsilon=0.1" "fom:coefficients=4" "fom:coefficients=16" "msm:moments=4" "msm:moments=8"
-         "msm:moments=8,kind=trig" "adsm" "avsm:nodes=4" "avsm:nodes=8" "avsm:nodes=16"
-         "voxel:grid=64,steps=64" "voxel" "exact")
+bin=${STRANDBENCH:-build/strandbench}
+# Every registered shadow technique (`strandbench list --json`) but none, at its
+# defaults, or as the variants named here.
+declare -A variants=(
+  [osm]="osm:maps=16 osm:maps=16,filter=pcf6x4" [dc]="dc:clusters=4"
+  [dom]="dom:layers=3 dom:layers=3,spacing=power,filter=pcf6x4"
+  [dsm]="dsm:epsilon=0,max_nodes=65536 dsm:epsilon=0.02 dsm:epsilon=0.1"
+  [fom]="fom:coefficients=4 fom:coefficients=16"
+  [msm]="msm:moments=4 msm:moments=8 msm:moments=8,kind=trig"
+  [avsm]="avsm:nodes=4 avsm:nodes=8 avsm:nodes=16" [voxel]="voxel:grid=64,steps=64 voxel")
+shadows=()
+while read -r name; do
+  [ "$name" = none ] && continue
+  # shellcheck disable=SC2206
+  shadows+=(${variants[$name]:-$name})
+done < <("$bin" list --json |
+  python3 -c 'import json, sys; print("\n".join(t["name"] for t in json.load(sys.stdin)["shadow"]))')
 if [ -n "${SHADOWS:-}" ]; then read -ra shadows <<< "$SHADOWS"; fi
 row() {  # scene backend shadow
-  "${STRANDBENCH:-build/strandbench}" render --scene "$1" --backend "$2" --shadow "$3" --size "${size}x${size}" \
+  "$bin" render --scene "$1" --backend "$2" --shadow "$3" --size "${size}x${size}" \
     --repeat "$repeat" --warmup 1 --reference --no-image --json |
     python3 -c '
 import json, sys, statistics

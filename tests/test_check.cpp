@@ -22,7 +22,7 @@
 #include "harness/image.h"
 #include "harness/metrics.h"
 #include "scenes/scene.h"
-#include "techniques/common/technique.h"
+#include "techniques/common/unit.h"
 #include "test_util.h"
 
 namespace fs = std::filesystem;
@@ -191,8 +191,8 @@ TEST(Baselines, ManifestCoversScenesTechniquesAndPrimitives) {
   EXPECT_GE(both, 2);
   // Every technique of the catalogs, the ground truths included.
   std::set<std::string> allShadows, allOits;
-  for (const auto& t : sb::shadowCatalog()) allShadows.insert(t.name);
-  for (const auto& t : sb::oitCatalog()) allOits.insert(t.name);
+  for (const auto* t : sb::techniques(sb::Family::Shadow)) allShadows.insert(t->name);
+  for (const auto* t : sb::techniques(sb::Family::Transparency)) allOits.insert(t->name);
   EXPECT_EQ(shadows, allShadows);
   EXPECT_EQ(oits, allOits);
 }

@@ -9,7 +9,7 @@
 #include <regex>
 
 #include "harness/render.h"
-#include "techniques/common/technique.h"
+#include "techniques/common/unit.h"
 #include "test_util.h"
 
 namespace sb {
@@ -36,8 +36,8 @@ RenderRequest small(const std::string& shadow, const std::string& oit) {
 
 TEST(MemoryPlan, TheEstimateIsWhatEveryTechniqueAllocates) {
   std::vector<RenderRequest> runs;
-  for (const auto& t : shadowCatalog()) runs.push_back(small(t.name, "none"));
-  for (const auto& t : oitCatalog()) runs.push_back(small("dom", t.name));
+  for (const auto* t : techniques(Family::Shadow)) runs.push_back(small(t->name, "none"));
+  for (const auto* t : techniques(Family::Transparency)) runs.push_back(small("dom", t->name));
   RenderRequest visibilityOnly = small("occupancy", "none");
   visibilityOnly.reference = true;
   visibilityOnly.image = false;

@@ -33,10 +33,10 @@ float meanRadius(Device& dev, const GpuScene& scene) {
 
 ApproximatedDeepShadows::Options ApproximatedDeepShadows::readOptions(const OptionReader& o) {
   Options opt;
-  opt.spacing = static_cast<float>(o.number("spacing", 1e-3, 1e6));
-  opt.kernel = static_cast<uint32_t>(o.integer("kernel", 1, 9));
-  opt.size = static_cast<uint32_t>(o.integer("size", 1, 16384));
-  opt.bias = static_cast<float>(o.number("bias", 0.0, 1.0));
+  opt.spacing = static_cast<float>(o.number("spacing"));
+  opt.kernel = static_cast<uint32_t>(o.integer("kernel"));
+  opt.size = static_cast<uint32_t>(o.integer("size"));
+  opt.bias = static_cast<float>(o.number("bias"));
   return opt;
 }
 

@@ -16,9 +16,9 @@ constexpr uint32_t kParams = SB_SLOT_AVSM_PARAMS, kCount = SB_SLOT_AVSM_COUNT,
 AdaptiveVolumetricShadowMaps::Options AdaptiveVolumetricShadowMaps::readOptions(
     const OptionReader& o) {
   Options opt;
-  opt.nodes = static_cast<uint32_t>(std::stoul(o.choice("nodes", {"4", "8", "16"})));
-  opt.size = static_cast<uint32_t>(o.integer("size", 1, 16384));
-  opt.bias = static_cast<float>(o.number("bias", 0.0, 1.0));
+  opt.nodes = static_cast<uint32_t>(std::stoul(o.choice("nodes")));
+  opt.size = static_cast<uint32_t>(o.integer("size"));
+  opt.bias = static_cast<float>(o.number("bias"));
   return opt;
 }
 

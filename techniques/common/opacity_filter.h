@@ -12,7 +12,7 @@ namespace glsl {
 }  // namespace glsl
 
 inline int readFilter(const OptionReader& o) {
-  const std::string f = o.choice("filter", {"none", "pcf2x2", "pcf6x4", "pcf6x6", "box3x3"});
+  const std::string f = o.choice("filter");
   return f == "pcf2x2"   ? glsl::kFilterPcf2x2
          : f == "pcf6x4" ? glsl::kFilterPcf6x4
          : f == "pcf6x6" ? glsl::kFilterPcf6x6

@@ -13,7 +13,7 @@
 
 namespace sb {
 
-struct TechniqueInfo;
+class OptionReader;
 
 enum class ShadingKind { KajiyaKay = 0, Marschner = 1, Sadeghi = 2 };  // SB_SHADING_MODEL
 
@@ -28,13 +28,16 @@ struct ShadingModel {
   glm::vec4 shift{0.0f}, width{1.0f}, intensity{0.0f};
   float glintWidth = 0.1f;
 
-  // Throws InputError naming the model and the option (unknown name or option, out of range).
+  // From the registry (techniques/common/unit.h): throws InputError naming the model and the
+  // option (unknown name or option, out of range).
   static ShadingModel fromSpec(const std::string& spec);
+  // Marschner's and Sadeghi's lobes from their options diffuse, specular, alpha and beta.
+  static ShadingModel withLobes(const OptionReader& o);
   // The largest value the specular factor can take (the shader's bounds on cos^2(theta_d)
   // included): the colour invariant's bound.
   float maxSpecular() const;
 };
 
-const std::vector<TechniqueInfo>& shadingCatalog();
+constexpr float kDegree = 3.14159265358979f / 180.0f;
 
 }  // namespace sb

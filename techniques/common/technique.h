@@ -152,7 +152,8 @@ class ShadowTechnique {
   virtual std::vector<std::string> warnings(Device& /*dev*/) { return {}; }
   // Whether its visibility never rises away from the light (checked by
   // --invariants along the probe ray); fom's Fourier ringing does not promise it.
-  virtual bool monotone() const { return true; }
+  // Its descriptor's capability (techniques/common/unit.h).
+  bool monotone() const;
   // Numbers about the last frame (read back from the device), for the JSON.
   virtual std::vector<Counter> counters(Device& /*dev*/) { return {}; }
   // Non-empty (the reason) when part of the timed work is an emulation (avsm
@@ -200,7 +201,8 @@ class OitTechnique {
   // Whether it renders into multisampled frame targets (--msaa N > 1). Those
   // that keep per-pixel data (fragment lists, peeled layers, accumulation
   // targets, occupancy maps) say no and the renderer refuses --msaa for them.
-  virtual bool multisampled() const { return false; }
+  // Its descriptor's capability (techniques/common/unit.h).
+  bool multisampled() const;
 };
 
 // Groups of 64 for a 1D compute pass over `items`, as a 2D grid (x, y) so that
@@ -212,15 +214,9 @@ inline glm::uvec2 dispatchGroups(uint32_t items) {
   return {(groups + y - 1) / std::max(y, 1u), std::max(y, 1u)};
 }
 
-struct TechniqueInfo {
-  std::string name;
-  std::string help;
-  std::vector<OptionInfo> options;
-};
-const std::vector<TechniqueInfo>& shadowCatalog();
-// Throws InputError for unknown names/options (with the closest valid name).
+// By name from the registry (techniques/common/unit.h). Throws InputError for
+// unknown names/options (with the closest valid name).
 std::unique_ptr<ShadowTechnique> makeShadowTechnique(const Spec& spec);
-const std::vector<TechniqueInfo>& oitCatalog();
 std::unique_ptr<OitTechnique> makeOitTechnique(const Spec& spec);
 
 }  // namespace sb

@@ -15,10 +15,10 @@ constexpr uint32_t kParams = SB_SLOT_DC_PARAMS, kRange = SB_SLOT_DC_RANGE,
 
 DensityClusteringShadow::Options DensityClusteringShadow::readOptions(const OptionReader& o) {
   Options opts;
-  opts.size = static_cast<uint32_t>(o.integer("size", 1, 16384));
-  opts.bias = static_cast<float>(o.number("bias", 0.0, 1.0));
-  opts.clusters = static_cast<uint32_t>(o.integer("clusters", 1, kMaxClusters));
-  opts.iterations = static_cast<uint32_t>(o.integer("iterations", 1, 64));
+  opts.size = static_cast<uint32_t>(o.integer("size"));
+  opts.bias = static_cast<float>(o.number("bias"));
+  opts.clusters = static_cast<uint32_t>(o.integer("clusters"));
+  opts.iterations = static_cast<uint32_t>(o.integer("iterations"));
   return opts;
 }
 

@@ -23,9 +23,8 @@ struct Params {
 
 DeepOpacityMaps::Options DeepOpacityMaps::readOptions(const OptionReader& o) {
   Options opt;
-  opt.layers = static_cast<uint32_t>(o.integer("layers", 1, kMaxLayers));
-  const std::string spacing =
-      o.choice("spacing", {"constant", "linear", "pow2", "fibonacci", "list", "power"});
+  opt.layers = static_cast<uint32_t>(o.integer("layers"));
+  const std::string spacing = o.choice("spacing");
   opt.spacing = spacing == "constant"    ? glsl::kDomConstant
                 : spacing == "pow2"      ? glsl::kDomPow2
                 : spacing == "fibonacci" ? glsl::kDomFibonacci
@@ -52,15 +51,15 @@ DeepOpacityMaps::Options DeepOpacityMaps::readOptions(const OptionReader& o) {
       throw InputError("shadow technique 'dom': list= has " + std::to_string(opt.list.size()) +
                        " sizes for " + std::to_string(opt.layers) + " layers");
   }
-  opt.sizeAbs = static_cast<float>(o.number("size_abs", 0.0, 1.0));
-  opt.sizeFrac = static_cast<float>(o.number("size_frac", 1e-6, 100.0));
-  const std::string beyond = o.choice("beyond", {"ignore", "last", "extend"});
+  opt.sizeAbs = static_cast<float>(o.number("size_abs"));
+  opt.sizeFrac = static_cast<float>(o.number("size_frac"));
+  const std::string beyond = o.choice("beyond");
   opt.beyond = beyond == "ignore"   ? glsl::kDomIgnore
                : beyond == "extend" ? glsl::kDomExtend
                                     : glsl::kDomLast;
-  opt.depthBits = static_cast<uint32_t>(std::stoi(o.choice("depth_bits", {"8", "16", "32"})));
-  opt.size = static_cast<uint32_t>(o.integer("size", 1, 16384));
-  opt.bias = static_cast<float>(o.number("bias", 0.0, 1.0));
+  opt.depthBits = static_cast<uint32_t>(std::stoi(o.choice("depth_bits")));
+  opt.size = static_cast<uint32_t>(o.integer("size"));
+  opt.bias = static_cast<float>(o.number("bias"));
   return opt;
 }
 

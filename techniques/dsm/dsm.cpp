@@ -22,10 +22,10 @@ std::vector<uint32_t> toUints(const std::vector<uint8_t>& bytes) {
 
 DeepShadowMaps::Options DeepShadowMaps::readOptions(const OptionReader& o) {
   Options opt;
-  opt.epsilon = static_cast<float>(o.number("epsilon", 0.0, 1.0));
-  opt.maxNodes = static_cast<uint32_t>(o.integer("max_nodes", 2, 65536));
-  opt.size = static_cast<uint32_t>(o.integer("size", 1, 16384));
-  opt.bias = static_cast<float>(o.number("bias", 0.0, 1.0));
+  opt.epsilon = static_cast<float>(o.number("epsilon"));
+  opt.maxNodes = static_cast<uint32_t>(o.integer("max_nodes"));
+  opt.size = static_cast<uint32_t>(o.integer("size"));
+  opt.bias = static_cast<float>(o.number("bias"));
   return opt;
 }
 

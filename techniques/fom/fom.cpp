@@ -18,9 +18,9 @@ struct Params {
 
 FourierOpacityMaps::Options FourierOpacityMaps::readOptions(const OptionReader& o) {
   Options opt;
-  opt.coefficients = static_cast<uint32_t>(o.integer("coefficients", 1, kMaxCoefficients));
-  opt.size = static_cast<uint32_t>(o.integer("size", 1, 16384));
-  opt.bias = static_cast<float>(o.number("bias", 0.0, 1.0));
+  opt.coefficients = static_cast<uint32_t>(o.integer("coefficients"));
+  opt.size = static_cast<uint32_t>(o.integer("size"));
+  opt.bias = static_cast<float>(o.number("bias"));
   return opt;
 }
 

@@ -28,7 +28,6 @@ class FourierOpacityMaps : public LightMapShadow {
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s) override;
   void addPasses(FrameGraph& graph, Device& dev) override;
   ShadowLookup lookup() const override;
-  bool monotone() const override { return false; }
 
   uint32_t layers() const { return (2 * opt_.coefficients + 1 + 3) / 4; }
 

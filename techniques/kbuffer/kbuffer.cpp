@@ -6,8 +6,8 @@ namespace sb {
 
 KBufferOit::Options KBufferOit::readOptions(const OptionReader& o) {
   Options r;
-  r.k = static_cast<int>(o.integer("k", 1, kMaxK));
-  r.nodes = static_cast<uint64_t>(o.integer("nodes", 0, 1000000000));
+  r.k = static_cast<int>(o.integer("k"));
+  r.nodes = static_cast<uint64_t>(o.integer("nodes"));
   return r;
 }
 

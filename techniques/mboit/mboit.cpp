@@ -37,9 +37,9 @@ glm::vec2 depthRange(const Bounds& b, const ViewUniforms& v) {
 
 MomentOit::Options MomentOit::readOptions(const OptionReader& o) {
   Options r;
-  r.moments = std::stoi(o.choice("moments", {"4", "6", "8"}));
-  r.bits = std::stoi(o.choice("precision", {"16", "32"}));
-  r.trig = o.choice("kind", {"power", "trig"}) == "trig";
+  r.moments = std::stoi(o.choice("moments"));
+  r.bits = std::stoi(o.choice("precision"));
+  r.trig = o.choice("kind") == "trig";
   return r;
 }
 

@@ -32,8 +32,7 @@ class MomentShadowMaps : public LightMapShadow {
   // The reconstruction interpolates between two bounds that are monotone in
   // exact arithmetic, but in fp32 at the absorbance of dense hair (b0 in the
   // hundreds) it is not: measured on straight hair, visibility 0.031 then 1
-  // one probe step further from the light. Not promised.
-  bool monotone() const override { return false; }
+  // one probe step further from the light. Not promised (msm/unit.cpp: monotone = false).
 
  private:
   Pass accumulatePass() const;

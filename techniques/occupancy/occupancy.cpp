@@ -13,16 +13,16 @@ constexpr uint32_t kParams = SB_SLOT_OCC_PARAMS, kRange = SB_SLOT_OCC_RANGE,
 
 OccupancyShadow::Options OccupancyShadow::readOptions(const OptionReader& o) {
   Options opts;
-  opts.size = static_cast<uint32_t>(o.integer("size", 1, 16384));
-  opts.bias = static_cast<float>(o.number("bias", 0.0, 1.0));
-  opts.slices = static_cast<uint32_t>(o.integer("slices", 32, OccupancyMaps::kMaxSlices));
-  opts.slabs = static_cast<uint32_t>(o.integer("slabs", 1, OccupancyMaps::kMaxSlabs));
-  const std::string slabMap = o.choice("slab_map", {"on", "off", "count"});
+  opts.size = static_cast<uint32_t>(o.integer("size"));
+  opts.bias = static_cast<float>(o.number("bias"));
+  opts.slices = static_cast<uint32_t>(o.integer("slices"));
+  opts.slabs = static_cast<uint32_t>(o.integer("slabs"));
+  const std::string slabMap = o.choice("slab_map");
   opts.slabMap = slabMap != "off";
   opts.countOnly = slabMap == "count";
   if (opts.countOnly) opts.slabs = 1;  // one count per texel: F of the paper's F / S
-  opts.jitter = o.choice("jitter", {"on", "off"}) == "on";
-  opts.jitterSamples = static_cast<uint32_t>(o.integer("jitter_samples", 1, 64));
+  opts.jitter = o.flag("jitter");
+  opts.jitterSamples = static_cast<uint32_t>(o.integer("jitter_samples"));
   const std::string what = "shadow technique 'occupancy': ";
   if (opts.slices % 32 != 0)
     throw InputError(what + "slices=" + std::to_string(opts.slices) +

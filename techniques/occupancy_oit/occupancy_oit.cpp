@@ -18,10 +18,10 @@ constexpr uint32_t kResolveAccum = SB_SLOT_OOIT_ACCUM, kResolveLog2T = SB_SLOT_O
 
 OccupancyOit::Options OccupancyOit::readOptions(const OptionReader& o) {
   Options opts;
-  opts.slices = static_cast<uint32_t>(o.integer("slices", 32, OccupancyMaps::kMaxSlices));
-  opts.slabs = static_cast<uint32_t>(o.integer("slabs", 1, OccupancyMaps::kMaxSlabs));
-  opts.lambda = o.choice("lambda", {"on", "off"}) == "on";
-  opts.paperOrder = o.choice("order", {"corrected", "paper"}) == "paper";
+  opts.slices = static_cast<uint32_t>(o.integer("slices"));
+  opts.slabs = static_cast<uint32_t>(o.integer("slabs"));
+  opts.lambda = o.flag("lambda");
+  opts.paperOrder = o.choice("order") == "paper";
   const std::string what = "transparency technique 'occupancy': ";
   if (opts.slices % 32 != 0)
     throw InputError(what + "slices=" + std::to_string(opts.slices) +

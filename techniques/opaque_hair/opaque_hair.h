@@ -8,7 +8,6 @@ namespace sb {
 // the baseline the papers quote frame rates against.
 class OpaqueHair : public OitTechnique {
  public:
-  bool multisampled() const override { return true; }  // --msaa: geometry only, no per-pixel data
   std::string name() const override { return "none"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
              const KajiyaKayShading& shading, const OitTargets& targets) override;

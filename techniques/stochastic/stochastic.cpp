@@ -9,13 +9,12 @@ namespace sb {
 namespace {
 constexpr uint32_t kParams = SB_SLOT_STOCH_PARAMS, kDepths = SB_SLOT_STOCH_DEPTHS,
                    kAccum = SB_SLOT_STOCH_ACCUM, kAlpha = SB_SLOT_STOCH_ALPHA;
-constexpr uint32_t kMaxSamples = 64;
 }  // namespace
 
 StochasticOit::Options StochasticOit::readOptions(const OptionReader& o) {
   Options out;
-  out.samples = static_cast<uint32_t>(o.integer("samples", 1, kMaxSamples));
-  out.seed = static_cast<uint32_t>(o.integer("seed", 0, 4294967295LL));
+  out.samples = static_cast<uint32_t>(o.integer("samples"));
+  out.seed = static_cast<uint32_t>(o.integer("seed"));
   return out;
 }
 

@@ -20,11 +20,11 @@ struct Params {
 
 VoxelDensityShadow::Options VoxelDensityShadow::readOptions(const OptionReader& o) {
   Options opt;
-  opt.grid = static_cast<uint32_t>(o.integer("grid", 4, 256));
-  opt.steps = static_cast<uint32_t>(o.integer("steps", 1, 4096));
-  opt.densityScale = static_cast<float>(o.number("density_scale", 0.0, 100.0));
-  opt.size = static_cast<uint32_t>(o.integer("size", 1, 16384));
-  opt.bias = static_cast<float>(o.number("bias", 0.0, 1.0));
+  opt.grid = static_cast<uint32_t>(o.integer("grid"));
+  opt.steps = static_cast<uint32_t>(o.integer("steps"));
+  opt.densityScale = static_cast<float>(o.number("density_scale"));
+  opt.size = static_cast<uint32_t>(o.integer("size"));
+  opt.bias = static_cast<float>(o.number("bias"));
   return opt;
 }
 

@@ -21,8 +21,6 @@ class BlendedOitBase : public OitTechnique {
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
              const KajiyaKayShading& shading, const OitTargets& targets) override;
   void addPasses(FrameGraph& graph, Device& dev) override;
-  // --msaa N: accumulated per sample, the sums averaged before the per-pixel resolve.
-  bool multisampled() const override { return true; }
 
  protected:
   struct Target {

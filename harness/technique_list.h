@@ -1,0 +1,32 @@
+// What `strandbench list` prints about techniques, generated from their
+// descriptors (techniques/common/unit.h): text, JSON and the Markdown of
+// docs/techniques.md (`strandbench list --markdown`).
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "harness/settings.h"
+#include "techniques/common/unit.h"
+
+namespace sb {
+
+// "Shadow techniques", "Transparency techniques", "Hair shading models".
+const char* heading(Family f);
+// A typed option's valid values: "1..16384", "on | off", "" (text).
+std::string optionRange(const OptionInfo& o);
+nlohmann::json optionsJson(const std::vector<OptionInfo>& options);
+nlohmann::json techniqueJson(const TechniqueDescriptor& d);
+// "  name  help" and one line per option; `detailed` adds paper, folder,
+// capabilities and each option's type and range (`list NAME`).
+void printTechnique(std::ostream& out, const TechniqueDescriptor& d, bool detailed);
+// The capabilities as words ("multisampling, exact"), "-" when none.
+std::string capabilitiesText(const TechniqueDescriptor& d);
+std::string techniquesMarkdown();
+// The request's shadow, oit and shading specs checked against the registry, a
+// message led by the setting (suites, manifests and render requests alike).
+void checkTechniqueSpecs(const RenderRequest& r, Spelling spelling);
+
+}  // namespace sb

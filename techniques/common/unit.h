@@ -1,0 +1,95 @@
+// A technique as a self-describing unit: each folder under techniques/ declares
+// its descriptor (CLI name, family, paper, typed options, capabilities, factory)
+// in its own .cpp and registers it there with a TechniqueRegistrar. Nothing
+// central lists techniques: `strandbench list`, option validation, the viewer's
+// stepping, suite validation and docs/techniques.md all read this registry.
+// sb_techniques is linked whole (CMakeLists.txt) so that no registrar is dropped.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scenes/options.h"
+#include "techniques/common/shading_model.h"
+#include "techniques/common/technique.h"
+
+namespace sb {
+
+enum class Family { Shadow, Transparency, Shading };
+const char* familyName(Family f);  // "shadow", "transparency", "shading"
+const char* familyFlag(Family f);  // the CLI flag and JSON key: "shadow", "oit", "shading"
+
+// What a technique can do, declared once here (the renderer and the reports ask
+// the descriptor, not the class).
+struct Capabilities {
+  bool multisampling = false;   // renders into multisampled targets (--msaa N > 1)
+  bool interlock = false;       // the paper's algorithm needs fragment-shader interlock
+  bool emulatedTiming = false;  // part of the timed work emulates that (reported)
+  bool monotone = true;         // shadow: visibility never rises away from the light
+  bool exact = false;           // a reference: exact up to rounding
+};
+
+// The option the viewer's arrow keys step (x2 and /2 when doubling, else +1 and
+// -1), clamped to [min, max]: the option's range, kept interactive.
+struct SteppedOption {
+  std::string option;
+  bool doubling = false;
+  long long min = 0, max = 0;
+};
+
+struct TechniqueDescriptor {
+  std::string name;  // --shadow NAME, --oit NAME, --shading NAME
+  Family family = Family::Shadow;
+  std::string folder;  // techniques/<folder>/
+  std::string paper;   // what it implements ("" for the baselines)
+  std::string help;
+  std::vector<OptionInfo> options;
+  std::optional<SteppedOption> stepped;
+  Capabilities caps;
+  // The factory of its family; the reader has validated every typed option.
+  std::function<std::unique_ptr<ShadowTechnique>(const OptionReader&)> makeShadow;
+  std::function<std::unique_ptr<OitTechnique>(const OptionReader&)> makeOit;
+  std::function<ShadingModel(const OptionReader&)> makeShading;
+};
+
+// `static const TechniqueRegistrar registered{descriptor};` in a technique's folder.
+struct TechniqueRegistrar {
+  explicit TechniqueRegistrar(TechniqueDescriptor d);
+};
+
+// A family's techniques: "none" first, then by name.
+std::vector<const TechniqueDescriptor*> techniques(Family f);
+// Throws InputError naming the closest registered name.
+const TechniqueDescriptor& findTechnique(Family f, const std::string& name);
+const TechniqueDescriptor* tryFindTechnique(Family f, const std::string& name);
+// The descriptor's reader for a spec: unknown options and bad values throw InputError.
+OptionReader readerFor(const TechniqueDescriptor& d, const Spec& spec);
+
+// Checks a spec as the registry builds it (name, options, values, the factory's
+// own checks between options), without a device. Throws InputError.
+void checkTechniqueSpec(Family f, const std::string& spec);
+
+// Option declarations, so that descriptors state types and ranges once.
+namespace opt {
+OptionInfo integer(std::string name, long long def, long long min, long long max, std::string help);
+OptionInfo number(std::string name, std::string def, double min, double max, std::string help);
+OptionInfo choice(std::string name, std::string def, std::vector<std::string> choices,
+                  std::string help);
+OptionInfo flag(std::string name, bool def, std::string help);  // on | off
+OptionInfo text(std::string name, std::string def, std::string help);
+// The light map every map-based shadow technique takes: size (1..16384) and bias.
+OptionInfo mapSize(std::string help = "map resolution (size x size), 1..16384");
+OptionInfo bias();
+// A cap on the layers peeled (peel, dual_peel, peel_classic, exact).
+OptionInfo layersCap();
+// The opacity lookup filter (osm, dom).
+OptionInfo opacityFilter();
+// The moments of msm and mboit.
+OptionInfo moments();
+OptionInfo momentKind();
+}  // namespace opt
+
+}  // namespace sb

@@ -1,0 +1,27 @@
+// --shadow dsm: deep shadow maps.
+#include "techniques/common/unit.h"
+
+#include "techniques/dsm/dsm.h"
+
+namespace sb {
+namespace {
+
+const TechniqueRegistrar registered{
+    {.name = "dsm",
+     .family = Family::Shadow,
+     .folder = "dsm",
+     .paper = "Lokovic & Veach 2000",
+     .help =
+         "deep shadow maps (Lokovic & Veach 2000): per texel, the exact visibility compressed to "
+         "a piecewise-linear curve within epsilon",
+     .options = {opt::number("epsilon", "0.01", 0.0, 1.0,
+                             "greatest visibility error of the compression (0: exact), 0..1"),
+                 opt::integer("max_nodes", 64, 2, 65536,
+                              "most nodes kept per texel (more are cut and reported), 2..65536"),
+                 opt::mapSize(), opt::bias()},
+     .makeShadow = [](const OptionReader& o) {
+       return std::make_unique<DeepShadowMaps>(DeepShadowMaps::readOptions(o));
+     }}};
+
+}  // namespace
+}  // namespace sb

@@ -1,0 +1,22 @@
+// --oit dual_peel: dual depth peeling.
+#include "techniques/common/unit.h"
+
+#include "techniques/dual_peel/dual_peel.h"
+
+namespace sb {
+namespace {
+
+const TechniqueRegistrar registered{
+    {.name = "dual_peel",
+     .family = Family::Transparency,
+     .folder = "dual_peel",
+     .paper = "Bavoil & Myers 2008",
+     .help = "dual depth peeling (Bavoil & Myers 2008): the nearest and farthest layers per pass, "
+             "ceil(layers/2) peel passes after one min/max depth pass",
+     .options = {opt::layersCap()},
+     .makeOit = [](const OptionReader& o) {
+       return std::make_unique<DualPeelOit>(static_cast<uint32_t>(o.integer("layers")));
+     }}};
+
+}  // namespace
+}  // namespace sb

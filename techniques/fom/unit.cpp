@@ -1,0 +1,28 @@
+// --shadow fom: Fourier opacity maps.
+#include "techniques/common/unit.h"
+
+#include "techniques/fom/fom.h"
+
+namespace sb {
+namespace {
+
+const TechniqueRegistrar registered{
+    {.name = "fom",
+     .family = Family::Shadow,
+     .folder = "fom",
+     .paper = "Jansen & Bavoil 2010",
+     .help =
+         "Fourier opacity maps (Jansen & Bavoil 2010): absorption as a Fourier series in depth, "
+         "transmittance clamped to [0,1]",
+     .options = {opt::integer("coefficients", 8, 1, FourierOpacityMaps::kMaxCoefficients,
+                              "frequencies n (2n+1 floats per texel, 4 per RGBA32F layer, 8 layers "
+                              "a hair pass), 1..31"),
+                 opt::mapSize(), opt::bias()},
+     // Fourier ringing: clamped, not removed.
+     .caps = {.monotone = false},
+     .makeShadow = [](const OptionReader& o) {
+       return std::make_unique<FourierOpacityMaps>(FourierOpacityMaps::readOptions(o));
+     }}};
+
+}  // namespace
+}  // namespace sb

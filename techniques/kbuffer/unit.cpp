@@ -1,0 +1,26 @@
+// --oit kbuffer: the k-buffer as TressFX 4 resolves it.
+#include "techniques/common/unit.h"
+
+#include "techniques/kbuffer/kbuffer.h"
+
+namespace sb {
+namespace {
+
+const TechniqueRegistrar registered{
+    {.name = "kbuffer",
+     .family = Family::Transparency,
+     .folder = "kbuffer",
+     .paper = "TressFX 4 (Bavoil et al. 2007's k-buffer)",
+     .help = "k-buffer over per-pixel lists as TressFX 4 resolves them: the k nearest sorted, "
+             "the rest blended as a tail",
+     .options = {opt::integer("k", 8, 1, KBufferOit::kMaxK,
+                              "fragments kept and sorted per pixel, 1..32"),
+                 opt::integer("nodes", 0, 0, 1000000000,
+                              "node pool entries (32 bytes each); 0: the counted fragments; a full "
+                              "pool drops fragments (counted and reported), 0..1000000000")},
+     .makeOit = [](const OptionReader& o) {
+       return std::make_unique<KBufferOit>(KBufferOit::readOptions(o));
+     }}};
+
+}  // namespace
+}  // namespace sb

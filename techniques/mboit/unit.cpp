@@ -1,0 +1,25 @@
+// --oit mboit: moment-based OIT.
+#include "techniques/common/unit.h"
+
+#include "techniques/mboit/mboit.h"
+
+namespace sb {
+namespace {
+
+const TechniqueRegistrar registered{
+    {.name = "mboit",
+     .family = Family::Transparency,
+     .folder = "mboit",
+     .paper = "Muenstermann et al. 2018",
+     .help = "moment-based OIT (Muenstermann et al. 2018): transmittance from power or "
+             "trigonometric moments of log depth, the paper's bias; two hair passes",
+     .options = {opt::moments(), opt::momentKind(),
+                 opt::choice(
+                     "precision", "32", {"16", "32"},
+                     "moment target bits: 16 (RGBA16F, the paper's 16-bit bias) | 32 (RGBA32F)")},
+     .makeOit = [](const OptionReader& o) {
+       return std::make_unique<MomentOit>(MomentOit::readOptions(o));
+     }}};
+
+}  // namespace
+}  // namespace sb

@@ -1,0 +1,23 @@
+// --oit mlab: multi-layer alpha blending.
+#include "techniques/common/unit.h"
+
+#include "techniques/mlab/mlab.h"
+
+namespace sb {
+namespace {
+
+const TechniqueRegistrar registered{
+    {.name = "mlab",
+     .family = Family::Transparency,
+     .folder = "mlab",
+     .paper = "Salvi & Vaidyanathan 2014",
+     .help = "multi-layer alpha blending (Salvi & Vaidyanathan 2014); without fragment-shader "
+             "interlock merged in primitive order in a resolve (timing marked emulated)",
+     .options = {opt::integer("layers", 4, 1, MlabOit::kMaxLayers, "layers per pixel, 1..32")},
+     .caps = {.interlock = true, .emulatedTiming = true},
+     .makeOit = [](const OptionReader& o) {
+       return std::make_unique<MlabOit>(static_cast<int>(o.integer("layers")));
+     }}};
+
+}  // namespace
+}  // namespace sb

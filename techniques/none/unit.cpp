@@ -1,0 +1,18 @@
+// --shadow none: no shadows, the light always visible.
+#include "techniques/common/unit.h"
+
+#include "techniques/none/none.h"
+
+namespace sb {
+namespace {
+
+const TechniqueRegistrar registered{
+    {.name = "none",
+     .family = Family::Shadow,
+     .folder = "none",
+     .paper = "",
+     .help = "no shadows: Kajiya-Kay shading with the light always visible",
+     .makeShadow = [](const OptionReader&) { return std::make_unique<NoShadow>(); }}};
+
+}  // namespace
+}  // namespace sb

@@ -1,0 +1,34 @@
+// --oit occupancy: occupancy-ordered blending.
+#include "techniques/common/unit.h"
+
+#include "techniques/occupancy/occupancy_maps.h"
+#include "techniques/occupancy_oit/occupancy_oit.h"
+
+namespace sb {
+namespace {
+
+const TechniqueRegistrar registered{
+    {.name = "occupancy",
+     .family = Family::Transparency,
+     .folder = "occupancy_oit",
+     .paper = "Sintorn & Assarsson 2009",
+     .help = "occupancy-ordered blending (Sintorn & Assarsson 2009): order from eye-space "
+             "occupancy maps",
+     .options = {opt::integer("slices", 128, 32, OccupancyMaps::kMaxSlices,
+                              "occupancy bits per pixel, multiple of 32 (128 per RGBA32UI layer), "
+                              "32..1024"),
+                 opt::integer(
+                     "slabs", 4, 1, OccupancyMaps::kMaxSlabs,
+                     "fragment counts per pixel (4 per RGBA32F layer), dividing slices, 1..32"),
+                 opt::flag("lambda", true,
+                           "on | off: renormalise the hair weights to 1 - prod(1 - alpha) (Lambda "
+                           "/ hair.a: the printed hair.a / Lambda inverted, see README)"),
+                 opt::choice("order", "corrected", {"corrected", "paper"},
+                             "corrected (the fragment's own share taken out, spread within its "
+                             "slice) | paper (the printed F_i / B_total * B_before)")},
+     .makeOit = [](const OptionReader& o) {
+       return std::make_unique<OccupancyOit>(OccupancyOit::readOptions(o));
+     }}};
+
+}  // namespace
+}  // namespace sb

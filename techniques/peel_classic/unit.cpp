@@ -1,0 +1,22 @@
+// --oit peel_classic: depth peeling as the papers time it.
+#include "techniques/common/unit.h"
+
+#include "techniques/peel_classic/peel_classic.h"
+
+namespace sb {
+namespace {
+
+const TechniqueRegistrar registered{
+    {.name = "peel_classic",
+     .family = Family::Transparency,
+     .folder = "peel_classic",
+     .paper = "Everitt 2001",
+     .help = "depth peeling as the papers time it (Everitt 2001): one geometry pass per layer, "
+             "depth ties lost and counted",
+     .options = {opt::layersCap()},
+     .makeOit = [](const OptionReader& o) {
+       return std::make_unique<ClassicPeelOit>(static_cast<uint32_t>(o.integer("layers")));
+     }}};
+
+}  // namespace
+}  // namespace sb

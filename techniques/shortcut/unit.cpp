@@ -1,0 +1,23 @@
+// --oit shortcut: TressFX ShortCut.
+#include "techniques/common/unit.h"
+
+#include "techniques/shortcut/shortcut.h"
+
+namespace sb {
+namespace {
+
+const TechniqueRegistrar registered{
+    {.name = "shortcut",
+     .family = Family::Transparency,
+     .folder = "shortcut",
+     .paper = "TressFX ShortCut",
+     .help = "TressFX ShortCut: the k nearest depths by atomic min, those fragments blended in "
+             "order, the rest as a weighted average under the product of (1 - alpha)",
+     .options = {opt::integer("k", 3, 1, ShortCutOit::kMaxK,
+                              "nearest fragments blended in order per pixel, 1..16")},
+     .makeOit = [](const OptionReader& o) {
+       return std::make_unique<ShortCutOit>(static_cast<int>(o.integer("k")));
+     }}};
+
+}  // namespace
+}  // namespace sb

@@ -1,0 +1,32 @@
+// --shadow voxel: voxelized hair density.
+#include "techniques/common/unit.h"
+
+#include "techniques/voxel/voxel.h"
+
+namespace sb {
+namespace {
+
+const TechniqueRegistrar registered{
+    {.name = "voxel",
+     .family = Family::Shadow,
+     .folder = "voxel",
+     .paper = "Unreal Engine's hair voxelization",
+     .help =
+         "voxelized hair density (as Unreal ships it): fragment counts splatted into a volume of "
+         "uint counters over the light's view, visibility exp(-density_scale w n), n the hair "
+         "count marched to the light",
+     .options =
+         {opt::integer("grid", 128, 4, 256,
+                       "slices over the hair's depth range, columns per side (<= size), 4..256"),
+          opt::integer("steps", 128, 1, 4096,
+                       "march steps over the hair's depth range from the light, 1..4096"),
+          opt::number("density_scale", "1", 0.0, 100.0,
+                      "scale of the marched hair count (1: w per fragment), 0..100"),
+          opt::mapSize("resolution the hair is splatted at (size x size fragments), 1..16384"),
+          opt::bias()},
+     .makeShadow = [](const OptionReader& o) {
+       return std::make_unique<VoxelDensityShadow>(VoxelDensityShadow::readOptions(o));
+     }}};
+
+}  // namespace
+}  // namespace sb

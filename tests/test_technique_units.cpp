@@ -1,0 +1,169 @@
+// The techniques as self-describing units (techniques/common/unit.h): every
+// descriptor is complete, its options drive validation, and what is generated
+// from the registry (list, docs/techniques.md) and the catalog (baselines, the
+// quick suite, the error and memory scripts) covers every registered technique.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "harness/baselines.h"
+#include "harness/suite.h"
+#include "harness/technique_list.h"
+#include "techniques/common/unit.h"
+#include "test_util.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using sb::Family;
+using sb::TechniqueDescriptor;
+
+constexpr Family kTechniqueFamilies[] = {Family::Shadow, Family::Transparency};
+
+std::vector<const TechniqueDescriptor*> all() {
+  std::vector<const TechniqueDescriptor*> out;
+  for (Family f : {Family::Shadow, Family::Transparency, Family::Shading})
+    for (const auto* d : sb::techniques(f)) out.push_back(d);
+  return out;
+}
+
+std::string what(const TechniqueDescriptor& d) {
+  return std::string(sb::familyFlag(d.family)) + " " + d.name;
+}
+
+TEST(TechniqueUnits, EveryDescriptorIsComplete) {
+  EXPECT_GE(sb::techniques(Family::Shadow).size(), 13u);
+  EXPECT_GE(sb::techniques(Family::Transparency).size(), 15u);
+  EXPECT_EQ(sb::techniques(Family::Shading).size(), 3u);
+  for (const TechniqueDescriptor* d : all()) {
+    SCOPED_TRACE(what(*d));
+    EXPECT_FALSE(d->help.empty());
+    EXPECT_TRUE(fs::is_directory(fs::path(SB_SOURCE_DIR) / "techniques" / d->folder));
+    EXPECT_EQ(d->makeShadow != nullptr, d->family == Family::Shadow);
+    EXPECT_EQ(d->makeOit != nullptr, d->family == Family::Transparency);
+    EXPECT_EQ(d->makeShading != nullptr, d->family == Family::Shading);
+    // Every default is valid, and the factory builds the technique it names.
+    EXPECT_NO_THROW(sb::checkTechniqueSpec(d->family, d->name));
+    if (d->family == Family::Shadow) {
+      const auto t = sb::makeShadowTechnique(sb::Spec::parse(d->name));
+      EXPECT_EQ(t->name(), d->name);
+      EXPECT_EQ(t->monotone(), d->caps.monotone);
+    } else if (d->family == Family::Transparency) {
+      const auto t = sb::makeOitTechnique(sb::Spec::parse(d->name));
+      EXPECT_EQ(t->name(), d->name);
+      EXPECT_EQ(t->multisampled(), d->caps.multisampling);
+    }
+    for (const auto& o : d->options) {
+      EXPECT_FALSE(o.help.empty()) << o.name;
+      if (o.kind == sb::OptionKind::Integer || o.kind == sb::OptionKind::Number) {
+        EXPECT_LT(o.min, o.max) << o.name;
+      }
+      if (o.kind == sb::OptionKind::Choice) {
+        EXPECT_GE(o.choices.size(), 2u) << o.name;
+      }
+    }
+    if (d->stepped) {
+      const auto o =
+          std::find_if(d->options.begin(), d->options.end(),
+                       [&](const sb::OptionInfo& x) { return x.name == d->stepped->option; });
+      ASSERT_NE(o, d->options.end()) << d->stepped->option;
+      EXPECT_EQ(o->kind, sb::OptionKind::Integer);
+      EXPECT_GE(d->stepped->min, static_cast<long long>(o->min));
+      EXPECT_LE(d->stepped->max, static_cast<long long>(o->max));
+    }
+  }
+}
+
+TEST(TechniqueUnits, TypedOptionsRefuseWithTheClosestName) {
+  auto message = [](const std::string& spec) {
+    try {
+      sb::makeShadowTechnique(sb::Spec::parse(spec));
+    } catch (const sb::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(message("dom:layres=3").find("did you mean 'layers'"), std::string::npos);
+  EXPECT_NE(message("dom:spacing=liner").find("did you mean 'linear'"), std::string::npos);
+  EXPECT_NE(message("dom:layers=40").find("out of range [1, 31]"), std::string::npos);
+  EXPECT_NE(message("occupancy:jitter=yes").find("not one of on off"), std::string::npos);
+  EXPECT_NE(message("shadowmpa").find("did you mean 'shadowmap'"), std::string::npos);
+}
+
+TEST(TechniqueUnits, ListShowsOneTechniqueAndTypedJson) {
+  const auto one = sbtest::runCli("list dom");
+  ASSERT_EQ(one.status, 0) << one.err;
+  for (const char* part : {"dom", "Yuksel & Keyser 2008", "layers=3", "[integer 1..31]",
+                           "spacing=linear", "viewer steps: layers"})
+    EXPECT_NE(one.out.find(part), std::string::npos) << part << " in\n" << one.out;
+  EXPECT_EQ(one.out.find("shadowmap"), std::string::npos) << one.out;
+  const auto bad = sbtest::runCli("list doom");
+  EXPECT_NE(bad.status, 0);
+  EXPECT_NE(bad.err.find("did you mean 'dom'"), std::string::npos) << bad.err;
+
+  const auto j = nlohmann::json::parse(sbtest::runCli("list --json").out);
+  for (const char* key : {"shadow", "oit", "shading"}) {
+    ASSERT_TRUE(j.contains(key)) << key;
+    for (const auto& t : j[key])
+      for (const char* field : {"name", "help", "options"}) EXPECT_TRUE(t.contains(field));
+  }
+  const auto dom = std::find_if(j["shadow"].begin(), j["shadow"].end(),
+                                [](const auto& t) { return t["name"] == "dom"; });
+  ASSERT_NE(dom, j["shadow"].end());
+  const auto& layers = (*dom)["options"][0];
+  EXPECT_EQ(layers["name"], "layers");
+  EXPECT_EQ(layers["kind"], "integer");
+  EXPECT_EQ(layers["default"], "3");
+  EXPECT_EQ(layers["min"], 1);
+  EXPECT_EQ(layers["max"], 31);
+}
+
+// docs/techniques.md is generated; regenerate it with the command in the message.
+TEST(TechniqueUnits, DocsTableIsFresh) {
+  const std::string doc = sbtest::readFile(fs::path(SB_SOURCE_DIR) / "docs" / "techniques.md");
+  EXPECT_EQ(doc, sb::techniquesMarkdown())
+      << "docs/techniques.md is stale: regenerate it with "
+         "`build/strandbench list --markdown > docs/techniques.md`";
+  const auto cli = sbtest::runCli("list --markdown");
+  EXPECT_EQ(cli.status, 0);
+  EXPECT_EQ(cli.out, sb::techniquesMarkdown());
+}
+
+// The catalog, driven by the registry: every shadow and transparency technique
+// has a committed baseline on both backends (which `strandbench check` also
+// compares GL against Vulkan: the parity check) and a case in the quick suite.
+TEST(TechniqueUnits, EveryTechniqueHasABaselineParityAndAQuickCase) {
+  const sb::Manifest m = sb::loadManifest(fs::path(SB_SOURCE_DIR) / "baselines" / "manifest.json");
+  const sb::Suite quick = sb::loadSuite(std::string(SB_SOURCE_DIR) + "/suites/quick.json");
+  for (Family f : kTechniqueFamilies)
+    for (const TechniqueDescriptor* d : sb::techniques(f)) {
+      SCOPED_TRACE(what(*d));
+      auto uses = [&](const sb::RenderRequest& r) {
+        return sb::Spec::parse(f == Family::Shadow ? r.shadow : r.oit).name == d->name;
+      };
+      bool parity = false;
+      for (const auto& c : m.cases)
+        if (uses(c.request)) {
+          const auto& b = c.backends;
+          parity |=
+              std::count(b.begin(), b.end(), "gl") && std::count(b.begin(), b.end(), "vulkan");
+        }
+      EXPECT_TRUE(parity) << "no baseline case on gl and vulkan in baselines/manifest.json";
+      EXPECT_TRUE(std::any_of(quick.cases.begin(), quick.cases.end(), [&](const sb::SweepCase& c) {
+        return uses(c.request);
+      })) << "no case in suites/quick.json";
+    }
+}
+
+// The error and memory tables' scripts take their techniques from the registry.
+TEST(TechniqueUnits, TableScriptsReadTheRegistry) {
+  for (const char* script : {"shadow-errors.sh", "oit-errors.sh", "memory-table.sh"}) {
+    const std::string text = sbtest::readFile(fs::path(SB_SOURCE_DIR) / "scripts" / script);
+    EXPECT_NE(text.find("list --json"), std::string::npos) << script;
+  }
+}
+
+}  // namespace
