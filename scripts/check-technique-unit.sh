@@ -23,8 +23,6 @@ cp -r "$src" "$dst"
 for f in "$dst"/wboit*; do mv "$f" "$dst/wboit_copy${f##*/wboit}"; done
 sed -i -e 's/wboit/wboit_copy/g' -e 's/WBOIT/WBOIT_COPY/g' \
   -e 's/WeightedBlendedOit/WeightedBlendedCopyOit/g' "$dst"/*
-# Its slots live in the central table still (SB_SLOT_WBOIT_*): the copy reads the same numbers.
-sed -i 's/SB_SLOT_WBOIT_COPY_/SB_SLOT_WBOIT_/g' "$dst"/*
 
 cmake -S "$scratch" -B "$scratch/build" -DCMAKE_BUILD_TYPE=Release -DSB_PREBUILT_DIR="$build" \
   -DSB_UNIT_FOLDERS=wboit_copy ${CMAKE_CXX_COMPILER_LAUNCHER:+-DCMAKE_CXX_COMPILER_LAUNCHER=$CMAKE_CXX_COMPILER_LAUNCHER} \

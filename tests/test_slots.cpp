@@ -1,12 +1,16 @@
-// Binding numbers are named once, in techniques/common/slots.h, for the C++ and
-// the GLSL: no shader under techniques/ spells a binding as a number, every
-// SB_SLOT_ name a shader uses is defined there (and the shader includes the
-// header itself), the header is plain #defines both languages read, and a
-// shader that includes it twice still compiles (its include guard). The
-// scanners are functions, shown to catch a bad line.
+// Binding numbers are named once, for the C++ and the GLSL: the shared ones in
+// techniques/common/slots.h, a folder's own in techniques/<folder>/slots.h. No
+// shader under techniques/ spells a binding as a number, every SB_SLOT_ name a
+// file uses is defined once, in the common header or its own folder's (and a
+// shader includes that header itself), every header is plain #defines both
+// languages read under its own include guard, a shader that includes a header
+// twice still compiles, and no two names bound in one shader (with each shadow
+// lookup in place of <shadow>) share a number. The scanners are functions,
+// shown to catch a bad line.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -19,13 +23,16 @@
 #include "backends/vulkan/vk_shader.h"
 #include "techniques/common/shader_library.h"
 #include "techniques/common/technique.h"
+#include "techniques/common/unit.h"
+#include "techniques/occupancy_oit/slots.h"
+#include "techniques/probe/slots.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
 const fs::path kSource = SB_SOURCE_DIR;
-const fs::path kSlotsHeader = kSource / "techniques/common/slots.h";
+const std::string kCommonHeader = "techniques/common/slots.h";
 
 std::string readText(const fs::path& p) {
   std::ifstream f(p, std::ios::binary);
@@ -74,11 +81,89 @@ std::map<std::string, int> slotDefines(const std::string& header) {
   return defs;
 }
 
-bool includesSlotsHeader(const std::string& text) {
-  static const std::regex include(R"(^\s*#\s*include\s*"([^"]*/)?slots\.h")");
-  for (const auto& l : splitLines(text))
-    if (std::regex_search(l, include)) return true;
-  return false;
+// The slots headers a file includes, "techniques/..." paths: a quoted #include
+// resolved as the shader library does (next to the file) or, for the C++, from
+// the source root.
+std::set<std::string> includedSlotsHeaders(const std::string& file, const std::string& text) {
+  static const std::regex include(R"re(^\s*#\s*include\s*"(([^"]*/)?slots\.h)")re");
+  std::set<std::string> found;
+  for (const auto& l : splitLines(text)) {
+    std::smatch m;
+    if (!std::regex_search(l, m, include)) continue;
+    found.insert((fs::path(file).parent_path() / m.str(1)).lexically_normal().generic_string());
+    found.insert(fs::path(m.str(1)).lexically_normal().generic_string());
+  }
+  return found;
+}
+
+// The names a (loaded) shader binds: `binding = SB_SLOT_NAME`.
+std::set<std::string> boundNames(const std::string& text) {
+  static const std::regex bound(R"(\bbinding\s*=\s*(SB_SLOT_\w+))");
+  std::set<std::string> names;
+  for (std::sregex_iterator it(text.begin(), text.end(), bound), end; it != end; ++it)
+    names.insert(it->str(1));
+  return names;
+}
+
+// "A and B at N" for every two names that share a number.
+std::vector<std::string> collisions(const std::set<std::string>& names,
+                                    const std::map<std::string, int>& numbers) {
+  std::map<int, std::string> first;
+  std::vector<std::string> found;
+  for (const auto& n : names) {
+    const auto it = numbers.find(n);
+    if (it == numbers.end()) continue;  // undefined: EveryNameAFileUses... reports it
+    const auto [at, fresh] = first.emplace(it->second, n);
+    if (!fresh) found.push_back(at->second + " and " + n + " at " + std::to_string(it->second));
+  }
+  return found;
+}
+
+// techniques/<folder>/... -> folder
+std::string folderOf(const std::string& path) {
+  const std::size_t start = path.find('/') + 1;
+  return path.substr(start, path.find('/', start) - start);
+}
+
+// The expected include guard of a header: SB_SLOTS_H, or SB_<FOLDER>_SLOTS_H.
+std::string guardOf(const std::string& header) {
+  if (header == kCommonHeader) return "SB_SLOTS_H";
+  std::string folder = folderOf(header);
+  std::transform(folder.begin(), folder.end(), folder.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+  return "SB_" + folder + "_SLOTS_H";
+}
+
+// Every slots header, "techniques/..." paths: the common one first, then each
+// folder's own.
+std::vector<std::string> slotHeaders() {
+  std::vector<std::string> headers;
+  for (const auto& e : fs::directory_iterator(kSource / "techniques")) {
+    const fs::path h = e.path() / "slots.h";
+    if (e.is_directory() && fs::is_regular_file(h))
+      headers.push_back(fs::relative(h, kSource).generic_string());
+  }
+  std::sort(headers.begin(), headers.end());
+  std::stable_partition(headers.begin(), headers.end(),
+                        [](const std::string& h) { return h == kCommonHeader; });
+  return headers;
+}
+
+struct Slots {
+  std::map<std::string, int> number;          // name -> its number
+  std::map<std::string, std::string> header;  // name -> the header that defines it
+  std::vector<std::string> twice;             // "NAME: a and b"
+};
+
+Slots allSlots() {
+  Slots s;
+  for (const auto& h : slotHeaders())
+    for (const auto& [name, n] : slotDefines(readText(kSource / h))) {
+      const auto [at, fresh] = s.header.emplace(name, h);
+      if (!fresh) s.twice.push_back(name + ": " + at->second + " and " + h);
+      s.number.emplace(name, n);
+    }
+  return s;
 }
 
 // Every shader source under techniques/, as "techniques/..." paths.
@@ -88,6 +173,18 @@ std::vector<std::string> shaderFiles() {
     const std::string ext = e.path().extension().string();
     if (e.is_regular_file() &&
         (ext == ".glsl" || ext == ".vert" || ext == ".frag" || ext == ".comp"))
+      files.push_back(fs::relative(e.path(), kSource).generic_string());
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+// Every C++ file under techniques/ but the slots headers.
+std::vector<std::string> cppFiles() {
+  std::vector<std::string> files;
+  for (const auto& e : fs::recursive_directory_iterator(kSource / "techniques")) {
+    const std::string ext = e.path().extension().string();
+    if (e.is_regular_file() && (ext == ".cpp" || ext == ".h") && e.path().filename() != "slots.h")
       files.push_back(fs::relative(e.path(), kSource).generic_string());
   }
   std::sort(files.begin(), files.end());
@@ -112,8 +209,26 @@ TEST(Slots, TheScannersCatchANumericBindingAndAnUnknownName) {
   const auto defs = slotDefines("#define SB_SLOT_VIEW 0\n#define SB_SLOTS_H\n");
   EXPECT_EQ(defs, (std::map<std::string, int>{{"SB_SLOT_VIEW", 0}}));
   EXPECT_FALSE(defs.count("SB_SLOT_NO_SUCH_THING"));
-  EXPECT_FALSE(includesSlotsHeader(bad));
-  EXPECT_TRUE(includesSlotsHeader("#include \"../common/slots.h\"\n"));
+  EXPECT_TRUE(includedSlotsHeaders("techniques/x/bad.frag", bad).empty());
+  EXPECT_EQ(includedSlotsHeaders("techniques/x/a.frag",
+                                 "#include \"../common/slots.h\"\n"
+                                 "  #include \"slots.h\"\n")
+                .count("techniques/x/slots.h"),
+            1u);
+  EXPECT_EQ(includedSlotsHeaders("techniques/x/a.frag", "#include \"../common/slots.h\"\n")
+                .count(kCommonHeader),
+            1u);
+  EXPECT_EQ(includedSlotsHeaders("techniques/x/a.cpp", "#include \"techniques/x/slots.h\"\n")
+                .count("techniques/x/slots.h"),
+            1u);
+  // Two names bound at one number are caught; one name bound twice is not.
+  const std::string twice = bad + "layout(binding = SB_SLOT_OTHER) uniform sampler2D c;\n" +
+                            "layout(binding = SB_SLOT_VIEW) uniform sampler2D d;\n";
+  EXPECT_EQ(boundNames(twice),
+            (std::set<std::string>{"SB_SLOT_NO_SUCH_THING", "SB_SLOT_OTHER", "SB_SLOT_VIEW"}));
+  EXPECT_EQ(collisions(boundNames(twice), {{"SB_SLOT_VIEW", 0}, {"SB_SLOT_OTHER", 0}}),
+            (std::vector<std::string>{"SB_SLOT_OTHER and SB_SLOT_VIEW at 0"}));
+  EXPECT_EQ(guardOf("techniques/dual_peel/slots.h"), "SB_DUAL_PEEL_SLOTS_H");
 }
 
 TEST(Slots, NoShaderGivesABindingAsANumber) {
@@ -123,49 +238,146 @@ TEST(Slots, NoShaderGivesABindingAsANumber) {
   for (const auto& f : files)
     for (const auto& hit : numericBindings(f, readText(kSource / f))) found.push_back(hit);
   for (const auto& hit : found)
-    ADD_FAILURE() << hit << "\n  (name the slot in techniques/common/slots.h)";
+    ADD_FAILURE() << hit << "\n  (name the slot in techniques/" << folderOf(hit)
+                  << "/slots.h, or in techniques/common/slots.h if folders share it)";
 }
 
-TEST(Slots, EveryNameAShaderUsesIsDefinedAndIncluded) {
-  const auto defs = slotDefines(readText(kSlotsHeader));
-  ASSERT_GT(defs.size(), 50u);
+TEST(Slots, EveryNameIsDefinedOnce) {
+  const auto headers = slotHeaders();
+  ASSERT_GT(headers.size(), 20u);  // the scan sees the folders' headers
+  EXPECT_EQ(headers.front(), kCommonHeader);
+  const Slots slots = allSlots();
+  EXPECT_GT(slots.number.size(), 100u);
+  for (const auto& t : slots.twice) ADD_FAILURE() << t << " both define it";
+  for (const auto& h : headers)
+    EXPECT_FALSE(slotDefines(readText(kSource / h)).empty()) << h << " defines no slot";
+}
+
+// A file names the shared slots and its own folder's only (a folder's names are
+// its own), and a shader includes the header of every name it uses itself; a
+// C++ file includes its folder's header itself (technique.h brings the common one).
+TEST(Slots, EveryNameAFileUsesIsDefinedInCommonOrItsFolderAndIncluded) {
+  const Slots slots = allSlots();
   std::size_t namingFiles = 0;
-  for (const auto& f : shaderFiles()) {
+  auto check = [&](const std::string& f, bool shader) {
     const std::string text = readText(kSource / f);
     const auto used = slotNamesUsed(f, text);
-    for (const auto& [name, where] : used)
-      EXPECT_TRUE(defs.count(name)) << where << ": " << name << " is not defined in slots.h";
-    if (used.empty()) continue;
+    if (used.empty()) return;
     ++namingFiles;
-    EXPECT_TRUE(includesSlotsHeader(text)) << f << " names slots without #include \"slots.h\"";
-  }
+    const std::string own = "techniques/" + folderOf(f) + "/slots.h";
+    const auto included = includedSlotsHeaders(f, text);
+    for (const auto& [name, where] : used) {
+      const auto it = slots.header.find(name);
+      if (it == slots.header.end()) {
+        ADD_FAILURE() << where << ": " << name << " is not defined in " << own << " or "
+                      << kCommonHeader;
+        continue;
+      }
+      EXPECT_TRUE(it->second == kCommonHeader || it->second == own)
+          << where << ": " << name << " is " << it->second << "'s, not its folder's";
+      if (shader || (it->second == own && own != kCommonHeader)) {
+        EXPECT_TRUE(included.count(it->second))
+            << where << ": " << name << " without #include of " << it->second;
+      }
+    }
+  };
+  for (const auto& f : shaderFiles()) check(f, true);
   EXPECT_GT(namingFiles, 25u);
+  for (const auto& f : cppFiles()) check(f, false);
+  EXPECT_GT(namingFiles, 45u);
 }
 
 // Readable as GLSL: comments, blank lines, the include guard and
 // `#define SB_SLOT_NAME <number>` only (no #pragma once, no C++).
-TEST(Slots, TheHeaderIsPlainDefinesUnderAnIncludeGuard) {
-  const auto lines = splitLines(readText(kSlotsHeader));
-  static const std::regex allowed(
-      R"(^(//.*|\s*|#ifndef SB_SLOTS_H|#define SB_SLOTS_H|#endif(\s+//.*)?|)"
-      R"(#define SB_SLOT_[A-Z0-9_]+ [0-9]+(\s+//.*)?)$)");
-  for (std::size_t i = 0; i < lines.size(); ++i)
-    EXPECT_TRUE(std::regex_match(lines[i], allowed))
-        << "techniques/common/slots.h:" << i + 1 << ": " << lines[i];
-  std::vector<std::string> directives;
-  for (const auto& l : lines)
-    if (l.rfind("#ifndef", 0) == 0 || l.rfind("#endif", 0) == 0) directives.push_back(l);
-  EXPECT_EQ(directives, (std::vector<std::string>{"#ifndef SB_SLOTS_H", "#endif  // SB_SLOTS_H"}));
+TEST(Slots, TheHeadersArePlainDefinesUnderAnIncludeGuard) {
+  for (const auto& h : slotHeaders()) {
+    const std::string guard = guardOf(h);
+    const auto lines = splitLines(readText(kSource / h));
+    const std::regex allowed(R"(^(//.*|\s*|#ifndef )" + guard + "|#define " + guard +
+                             R"(|#endif(\s+//.*)?|#define SB_SLOT_[A-Z0-9_]+ [0-9]+(\s+//.*)?)$)");
+    for (std::size_t i = 0; i < lines.size(); ++i)
+      EXPECT_TRUE(std::regex_match(lines[i], allowed)) << h << ":" << i + 1 << ": " << lines[i];
+    std::vector<std::string> directives;
+    for (const auto& l : lines)
+      if (l.rfind("#ifndef", 0) == 0 || l.rfind("#endif", 0) == 0) directives.push_back(l);
+    EXPECT_EQ(directives, (std::vector<std::string>{"#ifndef " + guard, "#endif  // " + guard}))
+        << h;
+  }
 }
 
-// The C++ sees the same numbers as the shaders (the header, parsed as text).
-TEST(Slots, CppAndTheParsedHeaderAgree) {
-  const auto defs = slotDefines(readText(kSlotsHeader));
-  EXPECT_EQ(defs.at("SB_SLOT_VIEW"), int(sb::bind::kView));
-  EXPECT_EQ(defs.at("SB_SLOT_MESH_INDICES"), int(sb::bind::kMeshIndices));
-  EXPECT_EQ(defs.at("SB_SLOT_SHADOW_FIRST"), int(sb::bind::kShadowFirst));
-  EXPECT_EQ(defs.at("SB_SLOT_PROBE_VALUES"), SB_SLOT_PROBE_VALUES);
-  EXPECT_EQ(defs.at("SB_SLOT_OOIT_SLABS"), SB_SLOT_OOIT_SLABS);
+// The C++ sees the same numbers as the shaders (the headers, parsed as text).
+TEST(Slots, CppAndTheParsedHeadersAgree) {
+  const auto& n = allSlots().number;
+  EXPECT_EQ(n.at("SB_SLOT_VIEW"), int(sb::bind::kView));
+  EXPECT_EQ(n.at("SB_SLOT_MESH_INDICES"), int(sb::bind::kMeshIndices));
+  EXPECT_EQ(n.at("SB_SLOT_SHADOW_FIRST"), int(sb::bind::kShadowFirst));
+  EXPECT_EQ(n.at("SB_SLOT_PROBE_VALUES"), SB_SLOT_PROBE_VALUES);
+  EXPECT_EQ(n.at("SB_SLOT_OOIT_SLABS"), SB_SLOT_OOIT_SLABS);
+  // weighted's C++ binds target i at SB_SLOT_BLENDED_TARGETS + i for both resolves.
+  EXPECT_EQ(n.at("SB_SLOT_WEIGHTED_ACCUM"), SB_SLOT_BLENDED_TARGETS);
+  EXPECT_EQ(n.at("SB_SLOT_WEIGHTED_COUNT"), SB_SLOT_BLENDED_TARGETS + 1);
+  EXPECT_EQ(n.at("SB_SLOT_WBOIT_ACCUM"), SB_SLOT_BLENDED_TARGETS);
+  EXPECT_EQ(n.at("SB_SLOT_WBOIT_REVEALAGE"), SB_SLOT_BLENDED_TARGETS + 1);
+}
+
+// A shadow technique's own slots lie in its range below the opaque shadow's
+// (8..14) or in 0..7 (its compute and full-screen passes); every other folder's
+// (transparency, outputs) lie outside 8..15, since their hair passes bind the
+// shadow lookup beside their own.
+TEST(Slots, EachFolderKeepsToItsRange) {
+  std::set<std::string> shadowFolders;
+  for (const auto* d : sb::techniques(sb::Family::Shadow)) shadowFolders.insert(d->folder);
+  const Slots slots = allSlots();
+  const int first = slots.number.at("SB_SLOT_SHADOW_FIRST");
+  const int opaque = slots.number.at("SB_SLOT_OPAQUE_SHADOW");
+  ASSERT_EQ(slots.number.at("SB_SLOT_SHADOW_LAST"), opaque);
+  for (const auto& [name, h] : slots.header) {
+    if (h == kCommonHeader) continue;
+    const int n = slots.number.at(name);
+    if (shadowFolders.count(folderOf(h))) {
+      EXPECT_LT(n, opaque) << h << ": " << name << " " << n;
+    } else {
+      EXPECT_TRUE(n < first || n > opaque) << h << ": " << name << " " << n;
+    }
+  }
+}
+
+// All bindings share descriptor set 0: in one shader, with everything it
+// includes and each shadow technique's lookup in place of <shadow>, no two
+// names share a number. A shader that includes <shadow> is a shading pass (over
+// strands.vert or mesh.vert, which bind the shared 0..7) or probe's compute: it
+// binds no name of its own folder in 0..7.
+TEST(Slots, NoTwoNamesBoundInOneShaderShareANumber) {
+  const Slots slots = allSlots();
+  std::vector<std::string> lookups;
+  for (const auto& f : shaderFiles())
+    if (fs::path(f).filename() == "lookup.glsl") lookups.push_back(f);
+  ASSERT_GE(lookups.size(), 13u);  // every shadow technique's, none's too
+  std::size_t loaded = 0, withLookup = 0;
+  for (const auto& f : shaderFiles()) {
+    if (fs::path(f).extension() == ".glsl") continue;  // included by the others
+    for (const auto& lookup : lookups) {
+      sb::ShaderDefines defs;
+      defs.aliases["shadow"] = lookup;
+      const sb::ShaderCode code = sb::loadShader(f, defs);
+      ++loaded;
+      const bool shading = std::count(code.fileNames.begin(), code.fileNames.end(), lookup) > 0;
+      const auto names = boundNames(code.text);
+      for (const auto& c : collisions(names, slots.number))
+        ADD_FAILURE() << f << (shading ? " with " + lookup : "") << ": " << c;
+      if (!shading) break;  // one load is enough: <shadow> is not included
+      ++withLookup;
+      for (const auto& name : names) {
+        if (slots.number.count(name) &&
+            slots.number.at(name) < slots.number.at("SB_SLOT_SHADOW_FIRST")) {
+          EXPECT_EQ(slots.header.at(name), kCommonHeader)
+              << f << ": " << name << " in 0..7, beside the shared geometry";
+        }
+      }
+    }
+  }
+  EXPECT_GT(loaded, 60u);
+  EXPECT_GT(withLookup, 100u);  // the shading passes, each with every lookup
 }
 
 // strands.vert includes slots.h twice (through bindings.glsl and view.glsl):

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "techniques/adsm/slots.h"
 #include "techniques/common/shader_library.h"
 
 namespace sb {

@@ -2,7 +2,7 @@
 // hair's front depth map, (1 - alpha)^fibers for the point's depth behind
 // each tap's front, Gaussian-weighted (adsm_math.glsl); 0 behind the opaque mesh.
 #include "../common/opaque_shadow.glsl"
-#include "../common/slots.h"
+#include "slots.h"
 #include "adsm_math.glsl"
 
 layout(std140, binding = SB_SLOT_ADSM_PARAMS) uniform AdsmParams {

@@ -2,6 +2,7 @@
 
 #include <cstring>
 
+#include "techniques/avsm/slots.h"
 #include "techniques/common/shader_library.h"
 
 namespace sb {

@@ -1,7 +1,7 @@
 // AVSM lookup: the point's texel curve interpolated at the point's light depth
 // (avsm_math.glsl); 0 behind the opaque mesh.
 #include "../common/opaque_shadow.glsl"
-#include "../common/slots.h"
+#include "slots.h"
 
 layout(std140, binding = SB_SLOT_AVSM_PARAMS) uniform AvsmLookupParams {
   mat4 avsmViewProj;

@@ -8,6 +8,7 @@
 // The nodes go to [p * (SB_AVSM_NODES + 2), ... + count).
 #include "../common/invocation.glsl"
 #include "../common/slots.h"
+#include "slots.h"
 #define SB_AVSM_SLOTS (SB_AVSM_NODES + 2)
 layout(local_size_x = 64) in;
 

@@ -3,7 +3,7 @@
 // cluster's channel of the count, sum and square-sum targets (additive); the
 // targets are the layers of the three arrays, 4 clusters per layer.
 #include "dc_math.glsl"
-#include "../common/slots.h"
+#include "slots.h"
 #include "../common/light_pass_depth.glsl"
 
 layout(binding = SB_SLOT_DC_RANGE) uniform sampler2D dcRange;  // x: nearest, y: -furthest depth

@@ -5,7 +5,7 @@
 // shadow. Textures only, fetched without derivatives.
 #include "../common/opaque_shadow.glsl"
 #include "dc_math.glsl"
-#include "../common/slots.h"
+#include "slots.h"
 
 layout(std140, binding = SB_SLOT_DC_PARAMS) uniform DcParams {
   mat4 dcViewProj;

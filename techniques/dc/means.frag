@@ -3,7 +3,7 @@
 // (SB_DC_FIRST), then the mean depth of each cluster's fragments (k-means
 // update).
 #include "dc_math.glsl"
-#include "../common/slots.h"
+#include "slots.h"
 
 layout(binding = SB_SLOT_DC_RANGE) uniform sampler2D dcRange;  // x: nearest, y: -furthest depth
 #if !SB_DC_FIRST

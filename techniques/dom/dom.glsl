@@ -1,5 +1,5 @@
 // Parameters of deep opacity maps (binding 8), for the passes and the lookup.
-#include "../common/slots.h"
+#include "slots.h"
 layout(std140, binding = SB_SLOT_DOM_PARAMS) uniform DomParams {
   mat4 domViewProj;
   vec4 domParams;   // bias (light depth units), map size, shadow alpha, depth bits

@@ -4,7 +4,7 @@
 // (1 - alpha_s)^opacity; 0 behind the opaque mesh.
 #include "../common/opaque_shadow.glsl"
 #include "dom.glsl"
-#include "../common/slots.h"
+#include "slots.h"
 
 layout(binding = SB_SLOT_DOM_MAPS) uniform sampler2DArray domMaps;  // the layers, 4 channels each
 layout(binding = SB_SLOT_DOM_DEPTH) uniform sampler2D domDepth;     // z0: the hair's depth map

@@ -4,7 +4,7 @@
 #include "dom.glsl"
 #include "../common/opacity.glsl"
 #include "../common/light_space.glsl"
-#include "../common/slots.h"
+#include "slots.h"
 
 layout(binding = SB_SLOT_DOM_DEPTH) uniform sampler2D domDepth;
 

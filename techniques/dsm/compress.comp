@@ -7,6 +7,7 @@
 #include "dsm_math.glsl"
 #include "../common/invocation.glsl"
 #include "../common/slots.h"
+#include "slots.h"
 layout(local_size_x = 64) in;
 
 layout(std430, binding = SB_SLOT_EXACT_CURSOR) readonly buffer ExactCursor { uint exactCursor[]; };

@@ -3,6 +3,7 @@
 #include <cstring>
 
 #include "techniques/common/shader_library.h"
+#include "techniques/dsm/slots.h"
 
 namespace sb {
 

@@ -2,7 +2,7 @@
 // node at or behind the point's light depth and interpolated from the node in
 // front of it (dsm_math.glsl); 0 behind the opaque mesh.
 #include "../common/opaque_shadow.glsl"
-#include "../common/slots.h"
+#include "slots.h"
 #include "dsm_math.glsl"
 
 layout(std140, binding = SB_SLOT_DSM_PARAMS) uniform DsmLookupParams {

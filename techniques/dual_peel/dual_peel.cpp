@@ -1,6 +1,7 @@
 #include "techniques/dual_peel/dual_peel.h"
 
 #include "techniques/common/composite.h"
+#include "techniques/dual_peel/slots.h"
 #include "techniques/kajiya_kay/shading.h"
 
 namespace sb {

@@ -1,7 +1,7 @@
 // Dual depth peeling, final: front (premultiplied, alpha = coverage) over the
 // back (colour, transmittance) over the opaque colour, as (hair, T) for blend
 // One, SrcAlpha: hair = F + (1 - F.a) B, T = (1 - F.a) T_back.
-#include "../common/slots.h"
+#include "slots.h"
 
 layout(binding = SB_SLOT_DUAL_FRONT_FINAL) uniform sampler2D dualFront;
 layout(binding = SB_SLOT_DUAL_BACK_FINAL) uniform sampler2D dualBack;

@@ -8,7 +8,7 @@
 #include "../common/shading.glsl"
 #include <shadow>
 #include "../kajiya_kay/hair_shading.glsl"
-#include "../common/slots.h"
+#include "slots.h"
 
 layout(binding = SB_SLOT_DUAL_OPAQUE_DEPTH) uniform sampler2D dualOpaqueDepth;
 #ifdef SB_DUAL_PEEL

@@ -1,6 +1,6 @@
 // The three subset images blended with equal weights: writes (sum c a / 3,
 // 1 - sum a / 3), blended One, SrcAlpha over the opaque colour (fake.h).
-#include "../common/slots.h"
+#include "slots.h"
 
 layout(binding = SB_SLOT_FAKE_IMAGE0) uniform sampler2D fakeImage0;
 layout(binding = SB_SLOT_FAKE_IMAGE1) uniform sampler2D fakeImage1;

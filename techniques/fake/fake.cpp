@@ -3,6 +3,7 @@
 #include <cstring>
 
 #include "techniques/common/shader_library.h"
+#include "techniques/fake/slots.h"
 #include "techniques/kajiya_kay/shading.h"
 
 namespace sb {

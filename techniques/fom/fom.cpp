@@ -2,6 +2,7 @@
 
 #include "techniques/common/opacity.h"
 #include "techniques/common/shader_library.h"
+#include "techniques/fom/slots.h"
 
 namespace sb {
 

@@ -1,5 +1,5 @@
 // Parameters of Fourier opacity maps, for the accumulation passes and the lookup.
-#include "../common/slots.h"
+#include "slots.h"
 layout(std140, binding = SB_SLOT_FOM_PARAMS) uniform FomParams {
   mat4 fomViewProj;
   vec4 fomParams;  // bias (light depth units), map size, shadow alpha, 0

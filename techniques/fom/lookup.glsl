@@ -2,7 +2,7 @@
 // its texel's coefficients, transmittance clamped to [0, 1] (fom_math.glsl);
 // 0 behind the opaque mesh.
 #include "../common/opaque_shadow.glsl"
-#include "../common/slots.h"
+#include "slots.h"
 #include "fom.glsl"
 
 layout(binding = SB_SLOT_FOM_MAPS) uniform sampler2DArray fomMaps;  // 4 floats per layer

@@ -6,7 +6,7 @@
 #include "../kajiya_kay/hair_shading.glsl"
 #include "mboit.glsl"
 #include "mboit_math.glsl"
-#include "../common/slots.h"
+#include "slots.h"
 
 layout(binding = SB_SLOT_MBOIT_B0) uniform sampler2D b0Tex;
 layout(binding = SB_SLOT_MBOIT_LOW) uniform sampler2D lowTex;

@@ -6,6 +6,7 @@
 #include "techniques/common/hair_oit.h"
 #include "techniques/kajiya_kay/shading.h"
 #include "techniques/mboit/mboit_math.h"
+#include "techniques/mboit/slots.h"
 
 namespace sb {
 

@@ -1,7 +1,7 @@
 // mboit resolve: writes (hair, T) with blending One, SrcAlpha over the opaque
 // colour (mboit_math.glsl, mboitResolve).
 #include "mboit_math.glsl"
-#include "../common/slots.h"
+#include "slots.h"
 
 layout(binding = SB_SLOT_MBOIT_B0) uniform sampler2D b0Tex;
 layout(binding = SB_SLOT_MBOIT_ACCUM) uniform sampler2D accumTex;

@@ -2,7 +2,7 @@
 // reconstructed from its texel's moments (mboit_math.glsl, the paper's bias
 // and overestimation); 0 behind the opaque mesh, 1 outside the map.
 #include "../common/opaque_shadow.glsl"
-#include "../common/slots.h"
+#include "slots.h"
 #include "../mboit/mboit_math.glsl"
 #include "msm.glsl"
 

@@ -3,6 +3,7 @@
 #include "techniques/common/opacity.h"
 #include "techniques/common/shader_library.h"
 #include "techniques/mboit/mboit_math.h"
+#include "techniques/msm/slots.h"
 
 namespace sb {
 

@@ -1,6 +1,6 @@
 // Parameters of moment shadow maps, for the light pass and the lookup.
 #include "../common/light_space.glsl"
-#include "../common/slots.h"
+#include "slots.h"
 layout(std140, binding = SB_SLOT_MSM_PARAMS) uniform MsmParams {
   mat4 msmViewProj;
   vec4 msmParams;  // lookup bias (light depth units), map size, shadow alpha, moment bias

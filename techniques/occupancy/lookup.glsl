@@ -5,7 +5,7 @@
 // storage blocks), fetched without derivatives.
 #include "../common/opaque_shadow.glsl"
 #include "occupancy_math.glsl"
-#include "../common/slots.h"
+#include "slots.h"
 
 layout(std140, binding = SB_SLOT_OCC_PARAMS) uniform OccupancyParams {
   mat4 occViewProj;

@@ -2,6 +2,7 @@
 
 #include "scenes/options.h"
 #include "techniques/common/shader_library.h"
+#include "techniques/occupancy/slots.h"
 
 namespace sb {
 

@@ -2,7 +2,7 @@
 // depth range; the targets (layers of one array) are OR-ed (logic op), 128
 // slices per RGBA32UI.
 #include "occupancy_math.glsl"
-#include "../common/slots.h"
+#include "slots.h"
 #include "../common/light_pass_depth.glsl"
 
 layout(binding = SB_SLOT_OCC_RANGE) uniform sampler2D occRange;  // x: nearest, y: -furthest depth

@@ -12,6 +12,7 @@
 #include <algorithm>
 
 #include "techniques/common/technique.h"
+#include "techniques/occupancy/slots.h"
 
 namespace sb {
 

@@ -2,7 +2,7 @@
 // slices), additive blending into RGBA32F targets (layers of one array), 4
 // slabs per target.
 #include "occupancy_math.glsl"
-#include "../common/slots.h"
+#include "slots.h"
 #include "../common/light_pass_depth.glsl"
 
 layout(binding = SB_SLOT_OCC_RANGE) uniform sampler2D occRange;  // x: nearest, y: -furthest depth

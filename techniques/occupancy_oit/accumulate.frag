@@ -13,7 +13,7 @@
 #include "../kajiya_kay/hair_shading.glsl"
 #include "../occupancy/occupancy_math.glsl"  // once, with the occupancy shadow's lookup
 #include "occupancy_oit_math.glsl"
-#include "../common/slots.h"
+#include "slots.h"
 
 layout(binding = SB_SLOT_OOIT_RANGE) uniform sampler2D oitRange;  // x: nearest, y: -furthest depth
 layout(binding = SB_SLOT_OOIT_BITS) uniform usampler2DArray oitBits;  // 128 slices per layer

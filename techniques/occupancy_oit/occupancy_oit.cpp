@@ -5,6 +5,7 @@
 #include "scenes/options.h"
 #include "techniques/common/shader_library.h"
 #include "techniques/kajiya_kay/shading.h"
+#include "techniques/occupancy_oit/slots.h"
 
 namespace sb {
 

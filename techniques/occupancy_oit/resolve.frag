@@ -5,7 +5,7 @@
 // (occupancy_oit_math.glsl).
 #include "../occupancy/occupancy_math.glsl"
 #include "occupancy_oit_math.glsl"
-#include "../common/slots.h"
+#include "slots.h"
 
 layout(binding = SB_SLOT_OOIT_ACCUM) uniform sampler2D oitAccum;
 layout(binding = SB_SLOT_OOIT_LOG2T) uniform sampler2D oitLog2T;

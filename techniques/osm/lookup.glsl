@@ -3,7 +3,7 @@
 // (1 - alpha_s)^(opacity / weight); 0 behind the opaque mesh.
 #include "../common/opaque_shadow.glsl"
 #include "osm.glsl"
-#include "../common/slots.h"
+#include "slots.h"
 
 layout(binding = SB_SLOT_OSM_ATLASES) uniform sampler2DArray osmAtlases;  // one atlas per layer
 

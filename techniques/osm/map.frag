@@ -4,7 +4,7 @@
 // Fragments outside this pass's atlas tile are discarded.
 #include "osm.glsl"
 #include "../common/light_space.glsl"
-#include "../common/slots.h"
+#include "slots.h"
 
 layout(std140, binding = SB_SLOT_OSM_PASS) uniform OsmPass {
   ivec4 osmPass;  // first texel group of target 0, first map, end map, 0

@@ -6,6 +6,7 @@
 #include "techniques/common/opacity.h"
 #include "techniques/common/opacity_filter.h"
 #include "techniques/common/shader_library.h"
+#include "techniques/osm/slots.h"
 
 namespace sb {
 

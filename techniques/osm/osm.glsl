@@ -1,5 +1,5 @@
 // Parameters of opacity shadow maps (binding 8), for the map passes and the lookup.
-#include "../common/slots.h"
+#include "slots.h"
 layout(std140, binding = SB_SLOT_OSM_PARAMS) uniform OsmParams {
   mat4 osmViewProj;
   vec4 osmParams;   // bias (light depth units), map size, shadow alpha, weight per fragment

@@ -1,7 +1,7 @@
 // Classic depth peeling: the layer blended under the accumulation (blend
 // OneMinusDstAlpha, One: acc += (1 - acc.a) (a c, a)), and one peeled
 // fragment counted where the layer has one (its depth is not the clear 2).
-#include "../common/slots.h"
+#include "slots.h"
 
 layout(binding = SB_SLOT_PEELC_LAYER_COLOR) uniform sampler2D peelLayerColor;
 layout(binding = SB_SLOT_PEELC_LAYER_DEPTH) uniform sampler2D peelLayerDepth;

@@ -1,6 +1,6 @@
 // Classic depth peeling: the front-to-back accumulation (premultiplied, alpha
 // = coverage) over the opaque colour as (hair, T), blend One, SrcAlpha.
-#include "../common/slots.h"
+#include "slots.h"
 
 layout(binding = SB_SLOT_PEELC_UNDER) uniform sampler2D peelUnder;
 layout(location = 0) out vec4 outColor;

@@ -6,7 +6,7 @@
 #include "../common/shading.glsl"
 #include <shadow>
 #include "../kajiya_kay/hair_shading.glsl"
-#include "../common/slots.h"
+#include "slots.h"
 
 layout(binding = SB_SLOT_PEELC_PREV_DEPTH) uniform sampler2D peelPrevDepth;
 layout(binding = SB_SLOT_PEELC_OPAQUE_DEPTH) uniform sampler2D peelOpaqueDepth;

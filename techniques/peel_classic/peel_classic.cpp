@@ -4,6 +4,7 @@
 
 #include "techniques/common/composite.h"
 #include "techniques/kajiya_kay/shading.h"
+#include "techniques/peel_classic/slots.h"
 
 namespace sb {
 

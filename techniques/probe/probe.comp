@@ -2,7 +2,7 @@
 // a light ray, for the occupancy paper's Fig. 5 style plots).
 #include <shadow>
 #include "../common/invocation.glsl"
-#include "../common/slots.h"
+#include "slots.h"
 layout(local_size_x = 64) in;
 layout(std430, binding = SB_SLOT_PROBE_POINTS) readonly buffer ProbePoints {
   vec4 probePoints[];  // w unused

@@ -3,6 +3,7 @@
 #include <cstring>
 
 #include "techniques/kajiya_kay/shading.h"
+#include "techniques/probe/slots.h"
 
 namespace sb {
 

@@ -1,6 +1,7 @@
 #include "techniques/shadowmap/shadowmap.h"
 
 #include "techniques/common/shader_library.h"
+#include "techniques/shadowmap/slots.h"
 
 namespace sb {
 

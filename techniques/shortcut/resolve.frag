@@ -6,7 +6,7 @@
 #include "../common/fragment_key.glsl"
 #include "shortcut.glsl"
 #include "shortcut_math.glsl"
-#include "../common/slots.h"
+#include "slots.h"
 
 layout(binding = SB_SLOT_SHORTCUT_TAIL) uniform sampler2D tailTex;
 layout(binding = SB_SLOT_SHORTCUT_REVEALAGE) uniform sampler2D revealageTex;

@@ -2,6 +2,7 @@
 
 #include "techniques/common/hair_oit.h"
 #include "techniques/kajiya_kay/shading.h"
+#include "techniques/shortcut/slots.h"
 
 namespace sb {
 

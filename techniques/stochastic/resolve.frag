@@ -1,7 +1,7 @@
 // Stochastic transparency resolve with the alpha correction: (hair, T) from
 // the summed accumulation and the exact total alpha, blended One, SrcAlpha
 // over the opaque colour (stochastic_math.glsl).
-#include "../common/slots.h"
+#include "slots.h"
 #include "stochastic_math.glsl"
 
 layout(binding = SB_SLOT_STOCH_ACCUM) uniform sampler2D stochSum;

@@ -3,6 +3,7 @@
 #include "scenes/options.h"
 #include "techniques/common/composite.h"
 #include "techniques/kajiya_kay/shading.h"
+#include "techniques/stochastic/slots.h"
 
 namespace sb {
 

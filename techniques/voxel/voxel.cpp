@@ -4,6 +4,7 @@
 
 #include "techniques/common/opacity.h"
 #include "techniques/common/shader_library.h"
+#include "techniques/voxel/slots.h"
 
 namespace sb {
 

@@ -1,5 +1,5 @@
 // Parameters and the density grid of voxelized hair density (splat and lookup).
-#include "../common/slots.h"
+#include "slots.h"
 layout(std140, binding = SB_SLOT_VOXEL_PARAMS) uniform VoxelParams {
   mat4 voxelViewProj;
   vec4 voxelParams;  // x: bias (light depth units), y: splat size, z: shadow alpha, w: density_scale

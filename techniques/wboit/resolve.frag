@@ -1,7 +1,7 @@
 // Weighted blended OIT resolve: writes (hair, T) with blending One, SrcAlpha
 // over the opaque colour (wboit_math.glsl).
 #include "wboit_math.glsl"
-#include "../common/slots.h"
+#include "slots.h"
 
 layout(binding = SB_SLOT_WBOIT_ACCUM) uniform sampler2D accumTex;
 layout(binding = SB_SLOT_WBOIT_REVEALAGE) uniform sampler2D revealageTex;

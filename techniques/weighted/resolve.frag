@@ -1,7 +1,7 @@
 // Weighted sum / weighted average resolve: a full-screen pass that writes
 // (hair, T) with blending One, SrcAlpha over the opaque colour (weighted_math.glsl).
 #include "weighted_math.glsl"
-#include "../common/slots.h"
+#include "slots.h"
 
 layout(binding = SB_SLOT_WEIGHTED_ACCUM) uniform sampler2D accumTex;
 #ifdef SB_WEIGHTED_COUNT
