@@ -291,6 +291,18 @@ void registerCommands(CLI::App& app) {
 
 int lastCommandStatus() { return gStatus; }
 
+std::string parseErrorMessage(const CLI::App& app, const CLI::ParseError& error,
+                              const std::vector<std::string>& args) {
+  // A first word that names no command: CLI11 says only that a subcommand is required.
+  if (!args.empty() && !args[0].empty() && args[0][0] != '-' && app.get_subcommands().empty()) {
+    std::vector<std::string> names;
+    for (const CLI::App* cmd : app.get_subcommands([](const CLI::App*) { return true; }))
+      names.push_back(cmd->get_name());
+    return "strandbench: " + unknownNameMessage("command", args[0], names);
+  }
+  return std::string("strandbench: ") + error.what();
+}
+
 void runGuarded(const char* command, const std::function<int()>& body) {
   auto fail = [&](const std::string& message, int status) {
     std::cerr << "strandbench " << command << ": " << message << "\n";

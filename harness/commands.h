@@ -30,6 +30,11 @@ void registerViewCommand(CLI::App& app);
 // `figure` (harness/figure_command.cpp).
 void registerFigureCommand(CLI::App& app);
 int lastCommandStatus();
+// The line printed for an error CLI11 raised while parsing `args` (argv without
+// the program): "strandbench: ..." with the closest command for one that is not
+// a command; CLI11's own wording otherwise.
+std::string parseErrorMessage(const CLI::App& app, const CLI::ParseError& error,
+                              const std::vector<std::string>& args);
 // Runs a command's body and records its exit status; bad input (InputError) and
 // unavailable backends (DeviceError) print "strandbench <command>: <message>"
 // to stderr and give status 2.

@@ -168,6 +168,15 @@ TEST(BadInput, UnknownNamesGetTheClosestValidName) {
   s.expectRejected(kCheck, {"case 'typo2'", "unknown transparency technique 'pel'", "'peel'"});
 }
 
+// A mistyped command gets the closest one, as a mistyped option does; no command
+// at all prints the usage (the commands and what they do).
+TEST(BadInput, UnknownOrMissingCommand) {
+  Sandbox s;
+  s.expectRejected("rendr --size 16x16", {"unknown command 'rendr'", "did you mean 'render'"});
+  s.expectRejected("chek", {"unknown command 'chek'", "did you mean 'check'"});
+  s.expectRejected("", {"give a command", "Usage:", "render", "check", "view"});
+}
+
 // ------------------------------------------------------------------ values
 
 TEST(BadInput, OutOfRangeValues) {
