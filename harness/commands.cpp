@@ -300,6 +300,20 @@ std::string parseErrorMessage(const CLI::App& app, const CLI::ParseError& error,
       names.push_back(cmd->get_name());
     return "strandbench: " + unknownNameMessage("command", args[0], names);
   }
+  // A flag that takes one value, given more than once: CLI11 says "--size: At Most 1
+  // required but received 2".
+  if (dynamic_cast<const CLI::ArgumentMismatch*>(&error)) {
+    for (const CLI::App* cmd : app.get_subcommands())
+      for (const CLI::Option* o : cmd->get_options()) {
+        if (o->count() < 2 || o->get_multi_option_policy() != CLI::MultiOptionPolicy::Throw ||
+            o->get_items_expected_max() > 1)
+          continue;
+        std::string values;
+        for (const std::string& v : o->results()) values += (values.empty() ? "" : ", ") + v;
+        return "strandbench " + cmd->get_name() + ": " + o->get_name() + " given " +
+               std::to_string(o->count()) + " times (" + values + "): give it once";
+      }
+  }
   return std::string("strandbench: ") + error.what();
 }
 

@@ -32,7 +32,8 @@ void registerFigureCommand(CLI::App& app);
 int lastCommandStatus();
 // The line printed for an error CLI11 raised while parsing `args` (argv without
 // the program): "strandbench: ..." with the closest command for one that is not
-// a command; CLI11's own wording otherwise.
+// a command, the flag given twice for one that takes one value; CLI11's own
+// wording otherwise.
 std::string parseErrorMessage(const CLI::App& app, const CLI::ParseError& error,
                               const std::vector<std::string>& args);
 // Runs a command's body and records its exit status; bad input (InputError) and

@@ -177,6 +177,17 @@ TEST(BadInput, UnknownOrMissingCommand) {
   s.expectRejected("", {"give a command", "Usage:", "render", "check", "view"});
 }
 
+// A flag given twice is named, with both values, in words (not CLI11's "At Most 1
+// required but received 2").
+TEST(BadInput, RepeatedFlagIsNamed) {
+  Sandbox s;
+  s.expectRejected("render --scene " + kScene + " --size 16x16 --size 32x32 --out {dir}/x.png",
+                   {"render: --size given 2 times (16x16, 32x32): give it once"});
+  s.expectRejected("compare {dir}/a.png {dir}/b.png --ppd 40 --ppd 60",
+                   {"compare: --ppd given 2 times (40, 60): give it once"});
+  s.expectRejected(kCheck + " --filter a --filter b --filter c", {"--filter given 3 times"});
+}
+
 // ------------------------------------------------------------------ values
 
 TEST(BadInput, OutOfRangeValues) {
