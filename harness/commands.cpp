@@ -291,6 +291,15 @@ void registerCommands(CLI::App& app) {
 
 int lastCommandStatus() { return gStatus; }
 
+std::string shellQuoted(const std::string& s) {
+  if (!s.empty() && s.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                        "0123456789-_.,:=/+") == std::string::npos)
+    return s;
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
 std::string parseErrorMessage(const CLI::App& app, const CLI::ParseError& error,
                               const std::vector<std::string>& args) {
   // A first word that names no command: CLI11 says only that a subcommand is required.

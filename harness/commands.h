@@ -36,6 +36,9 @@ int lastCommandStatus();
 // wording otherwise.
 std::string parseErrorMessage(const CLI::App& app, const CLI::ParseError& error,
                               const std::vector<std::string>& args);
+// `s` as one shell word: as it is when it holds only safe characters, else in
+// single quotes (a command line printed for the user to run).
+std::string shellQuoted(const std::string& s);
 // Runs a command's body and records its exit status; bad input (InputError) and
 // unavailable backends (DeviceError) print "strandbench <command>: <message>"
 // to stderr and give status 2.

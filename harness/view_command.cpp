@@ -170,15 +170,6 @@ std::string stepMain(const std::vector<TechniqueInfo>& catalog, const std::strin
 
 // ---- the reproducing command line and suite case ----
 
-std::string shellQuoted(const std::string& s) {
-  if (!s.empty() && s.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
-                                        "0123456789-_.,:=/+") == std::string::npos)
-    return s;
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
 // The settings that differ from a default request (scene, techniques and
 // backend always): what the picture depends on. Headless (the platform is left
 // to its default); timing and validation are the user's to add.
