@@ -7,6 +7,7 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <string_view>
 
 #include "scenes/loader_util.h"
 
@@ -121,6 +122,21 @@ std::vector<uint8_t> readFileBytes(const std::string& path) {
   if (!bytes.empty() &&
       !in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()))) {
     throw InputError("cannot read '" + path + "': read failed");
+  }
+  // A repository's large file not fetched: its place holds git-lfs's pointer
+  // ("version https://git-lfs.github.com/spec/v1", "oid sha256:...", "size N"),
+  // which every loader would call short or malformed.
+  static constexpr std::string_view kLfs = "version https://git-lfs.github.com/spec/";
+  if (bytes.size() >= kLfs.size() && std::equal(kLfs.begin(), kLfs.end(), bytes.begin())) {
+    const std::string text(bytes.begin(), bytes.end());
+    std::string size;  // the real file's, when the pointer says
+    if (const std::size_t at = text.find("\nsize "); at != std::string::npos) {
+      const std::size_t digits = text.find_first_not_of("0123456789", at + 6);
+      if (digits > at + 6) size = " (of " + text.substr(at + 6, digits - (at + 6)) + " bytes)";
+    }
+    throw InputError(path + ": an unfetched git-lfs pointer, not the file itself" + size +
+                     ": run `git lfs pull` in its repository to fetch it (git-lfs must be "
+                     "installed)");
   }
   return bytes;
 }

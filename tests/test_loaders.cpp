@@ -121,6 +121,30 @@ TEST(Loaders, CannotOpenNamesThePath) {
   expectInputError([] { sb::makeScene(sb::Spec::parse("file")); }, {"path="});
 }
 
+// A model whose git-lfs content was never fetched is named as such, whatever its
+// format (each loader alone would call it short or malformed).
+TEST(Loaders, GitLfsPointerIsNamed) {
+  const auto dir = sbtest::tempDir("lfs");
+  const std::string pointer =
+      "version https://git-lfs.github.com/spec/v1\n"
+      "oid sha256:4d7a214614ab2935c943f9e0ff69d22eadbb8f32b1258daaa5e2ca24d17e2393\n"
+      "size 3840128\n";
+  for (const char* name : {"m.hair", "m.tfx", "m.ply", "m.obj", "m.tfxmesh"}) {
+    const std::string path = (dir / name).string();
+    std::ofstream(path) << pointer;
+    const std::vector<std::string> needles = {path, "unfetched git-lfs pointer", "3840128 bytes",
+                                              "git lfs pull"};
+    if (std::string(name) == "m.obj") {
+      expectInputError([&] { sb::loadObj(path); }, needles);
+    } else if (std::string(name) != "m.tfxmesh") {
+      expectInputError([&] { sb::loadStrandFile(path); }, needles);
+    }
+    expectInputError([&] { sb::makeScene(sb::Spec::parse("straight:strands=4,mesh=" + path)); },
+                     needles);
+  }
+  std::filesystem::remove_all(dir);
+}
+
 // ---------------------------------------------------------------- HAIR builder
 
 void put32(Bytes& b, std::size_t at, uint32_t v) { std::memcpy(b.data() + at, &v, 4); }
