@@ -1,4 +1,4 @@
-// Large and long runs (issue 19): memory that is not there is refused or
+// Large and long runs: memory that is not there is refused or
 // reported with exit 2 and no partial file (never an abort), SIGINT stops a
 // render and a sweep cleanly (exit 130, nothing half written, --resume goes
 // on), and a sweep with a case that cannot run finishes the others and exits 1.

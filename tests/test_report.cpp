@@ -412,7 +412,7 @@ TEST(ReportBrowser, LoadsOfflineWithoutConsoleErrors) {
   EXPECT_NE(page.dom.find("<table>"), std::string::npos);
   EXPECT_NE(page.dom.find("class=\"chart-error-time\""), std::string::npos);
   EXPECT_NE(page.dom.find("class=\"pareto-frontier\""), std::string::npos);
-  // The charts of issue 18: FLIP as a third error axis, every point labelled
+  // The error charts: FLIP as a third error axis, every point labelled
   // with its technique and a bar for its spread over repetitions, error
   // against depth complexity per technique, the budget table, the animation.
   for (const char* needle :
