@@ -146,13 +146,14 @@ TEST(Loaders, GitLfsPointerIsNamed) {
     std::ofstream(path) << pointer;
     const std::vector<std::string> needles = {path, "unfetched git-lfs pointer", "3840128 bytes",
                                               "git lfs pull"};
-    if (std::string(name) == "m.obj") {
-      expectInputError([&] { sb::loadObj(path); }, needles);
-    } else if (std::string(name) != "m.tfxmesh") {
+    const std::string ext = std::filesystem::path(path).extension().string();
+    if (ext == ".hair" || ext == ".tfx" || ext == ".ply") {  // strands
       expectInputError([&] { sb::loadStrandFile(path); }, needles);
+      expectInputError([&] { sb::makeScene(sb::Spec::parse("file:path=" + path)); }, needles);
     }
-    expectInputError([&] { sb::makeScene(sb::Spec::parse("straight:strands=4,mesh=" + path)); },
-                     needles);
+    if (ext == ".obj" || ext == ".ply" || ext == ".tfxmesh")  // meshes
+      expectInputError([&] { sb::makeScene(sb::Spec::parse("straight:strands=4,mesh=" + path)); },
+                       needles);
   }
   std::filesystem::remove_all(dir);
 }
