@@ -172,14 +172,16 @@ TEST(ViewBadInput, NoDisplayOrBadScriptWritesNothing) {
 }
 
 // A script's key must be one the viewer acts on: a typo is refused (exit 2, the
-// closest key named, nothing written), not pressed silently.
+// closest key named, nothing written), not pressed silently. (Each script ends
+// with quit, so that a viewer that accepts the key exits instead of waiting.)
 TEST(ViewBadInput, UnknownKeyIsRefused) {
   const fs::path dir = sbtest::tempDir("viewkey");
   const fs::path shots = dir / "shots";
   const fs::path script = dir / "keys.txt";
   for (const auto& [line, needles] : std::vector<std::pair<std::string, std::vector<std::string>>>{
-           {"500 key Foo\n", {":1: ", "unknown key 'Foo'", "Up", "Escape"}},
-           {"0 key S\n10 key Uo shift\n", {":2: ", "unknown key 'Uo'", "did you mean 'Up'"}}}) {
+           {"500 key Foo\n600 quit\n", {":1: ", "unknown key 'Foo'", "Up", "Escape"}},
+           {"0 key S\n10 key Uo shift\n20 quit\n",
+            {":2: ", "unknown key 'Uo'", "did you mean 'Up'"}}}) {
     std::ofstream(script) << line;
     const sbtest::CliResult r = shell(std::string(SB_CLI) + " view --script " + script.string() +
                                           " --screenshot-dir " + shots.string(),
