@@ -19,6 +19,7 @@
 #include <regex>
 #include <set>
 #include <sstream>
+#include <string_view>
 
 #include "harness/commands.h"
 #include "harness/json_keys.h"
@@ -395,7 +396,9 @@ struct Counts {
 
 class Checker {
  public:
-  Checker(fs::path outDir, std::ostream& out) : outDir_(std::move(outDir)), out_(out) {}
+  // `baselines`: the folder checked, which the hint to bless a missing case names.
+  Checker(fs::path outDir, fs::path baselines, std::ostream& out)
+      : outDir_(std::move(outDir)), baselines_(std::move(baselines)), out_(out) {}
 
   // Compares actual with expected and prints one line; writes the failure files.
   void compare(const BaselineCase& c, const std::string& label, const Image& actual,
@@ -433,8 +436,17 @@ class Checker {
     clearStale(c.name, backend);
     ++counts.missing;
     const std::string stem = (outDir_ / (c.name + "." + backend)).string();
+    // The hint, followed as printed, blesses this case in this folder (a bare
+    // `strandbench bless` would re-render every case of the repository's baselines).
+    std::string pattern;  // the name, matched whole, its regex characters escaped
+    for (char ch : c.name) {
+      if (std::string_view(".^$|()[]{}*+?\\").find(ch) != std::string_view::npos) pattern += '\\';
+      pattern += ch;
+    }
     out_ << "MISSING " << c.name << " " << backend << ": no baseline " << file.string()
-         << " (actual -> " << stem << ".actual.png; run `strandbench bless`)\n";
+         << " (actual -> " << stem << ".actual.png; run `strandbench bless --baselines "
+         << shellQuoted(baselines_.string()) << " --filter " << shellQuoted("^" + pattern + "$")
+         << "`)\n";
     Verdict v;
     v.failures.push_back("missing baseline " + file.string());
     writeFailure(c, backend, actual, nullptr, v, file.string(), "rendered on " + backend);
@@ -500,7 +512,7 @@ class Checker {
     if (!f) throw InputError(stem + ".json: cannot write");
   }
 
-  fs::path outDir_;
+  fs::path outDir_, baselines_;
   std::ostream& out_;
 };
 
@@ -600,7 +612,7 @@ int runCheck(const fs::path& baselines, const fs::path& outDir, const std::strin
     RenderCache cache;
     checkCases(m, cases, cache);
     const auto t0 = std::chrono::steady_clock::now();
-    Checker checker(outDir, out);
+    Checker checker(outDir, dir, out);
     int renders = 0;
     for (const BaselineCase& c : cases) {
       std::vector<Image> images;

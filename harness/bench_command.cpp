@@ -186,7 +186,7 @@ int runBench(const BenchOptions& o) {
   return 0;
 }
 
-// Issue 14's peeling rows, after the Fig. 2 ones: Everitt's classic peel (one
+// The depth-peeling rows, after the Fig. 2 ones: Everitt's classic peel (one
 // geometry pass per layer, as the papers time it) and dual depth peeling
 // (Bavoil & Myers 2008: ceil(layers/2) peel passes after one min/max pass),
 // their passes from the techniques' own counters, their times against each
@@ -207,7 +207,7 @@ void printPeelingRows(const RenderRequest& base, double occupancyMs) {
   const double classic = summarize(out["peel_classic"].frameMs).median;
   const double dual = summarize(out["dual_peel"].frameMs).median;
   const double layers = counter("dual_peel", "layers");
-  std::cout << "\npeeling (issue 14):\n"
+  std::cout << "\ndepth peeling (classic and dual):\n"
             << "  peel_classic " << std::setw(10) << classic << " ms   layers "
             << counter("peel_classic", "layers") << ", geometry passes "
             << counter("peel_classic", "geometry_passes") << " (Everitt: one per layer)";

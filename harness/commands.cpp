@@ -309,6 +309,41 @@ void registerCommands(CLI::App& app) {
 
 int lastCommandStatus() { return gStatus; }
 
+std::string shellQuoted(const std::string& s) {
+  if (!s.empty() && s.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                        "0123456789-_.,:=/+") == std::string::npos)
+    return s;
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+std::string parseErrorMessage(const CLI::App& app, const CLI::ParseError& error,
+                              const std::vector<std::string>& args) {
+  // A first word that names no command: CLI11 says only that a subcommand is required.
+  if (!args.empty() && !args[0].empty() && args[0][0] != '-' && app.get_subcommands().empty()) {
+    std::vector<std::string> names;
+    for (const CLI::App* cmd : app.get_subcommands([](const CLI::App*) { return true; }))
+      names.push_back(cmd->get_name());
+    return "strandbench: " + unknownNameMessage("command", args[0], names);
+  }
+  // A flag that takes one value, given more than once: CLI11 says "--size: At Most 1
+  // required but received 2".
+  if (dynamic_cast<const CLI::ArgumentMismatch*>(&error)) {
+    for (const CLI::App* cmd : app.get_subcommands())
+      for (const CLI::Option* o : cmd->get_options()) {
+        if (o->count() < 2 || o->get_multi_option_policy() != CLI::MultiOptionPolicy::Throw ||
+            o->get_items_expected_max() > 1)
+          continue;
+        std::string values;
+        for (const std::string& v : o->results()) values += (values.empty() ? "" : ", ") + v;
+        return "strandbench " + cmd->get_name() + ": " + o->get_name() + " given " +
+               std::to_string(o->count()) + " times (" + values + "): give it once";
+      }
+  }
+  return std::string("strandbench: ") + error.what();
+}
+
 void runGuarded(const char* command, const std::function<int()>& body) {
   auto fail = [&](const std::string& message, int status) {
     std::cerr << "strandbench " << command << ": " << message << "\n";

@@ -30,6 +30,15 @@ void registerViewCommand(CLI::App& app);
 // `figure` (harness/figure_command.cpp).
 void registerFigureCommand(CLI::App& app);
 int lastCommandStatus();
+// The line printed for an error CLI11 raised while parsing `args` (argv without
+// the program): "strandbench: ..." with the closest command for one that is not
+// a command, the flag given twice for one that takes one value; CLI11's own
+// wording otherwise.
+std::string parseErrorMessage(const CLI::App& app, const CLI::ParseError& error,
+                              const std::vector<std::string>& args);
+// `s` as one shell word: as it is when it holds only safe characters, else in
+// single quotes (a command line printed for the user to run).
+std::string shellQuoted(const std::string& s);
 // Runs a command's body and records its exit status; bad input (InputError) and
 // unavailable backends (DeviceError) print "strandbench <command>: <message>"
 // to stderr and give status 2.

@@ -4,6 +4,8 @@
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <iostream>
+#include <string>
+#include <vector>
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
@@ -38,6 +40,12 @@ int main(int argc, char** argv) {
       "--version", [] { return sb::versionText(); },
       "Print version, commit, build type and the devices and drivers found");
   sb::registerCommands(app);
+  // Bare `strandbench` does nothing: say what it does instead (CLI11 would only
+  // say that a subcommand is required).
+  if (argc == 1) {
+    std::cerr << "strandbench: give a command\n\n" << app.help();
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -47,7 +55,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "strandbench: " << e.what() << "\n";
+    std::cerr << sb::parseErrorMessage(app, e, std::vector<std::string>(argv + 1, argv + argc))
+              << "\n";
     return 2;
   }
   return sb::lastCommandStatus();

@@ -527,12 +527,21 @@ int runSweep(const SweepOptions& o) {
       std::vector<CaseRun> runs(batch.size());
       std::vector<std::vector<double>> startS(batch.size());  // each round's start
       std::vector<bool> failed(batch.size(), false), written(batch.size(), false);
+      std::vector<int> number(batch.size(), 0);        // "[number/total]" in its line
+      std::vector<double> seconds(batch.size(), 0.0);  // over all its rounds
       // A case's result file is written once its rounds are done: at once when the group
       // takes one round (a stopped sweep then resumes at the case), else at the group's end.
+      // Its line is printed then, from the result: the median the report shows, not the
+      // first round's time.
       auto writeResult = [&](std::size_t i) {
         const ojson result =
             writeCaseResult(dir, *batch[i], runs[i], measurementJson(o, runs[i].out, startS[i]));
         written[i] = true;
+        if (!o.progressBar)
+          std::cout << "[" << number[i] << "/" << total << "] " << batch[i]->id << "  "
+                    << caseSummary(result) << "  (" << std::fixed << std::setprecision(1)
+                    << seconds[i] << " s)\n"
+                    << std::flush;
         for (const auto& line : invariantFailures(result)) {
           if (o.progressBar) std::cout << "\n";
           std::cout << line << "\n";
@@ -568,7 +577,8 @@ int runSweep(const SweepOptions& o) {
           } catch (const std::bad_alloc&) {
             reason = "out of memory: a host allocation failed";
           }
-          if (first) ++done;
+          if (first) number[i] = ++done;
+          seconds[i] += elapsed() - t;
           if (!reason.empty()) {
             failed[i] = true;
             failedCase(dir, c, reason);
@@ -586,11 +596,6 @@ int runSweep(const SweepOptions& o) {
           }
           startS[i].push_back(t);
           if (first && reps.maxReps == 1) writeResult(i);
-          if (first && !o.progressBar)
-            std::cout << "[" << done << "/" << total << "] " << c.id << "  "
-                      << caseSummary(ojson::parse(renderJson(runs[i].out).dump())) << "  ("
-                      << std::fixed << std::setprecision(1) << elapsed() - t << " s)\n"
-                      << std::flush;
           return runs[i].out.frameMs.empty() ? 0.0 : median(runs[i].out.frameMs);
         });
       measureInterleaved(rounds, reps, /*leastMinReps=*/1);

@@ -28,6 +28,7 @@
 #include "harness/render.h"
 #include "harness/settings.h"
 #include "reports/stats.h"
+#include "scenes/options.h"
 #include "techniques/common/unit.h"
 
 namespace sb {
@@ -49,6 +50,10 @@ const char* kScriptHelp =
     "script lines: MS ACTION ARGS (MS: milliseconds from the start, non-decreasing; '#' starts "
     "a comment). Actions: key NAME [shift] [ctrl] [alt]; drag left|right|middle DX DY [shift] "
     "[ctrl]; scroll STEPS; resize W H; screenshot NAME; quit";
+
+// The keys Viewer::key acts on: a script's key is one of them (a typo would do nothing).
+const std::vector<std::string> kScriptKeys = {"S", "T", "Up",  "Down", "Right",  "Left", "C",
+                                              "R", "P", "F12", "H",    "Escape", "Q"};
 
 std::vector<ScriptAction> parseScript(const std::string& path) {
   std::ifstream in(path);
@@ -90,6 +95,8 @@ std::vector<ScriptAction> parseScript(const std::string& path) {
     };
     if (a.action == "key") {
       if (n < 1) throw InputError(where + "key needs a key name");
+      if (std::find(kScriptKeys.begin(), kScriptKeys.end(), a.args[0]) == kScriptKeys.end())
+        throw InputError(where + unknownNameMessage("key", a.args[0], kScriptKeys));
       modifiers(1);
     } else if (a.action == "drag") {
       if (n < 3 || (a.args[0] != "left" && a.args[0] != "right" && a.args[0] != "middle"))
@@ -150,15 +157,6 @@ std::string stepMain(Family family, const std::string& specText, int step) {
 }
 
 // ---- the reproducing command line and suite case ----
-
-std::string shellQuoted(const std::string& s) {
-  if (!s.empty() && s.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
-                                        "0123456789-_.,:=/+") == std::string::npos)
-    return s;
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
 
 // The settings that differ from a default request (scene, techniques and
 // backend always): what the picture depends on. Headless (the platform is left
@@ -325,9 +323,9 @@ class Viewer {
     } else if (e.key == "T") {
       req_.oit = cycle(Family::Transparency, req_.oit, step);
     } else if (e.key == "Up" || e.key == "Down") {
-      req_.shadow = stepMain(Family::Shadow, req_.shadow, e.key == "Up" ? 1 : -1);
+      if (!stepped("shadow", req_.shadow, Family::Shadow, e.key == "Up" ? 1 : -1)) return;
     } else if (e.key == "Right" || e.key == "Left") {
-      req_.oit = stepMain(Family::Transparency, req_.oit, e.key == "Right" ? 1 : -1);
+      if (!stepped("oit", req_.oit, Family::Transparency, e.key == "Right" ? 1 : -1)) return;
     } else if (e.key == "C") {
       mode_ = Mode((int(mode_) + (e.shift ? 2 : 1)) % 3);
       if (mode_ != Mode::Technique && !referenceWanted_) {
@@ -354,6 +352,25 @@ class Viewer {
     }
     std::cout << "view: shadow " << req_.shadow << ", oit " << req_.oit << "\n";
     dirty_ = true;
+  }
+
+  // Steps `spec`'s main option; when nothing changes (no such option, or at its
+  // limit), says so and returns false: there is nothing to render again.
+  static bool stepped(const char* kind, std::string& spec, Family family, int step) {
+    const std::string next = stepMain(family, spec, step);
+    if (Spec::parse(next).str() != Spec::parse(spec).str()) {  // not merely reordered
+      spec = next;
+      return true;
+    }
+    const TechniqueDescriptor* t = tryFindTechnique(family, Spec::parse(spec).name);
+    if (!t || !t->stepped)
+      std::cout << "view: " << kind << " " << spec
+                << " has no option the arrow keys step; unchanged\n";
+    else
+      std::cout << "view: " << kind << " " << spec << ": " << t->stepped->option << " is at its "
+                << (step > 0 ? "largest" : "smallest") << " (" << t->stepped->min << ".."
+                << t->stepped->max << "); unchanged\n";
+    return false;
   }
 
   static constexpr const char* kKeys =

@@ -306,6 +306,7 @@ BudgetTable buildBudgetTable(const std::string& key, const std::vector<const jso
     for (const Pick& p : *f) budgets.push_back(p.ms);
   std::sort(budgets.begin(), budgets.end());
   budgets.erase(std::unique(budgets.begin(), budgets.end()), budgets.end());
+  const bool nameOit = anyTransparency(results);
   b.table.header = {"Frame-time budget (ms)", "Most accurate by FLIP", "FLIP mean",
                     "Most accurate by image RMSE", "Image RMSE"};
   // The frontier is sorted by time with falling error: the last that fits is the best.
@@ -319,7 +320,7 @@ BudgetTable buildBudgetTable(const std::string& key, const std::vector<const jso
     std::vector<Cell> row = {{"≤ " + formatSig(budget), true}};
     for (const auto* front : {&byFlip, &byRmse}) {
       const Pick* p = best(*front, budget);
-      row.push_back({p ? shortTechniqueOf(*p->result) : kNone});
+      row.push_back({p ? shortTechniqueOf(*p->result, nameOit) : kNone});
       row.push_back(num(p ? std::optional<double>(p->error) : std::nullopt));
     }
     b.table.rows.push_back(std::move(row));
@@ -329,11 +330,17 @@ BudgetTable buildBudgetTable(const std::string& key, const std::vector<const jso
 
 }  // namespace
 
-std::string shortTechniqueOf(const json& r) {
+std::string shortTechniqueOf(const json& r, bool nameOit) {
   const std::string shadow = orDefault(text(find(r, {"shadow"})), "?");
   const std::string oit = orDefault(text(find(r, {"oit"})), "none");
-  if (oit == "none") return shadow;
+  if (oit == "none" && !nameOit) return shadow;
   return shadow == "none" ? oit : oit + " + " + shadow;
+}
+
+bool anyTransparency(const std::vector<const json*>& results) {
+  return std::any_of(results.begin(), results.end(), [](const json* r) {
+    return orDefault(text(find(*r, {"oit"})), "none") != "none";
+  });
 }
 
 std::string comparableKey(const json& r) {
@@ -519,10 +526,11 @@ ReportData buildReport(const json& doc) {
   d.animationTable.header = {
       "Case",          "Technique",          "Animation",      "Frames",
       "Flicker image", "Flicker visibility", "FLIP per frame", "Visibility RMSE per frame"};
+  const bool nameOit = anyTransparency(d.results);
   for (const json* r : d.results) {
     const json* a = find(*r, {"animation"});
     if (!a || !a->is_object()) continue;
-    Animation an{r, caseId(*r), shortTechniqueOf(*r),
+    Animation an{r, caseId(*r), shortTechniqueOf(*r, nameOit),
                  text(find(*a, {"kind"})) + ":frames=" + text(find(*a, {"frames"})) +
                      ",degrees=" + text(find(*a, {"degrees"}))};
     std::string flips, vis;

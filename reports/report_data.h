@@ -47,8 +47,14 @@ std::string techniqueOf(const json& r);
 std::string failureOf(const json& r);
 // The technique a case is about, short (a chart's point label): the
 // transparency technique with its shadow technique ("wboit + dom:layers=3")
-// when oit is not none, else the shadow technique.
-std::string shortTechniqueOf(const json& r);
+// when oit is not none, else the shadow technique; with `nameOit`, "none + dom"
+// then, so that a point without transparency is not read as one with a
+// transparency technique of the shadow's name ("occupancy" beside
+// "occupancy + occupancy").
+std::string shortTechniqueOf(const json& r, bool nameOit = false);
+// Whether any of `results` has a transparency technique: the `nameOit` of the
+// labels shown together with theirs.
+bool anyTransparency(const std::vector<const json*>& results);
 // The results' "scene | size | backend": cases whose times and errors compare.
 std::string comparableKey(const json& r);
 // Median frame time in ms / total memory in MiB, when present and finite.

@@ -146,6 +146,7 @@ std::string errorTimeCharts(const ReportData& d) {
   for (const std::string& key : keys) {
     std::ostringstream charts, radios;
     int shown = 0;
+    const bool nameOit = anyTransparency(byKey[key]);
     for (std::size_t m = 0; m < std::size(kErrorMetrics); ++m) {
       const ErrorMetric& metric = kErrorMetrics[m];
       Chart c;
@@ -164,7 +165,7 @@ std::string errorTimeCharts(const ReportData& d) {
         ChartPoint p{*ms, *err,
                      techniqueOf(*r) + "\n" + caseId(*r) + "\n" + formatSig(*ms) + " ms, " +
                          metric.label + " " + formatSig(*err),
-                     shortTechniqueOf(*r)};
+                     shortTechniqueOf(*r, nameOit)};
         const auto lo = number(find(*r, {"frame_ms", "min"}));
         const auto hi = number(find(*r, {"frame_ms", "max"}));
         if (lo && hi) p.xLo = *lo, p.xHi = *hi;
@@ -201,11 +202,12 @@ std::string errorTimeCharts(const ReportData& d) {
 std::string depthComplexityCharts(const ReportData& d) {
   std::vector<std::string> keys;
   std::map<std::string, std::vector<const json*>> byKey;
+  const bool nameOit = anyTransparency(d.results);
   for (const json* r : d.results) {
     const json* buckets = find(*r, {"error", "by_eye_layers"});
     if (!buckets || !buckets->is_array()) continue;
-    const std::string key =
-        text(find(*r, {"scene", "spec"})) + " | " + sizeOf(*r) + " | " + shortTechniqueOf(*r);
+    const std::string key = text(find(*r, {"scene", "spec"})) + " | " + sizeOf(*r) + " | " +
+                            shortTechniqueOf(*r, nameOit);
     if (!byKey.count(key)) keys.push_back(key);
     byKey[key].push_back(r);
   }

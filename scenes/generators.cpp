@@ -12,6 +12,7 @@
 #include <random>
 
 #include "scenes/loader_util.h"
+#include "scenes/mesh_loaders.h"
 #include "scenes/options.h"
 #include "scenes/scene.h"
 
@@ -36,7 +37,7 @@ std::vector<OptionInfo> commonOptions(const char* strands, const char* points, c
       {"thickness", "0.005", "strand thickness in world units"},
       {"alpha", "1", "hair opacity in [0,1] for transparency"},
       {"shadow_alpha", "0.5", "per-fragment shadow opacity in [0,1]"},
-      {"mesh", "", "OBJ file drawn opaque (replaces the generated head)"},
+      {"mesh", "", "mesh file drawn opaque (.obj, .ply, .tfxmesh; replaces the generated head)"},
   };
 }
 
@@ -68,7 +69,7 @@ std::vector<SceneInfo> buildCatalog() {
   {
     std::vector<OptionInfo> o = commonOptions(
         "20000", "6", "0.1", "fur length as a fraction of the base mesh's bounding radius");
-    o[7].help = "OBJ mesh to grow fur on, drawn opaque (default: a unit sphere)";
+    o[7].help = "mesh to grow fur on (.obj, .ply, .tfxmesh), drawn opaque (default: a unit sphere)";
     o.push_back({"droop", "0.5", "gravity bend of the fur (0 = straight along the normal)"});
     o.push_back({"density", "", "strands per unit of mesh area (replaces strands=)"});
     c.push_back({"fur", "fur grown along a mesh's normals", std::move(o)});
@@ -93,9 +94,9 @@ std::vector<SceneInfo> buildCatalog() {
                  std::move(o)});
   }
   c.push_back({"file",
-               "strands from a file (.hair, .tfx, .ply), optionally with an OBJ mesh",
+               "strands from a file (.hair, .tfx, .ply), optionally with a mesh",
                {{"path", "", "strand file (required): .hair, .tfx or .ply"},
-                {"mesh", "", "OBJ file drawn opaque"},
+                {"mesh", "", "mesh file drawn opaque (.obj, .ply, .tfxmesh)"},
                 {"strands", "all", "keep this many strands, evenly spaced (default: all)"},
                 {"points_per_strand", "",
                  "PLY without a 'strand' element (e.g. NeuralHaircut): strands of N "
@@ -332,7 +333,7 @@ void addHeadOrMesh(const Options& o, Scene& scene) {
   const bool head = o.integer("head", 0, 1) == 1;
   const std::string mesh = o.text("mesh");
   if (!mesh.empty()) {
-    scene.mesh = loadObj(mesh);
+    scene.mesh = loadMesh(mesh);
   } else if (head) {
     scene.mesh = makeSphere(1.0f, 48, 24);
   }
@@ -433,7 +434,7 @@ Scene makeStray(const Options& o) {
   const Common c = readCommon(o, scene);
   const float radius = o.real("radius", 0.0, 100.0, true);
   const float offset = o.real("offset", 0.0, 100.0);
-  if (!o.text("mesh").empty()) scene.mesh = loadObj(o.text("mesh"));
+  if (!o.text("mesh").empty()) scene.mesh = loadMesh(o.text("mesh"));
   Rng rng(c.seed);
   reserve(scene.strands, std::size_t(c.strands) + 1, std::size_t(c.points));
   auto vertical = [&](glm::vec2 xz, const glm::vec3& color) {
@@ -456,7 +457,7 @@ Scene makeSheet(const Options& o) {
   Scene scene;
   const Common c = readCommon(o, scene);
   const float wiggle = o.real("wiggle", 0.0, 100.0);
-  if (!o.text("mesh").empty()) scene.mesh = loadObj(o.text("mesh"));
+  if (!o.text("mesh").empty()) scene.mesh = loadMesh(o.text("mesh"));
   Rng rng(c.seed);
   reserve(scene.strands, std::size_t(c.strands), std::size_t(c.points));
   for (int64_t k = 0; k < c.strands; ++k) {
@@ -509,7 +510,7 @@ Scene makeFur(const Options& o) {
   }
   if (!useDensity) c.strands = o.integer("strands", 1, kMaxStrands);
   const std::string meshPath = o.text("mesh");
-  scene.mesh = meshPath.empty() ? makeSphere(1.0f, 64, 32) : loadObj(meshPath);
+  scene.mesh = meshPath.empty() ? makeSphere(1.0f, 64, 32) : loadMesh(meshPath);
   const Mesh& mesh = scene.mesh;
 
   // Area table for uniform sampling over the surface.
@@ -601,7 +602,7 @@ Scene makeFile(const Options& o) {
     pointsPerStrand = uint32_t(o.integer("points_per_strand", 2, kMaxPointsPerStrand));
   }
   const std::string mesh = o.text("mesh");
-  if (!mesh.empty()) scene.mesh = loadObj(mesh);
+  if (!mesh.empty()) scene.mesh = loadMesh(mesh);
   Strands all = loadStrandFile(path, pointsPerStrand, &scene.warnings);
   if (keep == 0 || uint64_t(keep) == all.strandCount()) {
     scene.strands = std::move(all);

@@ -66,23 +66,7 @@ Mesh parseObj(const std::string& text, const std::string& name) {
   }
   if (m.indices.empty()) fail(name, "OBJ has no faces");
 
-  // Area-weighted normals (the cross product's length is twice the triangle area).
-  std::vector<glm::vec3> computed(numPositions, glm::vec3(0.0f));
-  for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3) {
-    const uint32_t a = m.indices[t], b = m.indices[t + 1], c = m.indices[t + 2];
-    const glm::vec3 n =
-        glm::cross(m.positions[b] - m.positions[a], m.positions[c] - m.positions[a]);
-    computed[a] += n;
-    computed[b] += n;
-    computed[c] += n;
-  }
-  m.normals.resize(numPositions);
-  for (std::size_t i = 0; i < numPositions; ++i) {
-    glm::vec3 n = allCornersHaveNormals ? fileNormals[i] : computed[i];
-    if (!(glm::dot(n, n) > 1e-30f)) n = computed[i];
-    const float len2 = glm::dot(n, n);
-    m.normals[i] = len2 > 1e-30f && std::isfinite(len2) ? n / std::sqrt(len2) : glm::vec3(0, 1, 0);
-  }
+  detail::setNormals(m, allCornersHaveNormals ? fileNormals : std::vector<glm::vec3>{});
   return m;
 }
 

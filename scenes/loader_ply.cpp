@@ -4,16 +4,20 @@
 // the same length) are read with pointsPerStrand: strands of N consecutive vertices.
 // ascii, binary_little_endian and binary_big_endian; other elements and properties,
 // list properties included, are skipped generically. A triangle mesh (element face, no
-// strands) is refused with a pointer to mesh=.
+// strands) is refused with a pointer to mesh=, which reads it with parsePlyMesh: element
+// vertex (x, y, z, optional nx, ny, nz) and element face (list vertex_indices; polygons
+// as triangle fans).
 #include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <sstream>
 
 #include "scenes/loader_util.h"
+#include "scenes/mesh_loaders.h"
 #include "scenes/scene.h"
 
 namespace sb {
@@ -77,6 +81,18 @@ class BodyReader {
       return;
     }
     for (uint64_t i = 0; i < n; ++i) readAscii(t, what);
+  }
+
+  // Reads n values of type t into out (a list we need: a face's vertex indices).
+  void readList(uint64_t n, const Type& t, const std::string& what, std::vector<double>& out) {
+    // Each value takes its size (binary) or at least one character (ascii): checked
+    // before the allocation.
+    if (n > remaining() / uint64_t(format_ == Format::Ascii ? 1 : t.size)) {
+      detail::fail(name_, "truncated: list " + what + " has " + std::to_string(n) +
+                              " items but only " + std::to_string(remaining()) + " bytes remain");
+    }
+    out.resize(std::size_t(n));
+    for (double& v : out) v = read(t, what);
   }
 
  private:
@@ -161,20 +177,29 @@ float srgbToLinear(float c) {
   return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
 }
 
-}  // namespace
+// The header: elements and properties in file order, the format, where the body starts.
+struct Header {
+  std::vector<Element> elements;
+  Format format = Format::Ascii;
+  std::size_t body = 0;
+  const Element* find(const std::string& element) const {
+    for (const Element& e : elements)
+      if (e.name == element) return &e;
+    return nullptr;
+  }
+};
 
-Strands parsePly(const uint8_t* data, std::size_t size, const std::string& name,
-                 uint32_t pointsPerStrand) {
+Header parseHeader(const uint8_t* data, std::size_t size, const std::string& name) {
   using detail::fail;
   if (data == nullptr || size < 4 || std::memcmp(data, "ply", 3) != 0 ||
       (data[3] != '\n' && data[3] != '\r')) {
     fail(name, "not a PLY file (does not start with \"ply\")");
   }
 
-  // --- header ---
-  std::vector<Element> elements;
+  Header h;
+  std::vector<Element>& elements = h.elements;
+  Format& format = h.format;
   bool haveFormat = false, haveEnd = false;
-  Format format = Format::Ascii;
   std::size_t pos = 0;
   int lineNo = 0;
   while (pos < size) {
@@ -249,6 +274,71 @@ Strands parsePly(const uint8_t* data, std::size_t size, const std::string& name,
   if (!haveFormat) fail(name, "PLY header has no format line");
   if (!haveEnd) fail(name, "PLY header has no end_header line");
 
+  h.body = pos;
+  return h;
+}
+
+// Reads the body's elements in file order: start(e) before an element's items, then
+// item(e, i, values, list) for each: its scalar values by property index and, for the
+// property `keep` (a list of e, or null), its items; every other list is skipped.
+void readBody(const Header& h, const uint8_t* data, std::size_t size, const std::string& name,
+              const Property* keep, const std::function<void(const Element&)>& start,
+              const std::function<void(const Element&, uint64_t, const std::vector<double>&,
+                                       const std::vector<double>&)>& item) {
+  BodyReader in(data, size, h.body, h.format, name);
+  std::vector<double> values, list;
+  for (const Element& e : h.elements) {
+    if (e.props.empty()) continue;  // no data to read
+    // Cheap sanity check before any allocation or long loop: each item needs at least
+    // this many bytes (binary) or one character (ascii).
+    uint64_t minBytes = 0;
+    for (const Property& p : e.props) minBytes += p.isList ? p.countType.size : p.type.size;
+    if (h.format == Format::Ascii) minBytes = 1;
+    if (e.count > in.remaining() / minBytes) {
+      detail::fail(name, "truncated: element '" + e.name + "' declares " + std::to_string(e.count) +
+                             " items but only " + std::to_string(in.remaining()) + " bytes remain");
+    }
+    start(e);
+    values.assign(e.props.size(), 0.0);
+    for (uint64_t i = 0; i < e.count; ++i) {
+      for (std::size_t k = 0; k < e.props.size(); ++k) {
+        const Property& p = e.props[k];
+        if (p.isList) {
+          const double n = in.read(p.countType, e.name + " list count '" + p.name + "'");
+          if (n < 0) detail::fail(name, "negative list count in " + e.name + " '" + p.name + "'");
+          const std::string what = "'" + p.name + "' of " + e.name;
+          if (&p == keep)
+            in.readList(uint64_t(n), p.type, what, list);
+          else
+            in.skip(uint64_t(n), p.type, what);
+        } else {
+          values[k] = in.read(p.type, e.name + " " + std::to_string(i) + " '" + p.name + "'");
+        }
+      }
+      item(e, i, values, list);
+    }
+  }
+}
+
+// The index of scalar property `prop` of e, or -1; a list of that name is an error.
+int findScalar(const Element& e, const char* prop, const std::string& name) {
+  for (std::size_t i = 0; i < e.props.size(); ++i) {
+    if (e.props[i].name == prop) {
+      if (e.props[i].isList) detail::fail(name, std::string("property '") + prop + "' is a list");
+      return int(i);
+    }
+  }
+  return -1;
+}
+
+}  // namespace
+
+Strands parsePly(const uint8_t* data, std::size_t size, const std::string& name,
+                 uint32_t pointsPerStrand) {
+  using detail::fail;
+  const Header header = parseHeader(data, size, name);
+  const std::vector<Element>& elements = header.elements;
+
   // --- locate the vertex, strand and face elements and their properties ---
   const Element* vertex = nullptr;
   const Element* strand = nullptr;
@@ -260,8 +350,10 @@ Strands parsePly(const uint8_t* data, std::size_t size, const std::string& name,
   }
   if (!vertex) fail(name, "PLY has no 'vertex' element");
   if (!strand && face && face->count > 0) {
-    fail(name, "is a triangle mesh (element 'face', " + plural(face->count, "face") +
-                   ") with no strands; a mesh goes in mesh= (as an OBJ file), strands in path=");
+    fail(name,
+         "is a triangle mesh (element 'face', " + plural(face->count, "face") +
+             ") with no strands; a mesh goes in mesh= (OBJ, PLY or TressFX .tfxmesh), strands in "
+             "path=");
   }
   if (!strand && pointsPerStrand == 0) {
     fail(name, "PLY has no 'strand' element (segments per strand); if its " +
@@ -286,23 +378,14 @@ Strands parsePly(const uint8_t* data, std::size_t size, const std::string& name,
                    plural(vertex->count / pointsPerStrand, "strand") + " and " +
                    std::to_string(vertex->count % pointsPerStrand) + " left over)");
   }
-  auto findScalar = [&](const Element& e, const char* prop) -> int {
-    for (std::size_t i = 0; i < e.props.size(); ++i) {
-      if (e.props[i].name == prop) {
-        if (e.props[i].isList) fail(name, std::string("property '") + prop + "' is a list");
-        return int(i);
-      }
-    }
-    return -1;
-  };
-  const int ix = findScalar(*vertex, "x"), iy = findScalar(*vertex, "y"),
-            iz = findScalar(*vertex, "z");
+  auto scalar = [&](const Element& e, const char* prop) { return findScalar(e, prop, name); };
+  const int ix = scalar(*vertex, "x"), iy = scalar(*vertex, "y"), iz = scalar(*vertex, "z");
   if (ix < 0 || iy < 0 || iz < 0) fail(name, "vertex element lacks an x, y or z property");
-  const int ir = findScalar(*vertex, "red"), ig = findScalar(*vertex, "green"),
-            ib = findScalar(*vertex, "blue");
+  const int ir = scalar(*vertex, "red"), ig = scalar(*vertex, "green"),
+            ib = scalar(*vertex, "blue");
   const bool hasColor = ir >= 0 && ig >= 0 && ib >= 0;
-  const int ia = findScalar(*vertex, "alpha");
-  int ic = strand ? findScalar(*strand, "nsegs") : 0;
+  const int ia = scalar(*vertex, "alpha");
+  int ic = strand ? scalar(*strand, "nsegs") : 0;
   if (strand && ic < 0) {
     for (std::size_t i = 0; i < strand->props.size(); ++i) {
       if (!strand->props[i].isList && !strand->props[i].type.isFloat) {
@@ -318,78 +401,56 @@ Strands parsePly(const uint8_t* data, std::size_t size, const std::string& name,
   }
 
   // --- body ---
-  BodyReader in(data, size, pos, format, name);
   Strands s;
-  std::vector<double> values;
-  for (const Element& e : elements) {
-    if (e.props.empty()) continue;  // no data to read
-    // Cheap sanity check before any allocation or long loop: each item needs at least
-    // this many bytes (binary) or one character (ascii).
-    uint64_t minBytes = 0;
-    for (const Property& p : e.props) minBytes += p.isList ? p.countType.size : p.type.size;
-    if (format == Format::Ascii) minBytes = 1;
-    if (e.count > in.remaining() / minBytes) {
-      fail(name, "truncated: element '" + e.name + "' declares " + std::to_string(e.count) +
-                     " items but only " + std::to_string(in.remaining()) + " bytes remain");
-    }
-    const bool isVertex = &e == vertex, isStrand = &e == strand;
-    if (isVertex) {
+  auto start = [&](const Element& e) {
+    if (&e == vertex) {
       s.points.resize(e.count);
       if (hasColor) s.colors.resize(e.count);
       if (ia >= 0) s.transparency.resize(e.count);
     }
-    if (isStrand) s.pointCount.resize(e.count);
-    values.assign(e.props.size(), 0.0);
-    for (uint64_t i = 0; i < e.count; ++i) {
-      for (std::size_t k = 0; k < e.props.size(); ++k) {
-        const Property& p = e.props[k];
-        if (p.isList) {
-          const double n = in.read(p.countType, e.name + " list count '" + p.name + "'");
-          if (n < 0) fail(name, "negative list count in " + e.name + " '" + p.name + "'");
-          in.skip(uint64_t(n), p.type, "'" + p.name + "' of " + e.name);
-        } else {
-          values[k] = in.read(p.type, e.name + " " + std::to_string(i) + " '" + p.name + "'");
-        }
+    if (&e == strand) s.pointCount.resize(e.count);
+  };
+  auto item = [&](const Element& e, uint64_t i, const std::vector<double>& values,
+                  const std::vector<double>&) {
+    if (&e == vertex) {
+      const glm::vec3 v{float(values[std::size_t(ix)]), float(values[std::size_t(iy)]),
+                        float(values[std::size_t(iz)])};
+      if (!detail::finite3(v)) {
+        fail(name, "vertex " + std::to_string(i) + " has a NaN or infinite coordinate");
       }
-      if (isVertex) {
-        const glm::vec3 v{float(values[std::size_t(ix)]), float(values[std::size_t(iy)]),
-                          float(values[std::size_t(iz)])};
-        if (!detail::finite3(v)) {
-          fail(name, "vertex " + std::to_string(i) + " has a NaN or infinite coordinate");
-        }
-        s.points[i] = v;
-        if (hasColor) {
-          glm::vec3 c;
-          const int idx[3] = {ir, ig, ib};
-          for (int j = 0; j < 3; ++j) {
-            const std::size_t k = std::size_t(idx[j]);
-            const Type& t = e.props[k].type;
-            // Float colours are taken as linear, integer ones as sRGB.
-            c[j] = t.isFloat ? float(values[k]) : srgbToLinear(unitFromInteger(values[k], t));
-          }
-          if (!detail::finite3(c)) {
-            fail(name, "colour of vertex " + std::to_string(i) + " is NaN or infinite");
-          }
-          s.colors[i] = c;
-        }
-        if (ia >= 0) {
-          // Alpha is opacity; the renderer's per-point transparency is 1 - alpha.
-          const std::size_t k = std::size_t(ia);
+      s.points[i] = v;
+      if (hasColor) {
+        glm::vec3 c;
+        const int idx[3] = {ir, ig, ib};
+        for (int j = 0; j < 3; ++j) {
+          const std::size_t k = std::size_t(idx[j]);
           const Type& t = e.props[k].type;
-          const double a = t.isFloat ? values[k] : double(unitFromInteger(values[k], t));
-          if (std::isnan(a)) fail(name, "alpha of vertex " + std::to_string(i) + " is NaN");
-          s.transparency[i] = 1.0f - float(std::clamp(a, 0.0, 1.0));
+          // Float colours are taken as linear, integer ones as sRGB.
+          c[j] = t.isFloat ? float(values[k]) : srgbToLinear(unitFromInteger(values[k], t));
         }
-      } else if (isStrand) {
-        const double n = values[std::size_t(ic)];
-        if (n < 0) fail(name, "strand " + std::to_string(i) + " has a negative segment count");
-        if (n >= double(std::numeric_limits<uint32_t>::max())) {
-          fail(name, "strand " + std::to_string(i) + " has too many segments");
+        if (!detail::finite3(c)) {
+          fail(name, "colour of vertex " + std::to_string(i) + " is NaN or infinite");
         }
-        s.pointCount[i] = uint32_t(n) + 1;
+        s.colors[i] = c;
       }
+      if (ia >= 0) {
+        // Alpha is opacity; the renderer's per-point transparency is 1 - alpha.
+        const std::size_t k = std::size_t(ia);
+        const Type& t = e.props[k].type;
+        const double a = t.isFloat ? values[k] : double(unitFromInteger(values[k], t));
+        if (std::isnan(a)) fail(name, "alpha of vertex " + std::to_string(i) + " is NaN");
+        s.transparency[i] = 1.0f - float(std::clamp(a, 0.0, 1.0));
+      }
+    } else if (&e == strand) {
+      const double n = values[std::size_t(ic)];
+      if (n < 0) fail(name, "strand " + std::to_string(i) + " has a negative segment count");
+      if (n >= double(std::numeric_limits<uint32_t>::max())) {
+        fail(name, "strand " + std::to_string(i) + " has too many segments");
+      }
+      s.pointCount[i] = uint32_t(n) + 1;
     }
-  }
+  };
+  readBody(header, data, size, name, nullptr, start, item);
 
   if (!strand) s.pointCount.assign(std::size_t(vertex->count / pointsPerStrand), pointsPerStrand);
   uint64_t total = 0;
@@ -408,6 +469,72 @@ Strands parsePly(const uint8_t* data, std::size_t size, const std::string& name,
   s.thickness.assign(n, detail::kDefaultThickness);
   if (ia < 0) s.transparency.assign(n, 0.0f);
   return s;
+}
+
+}  // namespace sb
+
+namespace sb {
+
+Mesh parsePlyMesh(const uint8_t* data, std::size_t size, const std::string& name) {
+  using detail::fail;
+  const Header header = parseHeader(data, size, name);
+  const Element* vertex = header.find("vertex");
+  const Element* face = header.find("face");
+  if (!vertex) fail(name, "PLY has no 'vertex' element");
+  if (!face || face->count == 0) {
+    fail(name, std::string("PLY has no faces (element 'face'): not a triangle mesh") +
+                   (header.find("strand") ? "; strands go in path=" : ""));
+  }
+  if (vertex->count == 0) fail(name, "PLY has zero vertices");
+  if (vertex->count > std::numeric_limits<uint32_t>::max()) {
+    fail(name, "too many vertices (" + std::to_string(vertex->count) + ")");
+  }
+  auto scalar = [&](const Element& e, const char* prop) { return findScalar(e, prop, name); };
+  const int ix = scalar(*vertex, "x"), iy = scalar(*vertex, "y"), iz = scalar(*vertex, "z");
+  if (ix < 0 || iy < 0 || iz < 0) fail(name, "vertex element lacks an x, y or z property");
+  const int inx = scalar(*vertex, "nx"), iny = scalar(*vertex, "ny"), inz = scalar(*vertex, "nz");
+  const bool hasNormals = inx >= 0 && iny >= 0 && inz >= 0;
+  // The face's vertex index list: "vertex_indices" (the PLY paper's name) or "vertex_index".
+  const Property* indices = nullptr;
+  for (const Property& p : face->props)
+    if (p.isList && (p.name == "vertex_indices" || p.name == "vertex_index")) indices = &p;
+  if (!indices) fail(name, "face element has no list property 'vertex_indices'");
+  if (indices->type.isFloat) fail(name, "face property 'vertex_indices' must be an integer list");
+
+  Mesh m;
+  std::vector<glm::vec3> normals;
+  auto start = [&](const Element& e) {
+    if (&e != vertex) return;
+    m.positions.resize(e.count);
+    if (hasNormals) normals.resize(e.count);
+  };
+  auto item = [&](const Element& e, uint64_t i, const std::vector<double>& values,
+                  const std::vector<double>& list) {
+    auto vec = [&](int x, int y, int z) {
+      return glm::vec3{float(values[std::size_t(x)]), float(values[std::size_t(y)]),
+                       float(values[std::size_t(z)])};
+    };
+    if (&e == vertex) {
+      m.positions[i] = vec(ix, iy, iz);
+      if (!detail::finite3(m.positions[i]))
+        fail(name, "vertex " + std::to_string(i) + " has a NaN or infinite coordinate");
+      if (hasNormals && detail::finite3(vec(inx, iny, inz))) normals[i] = vec(inx, iny, inz);
+    } else if (&e == face) {
+      for (double v : list)
+        if (v < 0 || v >= double(vertex->count))
+          fail(name, "face " + std::to_string(i) + " refers to vertex " +
+                         std::to_string(int64_t(v)) + ", which does not exist");
+      // Polygons as fans of triangles (as the OBJ loader triangulates).
+      for (std::size_t k = 2; k < list.size(); ++k)
+        for (double v : {list[0], list[k - 1], list[k]}) m.indices.push_back(uint32_t(v));
+    }
+  };
+  // The faces refer to the vertices: a file that stores them first cannot be read in one pass.
+  if (face < vertex) fail(name, "element 'face' comes before element 'vertex'");
+  readBody(header, data, size, name, indices, start, item);
+  if (m.indices.empty()) fail(name, "PLY has no faces with three or more vertices");
+  detail::setNormals(m, normals);
+  return m;
 }
 
 }  // namespace sb

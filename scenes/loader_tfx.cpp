@@ -20,6 +20,11 @@
 //   strand I numVerts M texcoord U V (N times, each followed by M lines "x y z")
 // Values may also be separated by commas ("x, y, z"). Only the guide strands in the file
 // are drawn (follow hairs are generated at run time by TressFX, as for the binary form).
+//
+// The .tfxmesh beside a .tfx (TressFX 4's exporter, Ratboy_body.tfxmesh) is text too:
+// '#' comment lines; "numOfBones N" and N lines "index name"; "numOfVertices N" and N
+// lines "index x y z nx ny nz" followed by four joint indices and four weights (skinning,
+// not read); "numOfTriangles N" and N lines "index a b c".
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -27,6 +32,7 @@
 #include <string_view>
 
 #include "scenes/loader_util.h"
+#include "scenes/mesh_loaders.h"
 #include "scenes/scene.h"
 
 namespace sb {
@@ -385,6 +391,62 @@ Strands parseTfx(const uint8_t* data, std::size_t size, const std::string& name,
   s.thickness.assign(numPoints, detail::kDefaultThickness);
   s.transparency.assign(numPoints, 0.0f);
   return s;
+}
+
+Mesh parseTfxMesh(const uint8_t* data, std::size_t size, const std::string& name) {
+  TextReader in(data, size, name);
+  std::vector<std::string_view> t;
+  auto next = [&] {  // the next line that is not a '#' comment
+    while (in.next(t))
+      if (t[0].front() != '#') return true;
+    return false;
+  };
+  constexpr const char* kLayout =
+      "a TressFX .tfxmesh has numOfBones N, numOfVertices N and numOfTriangles N, each followed "
+      "by its N lines";
+  // "keyword N", then N lines of at least `values` values, the first the line's index.
+  auto block = [&](const std::string& keyword, std::size_t values, const std::string& what,
+                   const auto& take) {
+    if (!next()) detail::fail(name, "ends before '" + keyword + "' (" + kLayout + ")");
+    if (t[0] != keyword)
+      in.fail("expected '" + keyword + " N', found " + TextReader::quote(t[0]) + " (" + kLayout +
+              ")");
+    in.expectCount(t, 1);
+    const int64_t n = in.integer(t[1], 0, std::numeric_limits<uint32_t>::max(), keyword);
+    for (int64_t i = 0; i < n; ++i) {
+      if (!next())
+        detail::fail(name, "ends after " + std::to_string(i) + " of the " + std::to_string(n) +
+                               " lines of " + keyword);
+      if (t.size() < values)
+        in.fail(what + " " + std::to_string(i) + " has " + std::to_string(t.size()) +
+                " values, not " + std::to_string(values) + " or more");
+      if (in.integer(t[0], 0, n - 1, what + " index") != i)
+        in.fail(what + " index " + std::string(t[0]) + " where " + std::to_string(i) +
+                " was expected");
+      take();
+    }
+  };
+  Mesh m;
+  std::vector<glm::vec3> normals;
+  auto vec = [&](std::size_t at, const char* what) {
+    return glm::vec3(in.number(t[at], what), in.number(t[at + 1], what),
+                     in.number(t[at + 2], what));
+  };
+  block("numOfBones", 2, "bone", [] {});  // skinning: not drawn
+  // index, position, normal, then joints and weights (skinning: not read).
+  block("numOfVertices", 7, "vertex", [&] {
+    m.positions.push_back(vec(1, "vertex position"));
+    normals.push_back(vec(4, "vertex normal"));
+  });
+  block("numOfTriangles", 4, "triangle", [&] {
+    for (std::size_t k = 1; k <= 3; ++k)
+      m.indices.push_back(uint32_t(in.integer(
+          t[k], 0, int64_t(m.positions.size()) - 1,
+          "triangle vertex index (of " + std::to_string(m.positions.size()) + " vertices)")));
+  });
+  if (m.indices.empty()) detail::fail(name, "has no triangles");
+  detail::setNormals(m, normals);
+  return m;
 }
 
 }  // namespace sb

@@ -18,6 +18,10 @@ std::vector<uint8_t> readFileBytes(const std::string& path);
 // "<name>: <what>" as an InputError.
 [[noreturn]] void fail(const std::string& name, const std::string& what);
 
+// The mesh's normals: `given` (per position) where it is not zero, else
+// area-weighted from the triangles; unit length. `given` may be empty.
+void setNormals(Mesh& m, const std::vector<glm::vec3>& given);
+
 inline bool finite3(const glm::vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }

@@ -7,8 +7,10 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <string_view>
 
 #include "scenes/loader_util.h"
+#include "scenes/mesh_loaders.h"
 
 namespace sb {
 
@@ -122,7 +124,43 @@ std::vector<uint8_t> readFileBytes(const std::string& path) {
       !in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()))) {
     throw InputError("cannot read '" + path + "': read failed");
   }
+  // A repository's large file not fetched: its place holds git-lfs's pointer
+  // ("version https://git-lfs.github.com/spec/v1", "oid sha256:...", "size N"),
+  // which every loader would call short or malformed.
+  static constexpr std::string_view kLfs = "version https://git-lfs.github.com/spec/";
+  if (bytes.size() >= kLfs.size() && std::equal(kLfs.begin(), kLfs.end(), bytes.begin())) {
+    const std::string text(bytes.begin(), bytes.end());
+    std::string size;  // the real file's, when the pointer says
+    if (const std::size_t at = text.find("\nsize "); at != std::string::npos) {
+      const std::size_t digits = text.find_first_not_of("0123456789", at + 6);
+      if (digits > at + 6) size = " (of " + text.substr(at + 6, digits - (at + 6)) + " bytes)";
+    }
+    throw InputError(path + ": an unfetched git-lfs pointer, not the file itself" + size +
+                     ": run `git lfs pull` in its repository to fetch it (git-lfs must be "
+                     "installed)");
+  }
   return bytes;
+}
+
+void setNormals(Mesh& m, const std::vector<glm::vec3>& given) {
+  const std::size_t n = m.positions.size();
+  // Area-weighted normals (the cross product's length is twice the triangle area).
+  std::vector<glm::vec3> computed(n, glm::vec3(0.0f));
+  for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+    const uint32_t a = m.indices[t], b = m.indices[t + 1], c = m.indices[t + 2];
+    const glm::vec3 cross =
+        glm::cross(m.positions[b] - m.positions[a], m.positions[c] - m.positions[a]);
+    computed[a] += cross;
+    computed[b] += cross;
+    computed[c] += cross;
+  }
+  m.normals.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    glm::vec3 v = given.empty() ? computed[i] : given[i];
+    if (!(glm::dot(v, v) > 1e-30f)) v = computed[i];
+    const float len2 = glm::dot(v, v);
+    m.normals[i] = len2 > 1e-30f && std::isfinite(len2) ? v / std::sqrt(len2) : glm::vec3(0, 1, 0);
+  }
 }
 
 }  // namespace detail
@@ -142,8 +180,10 @@ Strands loadPly(const std::string& path, uint32_t pointsPerStrand) {
   return parsePly(bytes.data(), bytes.size(), path, pointsPerStrand);
 }
 
-Strands loadStrandFile(const std::string& path, uint32_t pointsPerStrand,
-                       std::vector<std::string>* warnings) {
+namespace {
+
+// ".ply" for "a/b.PLY"; "" without one.
+std::string lowerExtension(const std::string& path) {
   const std::size_t dot = path.find_last_of('.');
   const std::size_t slash = path.find_last_of('/');
   std::string ext;
@@ -151,6 +191,26 @@ Strands loadStrandFile(const std::string& path, uint32_t pointsPerStrand,
     ext = path.substr(dot);
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   }
+  return ext;
+}
+
+}  // namespace
+
+Mesh loadMesh(const std::string& path) {
+  const std::string ext = lowerExtension(path);
+  if (ext == ".obj") return loadObj(path);
+  if (ext != ".ply" && ext != ".tfxmesh")
+    throw InputError(
+        path + ": mesh= takes OBJ (.obj), PLY (.ply) and TressFX (.tfxmesh) meshes, " +
+        (ext.empty() ? std::string("not a file without an extension") : "not '" + ext + "'"));
+  const std::vector<uint8_t> bytes = detail::readFileBytes(path);
+  return ext == ".ply" ? parsePlyMesh(bytes.data(), bytes.size(), path)
+                       : parseTfxMesh(bytes.data(), bytes.size(), path);
+}
+
+Strands loadStrandFile(const std::string& path, uint32_t pointsPerStrand,
+                       std::vector<std::string>* warnings) {
+  const std::string ext = lowerExtension(path);
   if (ext == ".ply") return loadPly(path, pointsPerStrand);
   if (pointsPerStrand != 0 && (ext == ".hair" || ext == ".tfx")) {
     throw InputError(path + ": points_per_strand= applies to .ply files only (a " + ext +

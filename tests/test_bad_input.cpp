@@ -168,6 +168,26 @@ TEST(BadInput, UnknownNamesGetTheClosestValidName) {
   s.expectRejected(kCheck, {"case 'typo2'", "unknown transparency technique 'pel'", "'peel'"});
 }
 
+// A mistyped command gets the closest one, as a mistyped option does; no command
+// at all prints the usage (the commands and what they do).
+TEST(BadInput, UnknownOrMissingCommand) {
+  Sandbox s;
+  s.expectRejected("rendr --size 16x16", {"unknown command 'rendr'", "did you mean 'render'"});
+  s.expectRejected("chek", {"unknown command 'chek'", "did you mean 'check'"});
+  s.expectRejected("", {"give a command", "Usage:", "render", "check", "view"});
+}
+
+// A flag given twice is named, with both values, in words (not CLI11's "At Most 1
+// required but received 2").
+TEST(BadInput, RepeatedFlagIsNamed) {
+  Sandbox s;
+  s.expectRejected("render --scene " + kScene + " --size 16x16 --size 32x32 --out {dir}/x.png",
+                   {"render: --size given 2 times (16x16, 32x32): give it once"});
+  s.expectRejected("compare {dir}/a.png {dir}/b.png --ppd 40 --ppd 60",
+                   {"compare: --ppd given 2 times (40, 60): give it once"});
+  s.expectRejected(kCheck + " --filter a --filter b --filter c", {"--filter given 3 times"});
+}
+
 // ------------------------------------------------------------------ values
 
 TEST(BadInput, OutOfRangeValues) {

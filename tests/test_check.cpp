@@ -350,6 +350,26 @@ TEST(Check, MissingBaselineIsReported) {
   EXPECT_TRUE(fs::exists(s.out / (kCase + ".vulkan.actual.png")));
 }
 
+// The hint for a missing baseline names the folder checked and the case: followed
+// as printed, it blesses that case there, not the repository's baselines.
+TEST(Check, MissingBaselineHintBlessesTheFolderChecked) {
+  Sandbox s;
+  fs::remove(s.image(kCase, "vulkan"));
+  const auto r = s.check(filterArg(kCase));
+  EXPECT_EQ(r.status, 1) << r.out << r.err;
+  const std::string hint =
+      "run `strandbench bless --baselines " + s.baselines.string() + " --filter '^" + kCase + "$'`";
+  ASSERT_NE(r.out.find(hint), std::string::npos) << r.out;
+  const std::size_t from = r.out.find(hint) + std::string("run `strandbench ").size();
+  const std::string args = r.out.substr(from, r.out.find('`', from) - from);
+  const auto committed = snapshot(kCommitted);
+  const auto b = runCli(args);
+  EXPECT_EQ(b.status, 0) << args << "\n" << b.out << b.err;
+  EXPECT_TRUE(fs::exists(s.image(kCase, "vulkan")));
+  EXPECT_EQ(s.check(filterArg(kCase)).status, 0);
+  EXPECT_EQ(snapshot(kCommitted), committed) << "the repository's baselines changed";
+}
+
 TEST(Check, MalformedManifestExits2NamingTheFile) {
   Sandbox s;
   const std::string file = (s.baselines / "manifest.json").string();

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "scenes/mesh_loaders.h"
 #include "scenes/scene.h"
 #include "test_util.h"
 
@@ -78,21 +79,32 @@ TEST(RealModels, StrandFileByExtension) {
   expectInputError([] { sb::loadStrandFile("x/model.abc"); }, {"model.abc", ".abc"});
 }
 
-TEST(RealModels, BunnyObj) {
-  REQUIRE_MODEL("stanford-bunny.obj");
-  const sb::Mesh m = sb::loadObj(path);
-  EXPECT_EQ(m.positions.size(), 35947u);
-  EXPECT_EQ(m.triangleCount(), 69451u);
+// The counts of a real mesh, unit normals, every index in range.
+void expectMesh(const sb::Mesh& m, std::size_t vertices, std::size_t triangles) {
+  EXPECT_EQ(m.positions.size(), vertices);
+  EXPECT_EQ(m.triangleCount(), triangles);
   ASSERT_EQ(m.normals.size(), m.positions.size());
   for (const glm::vec3& n : m.normals) ASSERT_NEAR(glm::length(n), 1.0f, 1e-4f);
+  for (uint32_t i : m.indices) ASSERT_LT(i, m.positions.size());
+}
+
+TEST(RealModels, BunnyObj) {
+  REQUIRE_MODEL("stanford-bunny.obj");
+  expectMesh(sb::loadObj(path), 35947, 69451);
 }
 
 TEST(RealModels, TeapotObj) {
   REQUIRE_MODEL("teapot.obj");
-  const sb::Mesh m = sb::loadObj(path);
-  EXPECT_EQ(m.positions.size(), 3644u);
-  EXPECT_EQ(m.triangleCount(), 6320u);
-  for (uint32_t i : m.indices) ASSERT_LT(i, m.positions.size());
+  expectMesh(sb::loadObj(path), 3644, 6320);
+}
+
+// The body mesh shipped beside Ratboy_mohawk.tfx (TressFX 4's text .tfxmesh).
+TEST(RealModels, RatboyBodyTfxMesh) {
+  REQUIRE_MODEL("Ratboy_body.tfxmesh");
+  expectMesh(sb::loadMesh(path), 12909, 25814);
+  const sb::Scene scene = sb::makeScene(
+      sb::Spec::parse("file:path=" + modelsDir() + "/Ratboy_mohawk.tfx,strands=100,mesh=" + path));
+  EXPECT_EQ(scene.mesh.positions.size(), 12909u);
 }
 
 TEST(RealModels, FileScene) {
@@ -119,6 +131,31 @@ TEST(Loaders, CannotOpenNamesThePath) {
   expectInputError([] { sb::makeScene(sb::Spec::parse("file:path=/nonexistent/b.hair")); },
                    {"/nonexistent/b.hair"});
   expectInputError([] { sb::makeScene(sb::Spec::parse("file")); }, {"path="});
+}
+
+// A model whose git-lfs content was never fetched is named as such, whatever its
+// format (each loader alone would call it short or malformed).
+TEST(Loaders, GitLfsPointerIsNamed) {
+  const auto dir = sbtest::tempDir("lfs");
+  const std::string pointer =
+      "version https://git-lfs.github.com/spec/v1\n"
+      "oid sha256:4d7a214614ab2935c943f9e0ff69d22eadbb8f32b1258daaa5e2ca24d17e2393\n"
+      "size 3840128\n";
+  for (const char* name : {"m.hair", "m.tfx", "m.ply", "m.obj", "m.tfxmesh"}) {
+    const std::string path = (dir / name).string();
+    std::ofstream(path) << pointer;
+    const std::vector<std::string> needles = {path, "unfetched git-lfs pointer", "3840128 bytes",
+                                              "git lfs pull"};
+    const std::string ext = std::filesystem::path(path).extension().string();
+    if (ext == ".hair" || ext == ".tfx" || ext == ".ply") {  // strands
+      expectInputError([&] { sb::loadStrandFile(path); }, needles);
+      expectInputError([&] { sb::makeScene(sb::Spec::parse("file:path=" + path)); }, needles);
+    }
+    if (ext == ".obj" || ext == ".ply" || ext == ".tfxmesh")  // meshes
+      expectInputError([&] { sb::makeScene(sb::Spec::parse("straight:strands=4,mesh=" + path)); },
+                       needles);
+  }
+  std::filesystem::remove_all(dir);
 }
 
 // ---------------------------------------------------------------- HAIR builder
@@ -778,6 +815,95 @@ TEST(ObjParser, Malformed) {
                    {"mem.obj", "no faces"});
   expectInputError([] { sb::parseObj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "mem.obj"); },
                    {"mem.obj"});
+}
+
+// ---------------------------------------------------------------- meshes (mesh=)
+
+std::string meshData(const char* file) {
+  return sbtest::readFile(std::string(SB_SOURCE_DIR) + "/tests/data/meshes/" + file);
+}
+sb::Mesh plyMesh(const std::string& t) {
+  return sb::parsePlyMesh(reinterpret_cast<const uint8_t*>(t.data()), t.size(), "mem.ply");
+}
+sb::Mesh tfxMesh(const std::string& t) {
+  return sb::parseTfxMesh(reinterpret_cast<const uint8_t*>(t.data()), t.size(), "mem.tfxmesh");
+}
+
+TEST(MeshLoaders, PlyQuadWithNormalsIsTwoTriangles) {
+  const sb::Mesh m = plyMesh(meshData("quad.ply"));
+  EXPECT_EQ(m.positions.size(), 4u);
+  ASSERT_EQ(m.triangleCount(), 2u);
+  EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3}));
+  for (const glm::vec3& n : m.normals) EXPECT_NEAR(n.z, 1.0f, 1e-6f);
+  // Without normals they are computed; binary bodies read as the strands' do.
+  std::string b =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+      "property float y\nproperty float z\nelement face 1\n"
+      "property list uchar uint vertex_index\nend_header\n";
+  for (float v : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f})
+    b.append(reinterpret_cast<char*>(&v), 4);
+  b += '\x03';
+  for (uint32_t i : {0u, 1u, 2u}) b.append(reinterpret_cast<char*>(&i), 4);
+  const sb::Mesh tri = plyMesh(b);
+  ASSERT_EQ(tri.triangleCount(), 1u);
+  for (const glm::vec3& n : tri.normals) EXPECT_NEAR(n.z, 1.0f, 1e-6f);
+}
+
+TEST(MeshLoaders, TfxMeshQuad) {
+  const sb::Mesh m = tfxMesh(meshData("quad.tfxmesh"));  // CRLF, '#' comments, bones
+  EXPECT_EQ(m.positions.size(), 4u);
+  EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3}));
+  EXPECT_EQ(m.positions[2], glm::vec3(1, 1, 0));
+  for (const glm::vec3& n : m.normals) EXPECT_NEAR(n.z, 1.0f, 1e-6f);
+}
+
+TEST(MeshLoaders, MalformedMeshesNameFileAndProblem) {
+  const std::string head =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\n";
+  expectInputError([&] { plyMesh(head + "end_header\n0 0 0\n1 0 0\n0 1 0\n"); },
+                   {"mem.ply", "no faces"});
+  expectInputError(
+      [&] {
+        plyMesh(head +
+                "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                "0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n");
+      },
+      {"mem.ply", "face 0", "vertex 7"});
+  expectInputError(
+      [&] {
+        plyMesh(head +
+                "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                "0 0 0\n1 0 0\n0 1 0\n3 0 1\n");
+      },
+      {"mem.ply", "truncated"});
+  expectInputError([&] { plyMesh("solid stl\n"); }, {"mem.ply", "not a PLY file"});
+  const std::string tfx = meshData("quad.tfxmesh");
+  expectInputError([&] { tfxMesh(""); }, {"mem.tfxmesh", "numOfBones"});
+  expectInputError([&] { tfxMesh(tfx.substr(0, tfx.find("numOfTriangles"))); },
+                   {"mem.tfxmesh", "numOfTriangles"});
+  expectInputError([&] { tfxMesh(tfx.substr(0, tfx.find("3 0 1 0 0 0 1"))); },
+                   {"mem.tfxmesh", "ends after 3 of the 4 lines of numOfVertices"});
+  std::string bad = tfx;
+  bad.replace(bad.find("1 0 2 3"), 7, "1 0 2 9");
+  expectInputError([&] { tfxMesh(bad); }, {"mem.tfxmesh", "line", "9", "out of range"});
+  bad = tfx;
+  bad.replace(bad.find("1 1 0 0 0 1"), 3, "1 x");
+  expectInputError([&] { tfxMesh(bad); }, {"mem.tfxmesh", "'x' is not a finite number"});
+}
+
+// mesh= reads by extension; a file of another format is not called an empty OBJ.
+TEST(MeshLoaders, LoadMeshByExtension) {
+  const std::string data = std::string(SB_SOURCE_DIR) + "/tests/data/meshes/";
+  EXPECT_EQ(sb::loadMesh(data + "quad.ply").triangleCount(), 2u);
+  EXPECT_EQ(sb::loadMesh(data + "quad.tfxmesh").triangleCount(), 2u);
+  const auto dir = sbtest::tempDir("mesh-ext");
+  const std::string stl = (dir / "part.stl").string();
+  std::ofstream(stl) << "solid part\nendsolid part\n";
+  for (const std::string& scene : {"straight:strands=4,mesh=" + stl, "fur:strands=4,mesh=" + stl})
+    expectInputError([&] { sb::makeScene(sb::Spec::parse(scene)); },
+                     {stl, "mesh= takes OBJ (.obj), PLY (.ply) and TressFX (.tfxmesh)", "'.stl'"});
+  std::filesystem::remove_all(dir);
 }
 
 // ---------------------------------------------------------------- file scene options

@@ -1,4 +1,4 @@
-// mboit on GL and Vulkan, stage by stage (issue 14's parity problem): the
+// mboit on GL and Vulkan, stage by stage (their images once differed): the
 // moment targets both backends accumulate are compared bit for bit, then the
 // accumulation that reconstructs the transmittance from them and the final
 // colour are measured. The moments agree exactly (the warp, the products and

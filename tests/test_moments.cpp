@@ -1,4 +1,4 @@
-// Moments (issues 14 and 15): the trigonometric moments of moment-based OIT
+// Moments (transparency and shadows): the trigonometric moments of moment-based OIT
 // (Muenstermann et al. 2018) on the CPU, through the GLSL header both mboit
 // and msm compile (techniques/mboit/mboit_math.glsl), against an exact
 // compositing of the same fragments: alpha 0 and 1, one and thousands of

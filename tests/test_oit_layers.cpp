@@ -1,4 +1,4 @@
-// Transparency by layers and moments (issue 14, part B): kbuffer (TressFX 4's
+// Transparency by layers and moments: kbuffer (TressFX 4's
 // k-buffer over per-pixel lists), mlab (Salvi & Vaidyanathan 2014, merged in
 // primitive order in a resolve where there is no fragment-shader interlock)
 // and mboit (Muenstermann et al. 2018, power moments). First their math

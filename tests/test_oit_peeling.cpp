@@ -1,4 +1,4 @@
-// Issue 14, part A: stochastic transparency (Enderton et al. 2010) on
+// Stochastic transparency (Enderton et al. 2010) on
 // multisampled targets, and the classic and dual depth peels. The math on the
 // CPU (stochastic_math.h: the same code the shaders compile), then on both
 // backends against the exact reference (peel): stochastic error falls with

@@ -1,4 +1,4 @@
-// Issue 17, "the techniques as the papers define them": DOM's first pass as
+// The techniques as the papers define them: DOM's first pass as
 // the paper's depth map (depth-only, no colour targets), point lights sliced
 // and looked up in linear light distance (light_space.glsl's lightDistance,
 // shared by OSM, DOM, DC and occupancy), the OSM paper's 3x3 averaging

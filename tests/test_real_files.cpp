@@ -94,6 +94,44 @@ TEST(RealFilesCli, FilesThatAreNotStrandsSayWhatToGive) {
   std::filesystem::remove_all(dir);
 }
 
+// mesh= takes TressFX's .tfxmesh (the mesh beside a .tfx) and PLY meshes as well as
+// OBJ; another format is named, not read as an OBJ without vertices.
+TEST(RealFilesCli, MeshOptionTakesTfxMeshAndPly) {
+  const auto dir = tempDir("meshes");
+  const std::string data = std::string(SB_SOURCE_DIR) + "/tests/data/meshes/";
+  for (const char* mesh : {"quad.tfxmesh", "quad.ply"}) {
+    const nlohmann::json j =
+        renderJson("straight:strands=20,points=4,mesh=" + data + mesh, "gl", dir / "o.png");
+    ASSERT_FALSE(j.is_null()) << mesh;
+    EXPECT_TRUE(std::filesystem::exists(dir / "o.png")) << mesh;
+    std::filesystem::remove(dir / "o.png");
+  }
+  const std::string stl = write(dir / "part.stl", "solid part\nendsolid part\n");
+  const auto r = runCli("render --scene 'straight:strands=20,mesh=" + stl + "' --out " +
+                        (dir / "o.png").string());
+  EXPECT_EQ(r.status, 2) << r.err;
+  for (const char* n : {"part.stl", "OBJ (.obj), PLY (.ply) and TressFX (.tfxmesh)"})
+    EXPECT_NE(r.err.find(n), std::string::npos) << r.err << "\nlacks " << n;
+  EXPECT_EQ(r.err.find("OBJ has no vertices"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "o.png"));
+  std::filesystem::remove_all(dir);
+}
+
+// The TressFX body mesh shipped beside Ratboy_mohawk.tfx, with its strands.
+TEST(RealFilesCli, RatboyWithItsBodyMesh) {
+  const std::string models = std::string(SB_SOURCE_DIR) + "/../shared/models/";
+  if (!std::filesystem::exists(models + "Ratboy_body.tfxmesh"))
+    GTEST_SKIP() << "../shared/models not found: " << models << "Ratboy_body.tfxmesh is missing";
+  const auto dir = tempDir("ratboy");
+  const nlohmann::json j =
+      renderJson("file:path=" + models + "Ratboy_mohawk.tfx,strands=200,mesh=" + models +
+                     "Ratboy_body.tfxmesh",
+                 "gl", dir / "o.png");
+  ASSERT_FALSE(j.is_null());
+  EXPECT_EQ(j["scene"]["strands"], 200);
+  std::filesystem::remove_all(dir);
+}
+
 TEST(RealFilesCli, TextTressFxRenders) {
   const auto dir = tempDir("tfxtext");
   std::string t =

@@ -365,6 +365,37 @@ TEST(ReportWriterInput, SparseDocumentsGiveReports) {
   fs::remove_all(dir);
 }
 
+// occ-fig2's chart: its no-transparency point (occupancy shadows) beside the
+// occupancy-ordered one (occupancy shadows) is labelled "none + occupancy", not
+// "occupancy"; a chart of shadow techniques alone keeps the shadow's name.
+TEST(ReportWriterInput, PointWithoutTransparencyNamesItBesideTransparencyTechniques) {
+  const fs::path dir = sbtest::tempDir("report-labels");
+  json results = json::array();
+  int index = 0;
+  for (const char* oit : {"none", "occupancy"}) {
+    json r = makeResult(oit, {{"backend", "gl"}}, index, 2.0 + index, 1.0);
+    r["shadow"] = "occupancy";
+    r["oit"] = oit;
+    results.push_back(r);
+    ++index;
+  }
+  sb::writeReports({{"results", results}}, dir);
+  const std::string html = sbtest::readFile(dir / "report.html");
+  EXPECT_NE(html.find(">none + occupancy</text>"), std::string::npos);
+  EXPECT_NE(html.find(">occupancy + occupancy</text>"), std::string::npos);
+  EXPECT_EQ(html.find(">occupancy</text>"), std::string::npos);
+  EXPECT_NE(html.find("none + occupancy</td>"), std::string::npos);  // the budget table
+
+  json shadowsOnly = results;
+  shadowsOnly[1]["oit"] = "none";
+  shadowsOnly[1]["shadow"] = "dom:layers=3";
+  sb::writeReports({{"results", shadowsOnly}}, dir);
+  const std::string plain = sbtest::readFile(dir / "report.html");
+  EXPECT_NE(plain.find(">occupancy</text>"), std::string::npos);
+  EXPECT_EQ(plain.find("none + "), std::string::npos);
+  fs::remove_all(dir);
+}
+
 TEST(ReportWriterInput, UnwritableFolderIsAnInputError) {
   const fs::path dir = sbtest::tempDir("report-bad");
   sbtest::expectInputError([&] { sb::writeReports(json::object(), dir / "missing"); },
@@ -412,7 +443,7 @@ TEST(ReportBrowser, LoadsOfflineWithoutConsoleErrors) {
   EXPECT_NE(page.dom.find("<table>"), std::string::npos);
   EXPECT_NE(page.dom.find("class=\"chart-error-time\""), std::string::npos);
   EXPECT_NE(page.dom.find("class=\"pareto-frontier\""), std::string::npos);
-  // The charts of issue 18: FLIP as a third error axis, every point labelled
+  // The error charts: FLIP as a third error axis, every point labelled
   // with its technique and a bar for its spread over repetitions, error
   // against depth complexity per technique, the budget table, the animation.
   for (const char* needle :

@@ -1,5 +1,5 @@
 // Adaptive volumetric shadow maps (Salvi et al. 2010) and voxelized hair
-// density (Unreal, vkhr), issue 15: the math shared with the GLSL is tested
+// density (Unreal, vkhr): the math shared with the GLSL is tested
 // on the CPU (AVSM's node removal against a brute-force search of the least
 // area change, the voxel march against the exact count), and both backends
 // render against the exact visibility, with the issue's ordering: avsm with 8

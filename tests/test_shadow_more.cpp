@@ -1,4 +1,4 @@
-// Shadow techniques beyond the seed papers (issue 15), judged against the
+// Shadow techniques beyond the seed papers, judged against the
 // exact visibility: deep shadow maps (Lokovic & Veach 2000). The math shared
 // with the GLSL is tested on the CPU against a brute-force check of the
 // epsilon bound; the GPU tests render both backends against the exact

@@ -2,6 +2,7 @@
 // reference computed once (and not at all when no case needs it), bad input.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <nlohmann/json.hpp>
 #include <regex>
 
@@ -296,6 +297,30 @@ TEST(Sweep, RoundsInterleaveAGroupsCasesAndAdaptToTheTarget) {
     EXPECT_EQ(r.status, 2) << bad;
     EXPECT_FALSE(fs::exists(dir / "e")) << bad;
   }
+  fs::remove_all(dir);
+}
+
+// The line a sweep prints per case shows the statistic the report uses: the
+// median over all its rounds (frame_ms.median of its result), not its first
+// round's time.
+TEST(Sweep, CaseLineShowsTheReportsMedian) {
+  const fs::path dir = tempDir("sweep-line");
+  const fs::path suite = writeSuite(dir, kTinySuite, "tiny.json");
+  const CliResult r = runCli("sweep " + suite.string() + " --filter '^shadows/' --min-reps 5 " +
+                             "--out " + (dir / "a").string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  int cases = 0;
+  for (const auto& e : fs::directory_iterator(dir / "a" / "cases")) {
+    const json c = json::parse(readFile(e.path()));
+    ASSERT_EQ(c["frame_ms"]["samples"].size(), 5u);
+    char median[32];
+    std::snprintf(median, sizeof median, "%.2f", c["frame_ms"]["median"].get<double>());
+    const std::string id = c["case"]["id"].get<std::string>();
+    const std::string line = "] " + id + "  frame " + median + " ms";
+    EXPECT_NE(r.out.find(line), std::string::npos) << "no '" << line << "' in:\n" << r.out;
+    ++cases;
+  }
+  EXPECT_EQ(cases, 6);
   fs::remove_all(dir);
 }
 

@@ -171,4 +171,53 @@ TEST(ViewBadInput, NoDisplayOrBadScriptWritesNothing) {
   fs::remove_all(dir);
 }
 
+// A script's key must be one the viewer acts on: a typo is refused (exit 2, the
+// closest key named, nothing written), not pressed silently. (Each script ends
+// with quit, so that a viewer that accepts the key exits instead of waiting.)
+TEST(ViewBadInput, UnknownKeyIsRefused) {
+  const fs::path dir = sbtest::tempDir("viewkey");
+  const fs::path shots = dir / "shots";
+  const fs::path script = dir / "keys.txt";
+  for (const auto& [line, needles] : std::vector<std::pair<std::string, std::vector<std::string>>>{
+           {"500 key Foo\n600 quit\n", {":1: ", "unknown key 'Foo'", "Up", "Escape"}},
+           {"0 key S\n10 key Uo shift\n20 quit\n",
+            {":2: ", "unknown key 'Uo'", "did you mean 'Up'"}}}) {
+    std::ofstream(script) << line;
+    const sbtest::CliResult r = shell(std::string(SB_CLI) + " view --script " + script.string() +
+                                          " --screenshot-dir " + shots.string(),
+                                      dir);
+    EXPECT_EQ(r.status, 2) << line;
+    for (const std::string& n : needles)
+      EXPECT_NE(r.err.find(n), std::string::npos) << line << r.err << "\nlacks " << n;
+    EXPECT_FALSE(fs::exists(shots));
+  }
+  fs::remove_all(dir);
+}
+
+// The arrow keys on a technique without a steppable option, or at its limit,
+// say so and change nothing (no state line, no new render); a step that
+// changes something prints the state.
+TEST(ViewArrows, NothingToStepIsSaidAndChangesNothing) {
+  if (!sbtest::haveDisplay()) GTEST_SKIP() << sbtest::kNoDisplay;
+  const fs::path dir = sbtest::tempDir("viewarrows");
+  const fs::path script = dir / "arrows.txt";
+  std::ofstream(script) << "0 key Up\n50 key Right\n100 key Down\n150 quit\n";
+  const sbtest::CliResult r =
+      shell(std::string(SB_CLI) +
+                " view --backend gl --scene straight:strands=20,points=4 --size 32x32 "
+                "--shadow dom:layers=31 --oit wsum --script " +
+                script.string() + " --screenshot-dir " + dir.string(),
+            dir);
+  ASSERT_EQ(r.status, 0) << r.err << r.out;
+  EXPECT_NE(r.out.find("view: shadow dom:layers=31: layers is at its largest (1..31); unchanged"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("view: oit wsum has no option the arrow keys step; unchanged"),
+            std::string::npos)
+      << r.out;
+  EXPECT_EQ(r.out.find("view: shadow dom:layers=31, oit wsum"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("view: shadow dom:layers=30, oit wsum"), std::string::npos) << r.out;
+  fs::remove_all(dir);
+}
+
 }  // namespace
