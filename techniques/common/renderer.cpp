@@ -14,6 +14,12 @@ Buffer makeBuffer(Device& dev, const std::string& name, const void* data, std::s
   if (bytes == 0) return dev.createBuffer({name, "scene", BufferUsage::Storage, 16}, kZeros);
   return dev.createBuffer({name, "scene", BufferUsage::Storage, bytes}, data);
 }
+
+// What the memory guard is told before a technique's preparation.
+std::string preparing(const std::string& family, const std::string& technique) {
+  return "this run (at least: the resources made so far and those " + family + " technique '" +
+         technique + "' declared, counted before its preparation)";
+}
 }  // namespace
 
 Renderer::Renderer(Device& dev, const Scene& scene, const RenderSettings& settings,
@@ -50,9 +56,10 @@ std::string Renderer::lightPrefix(std::size_t i) {
 
 Renderer::Renderer(Device& dev, const Scene& scene, const RenderSettings& settings,
                    std::vector<Techniques> techniques, const std::set<std::string>& outputs)
-    : dev_(dev), settings_(settings), graph_([&dev](GraphResource r) {
+    : dev_(dev), group_(dev), settings_(settings), graph_([&dev](GraphResource r) {
         return r.texture ? dev.describe(Texture{r.id}).name : dev.describe(Buffer{r.id}).name;
       }) {
+  GroupScope owned(dev_, group_);
   upload(scene);
   for (std::size_t i = 0; i < techniques.size(); ++i) {
     auto light = std::make_unique<LightChain>();
@@ -103,10 +110,15 @@ void Renderer::setupLight(LightChain& light, std::size_t index) {
   if (index == 0)
     depth_ = dev.createTexture({n > 1 ? "frame.depth_ms" : "frame.depth", "frame", Format::Depth32F,
                                 s.width, s.height, false, 1, n});
+  const uint32_t shadowFirst = dev.nextHandleId();
   light.shadow->setup(dev, gpu_, s);
+  const std::set<uint32_t> shadowIds = dev.resourceIdsFrom(shadowFirst);
   light.shading.setup(dev, gpu_, s, *light.shadow, renderColor, depth_);
+  const uint32_t oitFirst = dev.nextHandleId();
   light.oit->setup(dev, gpu_, s, light.shading,
                    {renderColor, depth_, light.shading.drawsMesh(), resolved});
+  std::set<uint32_t> oitIds = dev.resourceIdsFrom(oitFirst);
+  oitIds.insert(depth_.id);  // drawn before its preparation
   const bool key = index == 0;
   if (key && wantVisibility_) visibility_.setup(dev, gpu_, s, light.shading);
   if (key && wantProbe_) {
@@ -114,10 +126,14 @@ void Renderer::setupLight(LightChain& light, std::size_t index) {
     probe_.setup(dev, s.probePoints, light.shading);
   }
 
+  // A preparation makes what its technique declared (a counting pass's maps
+  // and lists) and runs frames: the memory guard sees it first.
+  dev.guardMemory(shadowIds, preparing("shadow", light.shadow->name()));
   light.shadow->prepare(dev);
   light.shadow->addPasses(graph_, dev);
   light.shading.addMeshPass(graph_, dev);
   if (light.oit->needsPrepare()) {
+    dev.guardMemory(oitIds, preparing("transparency", light.oit->name()));
     // The transparency technique sizes itself against the opaque depth.
     if (light.shading.drawsMesh()) {
       const auto opaque = graph_.compile({GraphResource::of(depth_)});
@@ -235,6 +251,7 @@ std::vector<PassTime> Renderer::renderFrame(const std::set<std::string>& outputs
 }
 
 std::vector<PassTime> Renderer::run(const std::vector<const PassNode*>& passes) {
+  GroupScope owned(dev_, group_);
   dev_.beginFrame();
   const PassNode* first = graph_.nodes().data();
   for (const auto* p : passes) {

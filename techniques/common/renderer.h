@@ -103,6 +103,9 @@ class Renderer {
   std::vector<PassTime> run(const std::vector<const PassNode*>& passes);
 
   Device& dev_;
+  // Everything the renderer and its techniques create on the device, freed
+  // with it (declared before what uses those resources, so it goes last).
+  ResourceGroup group_;
   RenderSettings settings_;
   GpuScene gpu_;
   std::vector<std::unique_ptr<LightChain>> lights_;  // the key light first
