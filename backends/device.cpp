@@ -47,6 +47,8 @@ struct Device::PipelineRec {
   std::unique_ptr<DriverObject> object;
   bool compute = false;
   uint32_t group = 0;
+  // A deferred pipeline's shaders (vertex, fragment or compute alone) until it is compiled.
+  std::vector<ShaderCode> shaders;
 };
 struct Device::OpenPass {
   std::string name;
@@ -296,8 +298,11 @@ Pipeline Device::createPipeline(const PipelineDesc& desc) {
       if (desc.bindings[i].binding == desc.bindings[j].binding)
         throw DeviceError(where + ": binding " + std::to_string(desc.bindings[i].binding) +
                           " declared twice");
-  auto rec = std::make_unique<PipelineRec>(
-      PipelineRec{desc, driver_->createPipeline(desc), compute, group_});
+  auto rec = std::make_unique<PipelineRec>(PipelineRec{
+      desc, deferPipelines_ ? nullptr : driver_->createPipeline(desc), compute, group_, {}});
+  if (deferPipelines_)
+    for (const ShaderCode* code : {desc.vertex, desc.fragment, desc.compute})
+      if (code) rec->shaders.push_back(*code);
   rec->desc.vertex = rec->desc.fragment = rec->desc.compute = nullptr;
   const uint32_t id = nextId_++;
   pipelines_.emplace(id, std::move(rec));
@@ -319,6 +324,47 @@ void Device::destroy(Buffer b) { destroyIn(buffers_, b.id, "buffer"); }
 void Device::destroy(Texture t) { destroyIn(textures_, t.id, "texture"); }
 
 void Device::destroy(Pipeline p) { destroyIn(pipelines_, p.id, "pipeline"); }
+
+DriverObject* Device::compiled(PipelineRec& p) {
+  if (!p.object) {
+    PipelineDesc d = p.desc;
+    if (p.compute) {
+      d.compute = &p.shaders.at(0);
+    } else {
+      d.vertex = &p.shaders.at(0);
+      d.fragment = &p.shaders.at(1);
+    }
+    p.object = driver_->createPipeline(d);
+    p.shaders.clear();
+  }
+  return p.object.get();
+}
+
+void Device::compilePipelines(const std::set<uint32_t>& ids) {
+  for (uint32_t id : ids)
+    if (auto it = pipelines_.find(id); it != pipelines_.end()) compiled(*it->second);
+}
+
+std::vector<std::pair<std::string, std::string>> Device::compiledPipelines(uint32_t group) const {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& [id, p] : pipelines_)
+    if (p->group == group && p->object) out.push_back({p->desc.name, p->desc.technique});
+  return out;
+}
+
+std::set<uint32_t> Device::pipelineIdsFrom(uint32_t first) const {
+  std::set<uint32_t> ids;
+  for (auto it = pipelines_.lower_bound(first); it != pipelines_.end(); ++it) ids.insert(it->first);
+  return ids;
+}
+
+void Device::setBufferSize(Buffer b, std::size_t bytes) {
+  BufferRec& r = buffer(b, "setBufferSize");
+  const std::string where = quoted("setBufferSize", r.desc.name);
+  if (bytes == 0) throw DeviceError(where + ": zero size");
+  if (r.object) throw DeviceError(where + ": already made (sizes change only before first use)");
+  r.desc.bytes = bytes;
+}
 
 void Device::destroyGroup(uint32_t group) noexcept {
   if (group == 0 || inFrame_) return;
@@ -519,7 +565,7 @@ void Device::draw(Pipeline pipe, const std::vector<Binding>& bindings, uint32_t 
                       " samples, pass '" + pass_->name + "' " + std::to_string(pass_->samples) +
                       " (they must be the same)");
   const auto resolved = resolve(p, bindings, where, true);
-  driver_->draw(*p.object, p.desc, resolved, vertexCount, instanceCount);
+  driver_->draw(*compiled(p), p.desc, resolved, vertexCount, instanceCount);
 }
 
 void Device::endPass() {
@@ -537,7 +583,7 @@ void Device::dispatch(const std::string& givenName, Pipeline pipe,
   PipelineRec& p = pipeline(pipe, where);
   if (!p.compute) throw DeviceError(where + ": '" + p.desc.name + "' is not a compute pipeline");
   const auto resolved = resolve(p, bindings, where, false);
-  driver_->dispatch(passName, *p.object, p.desc, resolved, x, y, z);
+  driver_->dispatch(passName, *compiled(p), p.desc, resolved, x, y, z);
 }
 
 void Device::endFrame() {

@@ -21,6 +21,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "harness/errors.h"  // DeviceError
@@ -311,6 +312,15 @@ class Device {
   // Contents are zero (colour) or 1 (depth) until first written.
   Texture createTexture(const TextureDesc& desc);
   Pipeline createPipeline(const PipelineDesc& desc);  // throws DeviceError
+  // While deferral is on, a pipeline created is checked at once but compiled
+  // only by compilePipelines or when first drawn or dispatched: the renderer
+  // declares every technique's pipelines, culls its frame graph, and compiles
+  // those of the kept passes only (a culled technique compiles nothing).
+  void setDeferPipelines(bool defer) { deferPipelines_ = defer; }
+  // Compiles the deferred pipelines among these ids (throws DeviceError).
+  void compilePipelines(const std::set<uint32_t>& ids);
+  // A group's pipelines that were compiled (name, technique), in creation order.
+  std::vector<std::pair<std::string, std::string>> compiledPipelines(uint32_t group) const;
   // A null handle is ignored; an unknown one is an error.
   void destroy(Buffer b);
   void destroy(Texture t);
@@ -388,6 +398,10 @@ class Device {
   // created since nextHandleId() returned `first`.
   uint32_t nextHandleId() const { return nextId_; }
   std::set<uint32_t> resourceIdsFrom(uint32_t first) const;
+  std::set<uint32_t> pipelineIdsFrom(uint32_t first) const;
+  // A buffer declared and not made yet takes its size now (a list sized by a
+  // counting pass in a preparation, declared before the frame graph is built).
+  void setBufferSize(Buffer b, std::size_t bytes);
 
   // What the device can still give (Vulkan: VK_EXT_memory_budget, else the
   // device-local heap; GL: GL_NVX_gpu_memory_info or GL_ATI_meminfo; the CPU
@@ -439,6 +453,8 @@ class Device {
   std::function<void(const std::string&)> passObserver_;
   std::string labelPrefix_;
   uint32_t nextGroup_ = 1, group_ = 0;
+  bool deferPipelines_ = false;
+  DriverObject* compiled(PipelineRec& p);
   MemoryGuard memoryGuard_;
   void guardMaking(const std::string& name, const std::string& owner, std::size_t bytes) const;
 };

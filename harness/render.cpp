@@ -820,6 +820,8 @@ RenderResult runRender(const RenderRequest& req, RenderCache* cache, Device* dev
   // Memory of this run's techniques only (before any reference is built).
   out.resources = dev->allocations();
   guard.reset();  // the measurements and references that follow are not the run's own
+  out.pipelines = renderer.compiledPipelines();
+  out.preparations = renderer.preparations();
   std::sort(out.resources.begin(), out.resources.end(),
             [](const ResourceBytes& a, const ResourceBytes& b) { return a.name < b.name; });
   out.warnings = scene.warnings;  // the input's, then the techniques'
@@ -947,6 +949,10 @@ nlohmann::json renderJson(const RenderResult& r) {
   j["repeat"] = r.repeat;
   j["warmup"] = r.warmup;
   j["graph"] = r.graph;
+  nlohmann::json pipelines = nlohmann::json::array();
+  for (const auto& [name, technique] : r.pipelines)
+    pipelines.push_back({{"name", name}, {"technique", technique}});
+  j["build"] = {{"pipelines", pipelines}, {"preparations", r.preparations}};
   j["passes"] = nlohmann::json::array();
   for (const PassTimes& p : r.passes)
     j["passes"].push_back(
