@@ -35,15 +35,20 @@ const char* formatName(Format f) { return info(f).name; }
 struct Device::BufferRec {
   BufferDesc desc;
   std::unique_ptr<DriverObject> object;
+  uint32_t group = 0;  // the ResourceGroup current at creation (0: none)
 };
 struct Device::TextureRec {
   TextureDesc desc;
   std::unique_ptr<DriverObject> object;
+  uint32_t group = 0;
 };
 struct Device::PipelineRec {
   PipelineDesc desc;  // fixed state only: the shader pointers are not kept
   std::unique_ptr<DriverObject> object;
   bool compute = false;
+  uint32_t group = 0;
+  // A deferred pipeline's shaders (vertex, fragment or compute alone) until it is compiled.
+  std::vector<ShaderCode> shaders;
 };
 struct Device::OpenPass {
   std::string name;
@@ -169,6 +174,7 @@ Device::PipelineRec& Device::pipeline(Pipeline p, const std::string& where) {
 // binding, an update or a read first uses them: what only culled passes use is
 // never allocated, and allocations() counts exactly what was made.
 DriverObject* Device::created(BufferRec& r) {
+  if (!r.object) guardMaking(r.desc.name, r.desc.owner, r.desc.bytes);
   if (!r.object)
     r.object =
         namingAllocation("making buffer '" + r.desc.name + "' (" + r.desc.owner + ")", r.desc.bytes,
@@ -177,6 +183,7 @@ DriverObject* Device::created(BufferRec& r) {
 }
 
 DriverObject* Device::created(TextureRec& t) {
+  if (!t.object) guardMaking(t.desc.name, t.desc.owner, textureBytes(t.desc));
   if (!t.object)
     t.object = namingAllocation(
         "making texture '" + t.desc.name + "' (" + t.desc.owner + ", " + formatName(t.desc.format) +
@@ -200,11 +207,14 @@ Buffer Device::createBuffer(const BufferDesc& given, const void* data) {
   desc.name = labelPrefix_ + given.name;
   const std::string where = quoted("createBuffer", desc.name);
   if (desc.bytes == 0) throw DeviceError(where + ": zero size");
+  if (data) guardMaking(desc.name, desc.owner, desc.bytes);
   // Created now only when it has contents to take; otherwise when first used.
   auto rec = std::make_unique<BufferRec>(BufferRec{
-      desc, data ? namingAllocation("making buffer '" + desc.name + "' (" + desc.owner + ")",
-                                    desc.bytes, [&] { return driver_->createBuffer(desc, data); })
-                 : nullptr});
+      desc,
+      data ? namingAllocation("making buffer '" + desc.name + "' (" + desc.owner + ")", desc.bytes,
+                              [&] { return driver_->createBuffer(desc, data); })
+           : nullptr,
+      group_});
   const uint32_t id = nextId_++;
   buffers_.emplace(id, std::move(rec));
   return Buffer{id};
@@ -257,7 +267,8 @@ Texture Device::createTexture(const TextureDesc& given) {
       throw DeviceError(where + " of integer format " + formatName(desc.format) +
                         " (integer formats are not multisampled)");
   }
-  auto rec = std::make_unique<TextureRec>(TextureRec{desc, nullptr});  // created when first used
+  // Created when first used.
+  auto rec = std::make_unique<TextureRec>(TextureRec{desc, nullptr, group_});
   const uint32_t id = nextId_++;
   textures_.emplace(id, std::move(rec));
   return Texture{id};
@@ -287,8 +298,11 @@ Pipeline Device::createPipeline(const PipelineDesc& desc) {
       if (desc.bindings[i].binding == desc.bindings[j].binding)
         throw DeviceError(where + ": binding " + std::to_string(desc.bindings[i].binding) +
                           " declared twice");
-  auto rec =
-      std::make_unique<PipelineRec>(PipelineRec{desc, driver_->createPipeline(desc), compute});
+  auto rec = std::make_unique<PipelineRec>(PipelineRec{
+      desc, deferPipelines_ ? nullptr : driver_->createPipeline(desc), compute, group_, {}});
+  if (deferPipelines_)
+    for (const ShaderCode* code : {desc.vertex, desc.fragment, desc.compute})
+      if (code) rec->shaders.push_back(*code);
   rec->desc.vertex = rec->desc.fragment = rec->desc.compute = nullptr;
   const uint32_t id = nextId_++;
   pipelines_.emplace(id, std::move(rec));
@@ -308,6 +322,69 @@ void Device::destroyIn(Table& table, uint32_t id, const char* kind) {
 void Device::destroy(Buffer b) { destroyIn(buffers_, b.id, "buffer"); }
 
 void Device::destroy(Texture t) { destroyIn(textures_, t.id, "texture"); }
+
+void Device::destroy(Pipeline p) { destroyIn(pipelines_, p.id, "pipeline"); }
+
+DriverObject* Device::compiled(PipelineRec& p) {
+  if (!p.object) {
+    PipelineDesc d = p.desc;
+    if (p.compute) {
+      d.compute = &p.shaders.at(0);
+    } else {
+      d.vertex = &p.shaders.at(0);
+      d.fragment = &p.shaders.at(1);
+    }
+    p.object = driver_->createPipeline(d);
+    p.shaders.clear();
+  }
+  return p.object.get();
+}
+
+void Device::compilePipelines(const std::set<uint32_t>& ids) {
+  for (uint32_t id : ids)
+    if (auto it = pipelines_.find(id); it != pipelines_.end()) compiled(*it->second);
+}
+
+std::vector<std::pair<std::string, std::string>> Device::compiledPipelines(uint32_t group) const {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& [id, p] : pipelines_)
+    if (p->group == group && p->object) out.push_back({p->desc.name, p->desc.technique});
+  return out;
+}
+
+std::set<uint32_t> Device::pipelineIdsFrom(uint32_t first) const {
+  std::set<uint32_t> ids;
+  for (auto it = pipelines_.lower_bound(first); it != pipelines_.end(); ++it) ids.insert(it->first);
+  return ids;
+}
+
+void Device::setBufferSize(Buffer b, std::size_t bytes) {
+  BufferRec& r = buffer(b, "setBufferSize");
+  const std::string where = quoted("setBufferSize", r.desc.name);
+  if (bytes == 0) throw DeviceError(where + ": zero size");
+  if (r.object) throw DeviceError(where + ": already made (sizes change only before first use)");
+  r.desc.bytes = bytes;
+}
+
+void Device::destroyGroup(uint32_t group) noexcept {
+  if (group == 0 || inFrame_) return;
+  auto releaseGroup = [&](auto& table) {
+    for (auto it = table.begin(); it != table.end();) {
+      if (it->second->group != group) {
+        ++it;
+        continue;
+      }
+      try {
+        if (it->second->object) driver_->release(std::move(it->second->object));
+      } catch (...) {  // a failed release leaks one object; the records still go
+      }
+      it = table.erase(it);
+    }
+  };
+  releaseGroup(pipelines_);
+  releaseGroup(textures_);
+  releaseGroup(buffers_);
+}
 
 void Device::beginFrame() {
   if (inFrame_) throw DeviceError("beginFrame: a frame is already being recorded");
@@ -488,7 +565,7 @@ void Device::draw(Pipeline pipe, const std::vector<Binding>& bindings, uint32_t 
                       " samples, pass '" + pass_->name + "' " + std::to_string(pass_->samples) +
                       " (they must be the same)");
   const auto resolved = resolve(p, bindings, where, true);
-  driver_->draw(*p.object, p.desc, resolved, vertexCount, instanceCount);
+  driver_->draw(*compiled(p), p.desc, resolved, vertexCount, instanceCount);
 }
 
 void Device::endPass() {
@@ -506,7 +583,7 @@ void Device::dispatch(const std::string& givenName, Pipeline pipe,
   PipelineRec& p = pipeline(pipe, where);
   if (!p.compute) throw DeviceError(where + ": '" + p.desc.name + "' is not a compute pipeline");
   const auto resolved = resolve(p, bindings, where, false);
-  driver_->dispatch(passName, *p.object, p.desc, resolved, x, y, z);
+  driver_->dispatch(passName, *compiled(p), p.desc, resolved, x, y, z);
 }
 
 void Device::endFrame() {
@@ -596,6 +673,25 @@ std::vector<ResourceBytes> Device::allocationsAfterUsing(const std::set<uint32_t
 }
 
 std::vector<ResourceBytes> Device::declared() const { return resources(false, {}); }
+
+void Device::guardMemory(const std::set<uint32_t>& ids, const std::string& what) const {
+  if (memoryGuard_) memoryGuard_(resources(true, ids), what);
+}
+
+void Device::guardMaking(const std::string& name, const std::string& owner,
+                         std::size_t bytes) const {
+  if (!memoryGuard_) return;
+  std::vector<ResourceBytes> planned = allocations();
+  planned.push_back({name, owner, bytes});
+  memoryGuard_(planned, "making '" + name + "' (" + owner + ")");
+}
+
+std::set<uint32_t> Device::resourceIdsFrom(uint32_t first) const {
+  std::set<uint32_t> ids;
+  for (auto it = buffers_.lower_bound(first); it != buffers_.end(); ++it) ids.insert(it->first);
+  for (auto it = textures_.lower_bound(first); it != textures_.end(); ++it) ids.insert(it->first);
+  return ids;
+}
 
 MemoryBudget Device::memoryBudget() const { return driver_->memoryBudget(); }
 

@@ -21,6 +21,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "harness/errors.h"  // DeviceError
@@ -311,9 +312,31 @@ class Device {
   // Contents are zero (colour) or 1 (depth) until first written.
   Texture createTexture(const TextureDesc& desc);
   Pipeline createPipeline(const PipelineDesc& desc);  // throws DeviceError
+  // While deferral is on, a pipeline created is checked at once but compiled
+  // only by compilePipelines or when first drawn or dispatched: the renderer
+  // declares every technique's pipelines, culls its frame graph, and compiles
+  // those of the kept passes only (a culled technique compiles nothing).
+  void setDeferPipelines(bool defer) { deferPipelines_ = defer; }
+  // Compiles the deferred pipelines among these ids (throws DeviceError).
+  void compilePipelines(const std::set<uint32_t>& ids);
+  // A group's pipelines that were compiled (name, technique), in creation order.
+  std::vector<std::pair<std::string, std::string>> compiledPipelines(uint32_t group) const;
   // A null handle is ignored; an unknown one is an error.
   void destroy(Buffer b);
   void destroy(Texture t);
+  void destroy(Pipeline p);
+
+  // Resource groups (ResourceGroup, GroupScope below): every buffer, texture
+  // and pipeline created while a group is current belongs to it, and
+  // destroyGroup frees them all. Techniques create and never destroy; the
+  // renderer that made them owns a group, so replacing it frees what it made.
+  uint32_t createGroup() { return nextGroup_++; }
+  uint32_t currentGroup() const { return group_; }
+  void setCurrentGroup(uint32_t group) { group_ = group; }
+  // Inside an unfinished frame (a run stopped by an exception) nothing is
+  // freed: what the frame recorded may still be in use, and a device left so
+  // is destroyed, not reused.
+  void destroyGroup(uint32_t group) noexcept;
 
   void beginFrame();
   void beginPass(const PassDesc& pass);
@@ -361,6 +384,24 @@ class Device {
   std::vector<ResourceBytes> allocationsAfterUsing(const std::set<uint32_t>& ids) const;
   // The same for every live resource declared, made or not.
   std::vector<ResourceBytes> declared() const;
+
+  // A refusal before memory is taken: set (by the harness) for a run, the
+  // guard is called with what the device will hold (allocationsAfterUsing)
+  // before any resource is made, and by guardMemory; it throws to refuse.
+  using MemoryGuard =
+      std::function<void(const std::vector<ResourceBytes>& planned, const std::string& what)>;
+  void setMemoryGuard(MemoryGuard guard) { memoryGuard_ = std::move(guard); }
+  // The guard's verdict on making the resources with these ids (the renderer
+  // asks it before a technique's preparation, which makes what it declared).
+  void guardMemory(const std::set<uint32_t>& ids, const std::string& what) const;
+  // Handle ids grow with creation: the ids of the live buffers and textures
+  // created since nextHandleId() returned `first`.
+  uint32_t nextHandleId() const { return nextId_; }
+  std::set<uint32_t> resourceIdsFrom(uint32_t first) const;
+  std::set<uint32_t> pipelineIdsFrom(uint32_t first) const;
+  // A buffer declared and not made yet takes its size now (a list sized by a
+  // counting pass in a preparation, declared before the frame graph is built).
+  void setBufferSize(Buffer b, std::size_t bytes);
 
   // What the device can still give (Vulkan: VK_EXT_memory_budget, else the
   // device-local heap; GL: GL_NVX_gpu_memory_info or GL_ATI_meminfo; the CPU
@@ -411,6 +452,11 @@ class Device {
   std::unique_ptr<OpenPass> pass_;
   std::function<void(const std::string&)> passObserver_;
   std::string labelPrefix_;
+  uint32_t nextGroup_ = 1, group_ = 0;
+  bool deferPipelines_ = false;
+  DriverObject* compiled(PipelineRec& p);
+  MemoryGuard memoryGuard_;
+  void guardMaking(const std::string& name, const std::string& owner, std::size_t bytes) const;
 };
 
 struct DeviceOptions {
@@ -446,6 +492,36 @@ class LabelScope {
  private:
   Device& dev_;
   std::string previous_;
+};
+
+// Owns what is created on a device while it is current (GroupScope) and
+// destroys it all when it goes (Device::destroyGroup).
+class ResourceGroup {
+ public:
+  explicit ResourceGroup(Device& dev) : dev_(dev), id_(dev.createGroup()) {}
+  ~ResourceGroup() { dev_.destroyGroup(id_); }
+  ResourceGroup(const ResourceGroup&) = delete;
+  ResourceGroup& operator=(const ResourceGroup&) = delete;
+  uint32_t id() const { return id_; }
+
+ private:
+  Device& dev_;
+  uint32_t id_;
+};
+
+// Makes a group current for the lifetime of the scope, then the previous one again.
+class GroupScope {
+ public:
+  GroupScope(Device& dev, const ResourceGroup& group) : dev_(dev), previous_(dev.currentGroup()) {
+    dev_.setCurrentGroup(group.id());
+  }
+  ~GroupScope() { dev_.setCurrentGroup(previous_); }
+  GroupScope(const GroupScope&) = delete;
+  GroupScope& operator=(const GroupScope&) = delete;
+
+ private:
+  Device& dev_;
+  uint32_t previous_;
 };
 
 }  // namespace sb

@@ -327,6 +327,23 @@ void checkMemory(const std::vector<ResourceBytes>& planned, const std::vector<Re
   throw OutOfMemoryError(m);
 }
 
+// checkMemory for every resource a run makes until it goes (Device::setMemoryGuard).
+class RunMemoryGuard {
+ public:
+  RunMemoryGuard(Device& dev, long long limit, const MemoryBudget& budget) : dev_(dev) {
+    dev_.setMemoryGuard(
+        [&dev, limit, budget](const std::vector<ResourceBytes>& planned, const std::string& what) {
+          checkMemory(planned, dev.allocations(), limit, budget, what);
+        });
+  }
+  ~RunMemoryGuard() { dev_.setMemoryGuard(nullptr); }
+  RunMemoryGuard(const RunMemoryGuard&) = delete;
+  RunMemoryGuard& operator=(const RunMemoryGuard&) = delete;
+
+ private:
+  Device& dev_;
+};
+
 // The progress line of a render and the stop check, between the device's
 // passes: a frame of depth peeling is hundreds of passes and can take minutes.
 class RenderProgress {
@@ -738,12 +755,17 @@ RenderResult runRender(const RenderRequest& req, RenderCache* cache, Device* dev
   std::set<std::string> outputs = timed;
   if (req.reference) outputs.insert("visibility");
   if (req.probe) outputs.insert("probe");
+  // The limit and the budget hold from the first resource on: the renderer's
+  // preparations (counting passes and their maps) run before the plan below.
+  const MemoryBudget budget = dev->memoryBudget();
+  std::optional<RunMemoryGuard> guard;
+  guard.emplace(*dev, req.memoryLimit, budget);
   Renderer renderer(*dev, scene, settings, shadowSpec, oitSpec, outputs);
   // What the timed frames will hold, known before their resources are made.
   RenderResult out;
   const auto planned = dev->allocationsAfterUsing(renderer.graphResources(timed));
   for (const auto& r : planned) out.estimatedBytes += r.bytes;
-  checkMemory(planned, dev->allocations(), req.memoryLimit, dev->memoryBudget(), "this run",
+  checkMemory(planned, dev->allocations(), req.memoryLimit, budget, "this run",
               req.image ? imageHostBytes(settings) : 0);
   const uint32_t layers = std::max(peelLayers(renderer.oit().depthComplexity()),
                                    peelLayers(renderer.shadow().depthComplexity()));
@@ -797,6 +819,9 @@ RenderResult runRender(const RenderRequest& req, RenderCache* cache, Device* dev
   if (req.image) out.image = colorImage(renderer, settings);
   // Memory of this run's techniques only (before any reference is built).
   out.resources = dev->allocations();
+  guard.reset();  // the measurements and references that follow are not the run's own
+  out.pipelines = renderer.compiledPipelines();
+  out.preparations = renderer.preparations();
   std::sort(out.resources.begin(), out.resources.end(),
             [](const ResourceBytes& a, const ResourceBytes& b) { return a.name < b.name; });
   out.warnings = scene.warnings;  // the input's, then the techniques'
@@ -924,6 +949,10 @@ nlohmann::json renderJson(const RenderResult& r) {
   j["repeat"] = r.repeat;
   j["warmup"] = r.warmup;
   j["graph"] = r.graph;
+  nlohmann::json pipelines = nlohmann::json::array();
+  for (const auto& [name, technique] : r.pipelines)
+    pipelines.push_back({{"name", name}, {"technique", technique}});
+  j["build"] = {{"pipelines", pipelines}, {"preparations", r.preparations}};
   j["passes"] = nlohmann::json::array();
   for (const PassTimes& p : r.passes)
     j["passes"].push_back(

@@ -169,6 +169,11 @@ struct RenderResult {
   uint32_t width = 0, height = 0;
   int repeat = 0, warmup = 0;
   std::vector<std::string> graph;  // the passes of a timed frame
+  // What building the frame ran: the pipelines compiled (name, technique) and
+  // the techniques' preparations; a technique whose passes the graph culled
+  // has neither (Renderer::compiledPipelines).
+  std::vector<std::pair<std::string, std::string>> pipelines;
+  std::vector<std::string> preparations;
   // The passes of the untimed frame that measured errors and the probe (when one ran).
   std::optional<std::vector<std::string>> measurementGraph;
   std::vector<PassTimes> passes;  // in the order they first ran

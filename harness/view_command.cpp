@@ -9,6 +9,8 @@
 // shown is exactly what `render` computes) and the image chosen by the mode
 // is uploaded and presented. Input reaches this file only through the
 // platform-neutral backends/window.h.
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -194,6 +196,15 @@ std::vector<std::string> renderArgs(const RenderRequest& r) {
 
 // ---- the viewer ----
 
+// The process's resident memory (Linux /proc/self/statm; 0 where unknown): a
+// screenshot records it so that a session can be checked for leaks.
+std::size_t residentBytes() {
+  std::ifstream statm("/proc/self/statm");
+  std::size_t pages = 0, resident = 0;
+  if (!(statm >> pages >> resident)) return 0;
+  return resident * static_cast<std::size_t>(sysconf(_SC_PAGESIZE));
+}
+
 enum class Mode { Technique, Reference, Error };
 const char* modeName(Mode m) {
   return m == Mode::Technique ? "technique" : m == Mode::Reference ? "reference" : "error";
@@ -302,6 +313,7 @@ class Viewer {
                   {"defaults", suiteDefaults},
                   {"groups", {{{"name", name}}}}};
     j["title"] = title();
+    j["resident_bytes"] = residentBytes();
     j["report"] = renderJson(result_);
     fs::create_directories(shotDir_);
     writeImage(shown_, png.string());

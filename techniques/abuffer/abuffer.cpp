@@ -21,6 +21,9 @@ void ABufferOit::setup(Device& dev, const GpuScene& scene, const RenderSettings&
   offsets_ = dev.createBuffer({name() + ".offsets", "oit", BufferUsage::Storage, pixels() * 4ull});
   cursor_ = dev.createBuffer({name() + ".cursor", "oit", BufferUsage::Storage, pixels() * 4ull});
   status_ = dev.createBuffer({name() + ".status", "oit", BufferUsage::Storage, 16});
+  // Sized by prepare()'s count.
+  fragments_ =
+      dev.createBuffer({name() + ".fragments", "oit", BufferUsage::Storage, kFragmentBytes});
   const glm::uvec4 size(pixels(), s.width, s.height, 0);
   sizeUbo_ =
       dev.createBuffer({name() + ".size", "frame", BufferUsage::Uniform, sizeof size}, &size);
@@ -58,8 +61,7 @@ void ABufferOit::prepare(Device& dev) {
     dev.updateBuffer(counts_, capacity.data(), capacity.size() * 4);
   }
   dev.updateBuffer(offsets_, layout.offsets.data(), layout.offsets.size() * 4);
-  fragments_ = dev.createBuffer({name() + ".fragments", "oit", BufferUsage::Storage,
-                                 std::max<uint64_t>(pool_, 1) * kFragmentBytes});
+  dev.setBufferSize(fragments_, std::max<uint64_t>(pool_, 1) * kFragmentBytes);
 }
 
 // The lists: the fill appends to them, the resolve sorts and accumulates them.

@@ -14,6 +14,31 @@ Buffer makeBuffer(Device& dev, const std::string& name, const void* data, std::s
   if (bytes == 0) return dev.createBuffer({name, "scene", BufferUsage::Storage, 16}, kZeros);
   return dev.createBuffer({name, "scene", BufferUsage::Storage, bytes}, data);
 }
+
+// Names graph resources in messages.
+FrameGraph::Namer resourceNamer(Device& dev) {
+  return [&dev](GraphResource r) {
+    return r.texture ? dev.describe(Texture{r.id}).name : dev.describe(Buffer{r.id}).name;
+  };
+}
+
+// Pipelines created in its lifetime are declared, not compiled (Device::setDeferPipelines).
+class DeferredPipelines {
+ public:
+  explicit DeferredPipelines(Device& dev) : dev_(dev) { dev_.setDeferPipelines(true); }
+  ~DeferredPipelines() { dev_.setDeferPipelines(false); }
+  DeferredPipelines(const DeferredPipelines&) = delete;
+  DeferredPipelines& operator=(const DeferredPipelines&) = delete;
+
+ private:
+  Device& dev_;
+};
+
+// What the memory guard is told before a technique's preparation.
+std::string preparing(const std::string& family, const std::string& technique) {
+  return "this run (at least: the resources made so far and those " + family + " technique '" +
+         technique + "' declared, counted before its preparation)";
+}
 }  // namespace
 
 Renderer::Renderer(Device& dev, const Scene& scene, const RenderSettings& settings,
@@ -50,9 +75,8 @@ std::string Renderer::lightPrefix(std::size_t i) {
 
 Renderer::Renderer(Device& dev, const Scene& scene, const RenderSettings& settings,
                    std::vector<Techniques> techniques, const std::set<std::string>& outputs)
-    : dev_(dev), settings_(settings), graph_([&dev](GraphResource r) {
-        return r.texture ? dev.describe(Texture{r.id}).name : dev.describe(Buffer{r.id}).name;
-      }) {
+    : dev_(dev), group_(dev), settings_(settings), graph_(resourceNamer(dev)) {
+  GroupScope owned(dev_, group_);
   upload(scene);
   for (std::size_t i = 0; i < techniques.size(); ++i) {
     auto light = std::make_unique<LightChain>();
@@ -80,13 +104,33 @@ Renderer::Renderer(Device& dev, const Scene& scene, const RenderSettings& settin
   // The visibility and probe outputs are the key light's.
   wantVisibility_ = outputs.count("visibility") > 0;
   wantProbe_ = outputs.count("probe") > 0;
-  for (std::size_t i = 0; i < lights_.size(); ++i) setupLight(*lights_[i], i);
-  color_ = lights_[0]->color;
-  addSumPass();
+  // Cull before building: every part declares its nodes first; only the
+  // parts with a kept node compile their pipelines and run their preparation.
+  std::set<uint32_t> sumPipelines;
+  {
+    DeferredPipelines deferred(dev_);
+    for (std::size_t i = 0; i < lights_.size(); ++i) declareLight(*lights_[i], i);
+    color_ = lights_[0]->color;
+    const uint32_t first = dev_.nextHandleId();
+    addSumPass();
+    sumPipelines = dev_.pipelineIdsFrom(first);
+  }
   passes_ = graph_.compile(resources(outputs));
+  for (std::size_t i = 0; i < lights_.size(); ++i) buildLight(*lights_[i], i);
+  if (lights_.size() > 1 &&
+      kept({Unit::Kind::Outputs, lights_.back()->endNode, graph_.nodes().size(), {}}))
+    dev_.compilePipelines(sumPipelines);
 }
 
-void Renderer::setupLight(LightChain& light, std::size_t index) {
+bool Renderer::kept(const Unit& unit) const {
+  const PassNode* first = graph_.nodes().data();
+  return std::any_of(passes_.begin(), passes_.end(), [&](const PassNode* p) {
+    const auto index = static_cast<std::size_t>(p - first);
+    return index >= unit.firstNode && index < unit.endNode;
+  });
+}
+
+void Renderer::declareLight(LightChain& light, std::size_t index) {
   Device& dev = dev_;
   LabelScope scope(dev, lightPrefix(index));
   const RenderSettings& s = light.settings;
@@ -103,34 +147,74 @@ void Renderer::setupLight(LightChain& light, std::size_t index) {
   if (index == 0)
     depth_ = dev.createTexture({n > 1 ? "frame.depth_ms" : "frame.depth", "frame", Format::Depth32F,
                                 s.width, s.height, false, 1, n});
-  light.shadow->setup(dev, gpu_, s);
-  light.shading.setup(dev, gpu_, s, *light.shadow, renderColor, depth_);
-  light.oit->setup(dev, gpu_, s, light.shading,
-                   {renderColor, depth_, light.shading.drawsMesh(), resolved});
+  using Kind = Unit::Kind;
+  light.units = {{Kind::Shadow}, {Kind::Shading}, {Kind::Oit}, {Kind::Outputs}};
+  // Each part's setup, then its passes: the pipelines each declared.
+  auto declared = [&](Unit& unit, const auto& declare) {
+    const uint32_t first = dev.nextHandleId();
+    declare();
+    for (uint32_t id : dev.pipelineIdsFrom(first)) unit.pipelines.insert(id);
+    return dev.resourceIdsFrom(first);
+  };
+  auto addPasses = [&](Unit& unit, const auto& add) {
+    unit.firstNode = graph_.nodes().size();
+    declared(unit, add);
+    unit.endNode = graph_.nodes().size();
+  };
   const bool key = index == 0;
-  if (key && wantVisibility_) visibility_.setup(dev, gpu_, s, light.shading);
-  if (key && wantProbe_) {
-    if (s.probePoints.empty()) throw InputError("probe output without probe points");
-    probe_.setup(dev, s.probePoints, light.shading);
-  }
-
-  light.shadow->prepare(dev);
-  light.shadow->addPasses(graph_, dev);
-  light.shading.addMeshPass(graph_, dev);
-  if (light.oit->needsPrepare()) {
-    // The transparency technique sizes itself against the opaque depth.
-    if (light.shading.drawsMesh()) {
-      const auto opaque = graph_.compile({GraphResource::of(depth_)});
-      dev.beginFrame();
-      for (const auto* p : opaque) p->execute();
-      dev.endFrame();
+  light.shadowIds = declared(light.units[0], [&] { light.shadow->setup(dev, gpu_, s); });
+  declared(light.units[1],
+           [&] { light.shading.setup(dev, gpu_, s, *light.shadow, renderColor, depth_); });
+  light.oitIds = declared(light.units[2], [&] {
+    light.oit->setup(dev, gpu_, s, light.shading,
+                     {renderColor, depth_, light.shading.drawsMesh(), resolved});
+  });
+  light.oitIds.insert(depth_.id);  // drawn before its preparation
+  declared(light.units[3], [&] {
+    if (key && wantVisibility_) visibility_.setup(dev, gpu_, s, light.shading);
+    if (key && wantProbe_) {
+      if (s.probePoints.empty()) throw InputError("probe output without probe points");
+      probe_.setup(dev, s.probePoints, light.shading);
     }
-    light.oit->prepare(dev);
-  }
-  light.oit->addPasses(graph_, dev);
-  if (key && wantVisibility_) visibility_.addPasses(graph_, dev);
-  if (key && wantProbe_) probe_.addPasses(graph_, dev);
+  });
+  addPasses(light.units[0], [&] { light.shadow->addPasses(graph_, dev); });
+  addPasses(light.units[1], [&] { light.shading.addMeshPass(graph_, dev); });
+  addPasses(light.units[2], [&] { light.oit->addPasses(graph_, dev); });
+  addPasses(light.units[3], [&] {
+    if (key && wantVisibility_) visibility_.addPasses(graph_, dev);
+    if (key && wantProbe_) probe_.addPasses(graph_, dev);
+  });
   light.endNode = graph_.nodes().size();
+}
+
+void Renderer::buildLight(LightChain& light, std::size_t index) {
+  Device& dev = dev_;
+  LabelScope scope(dev, lightPrefix(index));
+  for (const Unit& unit : light.units) {
+    if (!kept(unit)) continue;
+    dev.compilePipelines(unit.pipelines);
+    if (unit.kind == Unit::Kind::Shadow) {
+      // A preparation makes what its technique declared (a counting pass's
+      // maps and lists) and runs frames: the memory guard sees it first.
+      dev.guardMemory(light.shadowIds, preparing("shadow", light.shadow->name()));
+      light.shadow->prepare(dev);
+      preparations_.push_back(lightPrefix(index) + light.shadow->name() + ".prepare");
+    } else if (unit.kind == Unit::Kind::Oit && light.oit->needsPrepare()) {
+      dev.guardMemory(light.oitIds, preparing("transparency", light.oit->name()));
+      // The transparency technique sizes itself against the opaque depth,
+      // drawn by the nodes before its own.
+      if (light.shading.drawsMesh()) {
+        FrameGraph before(resourceNamer(dev));
+        for (std::size_t n = 0; n < unit.firstNode; ++n) before.add(graph_.nodes()[n]);
+        const auto opaque = before.compile({GraphResource::of(depth_)});
+        dev.beginFrame();
+        for (const auto* p : opaque) p->execute();
+        dev.endFrame();
+      }
+      light.oit->prepare(dev);
+      preparations_.push_back(lightPrefix(index) + light.oit->name() + ".prepare");
+    }
+  }
 }
 
 // An extra light's colour added into the frame's: blend One, One on colour,
@@ -235,6 +319,7 @@ std::vector<PassTime> Renderer::renderFrame(const std::set<std::string>& outputs
 }
 
 std::vector<PassTime> Renderer::run(const std::vector<const PassNode*>& passes) {
+  GroupScope owned(dev_, group_);
   dev_.beginFrame();
   const PassNode* first = graph_.nodes().data();
   for (const auto* p : passes) {

@@ -17,6 +17,7 @@
 #include <memory>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "techniques/common/technique.h"
@@ -65,6 +66,13 @@ class Renderer {
   // The shadow technique's visibility at settings.probePoints ("probe" output).
   std::vector<float> readProbe();
   const GpuScene& gpuScene() const { return gpu_; }
+  // What building the frame ran (render --json "build"): the pipelines
+  // compiled (name, technique) and the preparations, only those of techniques
+  // whose passes the frame graph kept.
+  std::vector<std::pair<std::string, std::string>> compiledPipelines() const {
+    return dev_.compiledPipelines(group_.id());
+  }
+  const std::vector<std::string>& preparations() const { return preparations_; }
   // The key light's techniques.
   ShadowTechnique& shadow() { return *lights_[0]->shadow; }
   OitTechnique& oit() { return *lights_[0]->oit; }
@@ -75,6 +83,15 @@ class Renderer {
   std::vector<Counter> counters();
 
  private:
+  // What one part of a light (its shadow technique, shading, transparency
+  // technique, or its visibility and probe outputs) adds to the frame: graph
+  // nodes [firstNode, endNode) and the pipelines it declared. Built (its
+  // pipelines compiled, its preparation run) only when a node of it is kept.
+  struct Unit {
+    enum class Kind { Shadow, Shading, Oit, Outputs } kind;
+    std::size_t firstNode = 0, endNode = 0;
+    std::set<uint32_t> pipelines;
+  };
   // One light's share of the frame.
   struct LightChain {
     RenderSettings settings;  // the light's: its light, and for an extra one no ambient, black
@@ -83,6 +100,8 @@ class Renderer {
     KajiyaKayShading shading;
     Texture color;            // where it composites: the frame's (key light) or its own
     std::size_t endNode = 0;  // its graph nodes end here (they start where the previous end)
+    std::vector<Unit> units;
+    std::set<uint32_t> shadowIds, oitIds;  // what each technique declared (the memory guard's)
   };
   struct Techniques {
     std::unique_ptr<ShadowTechnique> shadow;
@@ -95,7 +114,11 @@ class Renderer {
                                      const RenderSettings& settings);
   static std::vector<Techniques> perLight(const Spec& shadow, const Spec& oit,
                                           const RenderSettings& settings);
-  void setupLight(LightChain& light, std::size_t index);
+  // Declares a light's resources, pipelines (not compiled) and graph nodes;
+  // after the graph is culled, builds what it kept.
+  void declareLight(LightChain& light, std::size_t index);
+  void buildLight(LightChain& light, std::size_t index);
+  bool kept(const Unit& unit) const;
   void addSumPass();
   void upload(const Scene& scene);
   // The graph resources behind the outputs "color", "visibility" and "probe".
@@ -103,6 +126,9 @@ class Renderer {
   std::vector<PassTime> run(const std::vector<const PassNode*>& passes);
 
   Device& dev_;
+  // Everything the renderer and its techniques create on the device, freed
+  // with it (declared before what uses those resources, so it goes last).
+  ResourceGroup group_;
   RenderSettings settings_;
   GpuScene gpu_;
   std::vector<std::unique_ptr<LightChain>> lights_;  // the key light first
@@ -113,6 +139,7 @@ class Renderer {
   Texture color_, depth_;
   FrameGraph graph_;
   std::vector<const PassNode*> passes_;
+  std::vector<std::string> preparations_;
 };
 
 }  // namespace sb

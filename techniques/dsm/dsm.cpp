@@ -44,6 +44,8 @@ void DeepShadowMaps::setup(Device& dev, const GpuScene& scene, const RenderSetti
   kept_ = dev.createBuffer({"dsm.kept", "shadow", BufferUsage::Storage, texels * 4});
   offsets_ = dev.createBuffer({"dsm.offsets", "shadow", BufferUsage::Storage, texels * 4});
   status_ = dev.createBuffer({"dsm.status", "shadow", BufferUsage::Storage, 16});
+  nodes_ =
+      dev.createBuffer({"dsm.nodes", "shadow", BufferUsage::Storage, 8});  // sized by prepare()
 
   const ShaderCode comp = loadShader("techniques/dsm/compress.comp");
   PipelineDesc c2;
@@ -70,7 +72,7 @@ void DeepShadowMaps::prepare(Device& dev) {
   }
   dev.updateBuffer(offsets_, offsets.data(), offsets.size() * 4);
   capacity_ = std::max<uint64_t>(total, 1);
-  nodes_ = dev.createBuffer({"dsm.nodes", "shadow", BufferUsage::Storage, capacity_ * 8});
+  dev.setBufferSize(nodes_, capacity_ * 8);
 }
 
 Pass DeepShadowMaps::compressPass() const {

@@ -100,7 +100,8 @@ Pass DualPeelOit::finalPass() const {
 
 void DualPeelOit::addPasses(FrameGraph& graph, Device& dev) {
   std::vector<Pass> passes = {clearPass(), initPass()};
-  for (uint32_t i = 1; i <= std::min(peelPasses(), 2u); ++i) {
+  // Declared before prepare() counts the layers: as many as the cap allows.
+  for (uint32_t i = 1; i <= std::min((maxLayers_ + 1) / 2, 2u); ++i) {
     passes.push_back(peelPass(i));
     passes.push_back(backPass());
   }

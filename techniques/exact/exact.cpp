@@ -34,6 +34,9 @@ void ExactShadow::setup(Device& dev, const GpuScene& scene, const RenderSettings
   offsets_ = dev.createBuffer({"exact.offsets", "shadow", BufferUsage::Storage, texels * 4});
   cursor_ = dev.createBuffer({"exact.cursor", "shadow", BufferUsage::Storage, texels * 4});
   status_ = dev.createBuffer({"exact.status", "shadow", BufferUsage::Storage, 16});
+  // Sized by prepare()'s count; declared now so that the frame graph is built
+  // (and culled) before any preparation runs.
+  nodes_ = dev.createBuffer({"exact.nodes", "shadow", BufferUsage::Storage, 8});
   if (method_ == Method::Peel)
     state_ = dev.createBuffer({"exact.peel_state", "shadow", BufferUsage::Storage, texels * 16});
   else
@@ -86,7 +89,7 @@ void ExactShadow::prepare(Device& dev) {
   complexity_ = layout.complexity;
   dev.updateBuffer(offsets_, layout.offsets.data(), layout.offsets.size() * 4);
   const std::size_t nodes = std::max<uint64_t>(layout.complexity.total, 1);
-  nodes_ = dev.createBuffer({"exact.nodes", "shadow", BufferUsage::Storage, nodes * 8});
+  dev.setBufferSize(nodes_, nodes * 8);
   layers_ = std::min(complexity_.max, maxLayers_);
 }
 

@@ -98,7 +98,8 @@ Pass ClassicPeelOit::compositePass() const {
 
 void ClassicPeelOit::addPasses(FrameGraph& graph, Device& dev) {
   std::vector<Pass> passes = {clearPass()};
-  for (uint32_t l = 0; l < std::min(layers_, 2u); ++l) {
+  // Declared before prepare() counts the layers: as many as the cap allows.
+  for (uint32_t l = 0; l < std::min(maxLayers_, 2u); ++l) {
     passes.push_back(layerPass(l));
     passes.push_back(blendPass(l));
   }
