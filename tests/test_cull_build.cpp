@@ -10,6 +10,7 @@
 
 #include "harness/render.h"
 #include "techniques/common/technique.h"
+#include "techniques/common/unit.h"
 
 namespace sb {
 namespace {
@@ -47,25 +48,25 @@ TEST_P(CullBeforeBuild, ACulledTransparencyTechniqueCompilesAndPreparesNothing) 
   const RenderResult without = visibilityOnly(GetParam(), "shadowmap", "none");
   const RenderResult colourWithout = runRender(tiny(GetParam(), "shadowmap", "none"));
   EXPECT_FALSE(without.pipelines.empty());
-  for (const TechniqueInfo& info : oitCatalog()) {
-    SCOPED_TRACE(GetParam() + " oit " + info.name);
-    const RenderResult culled = visibilityOnly(GetParam(), "shadowmap", info.name);
+  for (const TechniqueDescriptor* info : techniques(Family::Transparency)) {
+    SCOPED_TRACE(GetParam() + " oit " + info->name);
+    const RenderResult culled = visibilityOnly(GetParam(), "shadowmap", info->name);
     EXPECT_EQ(culled.pipelines, without.pipelines);
     EXPECT_EQ(culled.preparations, without.preparations);
-    EXPECT_FALSE(preparedFor(culled, makeOitTechnique(Spec::parse(info.name))->name()));
+    EXPECT_FALSE(preparedFor(culled, makeOitTechnique(Spec::parse(info->name))->name()));
     // Kept (a colour run), it is built: the check above is not vacuous.
-    if (info.name == "none") continue;
-    const RenderResult kept = runRender(tiny(GetParam(), "shadowmap", info.name));
+    if (info->name == "none") continue;
+    const RenderResult kept = runRender(tiny(GetParam(), "shadowmap", info->name));
     EXPECT_GT(kept.pipelines.size(), colourWithout.pipelines.size());
   }
 }
 
 TEST_P(CullBeforeBuild, EveryShadowTechniqueIsBuiltAndTheCulledTransparencyIsNot) {
-  for (const TechniqueInfo& info : shadowCatalog()) {
-    SCOPED_TRACE(GetParam() + " shadow " + info.name);
-    const std::string name = makeShadowTechnique(Spec::parse(info.name))->name();
-    const RenderResult r = visibilityOnly(GetParam(), info.name, "abuffer");
-    const RenderResult without = visibilityOnly(GetParam(), info.name, "none");
+  for (const TechniqueDescriptor* info : techniques(Family::Shadow)) {
+    SCOPED_TRACE(GetParam() + " shadow " + info->name);
+    const std::string name = makeShadowTechnique(Spec::parse(info->name))->name();
+    const RenderResult r = visibilityOnly(GetParam(), info->name, "abuffer");
+    const RenderResult without = visibilityOnly(GetParam(), info->name, "none");
     EXPECT_EQ(r.pipelines, without.pipelines);
     EXPECT_EQ(r.preparations, without.preparations);
     // Kept (prepared) exactly when it adds a pass (shadow none adds none).

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "techniques/common/technique.h"
+#include "techniques/common/unit.h"
 #include "tests/test_util.h"
 #include "tests/window_test_util.h"
 
@@ -32,7 +33,8 @@ nlohmann::json readJson(const fs::path& p) { return nlohmann::json::parse(sbtest
 TEST_P(ViewMemoryTest, FiftyTechniqueSwitchesLeaveWhatAFreshRunHolds) {
   const auto start = std::chrono::steady_clock::now();
   const fs::path dir = sbtest::tempDir("view-memory");
-  const std::size_t shadows = sb::shadowCatalog().size(), oits = sb::oitCatalog().size();
+  const std::size_t shadows = sb::techniques(sb::Family::Shadow).size(),
+                    oits = sb::techniques(sb::Family::Transparency).size();
   constexpr std::size_t kSwitches = 50;
   ASSERT_LT(shadows + oits, kSwitches);
   // One warm cycle through every technique of both families (back to the
