@@ -197,6 +197,9 @@ void registerRender(CLI::App& app) {
         checkOutputPath(option, *extra, {".png", ".exr"});
       }
       RenderCache cache;  // the scene, built once by the check
+      if (!out->empty() || !referenceOut->empty() || !heatmap->empty() || !flipMap->empty() ||
+          !strip->empty())
+        loadImageModule();
       checkRenderRequest(*req, false, &cache);
       const RenderResult result = runRender(*req, &cache);
       // The run's files all or none: one that fails (out of memory) or a stop

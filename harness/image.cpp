@@ -212,6 +212,8 @@ void writeImage(const Image& img, const std::string& path, ImageBitDepth depth) 
   }
 }
 
+void loadImageModule() { (void)oiio::api(); }
+
 Image readImage(const std::string& path) {
   auto failRead = [&path](const std::string& problem) { failReading(path, problem); };
   std::error_code ec;

@@ -467,6 +467,9 @@ int runSweep(const SweepOptions& o) {
       selected.push_back(&c);
   if (selected.empty())
     throw InputError("suite " + o.suitePath + ": no case matches the filter and shard");
+  if (std::any_of(selected.begin(), selected.end(),
+                  [](const SweepCase* c) { return c->request.image; }))
+    loadImageModule();
 
   const fs::path dir = o.out;
   const fs::path sweepFile = dir / "sweep.json";

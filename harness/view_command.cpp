@@ -621,6 +621,9 @@ void registerViewCommand(CLI::App& app) {
     runGuarded("view", [&] {
       settings->apply(*req);
       checkOutputFolder("--screenshot-dir", *shotDir);
+      // Any key may take a screenshot: the image module is loaded at the start, so that
+      // the session's resident memory does not jump at its first screenshot.
+      loadImageModule();
       return runView(*req, *script, *shotDir);
     });
   });

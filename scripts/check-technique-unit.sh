@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The copy-a-folder acceptance check (issue 28): a copy of techniques/wboit as
+# The copy-a-folder acceptance check (a technique is its folder): a copy of techniques/wboit as
 # techniques/wboit_copy, with its file, class and descriptor names changed by
 # sed and nothing else edited, builds in a scratch copy of the tree, appears in
 # `strandbench list`, renders on GL and Vulkan and is accepted by a suite.

@@ -244,7 +244,8 @@ TEST(LargeRuns, ASweepRecordsAFailedCaseFinishesTheOthersAndExitsOne) {
     }
   }
   EXPECT_EQ(failed, 2);
-  EXPECT_NE(readFile(out / "results.csv").find("memory: this run needs"), std::string::npos);
+  EXPECT_NE(readFile(out / "results.csv").find("over the memory limit (--memory-limit 1)"),
+            std::string::npos);
   EXPECT_NE(readFile(out / "report.md").find("## Failed cases"), std::string::npos);
   EXPECT_NE(readFile(out / "report.html").find("Failed cases"), std::string::npos);
 

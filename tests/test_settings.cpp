@@ -251,12 +251,13 @@ sbtest::CliResult runInProcess(std::vector<std::string> args) {
   } captureOut{std::cout, std::cout.rdbuf(out.rdbuf())},
       captureErr{std::cerr, std::cerr.rdbuf(err.rdbuf())};
   sbtest::CliResult r;
+  const std::vector<std::string> given = args;
   std::reverse(args.begin(), args.end());  // CLI11 takes them last first
   try {
     app.parse(args);
     r.status = sb::lastCommandStatus();
   } catch (const CLI::ParseError& e) {  // as main() handles it
-    std::cerr << "strandbench: " << e.what() << "\n";
+    std::cerr << sb::parseErrorMessage(app, e, given) << "\n";
     r.status = 2;
   }
   r.out = out.str();

@@ -38,9 +38,9 @@ std::string shellQuoted(const std::string& s) {
 
 const char* kScript = R"(# switch the shadow technique twice and the transparency once,
 # move the light, orbit and zoom, then a screenshot of the technique and one of the error
-0    key S          # dc -> osm
-50   key S          # osm -> dom
-100  key T          # wsum -> wavg
+0    key S          # avsm -> dc (the registry's order: none, then by name)
+50   key S          # dc -> dom
+100  key T          # stochastic -> wavg
 150  drag right 60 -25
 200  drag left 40 15
 250  scroll 1
@@ -67,8 +67,8 @@ TEST_P(ViewTest, ScriptedSessionScreenshotIsReproducedByItsRenderCommand) {
   const std::string backend = GetParam();
   const sbtest::CliResult r =
       shell(std::string(SB_CLI) + " view --backend " + backend +
-                " --validation --scene curly:strands=150,points=12,seed=5,alpha=0.4 --shadow dc "
-                "--oit wsum --size 128x96 --script " +
+                " --validation --scene curly:strands=150,points=12,seed=5,alpha=0.4 --shadow avsm "
+                "--oit stochastic --size 128x96 --script " +
                 script.string() + " --screenshot-dir " + (dir / "shots").string(),
             dir);
   ASSERT_EQ(r.status, 0) << r.err << r.out;
