@@ -24,7 +24,7 @@
 #include <utility>
 #include <vector>
 
-#include "harness/errors.h"  // DeviceError
+#include "base/errors.h"  // DeviceError
 
 namespace sb {
 

@@ -1,8 +1,8 @@
-# Fails when a source file in DIR includes a project header ("...") that does not start
+# Fails when a source file under DIR includes a project header ("...") that does not start
 # with one of ALLOWED (a |-separated list of prefixes), so that a library cannot come to use
 # code it does not link; writes STAMP when all is well. Run by the build (CMakeLists.txt):
-#   cmake -DDIR=reports "-DALLOWED=reports/|harness/errors.h" -DSTAMP=ok -P CheckIncludes.cmake
-file(GLOB _files ${DIR}/*.h ${DIR}/*.cpp)
+#   cmake -DDIR=reports "-DALLOWED=reports/|base/errors.h" -DSTAMP=ok -P CheckIncludes.cmake
+file(GLOB_RECURSE _files ${DIR}/*.h ${DIR}/*.cpp)
 string(REPLACE "|" ";" _allowed "${ALLOWED}")
 set(_bad "")
 foreach(_file IN LISTS _files)

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "harness/commands.h"
-#include "harness/errors.h"
+#include "base/errors.h"
 #include "reports/compare_runs.h"
 
 namespace sb {

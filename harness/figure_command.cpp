@@ -11,7 +11,7 @@
 
 #include "harness/backend_names.h"
 #include "harness/commands.h"
-#include "harness/errors.h"
+#include "base/errors.h"
 #include "harness/figure.h"
 #include "harness/image.h"
 #include "harness/oiio/oiio_api.h"

@@ -8,7 +8,7 @@
 #include <string>
 #include <utility>
 
-#include "harness/errors.h"
+#include "base/errors.h"
 #include "harness/metrics.h"
 
 namespace sb {

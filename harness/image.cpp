@@ -14,7 +14,7 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "harness/errors.h"
+#include "base/errors.h"
 #include "harness/oiio/oiio_api.h"
 #include "scenes/scene.h"
 

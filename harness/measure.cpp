@@ -5,7 +5,7 @@
 #include <iomanip>
 #include <sstream>
 
-#include "harness/errors.h"
+#include "base/errors.h"
 #include "harness/sweep.h"
 
 namespace sb {

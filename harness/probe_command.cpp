@@ -9,7 +9,7 @@
 #include "harness/commands.h"
 #include "harness/render.h"
 #include "reports/files.h"
-#include "techniques/common/renderer.h"
+#include "techniques/frame/renderer.h"
 
 namespace sb {
 

@@ -20,7 +20,7 @@
 #include "harness/settings.h"
 #include "harness/stop.h"
 #include "reports/stats.h"
-#include "techniques/common/renderer.h"
+#include "techniques/frame/renderer.h"
 
 namespace sb {
 
@@ -426,7 +426,7 @@ std::vector<InvariantFailure> checkInvariants(const RenderRequest& req, const Re
   std::vector<InvariantFailure> failures;
   if (req.image) {
     const std::string last = out.graph.empty() ? "" : out.graph.back();
-    checkColor(out.image, KajiyaKayShading::maxRadiance(settings), last, failures);
+    checkColor(out.image, HairShading::maxRadiance(settings), last, failures);
   }
   if (req.reference) {
     checkVisibility(out.visibility, "visibility", failures);

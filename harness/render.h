@@ -56,7 +56,7 @@ struct AnimateSpec {
 
 // A light beside the key light (--extra-lights): it gets its own instance of
 // the shadow technique, and the image sums every light's shading
-// (techniques/common/renderer.h). Its frustum is fitted to the scene.
+// (techniques/frame/renderer.h). Its frustum is fitted to the scene.
 struct ExtraLight {
   std::string type = "directional";  // directional | point
   glm::vec3 at{0, -1, 0};            // point: its position; directional: the direction it travels

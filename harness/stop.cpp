@@ -5,7 +5,7 @@
 #include <csignal>
 #include <cstdio>
 
-#include "harness/errors.h"
+#include "base/errors.h"
 
 namespace sb {
 namespace {

@@ -36,7 +36,7 @@
 #include <map>
 #include <set>
 
-#include "harness/errors.h"
+#include "base/errors.h"
 #include "reports/json_file.h"
 #include "reports/stats.h"
 

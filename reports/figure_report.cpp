@@ -4,7 +4,7 @@
 #include <set>
 #include <sstream>
 
-#include "harness/errors.h"
+#include "base/errors.h"
 #include "reports/report_data.h"
 
 namespace sb::report {

@@ -7,7 +7,7 @@
 #include <sstream>
 #include <vector>
 
-#include "harness/errors.h"
+#include "base/errors.h"
 
 namespace sb {
 

@@ -7,7 +7,7 @@
 #include <map>
 #include <sstream>
 
-#include "harness/errors.h"
+#include "base/errors.h"
 #include "reports/files.h"
 #include "reports/svg_chart.h"
 

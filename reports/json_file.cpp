@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "harness/errors.h"
+#include "base/errors.h"
 #include "reports/files.h"
 
 namespace sb {

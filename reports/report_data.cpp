@@ -8,7 +8,7 @@
 #include <map>
 #include <set>
 
-#include "harness/errors.h"
+#include "base/errors.h"
 
 namespace sb::report {
 

@@ -4,7 +4,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "harness/errors.h"
+#include "base/errors.h"
 #include "reports/files.h"
 #include "reports/report_data.h"
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/errors.h"  // InputError
+#include "base/errors.h"  // InputError
 
 namespace sb {
 

@@ -17,7 +17,7 @@
 #include "harness/metrics.h"
 #include "scenes/options.h"
 #include "scenes/view.h"
-#include "techniques/common/renderer.h"
+#include "techniques/frame/renderer.h"
 #include "techniques/dc/dc_math.h"
 #include "techniques/occupancy/occupancy_math.h"
 

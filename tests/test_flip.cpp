@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/errors.h"
+#include "base/errors.h"
 #include "harness/flip.h"
 #include "harness/image.h"
 #include "harness/metrics.h"

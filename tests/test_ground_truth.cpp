@@ -12,7 +12,7 @@
 #include "harness/image.h"
 #include "harness/metrics.h"
 #include "scenes/view.h"
-#include "techniques/common/renderer.h"
+#include "techniques/frame/renderer.h"
 #include "techniques/exact/exact.h"
 
 namespace sb {

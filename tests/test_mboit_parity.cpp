@@ -15,7 +15,7 @@
 #include "gpu_test_util.h"
 #include "harness/image.h"
 #include "harness/metrics.h"
-#include "techniques/common/renderer.h"
+#include "techniques/frame/renderer.h"
 #include "techniques/common/shader_library.h"
 #include "techniques/mboit/mboit.h"
 #include "techniques/mboit/mboit_math.h"

@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
-#include "harness/errors.h"
+#include "base/errors.h"
 #include "harness/measure.h"
 #include "harness/sweep.h"
 #include "reports/stats.h"

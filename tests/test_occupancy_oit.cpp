@@ -14,7 +14,7 @@
 #include "gpu_test_util.h"
 #include "harness/image.h"
 #include "harness/metrics.h"
-#include "techniques/common/renderer.h"
+#include "techniques/frame/renderer.h"
 #include "techniques/occupancy_oit/occupancy_oit.h"
 #include "techniques/occupancy_oit/occupancy_oit_math.h"
 

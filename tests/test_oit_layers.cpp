@@ -18,7 +18,7 @@
 #include "gpu_test_util.h"
 #include "harness/image.h"
 #include "harness/metrics.h"
-#include "techniques/common/renderer.h"
+#include "techniques/frame/renderer.h"
 #include "techniques/kbuffer/kbuffer_math.h"
 #include "techniques/mboit/mboit_math.h"
 #include "techniques/mlab/mlab_math.h"

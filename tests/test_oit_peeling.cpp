@@ -13,7 +13,7 @@
 #include "harness/image.h"
 #include "harness/metrics.h"
 #include "scenes/scene.h"
-#include "techniques/common/renderer.h"
+#include "techniques/frame/renderer.h"
 #include "techniques/stochastic/stochastic_math.h"
 
 namespace sb {

@@ -14,7 +14,7 @@
 #include "harness/metrics.h"
 #include "scenes/view.h"
 #include "techniques/common/opacity.h"
-#include "techniques/common/renderer.h"
+#include "techniques/frame/renderer.h"
 
 namespace sb {
 namespace {

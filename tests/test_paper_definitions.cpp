@@ -13,7 +13,7 @@
 #include "scenes/view.h"
 #include "techniques/common/light_space.h"
 #include "techniques/common/opacity.h"
-#include "techniques/common/renderer.h"
+#include "techniques/frame/renderer.h"
 #include "techniques/dom/dom.h"
 #include "techniques/fake/fake.h"
 #include "techniques/occupancy_oit/occupancy_oit_math.h"

@@ -7,7 +7,7 @@
 #include <map>
 
 #include "backends/device.h"
-#include "harness/errors.h"
+#include "base/errors.h"
 #include "harness/metrics.h"
 #include "harness/render.h"
 #include "techniques/common/shading_model.h"

@@ -39,8 +39,8 @@ TEST(ShaderLibrary, ResolvesIncludesAndAliasesWithLineDirectives) {
   ShaderDefines defs;
   defs.aliases["shadow"] = "techniques/shadowmap/lookup.glsl";
   defs.defines.push_back({"SB_TEST", "1"});
-  const ShaderCode code = loadShader("techniques/kajiya_kay/hair.frag", defs);
-  EXPECT_EQ(code.fileNames.front(), "techniques/kajiya_kay/hair.frag");
+  const ShaderCode code = loadShader("techniques/shading/hair.frag", defs);
+  EXPECT_EQ(code.fileNames.front(), "techniques/shading/hair.frag");
   const std::vector<std::string> expected = {"techniques/common/shading.glsl",
                                              "techniques/kajiya_kay/kajiya_kay.glsl",
                                              "techniques/shadowmap/lookup.glsl"};
@@ -49,7 +49,7 @@ TEST(ShaderLibrary, ResolvesIncludesAndAliasesWithLineDirectives) {
         << f;
   EXPECT_NE(code.text.find("#define SB_TEST 1"), std::string::npos);
   EXPECT_NE(code.text.find("float shadowVisibility"), std::string::npos);
-  EXPECT_THROW(loadShader("techniques/kajiya_kay/hair.frag"), DeviceError);  // <shadow> unbound
+  EXPECT_THROW(loadShader("techniques/shading/hair.frag"), DeviceError);  // <shadow> unbound
   EXPECT_THROW(loadShader("techniques/nope.frag"), DeviceError);
 }
 

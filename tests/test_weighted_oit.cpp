@@ -14,7 +14,7 @@
 #include "harness/image.h"
 #include "harness/metrics.h"
 #include "scenes/scene.h"
-#include "techniques/common/renderer.h"
+#include "techniques/frame/renderer.h"
 #include "techniques/wboit/wboit_math.h"
 #include "techniques/weighted/weighted_math.h"
 

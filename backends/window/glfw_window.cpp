@@ -5,7 +5,7 @@
 #include <chrono>
 #include <cstdlib>
 
-#include "harness/errors.h"  // DeviceError
+#include "base/errors.h"  // DeviceError
 
 namespace sb {
 namespace {

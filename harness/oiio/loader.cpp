@@ -7,7 +7,7 @@
 #include <mutex>
 #include <system_error>
 
-#include "harness/errors.h"
+#include "base/errors.h"
 #include "harness/oiio/oiio_api.h"
 
 namespace sb::oiio {

@@ -3,7 +3,7 @@
 #include <cstring>
 
 #include "techniques/common/shader_library.h"
-#include "techniques/kajiya_kay/shading.h"
+#include "techniques/shading/hair_shading.h"
 
 namespace sb {
 
@@ -16,7 +16,7 @@ constexpr std::size_t kFragmentBytes = 32;
 }  // namespace
 
 void ABufferOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
-                       const KajiyaKayShading& shading, const OitTargets& targets) {
+                       const HairShading& shading, const OitTargets& targets) {
   setupCommon(dev, scene, s, shading, targets);
   offsets_ = dev.createBuffer({name() + ".offsets", "oit", BufferUsage::Storage, pixels() * 4ull});
   cursor_ = dev.createBuffer({name() + ".cursor", "oit", BufferUsage::Storage, pixels() * 4ull});

@@ -14,7 +14,7 @@ class ABufferOit : public HairOit {
   explicit ABufferOit(uint64_t maxFragments) : maxFragments_(maxFragments) {}
   std::string name() const override { return "abuffer"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
-             const KajiyaKayShading& shading, const OitTargets& targets) override;
+             const HairShading& shading, const OitTargets& targets) override;
   void prepare(Device& dev) override;
   void addPasses(FrameGraph& graph, Device& dev) override;
   std::vector<std::string> warnings(Device& dev) override;

@@ -1,7 +1,7 @@
 #include "techniques/common/hair_oit.h"
 
 #include "techniques/common/shader_library.h"
-#include "techniques/kajiya_kay/shading.h"
+#include "techniques/shading/hair_shading.h"
 
 namespace sb {
 
@@ -19,7 +19,7 @@ PipelineDesc transparentHairDesc(const std::string& name, const std::string& tec
 }
 
 void HairOit::setupCommon(Device& dev, const GpuScene& scene, const RenderSettings& s,
-                          const KajiyaKayShading& shading, const OitTargets& targets) {
+                          const HairShading& shading, const OitTargets& targets) {
   scene_ = &scene;
   shading_ = &shading;
   settings_ = s;

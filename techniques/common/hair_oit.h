@@ -29,7 +29,7 @@ class HairOit : public OitTechnique {
   // Keeps the inputs, creates the per-pixel count buffer, the counting
   // pipeline and the accumulation/composite.
   void setupCommon(Device& dev, const GpuScene& scene, const RenderSettings& s,
-                   const KajiyaKayShading& shading, const OitTargets& targets);
+                   const HairShading& shading, const OitTargets& targets);
   // A hair pass with no colour target, depth-tested against the opaque depth
   // (cleared instead when nothing opaque was drawn and `first` is set), with
   // the shading inputs (geometry, shading, shadow lookup).
@@ -43,7 +43,7 @@ class HairOit : public OitTechnique {
   uint32_t pixels() const { return settings_.width * settings_.height; }
 
   const GpuScene* scene_ = nullptr;
-  const KajiyaKayShading* shading_ = nullptr;
+  const HairShading* shading_ = nullptr;
   RenderSettings settings_;
   OitTargets targets_;
   AccumComposite composite_;

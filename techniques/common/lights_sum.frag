@@ -1,5 +1,5 @@
 // Adds an extra light's colour into the frame's (blend One, One): the frame is
-// the sum of every light's shading (techniques/common/renderer.h).
+// the sum of every light's shading (techniques/frame/renderer.h).
 #include "slots.h"
 
 layout(binding = SB_SLOT_LIGHTS_SUM_COLOR) uniform sampler2D lightColor;

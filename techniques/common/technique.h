@@ -36,7 +36,7 @@ struct RenderSettings {
   Light light;  // the key light: its shadows are the visibility and probe outputs
   // Lights 2, 3, ...: each gets its own instance of the shadow technique and
   // its own shading; the frame's colour is the sum over lights
-  // (techniques/common/renderer.h). Ambient light and the background count once.
+  // (techniques/frame/renderer.h). Ambient light and the background count once.
   std::vector<Light> extraLights;
   bool ambient = true;  // false in the shading of an extra light
   glm::vec3 background{0.0f, 0.0f, 0.0f};
@@ -166,7 +166,7 @@ class ShadowTechnique {
 // An order-independent transparency technique: composites the hair over the
 // opaque result ("color", "depth" written by the mesh pass, or cleared by the
 // technique itself when the scene has no mesh). Hair is shaded through the
-// shadow technique's lookup (techniques/kajiya_kay/hair_shading.glsl).
+// shadow technique's lookup (techniques/shading/hair_shading.glsl).
 struct OitTargets {
   Texture color, depth;
   bool opaqueDrawn = false;  // false: the technique's first pass clears them
@@ -175,14 +175,14 @@ struct OitTargets {
   Texture resolved;
 };
 
-class KajiyaKayShading;
+class HairShading;
 
 class OitTechnique {
  public:
   virtual ~OitTechnique() = default;
   virtual std::string name() const = 0;
   virtual void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
-                     const KajiyaKayShading& shading, const OitTargets& targets) = 0;
+                     const HairShading& shading, const OitTargets& targets) = 0;
   // True when prepare() does work; the renderer then draws the opaque depth first.
   virtual bool needsPrepare() const { return false; }
   virtual void prepare(Device& /*dev*/) {}

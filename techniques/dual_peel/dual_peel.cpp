@@ -2,7 +2,7 @@
 
 #include "techniques/common/composite.h"
 #include "techniques/dual_peel/slots.h"
-#include "techniques/kajiya_kay/shading.h"
+#include "techniques/shading/hair_shading.h"
 
 namespace sb {
 
@@ -15,7 +15,7 @@ constexpr std::array<float, 4> kNoDepth = {-1.0f, -1.0f, 0.0f, 0.0f};
 }  // namespace
 
 void DualPeelOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
-                        const KajiyaKayShading& shading, const OitTargets& targets) {
+                        const HairShading& shading, const OitTargets& targets) {
   setupCommon(dev, scene, s, shading, targets);
   const uint32_t w = s.width, h = s.height;
   for (int i = 0; i < 2; ++i) {

@@ -26,7 +26,7 @@ class DualPeelOit : public PeelingOit {
   using PeelingOit::PeelingOit;
   std::string name() const override { return "dual_peel"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
-             const KajiyaKayShading& shading, const OitTargets& targets) override;
+             const HairShading& shading, const OitTargets& targets) override;
   void addPasses(FrameGraph& graph, Device& dev) override;
   std::vector<std::string> warnings(Device& dev) override;
   std::vector<Counter> counters(Device& dev) override;

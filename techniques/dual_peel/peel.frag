@@ -7,7 +7,7 @@
 // farthest: the back layer's (c, a).
 #include "../common/shading.glsl"
 #include <shadow>
-#include "../kajiya_kay/hair_shading.glsl"
+#include "../shading/hair_shading.glsl"
 #include "slots.h"
 
 layout(binding = SB_SLOT_DUAL_OPAQUE_DEPTH) uniform sampler2D dualOpaqueDepth;

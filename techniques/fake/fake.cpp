@@ -4,7 +4,7 @@
 
 #include "techniques/common/shader_library.h"
 #include "techniques/fake/slots.h"
-#include "techniques/kajiya_kay/shading.h"
+#include "techniques/shading/hair_shading.h"
 
 namespace sb {
 
@@ -13,7 +13,7 @@ constexpr uint32_t kImage0 = SB_SLOT_FAKE_IMAGE0;
 }  // namespace
 
 void FakeTransparency::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
-                             const KajiyaKayShading& shading, const OitTargets& targets) {
+                             const HairShading& shading, const OitTargets& targets) {
   scene_ = &scene;
   shading_ = &shading;
   settings_ = s;
@@ -46,7 +46,7 @@ void FakeTransparency::setup(Device& dev, const GpuScene& scene, const RenderSet
 
   // Each subset: opaque hair, shaded as --oit none shades it, depth-tested.
   const ShaderCode vert = Geometry::strandVertexShader(s);
-  const ShaderCode frag = loadShader("techniques/kajiya_kay/hair.frag", shading.hairDefines());
+  const ShaderCode frag = loadShader("techniques/shading/hair.frag", shading.hairDefines());
   PipelineDesc d;
   d.name = "fake.subset";
   d.technique = "fake+" + shading.shadow().name();

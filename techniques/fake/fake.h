@@ -23,7 +23,7 @@ class FakeTransparency : public OitTechnique {
   static constexpr uint32_t kSubsets = 3;
   std::string name() const override { return "fake"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
-             const KajiyaKayShading& shading, const OitTargets& targets) override;
+             const HairShading& shading, const OitTargets& targets) override;
   void addPasses(FrameGraph& graph, Device& dev) override;
 
   // The segments of each subset (for tests).
@@ -34,7 +34,7 @@ class FakeTransparency : public OitTechnique {
   Pass blendPass() const;
 
   const GpuScene* scene_ = nullptr;
-  const KajiyaKayShading* shading_ = nullptr;
+  const HairShading* shading_ = nullptr;
   RenderSettings settings_;
   OitTargets targets_;
   std::array<Buffer, kSubsets> segments_{};

@@ -3,7 +3,7 @@
 #include "../common/view.glsl"
 #include "../common/shading.glsl"
 #include <shadow>
-#include "../kajiya_kay/hair_shading.glsl"
+#include "../shading/hair_shading.glsl"
 #include "mboit.glsl"
 #include "mboit_math.glsl"
 #include "slots.h"

@@ -4,7 +4,7 @@
 
 #include "scenes/options.h"
 #include "techniques/common/hair_oit.h"
-#include "techniques/kajiya_kay/shading.h"
+#include "techniques/shading/hair_shading.h"
 #include "techniques/mboit/mboit_math.h"
 #include "techniques/mboit/slots.h"
 
@@ -45,7 +45,7 @@ MomentOit::Options MomentOit::readOptions(const OptionReader& o) {
 }
 
 void MomentOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
-                      const KajiyaKayShading& shading, const OitTargets& targets) {
+                      const HairShading& shading, const OitTargets& targets) {
   scene_ = &scene;
   shading_ = &shading;
   settings_ = s;

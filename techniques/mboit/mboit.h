@@ -29,7 +29,7 @@ class MomentOit : public OitTechnique {
   static Options readOptions(const OptionReader& o);
   std::string name() const override { return "mboit"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
-             const KajiyaKayShading& shading, const OitTargets& targets) override;
+             const HairShading& shading, const OitTargets& targets) override;
   void addPasses(FrameGraph& graph, Device& dev) override;
   // The additive targets after a frame: b0, (b1..b4), (b5..b8) if drawn and the
   // accumulated (c a T, a T), for tests comparing the backends stage by stage.
@@ -43,7 +43,7 @@ class MomentOit : public OitTechnique {
 
   Options o_;
   const GpuScene* scene_ = nullptr;
-  const KajiyaKayShading* shading_ = nullptr;
+  const HairShading* shading_ = nullptr;
   RenderSettings settings_;
   OitTargets targets_;
   Buffer params_;

@@ -3,7 +3,7 @@
 namespace sb {
 
 void MlabOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
-                    const KajiyaKayShading& shading, const OitTargets& targets) {
+                    const HairShading& shading, const OitTargets& targets) {
   ABufferOit::setup(dev, scene, s, shading, targets);
   // No interlock path is written (it could not run here): with or without the
   // extension the merge runs in the resolve, in primitive order.

@@ -22,7 +22,7 @@ class MlabOit : public ABufferOit {
   explicit MlabOit(int layers) : ABufferOit(~0ull), layers_(layers) {}
   std::string name() const override { return "mlab"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
-             const KajiyaKayShading& shading, const OitTargets& targets) override;
+             const HairShading& shading, const OitTargets& targets) override;
   std::vector<Counter> counters(Device& dev) override;
   std::string timingEmulated() const override { return emulated_; }
 

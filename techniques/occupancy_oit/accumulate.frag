@@ -10,7 +10,7 @@
 #include "../common/view.glsl"
 #include "../common/shading.glsl"
 #include <shadow>
-#include "../kajiya_kay/hair_shading.glsl"
+#include "../shading/hair_shading.glsl"
 #include "../occupancy/occupancy_math.glsl"  // once, with the occupancy shadow's lookup
 #include "occupancy_oit_math.glsl"
 #include "slots.h"

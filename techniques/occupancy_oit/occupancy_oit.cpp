@@ -4,7 +4,7 @@
 
 #include "scenes/options.h"
 #include "techniques/common/shader_library.h"
-#include "techniques/kajiya_kay/shading.h"
+#include "techniques/shading/hair_shading.h"
 #include "techniques/occupancy_oit/slots.h"
 
 namespace sb {
@@ -34,7 +34,7 @@ OccupancyOit::Options OccupancyOit::readOptions(const OptionReader& o) {
 }
 
 void OccupancyOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
-                         const KajiyaKayShading& shading, const OitTargets& targets) {
+                         const HairShading& shading, const OitTargets& targets) {
   scene_ = &scene;
   shading_ = &shading;
   settings_ = s;

@@ -33,7 +33,7 @@ class OccupancyOit : public OitTechnique {
 
   std::string name() const override { return "occupancy"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
-             const KajiyaKayShading& shading, const OitTargets& targets) override;
+             const HairShading& shading, const OitTargets& targets) override;
   void addPasses(FrameGraph& graph, Device& dev) override;
 
   // The eye-space maps and accumulation targets, for tests.
@@ -49,7 +49,7 @@ class OccupancyOit : public OitTechnique {
 
   Options opts_;
   const GpuScene* scene_ = nullptr;
-  const KajiyaKayShading* shading_ = nullptr;
+  const HairShading* shading_ = nullptr;
   RenderSettings settings_;
   OitTargets targets_;
   OccupancyMaps maps_;

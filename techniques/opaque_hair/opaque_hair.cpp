@@ -1,18 +1,18 @@
 #include "techniques/opaque_hair/opaque_hair.h"
 
 #include "techniques/common/shader_library.h"
-#include "techniques/kajiya_kay/shading.h"
+#include "techniques/shading/hair_shading.h"
 
 namespace sb {
 
 void OpaqueHair::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
-                       const KajiyaKayShading& shading, const OitTargets& targets) {
+                       const HairShading& shading, const OitTargets& targets) {
   scene_ = &scene;
   shading_ = &shading;
   settings_ = s;
   targets_ = targets;
   const ShaderCode vert = Geometry::strandVertexShader(s);
-  const ShaderCode frag = loadShader("techniques/kajiya_kay/hair.frag", shading.hairDefines());
+  const ShaderCode frag = loadShader("techniques/shading/hair.frag", shading.hairDefines());
   PipelineDesc d;
   d.name = "shading.hair";
   d.technique = "kajiya_kay+" + shading.shadow().name();

@@ -10,14 +10,14 @@ class OpaqueHair : public OitTechnique {
  public:
   std::string name() const override { return "none"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
-             const KajiyaKayShading& shading, const OitTargets& targets) override;
+             const HairShading& shading, const OitTargets& targets) override;
   void addPasses(FrameGraph& graph, Device& dev) override;
 
  private:
   Pass pass() const;
 
   const GpuScene* scene_ = nullptr;
-  const KajiyaKayShading* shading_ = nullptr;
+  const HairShading* shading_ = nullptr;
   RenderSettings settings_;
   OitTargets targets_;
   Pipeline pipeline_;

@@ -1,6 +1,6 @@
 #include "techniques/peel/peel.h"
 
-#include "techniques/kajiya_kay/shading.h"
+#include "techniques/shading/hair_shading.h"
 
 namespace sb {
 
@@ -11,7 +11,7 @@ constexpr uint32_t kSize = SB_SLOT_PEEL_ADVANCE_SIZE;  // peel_advance.comp's si
 }  // namespace
 
 void PeelOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
-                    const KajiyaKayShading& shading, const OitTargets& targets) {
+                    const HairShading& shading, const OitTargets& targets) {
   setupCommon(dev, scene, s, shading, targets);
   state_ = dev.createBuffer({"peel.state", "oit", BufferUsage::Storage, pixels() * 16ull});
   peeled_ = dev.createBuffer({"peel.layers", "oit", BufferUsage::Storage, pixels() * 4ull});

@@ -10,7 +10,7 @@ layout(early_fragment_tests) in;
 #include "../common/shading.glsl"
 #include "../common/slots.h"
 #include "../common/view.glsl"
-#include "../kajiya_kay/hair_shading.glsl"
+#include "../shading/hair_shading.glsl"
 
 layout(std430, binding = SB_SLOT_OIT_ACCUM) buffer Accum { vec4 accum[]; };
 layout(std430, binding = SB_SLOT_PEEL_STATE) buffer PeelState { uvec4 peelState[]; };

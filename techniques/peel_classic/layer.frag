@@ -5,7 +5,7 @@
 // A fragment at exactly a peeled depth fails the strict test: ties are lost.
 #include "../common/shading.glsl"
 #include <shadow>
-#include "../kajiya_kay/hair_shading.glsl"
+#include "../shading/hair_shading.glsl"
 #include "slots.h"
 
 layout(binding = SB_SLOT_PEELC_PREV_DEPTH) uniform sampler2D peelPrevDepth;

@@ -3,7 +3,7 @@
 #include <cstring>
 
 #include "techniques/common/composite.h"
-#include "techniques/kajiya_kay/shading.h"
+#include "techniques/shading/hair_shading.h"
 #include "techniques/peel_classic/slots.h"
 
 namespace sb {
@@ -16,7 +16,7 @@ constexpr float kNoLayer = 2.0f;  // an R32F depth no fragment has: "nothing pee
 }  // namespace
 
 void ClassicPeelOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
-                           const KajiyaKayShading& shading, const OitTargets& targets) {
+                           const HairShading& shading, const OitTargets& targets) {
   setupCommon(dev, scene, s, shading, targets);
   const uint32_t w = s.width, h = s.height;
   layerColor_ = dev.createTexture({"peel_classic.layer", "oit", Format::RGBA32F, w, h, false});

@@ -22,7 +22,7 @@ class ClassicPeelOit : public PeelingOit {
   using PeelingOit::PeelingOit;
   std::string name() const override { return "peel_classic"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
-             const KajiyaKayShading& shading, const OitTargets& targets) override;
+             const HairShading& shading, const OitTargets& targets) override;
   void addPasses(FrameGraph& graph, Device& dev) override;
   std::vector<std::string> warnings(Device& dev) override;
   std::vector<Counter> counters(Device& dev) override;

@@ -2,7 +2,7 @@
 
 #include <cstring>
 
-#include "techniques/kajiya_kay/shading.h"
+#include "techniques/shading/hair_shading.h"
 #include "techniques/probe/slots.h"
 
 namespace sb {
@@ -12,7 +12,7 @@ constexpr uint32_t kPoints = SB_SLOT_PROBE_POINTS, kValues = SB_SLOT_PROBE_VALUE
 }
 
 void ProbeOutput::setup(Device& dev, const std::vector<glm::vec3>& points,
-                        const KajiyaKayShading& shading) {
+                        const HairShading& shading) {
   shading_ = &shading;
   count_ = uint32_t(points.size());
   std::vector<glm::vec4> p;

@@ -7,7 +7,7 @@ layout(early_fragment_tests) in;
 #include "../common/view.glsl"
 #include "../common/shading.glsl"
 #include <shadow>
-#include "../kajiya_kay/hair_shading.glsl"
+#include "../shading/hair_shading.glsl"
 #include "../common/fragment_key.glsl"
 #include "shortcut.glsl"
 

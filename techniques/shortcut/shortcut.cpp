@@ -1,7 +1,7 @@
 #include "techniques/shortcut/shortcut.h"
 
 #include "techniques/common/hair_oit.h"
-#include "techniques/kajiya_kay/shading.h"
+#include "techniques/shading/hair_shading.h"
 #include "techniques/shortcut/slots.h"
 
 namespace sb {
@@ -13,7 +13,7 @@ constexpr uint32_t kDepths = SB_SLOT_SHORTCUT_DEPTHS, kColors = SB_SLOT_SHORTCUT
 }  // namespace
 
 void ShortCutOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
-                        const KajiyaKayShading& shading, const OitTargets& targets) {
+                        const HairShading& shading, const OitTargets& targets) {
   scene_ = &scene;
   shading_ = &shading;
   settings_ = s;

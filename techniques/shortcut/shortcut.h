@@ -20,7 +20,7 @@ class ShortCutOit : public OitTechnique {
   explicit ShortCutOit(int k) : k_(k) {}
   std::string name() const override { return "shortcut"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
-             const KajiyaKayShading& shading, const OitTargets& targets) override;
+             const HairShading& shading, const OitTargets& targets) override;
   void addPasses(FrameGraph& graph, Device& dev) override;
 
  private:
@@ -31,7 +31,7 @@ class ShortCutOit : public OitTechnique {
 
   int k_;
   const GpuScene* scene_ = nullptr;
-  const KajiyaKayShading* shading_ = nullptr;
+  const HairShading* shading_ = nullptr;
   RenderSettings settings_;
   OitTargets targets_;
   Buffer depths_, colors_, claims_;

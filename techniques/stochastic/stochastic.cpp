@@ -2,7 +2,7 @@
 
 #include "scenes/options.h"
 #include "techniques/common/composite.h"
-#include "techniques/kajiya_kay/shading.h"
+#include "techniques/shading/hair_shading.h"
 #include "techniques/stochastic/slots.h"
 
 namespace sb {
@@ -20,7 +20,7 @@ StochasticOit::Options StochasticOit::readOptions(const OptionReader& o) {
 }
 
 void StochasticOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
-                          const KajiyaKayShading& shading, const OitTargets& targets) {
+                          const HairShading& shading, const OitTargets& targets) {
   scene_ = &scene;
   shading_ = &shading;
   settings_ = s;

@@ -33,7 +33,7 @@ class StochasticOit : public OitTechnique {
   explicit StochasticOit(Options o) : options_(o) {}
   std::string name() const override { return "stochastic"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
-             const KajiyaKayShading& shading, const OitTargets& targets) override;
+             const HairShading& shading, const OitTargets& targets) override;
   void addPasses(FrameGraph& graph, Device& dev) override;
 
  private:
@@ -44,7 +44,7 @@ class StochasticOit : public OitTechnique {
 
   Options options_;
   const GpuScene* scene_ = nullptr;
-  const KajiyaKayShading* shading_ = nullptr;
+  const HairShading* shading_ = nullptr;
   RenderSettings settings_;
   OitTargets targets_;
   Buffer params_;  // (seed, samples)

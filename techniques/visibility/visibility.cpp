@@ -1,12 +1,12 @@
 #include "techniques/visibility/visibility.h"
 
 #include "techniques/common/shader_library.h"
-#include "techniques/kajiya_kay/shading.h"
+#include "techniques/shading/hair_shading.h"
 
 namespace sb {
 
 void VisibilityOutput::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
-                             const KajiyaKayShading& shading) {
+                             const HairShading& shading) {
   scene_ = &scene;
   shading_ = &shading;
   settings_ = s;

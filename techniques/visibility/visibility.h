@@ -4,7 +4,7 @@
 
 namespace sb {
 
-class KajiyaKayShading;
+class HairShading;
 
 // Output "visibility": an R32F image of shadowVisibility() at the nearest hair
 // or mesh fragment of every pixel (-1 where there is none). Its passes run
@@ -12,7 +12,7 @@ class KajiyaKayShading;
 class VisibilityOutput {
  public:
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
-             const KajiyaKayShading& shading);
+             const HairShading& shading);
   void addPasses(FrameGraph& graph, Device& dev);
   Texture image() const { return image_; }
 
@@ -20,7 +20,7 @@ class VisibilityOutput {
   Pass pass() const;
 
   const GpuScene* scene_ = nullptr;
-  const KajiyaKayShading* shading_ = nullptr;
+  const HairShading* shading_ = nullptr;
   RenderSettings settings_;
   Texture image_, depth_;
   Pipeline hair_, mesh_;

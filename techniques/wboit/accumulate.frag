@@ -5,7 +5,7 @@
 #include "../common/view.glsl"
 #include "../common/shading.glsl"
 #include <shadow>
-#include "../kajiya_kay/hair_shading.glsl"
+#include "../shading/hair_shading.glsl"
 #include "wboit_math.glsl"
 
 layout(location = 0) in vec3 vWorldPos;

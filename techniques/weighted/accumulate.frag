@@ -3,7 +3,7 @@
 // SB_WEIGHTED_COUNT also adds 1 to target 1 (R32F), the fragment count n.
 #include "../common/shading.glsl"
 #include <shadow>
-#include "../kajiya_kay/hair_shading.glsl"
+#include "../shading/hair_shading.glsl"
 
 layout(location = 0) in vec3 vWorldPos;
 layout(location = 1) in vec3 vTangent;

@@ -1,6 +1,6 @@
 #include "techniques/weighted/weighted.h"
 
-#include "techniques/kajiya_kay/shading.h"
+#include "techniques/shading/hair_shading.h"
 
 namespace sb {
 
@@ -9,7 +9,7 @@ constexpr uint32_t kFirstTarget = SB_SLOT_BLENDED_TARGETS;  // resolve: sampler 
 }  // namespace
 
 void BlendedOitBase::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
-                           const KajiyaKayShading& shading, const OitTargets& targets) {
+                           const HairShading& shading, const OitTargets& targets) {
   scene_ = &scene;
   shading_ = &shading;
   settings_ = s;

@@ -19,7 +19,7 @@ namespace sb {
 class BlendedOitBase : public OitTechnique {
  public:
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
-             const KajiyaKayShading& shading, const OitTargets& targets) override;
+             const HairShading& shading, const OitTargets& targets) override;
   void addPasses(FrameGraph& graph, Device& dev) override;
 
  protected:
@@ -42,7 +42,7 @@ class BlendedOitBase : public OitTechnique {
   Pass resolvePass() const;
 
   const GpuScene* scene_ = nullptr;
-  const KajiyaKayShading* shading_ = nullptr;
+  const HairShading* shading_ = nullptr;
   RenderSettings settings_;
   OitTargets targets_;
   std::vector<Target> targetDescs_;

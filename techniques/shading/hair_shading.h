@@ -21,7 +21,7 @@ struct ShadingUniforms {
 // and what every hair pass of a transparency technique needs to shade hair with
 // the model chosen by --shading (Kajiya-Kay, Marschner or Sadeghi) through the
 // shadow technique's lookup (hair_shading.glsl).
-class KajiyaKayShading {
+class HairShading {
  public:
   // Mesh: albedo, ambient (hair: the shading model's material).
   static constexpr glm::vec4 kMeshMaterial{0.75f, 0.72f, 0.68f, 0.15f};

@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "techniques/common/technique.h"
-#include "techniques/kajiya_kay/shading.h"
+#include "techniques/shading/hair_shading.h"
 #include "techniques/probe/probe.h"
 #include "techniques/visibility/visibility.h"
 
@@ -97,7 +97,7 @@ class Renderer {
     RenderSettings settings;  // the light's: its light, and for an extra one no ambient, black
     std::unique_ptr<ShadowTechnique> shadow;
     std::unique_ptr<OitTechnique> oit;
-    KajiyaKayShading shading;
+    HairShading shading;
     Texture color;            // where it composites: the frame's (key light) or its own
     std::size_t endNode = 0;  // its graph nodes end here (they start where the previous end)
     std::vector<Unit> units;

@@ -1,4 +1,4 @@
-#include "techniques/common/renderer.h"
+#include "techniques/frame/renderer.h"
 
 #include <algorithm>
 

@@ -2,9 +2,9 @@
 // (SB_SHADING_MODEL, techniques/common/shading_model.h) with the light's
 // visibility from the shadow technique. Include after common/shading.glsl and <shadow>.
 #ifndef SB_SHADING_MODEL
-#error "hair passes need the shading's defines (KajiyaKayShading::hairDefines)"
+#error "hair passes need the shading's defines (HairShading::hairDefines)"
 #endif
-#include "kajiya_kay.glsl"
+#include "../kajiya_kay/kajiya_kay.glsl"
 #if SB_SHADING_MODEL == 1
 #include "../marschner/marschner.glsl"
 #elif SB_SHADING_MODEL == 2

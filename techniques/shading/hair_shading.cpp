@@ -1,4 +1,4 @@
-#include "techniques/kajiya_kay/shading.h"
+#include "techniques/shading/hair_shading.h"
 
 #include <algorithm>
 
@@ -6,7 +6,7 @@
 
 namespace sb {
 
-float KajiyaKayShading::maxRadiance(const RenderSettings& s) {
+float HairShading::maxRadiance(const RenderSettings& s) {
   // Every light's shading adds up; the ambient term counts once.
   float l = 0;
   auto add = [&l](const Light& light) {
@@ -23,7 +23,7 @@ float KajiyaKayShading::maxRadiance(const RenderSettings& s) {
   return std::max({hair, mesh, s.background.r, s.background.g, s.background.b});
 }
 
-void KajiyaKayShading::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
+void HairShading::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
                              const ShadowTechnique& shadow, Texture color, Texture depth) {
   scene_ = &scene;
   shadow_ = &shadow;
@@ -48,7 +48,7 @@ void KajiyaKayShading::setup(Device& dev, const GpuScene& scene, const RenderSet
 
   if (scene.hasMesh()) {
     const ShaderCode vert = Geometry::meshVertexShader();
-    const ShaderCode frag = loadShader("techniques/kajiya_kay/mesh.frag", hairDefines());
+    const ShaderCode frag = loadShader("techniques/shading/mesh.frag", hairDefines());
     PipelineDesc d;
     d.name = "shading.mesh";
     d.technique = "kajiya_kay+" + shadow.name();
@@ -63,7 +63,7 @@ void KajiyaKayShading::setup(Device& dev, const GpuScene& scene, const RenderSet
   }
 }
 
-ShaderDefines KajiyaKayShading::hairDefines() const {
+ShaderDefines HairShading::hairDefines() const {
   const ShadowLookup lookup = shadow_->lookup();
   ShaderDefines defs = lookup.defines;
   defs.aliases["shadow"] = lookup.shader;
@@ -72,13 +72,13 @@ ShaderDefines KajiyaKayShading::hairDefines() const {
   return defs;
 }
 
-Inputs KajiyaKayShading::hairInputs() const {
+Inputs HairShading::hairInputs() const {
   Inputs in = Geometry::inputs(*scene_, viewUbo_);
   in.uniform(bind::kShading, shadingUbo_).add(shadow_->lookup().inputs);
   return in;
 }
 
-Pass KajiyaKayShading::meshPass() const {
+Pass HairShading::meshPass() const {
   const glm::vec3 bg = settings_.background;
   return Pass("shading.mesh")
       .color(color_, LoadOp::Clear, {bg.r, bg.g, bg.b, 1.0f})
@@ -86,7 +86,7 @@ Pass KajiyaKayShading::meshPass() const {
       .inputs(hairInputs());
 }
 
-void KajiyaKayShading::addMeshPass(FrameGraph& graph, Device& dev) {
+void HairShading::addMeshPass(FrameGraph& graph, Device& dev) {
   if (!meshPipeline_) return;
   graph.add(meshPass(), [this, &dev, p = meshPass()] {
     p.draw(dev, meshPipeline_, scene_->meshTriangles * 3);
