@@ -65,6 +65,29 @@ class BackendTest : public ::testing::TestWithParam<std::string> {
   std::size_t messages_ = 0;
 };
 
+// A shadow technique against the exact reference on one backend: 96x96, invariants on, and
+// the light ray through texel (64, 64) of a 128x128 map probed at 256 depths.
+class ProbedShadowTest : public BackendTest {
+ protected:
+  sb::RenderRequest request(const std::string& scene, const std::string& shadow) {
+    sb::RenderRequest r;
+    r.scene = scene;
+    r.shadow = shadow;
+    r.backend = GetParam();
+    r.width = r.height = 96;
+    r.repeat = 1;
+    r.warmup = 0;
+    r.reference = true;
+    r.invariants = true;
+    sb::ProbeSpec p;
+    p.mapSize = 128;
+    p.texel = {64, 64};
+    p.samples = 256;
+    r.probe = p;
+    return r;
+  }
+};
+
 inline std::vector<float> floats(const std::vector<uint8_t>& bytes) {
   std::vector<float> v(bytes.size() / sizeof(float));
   std::memcpy(v.data(), bytes.data(), v.size() * sizeof(float));

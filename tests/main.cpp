@@ -45,34 +45,32 @@ class SkipPolicy : public testing::EmptyTestEventListener {
       logPath_ = std::string(dir) + "/" + std::to_string(::getpid()) + ".txt";
     }
   }
+  // GoogleTest holds its lock while it reports a part result: anything that asks it for
+  // state (the current test, a failure) waits for OnTestEnd.
   void OnTestPartResult(const testing::TestPartResult& r) override {
     if (!r.skipped()) return;
-    const std::string reason = reasonOf(r);
+    skip_ = reasonOf(r);
+    skipAt_ = {r.file_name() ? r.file_name() : "?", r.line_number()};
+  }
+  // Before the result printer (main() orders them), so a failure is reported as one.
+  void OnTestEnd(const testing::TestInfo& test) override {
+    if (skip_.empty()) return;
+    const std::string reason = std::exchange(skip_, "");
     if (inCi() && setUpMissing(reason)) {
-      // Failed in OnTestEnd: GoogleTest holds its lock while it reports a part result.
-      missing_ = reason;
-      missingAt_ = {r.file_name() ? r.file_name() : "?", r.line_number()};
+      ADD_FAILURE_AT(skipAt_.first.c_str(), skipAt_.second)
+          << "CI=true: this test may not skip for a missing set-up (" << reason
+          << "); the test command installs and configures what it needs";
       return;
     }
-    if (logPath_.empty()) return;
-    const testing::TestInfo* t = testing::UnitTest::GetInstance()->current_test_info();
-    std::ofstream(logPath_, std::ios::app)
-        << reason << '\t' << (t ? std::string(t->test_suite_name()) + "." + t->name() : "?")
-        << '\n';
-  }
-  // Before the result printer (main() orders them), so the test is reported as failed.
-  void OnTestEnd(const testing::TestInfo&) override {
-    if (missing_.empty()) return;
-    ADD_FAILURE_AT(missingAt_.first.c_str(), missingAt_.second)
-        << "CI=true: this test may not skip for a missing set-up (" << missing_
-        << "); the test command installs and configures what it needs";
-    missing_.clear();
+    if (!logPath_.empty())
+      std::ofstream(logPath_, std::ios::app)
+          << reason << '\t' << test.test_suite_name() << "." << test.name() << '\n';
   }
 
  private:
   std::string logPath_;
-  std::string missing_;  // the set-up a test under CI=true skipped for
-  std::pair<std::string, int> missingAt_;
+  std::string skip_;  // the running test's skip reason, if it skipped
+  std::pair<std::string, int> skipAt_;
 };
 
 }  // namespace

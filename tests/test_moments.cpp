@@ -137,25 +137,8 @@ TEST(TrigMoments, MoreMomentsAreCloser) {
 
 // ------------------------------------------------------- moment shadow maps --
 
-class MomentShadows : public sbtest::BackendTest {
+class MomentShadows : public sbtest::ProbedShadowTest {
  protected:
-  RenderRequest request(const std::string& scene, const std::string& shadow) {
-    RenderRequest r;
-    r.scene = scene;
-    r.shadow = shadow;
-    r.backend = GetParam();
-    r.width = r.height = 96;
-    r.repeat = 1;
-    r.warmup = 0;
-    r.reference = true;
-    r.invariants = true;
-    ProbeSpec p;
-    p.mapSize = 128;
-    p.texel = {64, 64};
-    p.samples = 256;
-    r.probe = p;
-    return r;
-  }
   RenderResult run(const RenderRequest& r) {
     RenderResult out = runRender(r);
     double probeMax = 0;

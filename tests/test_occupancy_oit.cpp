@@ -17,6 +17,7 @@
 #include "techniques/frame/renderer.h"
 #include "techniques/occupancy_oit/occupancy_oit.h"
 #include "techniques/occupancy_oit/occupancy_oit_math.h"
+#include "occupancy_maps_cpu.h"
 
 namespace sb {
 namespace {
@@ -106,23 +107,7 @@ TEST(OccupancyOitMath, ResolveRenormalisesToLambdaWithoutNaN) {
   EXPECT_EQ(r, glm::vec4(0.0f));
 }
 
-// A pixel's maps built on the CPU as the occupancy and slab passes build them.
-struct PixelMaps {
-  uint32_t bits[SB_OCC_MAX_WORDS] = {};
-  float slabs[SB_OCC_MAX_SLABS] = {};
-  float zMin = 2.0f, zMax = -2.0f;
-  int slices, slabCount;
-  PixelMaps(const std::vector<float>& z, int nSlices, int nSlabs)
-      : slices(nSlices), slabCount(nSlabs) {
-    for (float d : z) zMin = std::min(zMin, d), zMax = std::max(zMax, d);
-    for (float d : z) {
-      const int s = glsl::occupancySlice(d, zMin, zMax, slices);
-      bits[s / 32] |= 1u << (s % 32);
-      slabs[s / (slices / slabCount)] += 1.0f;
-    }
-  }
-  float order(float z) { return glsl::oitOrder(z, zMin, zMax, bits, slabs, slices, slabCount); }
-};
+using PixelMaps = sbtest::OccupancyMaps;
 
 TEST(OccupancyOitMath, OrderIsExactWithOneFragmentPerSetBit) {
   // Fragments on slice starts, the last at the far end: orders 0..n-1.

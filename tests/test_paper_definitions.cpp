@@ -17,21 +17,8 @@
 #include "techniques/dom/dom.h"
 #include "techniques/fake/fake.h"
 #include "techniques/occupancy_oit/occupancy_oit_math.h"
+#include "occupancy_maps_cpu.h"
 #include "techniques/osm/osm.h"
-
-namespace sb::paperdef {
-// The lookup kernels of opacity_filter.glsl over a CPU opacity field (its own
-// namespace: test_shadow_more.cpp compiles them too).
-using glm::clamp;
-using glm::floor;
-using glm::ivec2;
-using glm::mix;
-using glm::vec2;
-inline float (*fieldCpu)(ivec2) = nullptr;
-#define SB_FILTER_OPACITY(t) fieldCpu(t)
-#include "techniques/common/opacity_filter.glsl"
-#undef SB_FILTER_OPACITY
-}  // namespace sb::paperdef
 
 namespace sb {
 namespace {
@@ -77,52 +64,9 @@ TEST(LightDistance, DirectionalLightKeepsTheWindowDepth) {
   for (float z : {0.0f, 0.1f, 0.5f, 0.93f, 1.0f}) EXPECT_EQ(glsl::lightDistance(vp, z), z);
 }
 
-// ---- the OSM paper's 3x3 averaging kernel ----
-
-TEST(OsmBox3x3, AveragesThePointsTexelAndItsEightNeighbours) {
-  namespace k = paperdef;
-  const int size = 32;
-  // A ramp in x: the symmetric average keeps the point's texel value.
-  k::fieldCpu = [](k::ivec2 t) { return float(t.x); };
-  EXPECT_FLOAT_EQ(k::filteredOpacity(glm::vec2(10.25f, 7.5f) / float(size), size, k::kFilterBox3x3),
-                  10.0f);
-  // One bright texel: 1/9 of it in each of the 9 texels around it, nothing
-  // two texels away (pcf6x6 spreads it over 36: a different kernel).
-  k::fieldCpu = [](k::ivec2 t) { return t == k::ivec2(16, 16) ? 36.0f : 0.0f; };
-  for (const glm::vec2 p : {glm::vec2(16.5f, 16.5f), glm::vec2(17.5f, 16.5f),
-                            glm::vec2(15.5f, 15.5f), glm::vec2(17.9f, 17.1f)})
-    EXPECT_FLOAT_EQ(k::filteredOpacity(p / float(size), size, k::kFilterBox3x3), 4.0f);
-  EXPECT_FLOAT_EQ(k::filteredOpacity(glm::vec2(18.5f, 16.5f) / float(size), size, k::kFilterBox3x3),
-                  0.0f);
-  EXPECT_FLOAT_EQ(k::filteredOpacity(glm::vec2(16.5f, 16.5f) / float(size), size, k::kFilterPcf6x6),
-                  1.0f);
-  // Edges clamp: a constant field stays constant at the corner.
-  k::fieldCpu = [](k::ivec2) { return 3.0f; };
-  EXPECT_FLOAT_EQ(k::filteredOpacity(glm::vec2(0.0f), size, k::kFilterBox3x3), 3.0f);
-  EXPECT_EQ(makeShadowTechnique(Spec::parse("osm:filter=box3x3"))->name(), "osm");
-}
-
 // ---- occupancy: the paper's occupancy-only variant, the two order formulas ----
 
-// One texel's (or pixel's) maps from fragment depths, as the passes build them.
-struct TexelMaps {
-  uint32_t bits[SB_OCC_MAX_WORDS] = {};
-  float slabs[SB_OCC_MAX_SLABS] = {};
-  float zMin = 2.0f, zMax = -2.0f;
-  int slices, slabCount;
-  TexelMaps(const std::vector<float>& z, int nSlices, int nSlabs)
-      : slices(nSlices), slabCount(nSlabs) {
-    for (float d : z) zMin = std::min(zMin, d), zMax = std::max(zMax, d);
-    for (float d : z) {
-      const int sl = glsl::occupancySlice(d, zMin, zMax, slices);
-      bits[sl / 32] |= 1u << (sl % 32);
-      slabs[sl / (slices / slabCount)] += 1.0f;
-    }
-  }
-  float count(float z, bool useSlabs) {
-    return glsl::occupancyCount(z, zMin, zMax, bits, slabs, slices, slabCount, useSlabs);
-  }
-};
+using TexelMaps = sbtest::OccupancyMaps;
 
 TEST(OccupancyVariants, CountOnlyVariantSpreadsTheTexelsFragmentsOverItsSetBits) {
   // 12 fragments in 4 occupied slices (3 each): slab_map=count (one slab)

@@ -261,25 +261,8 @@ TEST(VoxelMath, CountNeverFallsAlongTheRayAndStaysFinite) {
 
 // --- GPU: both backends against the exact visibility ---
 
-class ShadowAvsm : public sbtest::BackendTest {
+class ShadowAvsm : public sbtest::ProbedShadowTest {
  protected:
-  RenderRequest request(const std::string& scene, const std::string& shadow) {
-    RenderRequest r;
-    r.scene = scene;
-    r.shadow = shadow;
-    r.backend = GetParam();
-    r.width = r.height = 96;
-    r.repeat = 1;
-    r.warmup = 0;
-    r.reference = true;
-    r.invariants = true;
-    ProbeSpec p;
-    p.mapSize = 128;
-    p.texel = {64, 64};
-    p.samples = 256;
-    r.probe = p;
-    return r;
-  }
   static double counter(const RenderResult& out, const std::string& name) {
     for (const Counter& c : out.counters)
       if (c.name == name) return c.value;

@@ -272,6 +272,30 @@ TEST(OpacityFilter, KernelsOnKnownFields) {
     EXPECT_FLOAT_EQ(glsl::filteredOpacity(glm::vec2(0.0f), size, k), 3.0f) << k;
 }
 
+// ---- the OSM paper's 3x3 averaging kernel ----
+
+TEST(OsmBox3x3, AveragesThePointsTexelAndItsEightNeighbours) {
+  const int size = 32;
+  // A ramp in x: the symmetric average keeps the point's texel value.
+  glsl::filterFieldCpu = [](glsl::ivec2 t) { return float(t.x); };
+  EXPECT_FLOAT_EQ(glsl::filteredOpacity(glm::vec2(10.25f, 7.5f) / float(size), size, glsl::kFilterBox3x3),
+                  10.0f);
+  // One bright texel: 1/9 of it in each of the 9 texels around it, nothing
+  // two texels away (pcf6x6 spreads it over 36: a different kernel).
+  glsl::filterFieldCpu = [](glsl::ivec2 t) { return t == glsl::ivec2(16, 16) ? 36.0f : 0.0f; };
+  for (const glm::vec2 p : {glm::vec2(16.5f, 16.5f), glm::vec2(17.5f, 16.5f),
+                            glm::vec2(15.5f, 15.5f), glm::vec2(17.9f, 17.1f)})
+    EXPECT_FLOAT_EQ(glsl::filteredOpacity(p / float(size), size, glsl::kFilterBox3x3), 4.0f);
+  EXPECT_FLOAT_EQ(glsl::filteredOpacity(glm::vec2(18.5f, 16.5f) / float(size), size, glsl::kFilterBox3x3),
+                  0.0f);
+  EXPECT_FLOAT_EQ(glsl::filteredOpacity(glm::vec2(16.5f, 16.5f) / float(size), size, glsl::kFilterPcf6x6),
+                  1.0f);
+  // Edges clamp: a constant field stays constant at the corner.
+  glsl::filterFieldCpu = [](glsl::ivec2) { return 3.0f; };
+  EXPECT_FLOAT_EQ(glsl::filteredOpacity(glm::vec2(0.0f), size, glsl::kFilterBox3x3), 3.0f);
+  EXPECT_EQ(makeShadowTechnique(Spec::parse("osm:filter=box3x3"))->name(), "osm");
+}
+
 // --- the ray invariant for a technique that does not promise to fall (fom) ---
 
 TEST(ShadowMoreInvariants, RayMayRiseOnlyWhereTheTechniqueSaysSo) {
@@ -289,25 +313,8 @@ TEST(ShadowMoreInvariants, RayMayRiseOnlyWhereTheTechniqueSaysSo) {
 
 // --- GPU: both backends against the exact visibility ---
 
-class ShadowMore : public sbtest::BackendTest {
+class ShadowMore : public sbtest::ProbedShadowTest {
  protected:
-  RenderRequest request(const std::string& scene, const std::string& shadow) {
-    RenderRequest r;
-    r.scene = scene;
-    r.shadow = shadow;
-    r.backend = GetParam();
-    r.width = r.height = 96;
-    r.repeat = 1;
-    r.warmup = 0;
-    r.reference = true;
-    r.invariants = true;
-    ProbeSpec p;
-    p.mapSize = 128;
-    p.texel = {64, 64};
-    p.samples = 256;
-    r.probe = p;
-    return r;
-  }
   // Largest |technique - exact| along the probe ray.
   static double probeMaxError(const RenderResult& out) {
     double worst = 0;

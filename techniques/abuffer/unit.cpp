@@ -3,21 +3,15 @@
 
 #include "techniques/abuffer/abuffer.h"
 
-namespace sb {
-namespace {
-
-const TechniqueRegistrar registered{
-    {.name = "abuffer",
-     .family = Family::Transparency,
-     .folder = "abuffer",
-     .paper = "Carpenter 1984",
-     .help = "ground truth cross-check: per-pixel fragment lists, sorted and composited",
-     .options = {opt::integer("max_fragments", 50000000, 1, 1000000000,
-                              "most fragments stored (32 bytes each), 1..1000000000")},
-     .caps = {.exact = true},
-     .makeOit = [](const OptionReader& o) {
-       return std::make_unique<ABufferOit>(static_cast<uint64_t>(o.integer("max_fragments")));
-     }}};
-
-}  // namespace
-}  // namespace sb
+SB_TECHNIQUE({.name = "abuffer",
+              .family = Family::Transparency,
+              .folder = "abuffer",
+              .paper = "Carpenter 1984",
+              .help = "ground truth cross-check: per-pixel fragment lists, sorted and composited",
+              .options = {opt::integer("max_fragments", 50000000, 1, 1000000000,
+                                       "most fragments stored (32 bytes each), 1..1000000000")},
+              .caps = {.exact = true},
+              .makeOit = [](const OptionReader& o) {
+                return std::make_unique<ABufferOit>(
+                    static_cast<uint64_t>(o.integer("max_fragments")));
+              }});

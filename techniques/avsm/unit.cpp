@@ -3,10 +3,7 @@
 
 #include "techniques/avsm/avsm.h"
 
-namespace sb {
-namespace {
-
-const TechniqueRegistrar registered{
+SB_TECHNIQUE(
     {.name = "avsm",
      .family = Family::Shadow,
      .folder = "avsm",
@@ -21,7 +18,4 @@ const TechniqueRegistrar registered{
      .makeShadow = [](const OptionReader& o) {
        return std::make_unique<AdaptiveVolumetricShadowMaps>(
            AdaptiveVolumetricShadowMaps::readOptions(o));
-     }}};
-
-}  // namespace
-}  // namespace sb
+     }});

@@ -1,6 +1,6 @@
 // A technique as a self-describing unit: each folder under techniques/ declares
 // its descriptor (CLI name, family, paper, typed options, capabilities, factory)
-// in its own .cpp and registers it there with a TechniqueRegistrar. Nothing
+// in its own unit.cpp and registers it there (SB_TECHNIQUE, below). Nothing
 // central lists techniques: `strandbench list`, option validation, the viewer's
 // stepping, suite validation and docs/techniques.md all read this registry.
 // sb_techniques is linked whole (CMakeLists.txt) so that no registrar is dropped.
@@ -55,10 +55,21 @@ struct TechniqueDescriptor {
   std::function<ShadingModel(const OptionReader&)> makeShading;
 };
 
-// `static const TechniqueRegistrar registered{descriptor};` in a technique's folder.
 struct TechniqueRegistrar {
   explicit TechniqueRegistrar(TechniqueDescriptor d);
 };
+
+// A technique's folder registers it from its unit.cpp, at file scope:
+//   SB_TECHNIQUE({.name = "dom", .family = Family::Shadow, ...});
+// (a static registrar in namespace sb; one per line, so a file may register two names).
+#define SB_TECHNIQUE(...)                                                        \
+  namespace sb {                                                                 \
+  namespace {                                                                    \
+  const TechniqueRegistrar SB_TECHNIQUE_NAME(registered, __LINE__){__VA_ARGS__}; \
+  }                                                                              \
+  }
+#define SB_TECHNIQUE_NAME(a, b) SB_TECHNIQUE_JOIN(a, b)
+#define SB_TECHNIQUE_JOIN(a, b) a##b
 
 // A family's techniques: "none" first, then by name.
 std::vector<const TechniqueDescriptor*> techniques(Family f);

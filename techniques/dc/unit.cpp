@@ -3,10 +3,7 @@
 
 #include "techniques/dc/dc.h"
 
-namespace sb {
-namespace {
-
-const TechniqueRegistrar registered{
+SB_TECHNIQUE(
     {.name = "dc",
      .family = Family::Shadow,
      .folder = "dc",
@@ -20,7 +17,4 @@ const TechniqueRegistrar registered{
      .stepped = SteppedOption{"clusters", false, 1, 8},
      .makeShadow = [](const OptionReader& o) {
        return std::make_unique<DensityClusteringShadow>(DensityClusteringShadow::readOptions(o));
-     }}};
-
-}  // namespace
-}  // namespace sb
+     }});

@@ -3,10 +3,7 @@
 
 #include "techniques/dsm/dsm.h"
 
-namespace sb {
-namespace {
-
-const TechniqueRegistrar registered{
+SB_TECHNIQUE(
     {.name = "dsm",
      .family = Family::Shadow,
      .folder = "dsm",
@@ -21,7 +18,4 @@ const TechniqueRegistrar registered{
                  opt::mapSize(), opt::bias()},
      .makeShadow = [](const OptionReader& o) {
        return std::make_unique<DeepShadowMaps>(DeepShadowMaps::readOptions(o));
-     }}};
-
-}  // namespace
-}  // namespace sb
+     }});

@@ -3,10 +3,7 @@
 
 #include "techniques/dual_peel/dual_peel.h"
 
-namespace sb {
-namespace {
-
-const TechniqueRegistrar registered{
+SB_TECHNIQUE(
     {.name = "dual_peel",
      .family = Family::Transparency,
      .folder = "dual_peel",
@@ -16,7 +13,4 @@ const TechniqueRegistrar registered{
      .options = {opt::layersCap()},
      .makeOit = [](const OptionReader& o) {
        return std::make_unique<DualPeelOit>(static_cast<uint32_t>(o.integer("layers")));
-     }}};
-
-}  // namespace
-}  // namespace sb
+     }});

@@ -3,10 +3,7 @@
 
 #include "techniques/exact/exact.h"
 
-namespace sb {
-namespace {
-
-const TechniqueRegistrar registered{
+SB_TECHNIQUE(
     {.name = "exact",
      .family = Family::Shadow,
      .folder = "exact",
@@ -24,7 +21,4 @@ const TechniqueRegistrar registered{
            o.choice("method") == "peel" ? ExactShadow::Method::Peel : ExactShadow::Method::ABuffer,
            static_cast<uint32_t>(o.integer("size")), static_cast<float>(o.number("bias")),
            static_cast<uint32_t>(o.integer("layers")));
-     }}};
-
-}  // namespace
-}  // namespace sb
+     }});

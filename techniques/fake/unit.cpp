@@ -3,17 +3,11 @@
 
 #include "techniques/fake/fake.h"
 
-namespace sb {
-namespace {
-
-const TechniqueRegistrar registered{
+SB_TECHNIQUE(
     {.name = "fake",
      .family = Family::Transparency,
      .folder = "fake",
      .paper = "Yuksel & Keyser 2008, section 5",
      .help = "fake transparency (Yuksel & Keyser 2008, section 5): the strands in 3 interleaved "
              "subsets, each drawn opaque into its own image, the 3 images blended equally",
-     .makeOit = [](const OptionReader&) { return std::make_unique<FakeTransparency>(); }}};
-
-}  // namespace
-}  // namespace sb
+     .makeOit = [](const OptionReader&) { return std::make_unique<FakeTransparency>(); }});

@@ -3,10 +3,7 @@
 
 #include "techniques/fom/fom.h"
 
-namespace sb {
-namespace {
-
-const TechniqueRegistrar registered{
+SB_TECHNIQUE(
     {.name = "fom",
      .family = Family::Shadow,
      .folder = "fom",
@@ -22,7 +19,4 @@ const TechniqueRegistrar registered{
      .caps = {.monotone = false},
      .makeShadow = [](const OptionReader& o) {
        return std::make_unique<FourierOpacityMaps>(FourierOpacityMaps::readOptions(o));
-     }}};
-
-}  // namespace
-}  // namespace sb
+     }});

@@ -1,10 +1,7 @@
 // --shading kajiya-kay.
 #include "techniques/common/unit.h"
 
-namespace sb {
-namespace {
-
-const TechniqueRegistrar registered{
+SB_TECHNIQUE(
     {.name = "kajiya-kay",
      .family = Family::Shading,
      .folder = "kajiya_kay",
@@ -19,7 +16,4 @@ const TechniqueRegistrar registered{
        m.kind = ShadingKind::KajiyaKay;
        m.material = {f("diffuse"), f("specular"), f("shininess"), 0.12f};
        return m;
-     }}};
-
-}  // namespace
-}  // namespace sb
+     }});

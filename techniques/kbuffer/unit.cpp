@@ -3,10 +3,7 @@
 
 #include "techniques/kbuffer/kbuffer.h"
 
-namespace sb {
-namespace {
-
-const TechniqueRegistrar registered{
+SB_TECHNIQUE(
     {.name = "kbuffer",
      .family = Family::Transparency,
      .folder = "kbuffer",
@@ -20,7 +17,4 @@ const TechniqueRegistrar registered{
                               "pool drops fragments (counted and reported), 0..1000000000")},
      .makeOit = [](const OptionReader& o) {
        return std::make_unique<KBufferOit>(KBufferOit::readOptions(o));
-     }}};
-
-}  // namespace
-}  // namespace sb
+     }});

@@ -3,10 +3,7 @@
 
 #include "techniques/mboit/mboit.h"
 
-namespace sb {
-namespace {
-
-const TechniqueRegistrar registered{
+SB_TECHNIQUE(
     {.name = "mboit",
      .family = Family::Transparency,
      .folder = "mboit",
@@ -19,7 +16,4 @@ const TechniqueRegistrar registered{
                      "moment target bits: 16 (RGBA16F, the paper's 16-bit bias) | 32 (RGBA32F)")},
      .makeOit = [](const OptionReader& o) {
        return std::make_unique<MomentOit>(MomentOit::readOptions(o));
-     }}};
-
-}  // namespace
-}  // namespace sb
+     }});

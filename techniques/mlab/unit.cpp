@@ -3,10 +3,7 @@
 
 #include "techniques/mlab/mlab.h"
 
-namespace sb {
-namespace {
-
-const TechniqueRegistrar registered{
+SB_TECHNIQUE(
     {.name = "mlab",
      .family = Family::Transparency,
      .folder = "mlab",
@@ -17,7 +14,4 @@ const TechniqueRegistrar registered{
      .caps = {.interlock = true, .emulatedTiming = true},
      .makeOit = [](const OptionReader& o) {
        return std::make_unique<MlabOit>(static_cast<int>(o.integer("layers")));
-     }}};
-
-}  // namespace
-}  // namespace sb
+     }});

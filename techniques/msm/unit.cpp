@@ -3,10 +3,7 @@
 
 #include "techniques/msm/msm.h"
 
-namespace sb {
-namespace {
-
-const TechniqueRegistrar registered{
+SB_TECHNIQUE(
     {.name = "msm",
      .family = Family::Shadow,
      .folder = "msm",
@@ -19,7 +16,4 @@ const TechniqueRegistrar registered{
      .caps = {.monotone = false},
      .makeShadow = [](const OptionReader& o) {
        return std::make_unique<MomentShadowMaps>(MomentShadowMaps::readOptions(o));
-     }}};
-
-}  // namespace
-}  // namespace sb
+     }});

@@ -3,16 +3,9 @@
 
 #include "techniques/none/none.h"
 
-namespace sb {
-namespace {
-
-const TechniqueRegistrar registered{
-    {.name = "none",
-     .family = Family::Shadow,
-     .folder = "none",
-     .paper = "",
-     .help = "no shadows: Kajiya-Kay shading with the light always visible",
-     .makeShadow = [](const OptionReader&) { return std::make_unique<NoShadow>(); }}};
-
-}  // namespace
-}  // namespace sb
+SB_TECHNIQUE({.name = "none",
+              .family = Family::Shadow,
+              .folder = "none",
+              .paper = "",
+              .help = "no shadows: Kajiya-Kay shading with the light always visible",
+              .makeShadow = [](const OptionReader&) { return std::make_unique<NoShadow>(); }});

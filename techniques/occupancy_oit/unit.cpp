@@ -4,10 +4,7 @@
 #include "techniques/occupancy/occupancy_maps.h"
 #include "techniques/occupancy_oit/occupancy_oit.h"
 
-namespace sb {
-namespace {
-
-const TechniqueRegistrar registered{
+SB_TECHNIQUE(
     {.name = "occupancy",
      .family = Family::Transparency,
      .folder = "occupancy_oit",
@@ -28,7 +25,4 @@ const TechniqueRegistrar registered{
                              "slice) | paper (the printed F_i / B_total * B_before)")},
      .makeOit = [](const OptionReader& o) {
        return std::make_unique<OccupancyOit>(OccupancyOit::readOptions(o));
-     }}};
-
-}  // namespace
-}  // namespace sb
+     }});

@@ -3,18 +3,11 @@
 
 #include "techniques/opaque_hair/opaque_hair.h"
 
-namespace sb {
-namespace {
-
-const TechniqueRegistrar registered{
-    {.name = "none",
-     .family = Family::Transparency,
-     .folder = "opaque_hair",
-     .paper = "",
-     .help = "no transparency: opaque, depth-tested hair",
-     // --msaa: geometry only, no per-pixel data.
-     .caps = {.multisampling = true},
-     .makeOit = [](const OptionReader&) { return std::make_unique<OpaqueHair>(); }}};
-
-}  // namespace
-}  // namespace sb
+SB_TECHNIQUE({.name = "none",
+              .family = Family::Transparency,
+              .folder = "opaque_hair",
+              .paper = "",
+              .help = "no transparency: opaque, depth-tested hair",
+              // --msaa: geometry only, no per-pixel data.
+              .caps = {.multisampling = true},
+              .makeOit = [](const OptionReader&) { return std::make_unique<OpaqueHair>(); }});

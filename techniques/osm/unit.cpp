@@ -3,10 +3,7 @@
 
 #include "techniques/osm/osm.h"
 
-namespace sb {
-namespace {
-
-const TechniqueRegistrar registered{
+SB_TECHNIQUE(
     {.name = "osm",
      .family = Family::Shadow,
      .folder = "osm",
@@ -31,7 +28,4 @@ const TechniqueRegistrar registered{
      .stepped = SteppedOption{"maps", true, 1, 256},
      .makeShadow = [](const OptionReader& o) {
        return std::make_unique<OpacityShadowMaps>(OpacityShadowMaps::readOptions(o));
-     }}};
-
-}  // namespace
-}  // namespace sb
+     }});

@@ -3,10 +3,7 @@
 
 #include "techniques/peel_classic/peel_classic.h"
 
-namespace sb {
-namespace {
-
-const TechniqueRegistrar registered{
+SB_TECHNIQUE(
     {.name = "peel_classic",
      .family = Family::Transparency,
      .folder = "peel_classic",
@@ -16,7 +13,4 @@ const TechniqueRegistrar registered{
      .options = {opt::layersCap()},
      .makeOit = [](const OptionReader& o) {
        return std::make_unique<ClassicPeelOit>(static_cast<uint32_t>(o.integer("layers")));
-     }}};
-
-}  // namespace
-}  // namespace sb
+     }});

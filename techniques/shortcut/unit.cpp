@@ -3,10 +3,7 @@
 
 #include "techniques/shortcut/shortcut.h"
 
-namespace sb {
-namespace {
-
-const TechniqueRegistrar registered{
+SB_TECHNIQUE(
     {.name = "shortcut",
      .family = Family::Transparency,
      .folder = "shortcut",
@@ -17,7 +14,4 @@ const TechniqueRegistrar registered{
                               "nearest fragments blended in order per pixel, 1..16")},
      .makeOit = [](const OptionReader& o) {
        return std::make_unique<ShortCutOit>(static_cast<int>(o.integer("k")));
-     }}};
-
-}  // namespace
-}  // namespace sb
+     }});

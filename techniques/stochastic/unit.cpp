@@ -3,10 +3,7 @@
 
 #include "techniques/stochastic/stochastic.h"
 
-namespace sb {
-namespace {
-
-const TechniqueRegistrar registered{
+SB_TECHNIQUE(
     {.name = "stochastic",
      .family = Family::Transparency,
      .folder = "stochastic",
@@ -19,7 +16,4 @@ const TechniqueRegistrar registered{
                               "random seed of the coverage masks, 0..4294967295")},
      .makeOit = [](const OptionReader& o) {
        return std::make_unique<StochasticOit>(StochasticOit::readOptions(o));
-     }}};
-
-}  // namespace
-}  // namespace sb
+     }});

@@ -3,10 +3,7 @@
 
 #include "techniques/voxel/voxel.h"
 
-namespace sb {
-namespace {
-
-const TechniqueRegistrar registered{
+SB_TECHNIQUE(
     {.name = "voxel",
      .family = Family::Shadow,
      .folder = "voxel",
@@ -26,7 +23,4 @@ const TechniqueRegistrar registered{
           opt::bias()},
      .makeShadow = [](const OptionReader& o) {
        return std::make_unique<VoxelDensityShadow>(VoxelDensityShadow::readOptions(o));
-     }}};
-
-}  // namespace
-}  // namespace sb
+     }});

@@ -3,10 +3,7 @@
 
 #include "techniques/wboit/wboit.h"
 
-namespace sb {
-namespace {
-
-const TechniqueRegistrar registered{
+SB_TECHNIQUE(
     {.name = "wboit",
      .family = Family::Transparency,
      .folder = "wboit",
@@ -22,7 +19,4 @@ const TechniqueRegistrar registered{
        return std::make_unique<WeightedBlendedOit>(
            WeightedBlendedOit::weightFromName(o.choice("weight")),
            o.choice("precision") == "16" ? 16 : 32);
-     }}};
-
-}  // namespace
-}  // namespace sb
+     }});

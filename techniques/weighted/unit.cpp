@@ -3,10 +3,7 @@
 
 #include "techniques/weighted/weighted.h"
 
-namespace sb {
-namespace {
-
-const TechniqueRegistrar sum{
+SB_TECHNIQUE(
     {.name = "wsum",
      .family = Family::Transparency,
      .folder = "weighted",
@@ -16,8 +13,8 @@ const TechniqueRegistrar sum{
      .caps = {.multisampling = true},
      .makeOit = [](const OptionReader&) {
        return std::make_unique<WeightedOit>(WeightedOit::Mode::Sum);
-     }}};
-const TechniqueRegistrar average{
+     }});
+SB_TECHNIQUE(
     {.name = "wavg",
      .family = Family::Transparency,
      .folder = "weighted",
@@ -27,7 +24,4 @@ const TechniqueRegistrar average{
      .caps = {.multisampling = true},
      .makeOit = [](const OptionReader&) {
        return std::make_unique<WeightedOit>(WeightedOit::Mode::Average);
-     }}};
-
-}  // namespace
-}  // namespace sb
+     }});
