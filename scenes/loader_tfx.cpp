@@ -429,8 +429,12 @@ Mesh parseTfxMesh(const uint8_t* data, std::size_t size, const std::string& name
   Mesh m;
   std::vector<glm::vec3> normals;
   auto vec = [&](std::size_t at, const char* what) {
-    return glm::vec3(in.number(t[at], what), in.number(t[at + 1], what),
-                     in.number(t[at + 2], what));
+    const glm::vec3 v(in.number(t[at], what), in.number(t[at + 1], what),
+                      in.number(t[at + 2], what));
+    // Finite as a double, a value can still overflow a float (1e300).
+    if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
+      in.fail(std::string(what) + " is too large for a float");
+    return v;
   };
   block("numOfBones", 2, "bone", [] {});  // skinning: not drawn
   // index, position, normal, then joints and weights (skinning: not read).

@@ -890,6 +890,10 @@ TEST(MeshLoaders, MalformedMeshesNameFileAndProblem) {
   bad = tfx;
   bad.replace(bad.find("1 1 0 0 0 1"), 3, "1 x");
   expectInputError([&] { tfxMesh(bad); }, {"mem.tfxmesh", "'x' is not a finite number"});
+  // Finite as a double, infinite as a float (found by the tfxmesh fuzzer).
+  bad = tfx;
+  bad.replace(bad.find("1 1 0 0 0 1"), 3, "1 1e300");
+  expectInputError([&] { tfxMesh(bad); }, {"mem.tfxmesh", "too large for a float"});
 }
 
 // mesh= reads by extension; a file of another format is not called an empty OBJ.
