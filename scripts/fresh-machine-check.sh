@@ -136,7 +136,8 @@ step "mount /proc /dev /sys" mount_system
 write_readme_block() {
   local log=$root/root/test.log
   local ctest_line skips
-  ctest_line=$(grep -E "tests passed|tests failed" "$log" | tail -n 1)
+  # The first summary is the test suite's; the last one is the fuzzers'.
+  ctest_line=$(grep -E "tests passed|tests failed" "$log" | head -n 1)
   skips=$(sed -n '/^== skipped tests:/,/^== slowest/p' "$log" | sed '1s/^== //;$d' | sed 's/^ *//' |
     paste -sd ';' | sed 's/;/; /g')
   local block
