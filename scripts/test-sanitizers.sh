@@ -57,7 +57,7 @@ fi
 # end if either part failed.
 failed=()
 if command -v xvfb-run >/dev/null; then
-  (cd build-asan && xvfb-run -a -s "-screen 0 1024x768x24" \
+  (cd build-asan && xvfb-run -a -s "-screen 0 1024x768x24 -noreset" \
     ctest --output-on-failure -j "$jobs" "$@") || failed+=("the test suite under ASan + UBSan")
 else
   echo "test-sanitizers: xvfb-run not found (apt-get install xvfb): the window and viewer" \
