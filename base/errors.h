@@ -1,6 +1,6 @@
 // The error kinds that cross folders: thrown in scenes/, backends/, reports/ and
 // harness/, and caught by the harness, which turns them into exit statuses (2 for
-// bad input or an unavailable backend; harness/commands.h, runGuarded). They live
+// bad input or an unavailable backend; cli/commands.h, runGuarded). They live
 // here, header-only and with no dependencies, so that every library can throw them
 // without linking another (the fuzz build compiles scenes/ alone).
 #pragma once

@@ -1,6 +1,6 @@
 # A build of technique folders against the libraries of an existing build
 # (-DSB_PREBUILT_DIR=<that build> -DSB_UNIT_FOLDERS=<folder;...>): compiles only
-# those folders' sources, the embedded shaders and harness/main.cpp, and links
+# those folders' sources, the embedded shaders and cli/main.cpp, and links
 # the prebuilt static libraries. scripts/check-technique-unit.sh uses it to
 # build a copied technique folder in seconds instead of rebuilding the tree.
 find_package(glm REQUIRED)
@@ -24,7 +24,7 @@ set(_techniques ${CMAKE_BINARY_DIR}/libsb_techniques_prebuilt.a)
 file(COPY_FILE ${SB_PREBUILT_DIR}/libsb_techniques.a ${_techniques})
 execute_process(COMMAND ${CMAKE_AR} d ${_techniques} embedded_shaders.cpp.o
                 COMMAND_ERROR_IS_FATAL ANY)
-foreach(_lib sb_harness sb_reports sb_backends sb_scenes)
+foreach(_lib sb_cli sb_harness sb_imaging sb_reports sb_backends sb_scenes)
   add_library(${_lib} STATIC IMPORTED)
   set_target_properties(${_lib} PROPERTIES IMPORTED_LOCATION ${SB_PREBUILT_DIR}/lib${_lib}.a)
 endforeach()
@@ -41,7 +41,7 @@ add_custom_command(
           "-DFILES=${SB_SHADER_LIST}" -P ${CMAKE_SOURCE_DIR}/cmake/EmbedShaders.cmake
   DEPENDS ${SB_SHADER_FILES} ${CMAKE_SOURCE_DIR}/cmake/EmbedShaders.cmake VERBATIM)
 
-set(_sources harness/main.cpp ${SB_SHADER_CPP})
+set(_sources cli/main.cpp ${SB_SHADER_CPP})
 foreach(_folder IN LISTS SB_UNIT_FOLDERS)
   file(GLOB _folder_sources techniques/${_folder}/*.cpp)
   list(APPEND _sources ${_folder_sources})
@@ -50,7 +50,7 @@ add_executable(strandbench ${_sources})
 target_include_directories(strandbench PRIVATE ${CMAKE_SOURCE_DIR})
 # The new folders' objects are linked as they are (each registers itself); the
 # prebuilt techniques whole, as in the main build.
-target_link_libraries(strandbench PRIVATE sb_harness sb_reports
+target_link_libraries(strandbench PRIVATE sb_cli sb_harness sb_imaging sb_reports
   "$<LINK_LIBRARY:WHOLE_ARCHIVE,sb_techniques>" sb_backends sb_scenes
   CLI11::CLI11 nlohmann_json::nlohmann_json
   glm::glm tinyobjloader::tinyobjloader Vulkan::Vulkan PkgConfig::EGL PkgConfig::GLFW

@@ -29,7 +29,7 @@
 //   the fraction of pixels whose largest channel difference exceeds
 //     failing_threshold is <= max_failing_fraction, and
 //   PSNR >= min_psnr (dB; identical images have PSNR +inf), and
-//   mean FLIP (LDR-FLIP at 67 ppd, harness/flip.h) <= max_flip_mean.
+//   mean FLIP (LDR-FLIP at 67 ppd, imaging/flip.h) <= max_flip_mean.
 // max_abs, min_psnr and max_flip_mean may be null (no limit); max_flip_mean may
 // also be left out (no limit, and FLIP is not computed).
 #pragma once
@@ -42,9 +42,9 @@
 #include <string>
 #include <vector>
 
-#include "harness/image.h"
-#include "harness/metrics.h"
 #include "harness/render.h"
+#include "imaging/image.h"
+#include "imaging/metrics.h"
 
 namespace sb {
 

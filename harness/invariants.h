@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "backends/device.h"
-#include "harness/image.h"
+#include "imaging/image.h"
 
 namespace sb {
 

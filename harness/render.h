@@ -10,13 +10,14 @@
 
 #include "backends/device.h"
 #include "harness/backend_names.h"
-#include "harness/flip.h"
-#include "harness/image.h"
 #include "harness/invariants.h"
-#include "harness/metrics.h"
+#include "imaging/flip.h"
+#include "imaging/image.h"
+#include "imaging/metrics.h"
 #include "scenes/scene.h"
 #include "scenes/view.h"
 #include "techniques/common/technique.h"
+#include "techniques/common/unit.h"
 
 namespace sb {
 
@@ -67,11 +68,12 @@ struct ExtraLight {
 
 struct RenderRequest {
   std::string scene = "straight";
-  std::string shadow = "none";
-  std::string oit = "none";            // transparency technique (none | peel | abuffer, ...)
-  std::string shading = "kajiya-kay";  // hair shading model spec
-  bool reference = false;              // also render the reference and report errors against it
-  bool image = true;  // false: no final shading; only the visibility error (needs reference)
+  // The techniques' specs; by default each family's default (defaultTechnique).
+  std::string shadow = defaultTechnique(Family::Shadow).name;
+  std::string oit = defaultTechnique(Family::Transparency).name;
+  std::string shading = defaultTechnique(Family::Shading).name;
+  bool reference = false;  // also render the reference and report errors against it
+  bool image = true;       // false: no final shading; only the visibility error (needs reference)
   std::optional<ProbeSpec> probe;  // also report visibility along a light ray
   bool invariants = false;         // check the outputs and maps (harness/invariants.h)
   bool runToRun = true;            // sweeps with invariants: the case twice, outputs identical

@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "harness/run_context.h"
 #include "harness/suite.h"
 
 namespace sb {
@@ -60,31 +61,5 @@ struct MergeOutcome {
 // missing nothing is written unless allowMissing (then the context lists what is missing).
 MergeOutcome mergeSweeps(const std::string& out, const std::vector<std::string>& inputs,
                          bool allowMissing = false);
-
-// "I/N" -> (I, N) with 1 <= I <= N.
-std::pair<int, int> parseShard(const std::string& text);
-
-// The shard a scheduler gave this process (`--shard auto`, or `auto/N` where the scheduler
-// gives only an index): Slurm job arrays (SLURM_ARRAY_TASK_ID, _COUNT, _MIN, _STEP),
-// Kubernetes indexed jobs (JOB_COMPLETION_INDEX, 0-based, with N given), GitLab parallel jobs
-// (CI_NODE_INDEX, CI_NODE_TOTAL, 1-based) and GoogleTest sharding (GTEST_SHARD_INDEX,
-// GTEST_TOTAL_SHARDS, 0-based), in that order. `env` reads a variable (nullptr: unset).
-// Returns (I, N, the variable used); throws InputError naming the variables when none is set
-// or one is malformed.
-struct AutoShard {
-  int index = 1, count = 1;
-  std::string source;
-};
-AutoShard shardFromEnvironment(const std::string& text,
-                               const std::function<const char*(const char*)>& env);
-
-// The machine and build a run was made on (date, commit, build type, compiler, CPU, OS, the
-// load average when it starts, the CPU frequency governor where /sys shows it).
-nlohmann::json runContext();
-// /proc/loadavg as {"1min", "5min", "15min"}; null where it cannot be read.
-nlohmann::json loadAverage();
-// The CPUs' cpufreq scaling governors ("performance", or "a,b" when they differ); "" where
-// cpufreq is not visible (virtual machines, containers).
-std::string cpuGovernor();
 
 }  // namespace sb

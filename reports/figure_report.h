@@ -1,6 +1,6 @@
 // A paper figure (`strandbench figure`, docs/suites-and-results.md "Figures"): its grid of
 // cells resolved against a sweep's results.json, figure.json and figure.md. The image of the
-// grid (figure.png) is composed in harness/figure_command.cpp; this part needs only JSON.
+// grid (figure.png) is composed in cli/figure_command.cpp; this part needs only JSON.
 #pragma once
 
 #include <nlohmann/json.hpp>

@@ -81,9 +81,10 @@ std::vector<SceneInfo> buildCatalog() {
     o.push_back({"offset", "0.45",
                  "distance of the stray strand from the clump's axis, towards "
                  "the default light"});
-    c.push_back({"stray",
-                 "one strand between the light and a dense clump (occupancy paper, Fig. 5a)",
-                 std::move(o)});
+    c.push_back(
+        {"stray",
+         "one strand between the light and a dense clump (the occupancy-map paper, Fig. 5a)",
+         std::move(o)});
   }
   {
     std::vector<OptionInfo> o = commonOptions("200", "16", "2", "strand length (world units)");

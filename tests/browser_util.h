@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/image.h"
+#include "imaging/image.h"
 #include "test_util.h"
 
 namespace sbtest {

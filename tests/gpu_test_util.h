@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "backends/device.h"
-#include "harness/metrics.h"
 #include "harness/render.h"
+#include "imaging/metrics.h"
 #include "scenes/view.h"
 #include "techniques/common/technique.h"
 

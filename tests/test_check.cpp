@@ -19,8 +19,8 @@
 #include <vector>
 
 #include "harness/baselines.h"
-#include "harness/image.h"
-#include "harness/metrics.h"
+#include "imaging/image.h"
+#include "imaging/metrics.h"
 #include "scenes/scene.h"
 #include "techniques/common/unit.h"
 #include "test_util.h"

@@ -7,8 +7,8 @@
 #include <cstring>
 #include <nlohmann/json.hpp>
 
-#include "harness/image.h"
-#include "harness/metrics.h"
+#include "imaging/image.h"
+#include "imaging/metrics.h"
 #include "test_util.h"
 
 using sbtest::readFile;
@@ -91,7 +91,7 @@ TEST(Cli, ReferenceReportsErrorsAndDepthComplexity) {
     for (const char* k : {"rmse", "psnr", "ssim", "max_abs"})
       EXPECT_TRUE(j["error"]["image"].contains(k)) << k;
     EXPECT_GT(j["error"]["image"]["rmse"].get<double>(), 0.0);  // opaque hair is not the truth
-    // FLIP of the image as its PNG shows it (harness/flip.h).
+    // FLIP of the image as its PNG shows it (imaging/flip.h).
     const auto& flip = j["error"]["image"]["flip"];
     for (const char* k : {"mean", "weighted_median", "weighted_q1", "weighted_q3", "max"})
       EXPECT_TRUE(flip.contains(k)) << k;

@@ -14,11 +14,11 @@
 #include <random>
 
 #include "gpu_test_util.h"
-#include "harness/metrics.h"
+#include "imaging/metrics.h"
 #include "scenes/options.h"
 #include "scenes/view.h"
-#include "techniques/frame/renderer.h"
 #include "techniques/dc/dc_math.h"
+#include "techniques/frame/renderer.h"
 #include "techniques/occupancy/occupancy_math.h"
 
 namespace sb {

@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "harness/figure.h"
-#include "harness/image.h"
+#include "imaging/image.h"
 #include "reports/figure_report.h"
 #include "test_util.h"
 

@@ -1,4 +1,4 @@
-// FLIP (harness/flip.h): its stages, its properties on synthetic strand
+// FLIP (imaging/flip.h): its stages, its properties on synthetic strand
 // images, agreement with NVIDIA's reference implementation on a committed
 // rendered pair, and `strandbench compare`'s FLIP fields.
 #include <gtest/gtest.h>
@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "base/errors.h"
-#include "harness/flip.h"
-#include "harness/image.h"
-#include "harness/metrics.h"
+#include "imaging/flip.h"
+#include "imaging/image.h"
+#include "imaging/metrics.h"
 
 namespace fs = std::filesystem;
 

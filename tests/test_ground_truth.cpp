@@ -9,15 +9,14 @@
 #include <cstring>
 
 #include "gpu_test_util.h"
-#include "harness/image.h"
-#include "harness/metrics.h"
+#include "imaging/image.h"
+#include "imaging/metrics.h"
 #include "scenes/view.h"
-#include "techniques/frame/renderer.h"
 #include "techniques/exact/exact.h"
+#include "techniques/frame/renderer.h"
 
 namespace sb {
 namespace {
-
 
 struct Case {
   std::string scene;

@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "harness/image.h"
+#include "imaging/image.h"
 #include "scenes/scene.h"
 
 namespace fs = std::filesystem;

@@ -13,10 +13,10 @@
 #include <iostream>
 
 #include "gpu_test_util.h"
-#include "harness/image.h"
-#include "harness/metrics.h"
-#include "techniques/frame/renderer.h"
+#include "imaging/image.h"
+#include "imaging/metrics.h"
 #include "techniques/common/shader_library.h"
+#include "techniques/frame/renderer.h"
 #include "techniques/mboit/mboit.h"
 #include "techniques/mboit/mboit_math.h"
 

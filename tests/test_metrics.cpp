@@ -9,8 +9,8 @@
 #include <sstream>
 #include <string>
 
-#include "harness/image.h"
-#include "harness/metrics.h"
+#include "imaging/image.h"
+#include "imaging/metrics.h"
 #include "scenes/scene.h"
 
 namespace fs = std::filesystem;

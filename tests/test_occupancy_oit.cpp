@@ -12,12 +12,12 @@
 #include <vector>
 
 #include "gpu_test_util.h"
-#include "harness/image.h"
-#include "harness/metrics.h"
+#include "imaging/image.h"
+#include "imaging/metrics.h"
+#include "occupancy_maps_cpu.h"
 #include "techniques/frame/renderer.h"
 #include "techniques/occupancy_oit/occupancy_oit.h"
 #include "techniques/occupancy_oit/occupancy_oit_math.h"
-#include "occupancy_maps_cpu.h"
 
 namespace sb {
 namespace {

@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "gpu_test_util.h"
-#include "harness/image.h"
-#include "harness/metrics.h"
+#include "imaging/image.h"
+#include "imaging/metrics.h"
 #include "techniques/frame/renderer.h"
 #include "techniques/kbuffer/kbuffer_math.h"
 #include "techniques/mboit/mboit_math.h"

@@ -11,7 +11,7 @@
 #include <numeric>
 
 #include "gpu_test_util.h"
-#include "harness/metrics.h"
+#include "imaging/metrics.h"
 #include "scenes/view.h"
 #include "techniques/common/opacity.h"
 #include "techniques/frame/renderer.h"

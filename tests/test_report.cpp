@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "browser_util.h"
-#include "harness/image.h"
+#include "imaging/image.h"
 #include "reports/report_writer.h"
 #include "reports/svg_chart.h"
 #include "scenes/scene.h"

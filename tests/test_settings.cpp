@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
+#include "cli/commands.h"
 #include "harness/baselines.h"
-#include "harness/commands.h"
 #include "harness/settings.h"
 #include "harness/suite.h"
 #include "test_util.h"
@@ -234,7 +234,7 @@ TEST(Settings, EveryFrontEndGivesTheSameRequest) {
 }
 
 // The strandbench command line run in this process: main()'s parse and exit
-// status (harness/main.cpp) over the commands it registers, stdout and stderr
+// status (cli/main.cpp) over the commands it registers, stdout and stderr
 // captured. The same code as the binary without the start of a process that
 // loads some 260 shared libraries (0.5-1 s each, the most of this test's time
 // when each refusal below spawned the binary).

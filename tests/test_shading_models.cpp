@@ -8,8 +8,8 @@
 
 #include "backends/device.h"
 #include "base/errors.h"
-#include "harness/metrics.h"
 #include "harness/render.h"
+#include "imaging/metrics.h"
 #include "techniques/common/shading_model.h"
 #include "techniques/marschner/marschner.h"
 #include "techniques/sadeghi/sadeghi.h"

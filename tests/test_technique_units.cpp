@@ -5,7 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
+#include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -164,6 +167,109 @@ TEST(TechniqueUnits, TableScriptsReadTheRegistry) {
     const std::string text = sbtest::readFile(fs::path(SB_SOURCE_DIR) / "scripts" / script);
     EXPECT_NE(text.find("list --json"), std::string::npos) << script;
   }
+}
+
+// ---- A technique's CLI name lives in its folder (issue: "nothing central lists techniques").
+
+// The string literals of C++ or GLSL source, comments left out.
+std::vector<std::string> stringLiterals(const std::string& src) {
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < src.size(); ++i) {
+    if (src.compare(i, 2, "//") == 0) {
+      i = src.find('\n', i);
+      if (i == std::string::npos) break;
+    } else if (src.compare(i, 2, "/*") == 0) {
+      i = src.find("*/", i + 2);
+      if (i == std::string::npos) break;
+      ++i;
+    } else if (src[i] == '\'') {  // a char literal ('"' included)
+      i = src.find('\'', src[i + 1] == '\\' ? i + 3 : i + 2);
+      if (i == std::string::npos) break;
+    } else if (src[i] == '"') {
+      std::string lit;
+      for (++i; i < src.size() && src[i] != '"' && src[i] != '\n'; ++i) {
+        if (src[i] == '\\' && i + 1 < src.size()) lit += src[i++];
+        lit += src[i];
+      }
+      out.push_back(lit);
+    }
+  }
+  return out;
+}
+
+bool namesWord(const std::string& text, const std::string& name) {
+  auto part = [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
+  };
+  for (std::size_t at = text.find(name); at != std::string::npos; at = text.find(name, at + 1))
+    if ((at == 0 || !part(text[at - 1])) &&
+        (at + name.size() == text.size() || !part(text[at + name.size()])))
+      return true;
+  return false;
+}
+
+// "file: name" for each string literal under `root` (C++ and GLSL, outside tests/)
+// that names a registered technique outside its own folder, except what the issue
+// allows: the references (exact, peel, abuffer) anywhere, the paper benchmarks and
+// figures, and the code reused by design (listed here, and in docs/layout.md).
+std::vector<std::string> namesOutsideFolders(const fs::path& root) {
+  const std::set<std::string> references = {"exact", "peel", "abuffer"};
+  const std::set<std::string> papers = {"cli/bench_command.cpp", "cli/figure_command.cpp"};
+  const std::map<std::string, std::set<std::string>> reuse = {
+      {"techniques/msm/", {"mboit"}},                // MSM is MBOIT's moment math on light maps
+      {"techniques/occupancy_oit/", {"occupancy"}},  // the occupancy maps' transparency order
+      {"techniques/shading/", {"marschner", "sadeghi"}}};  // the pass every model runs in
+  // A name's folders: two descriptors may share one (occupancy: shadow and transparency).
+  std::map<std::string, std::set<std::string>> homes;
+  for (const TechniqueDescriptor* d : all()) homes[d->name].insert("techniques/" + d->folder + "/");
+  std::vector<std::string> found;
+  for (const auto& entry : fs::recursive_directory_iterator(root)) {
+    const std::string ext = entry.path().extension().string();
+    if (!entry.is_regular_file() || !(ext == ".cpp" || ext == ".h" || ext == ".glsl" ||
+                                      ext == ".vert" || ext == ".frag" || ext == ".comp"))
+      continue;
+    const std::string rel = fs::relative(entry.path(), root).generic_string();
+    if (rel.rfind("tests/", 0) == 0 || rel.rfind("build", 0) == 0 || rel.rfind("fuzz/", 0) == 0 ||
+        papers.count(rel))
+      continue;
+    const std::vector<std::string> literals = stringLiterals(sbtest::readFile(entry.path()));
+    for (const auto& [name, folders] : homes) {
+      // "none" (the default shadow and transparency) is also the word for absence.
+      bool allowed = references.count(name) > 0 || name == "none";
+      for (const std::string& home : folders) allowed = allowed || rel.rfind(home, 0) == 0;
+      for (const auto& [prefix, names] : reuse)
+        allowed = allowed || (rel.rfind(prefix, 0) == 0 && names.count(name));
+      if (allowed) continue;
+      for (const std::string& lit : literals)
+        if (namesWord(lit, name)) {
+          found.push_back(rel + ": " + name + " (\"" + lit + "\")");
+          break;
+        }
+    }
+  }
+  return found;
+}
+
+TEST(TechniqueUnits, NoFileOutsideAFolderNamesItsTechnique) {
+  const std::vector<std::string> found = namesOutsideFolders(SB_SOURCE_DIR);
+  std::string list;
+  for (const auto& f : found) list += "\n  " + f;
+  EXPECT_TRUE(found.empty()) << "technique names outside their folders:" << list;
+}
+
+TEST(TechniqueUnits, NamesOutsideFoldersAreFound) {
+  // The check itself: a name in a string is found, in a comment is not, in its folder is not.
+  const fs::path root = sbtest::tempDir("names-outside");
+  fs::create_directories(root / "harness");
+  fs::create_directories(root / "techniques" / "dom");
+  std::ofstream(root / "harness" / "x.cpp") << "// \"dom\" in a comment\n"
+                                               "const char* c = '\"';\n"
+                                               "const char* s = \"--shadow dom:layers=4\";\n";
+  std::ofstream(root / "harness" / "y.cpp") << "/* \"osm\" */ const char* ok = \"domain\";\n";
+  std::ofstream(root / "techniques" / "dom" / "z.cpp") << "const char* n = \"dom\";\n";
+  const std::vector<std::string> found = namesOutsideFolders(root);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(found[0].rfind("harness/x.cpp: dom", 0), 0u) << found[0];
 }
 
 }  // namespace

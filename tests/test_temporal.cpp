@@ -14,9 +14,9 @@
 
 #include "browser_util.h"
 #include "gpu_test_util.h"
-#include "harness/image.h"
 #include "harness/render.h"
 #include "harness/settings.h"
+#include "imaging/image.h"
 #include "test_util.h"
 
 namespace sb {

@@ -10,8 +10,8 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "harness/image.h"
-#include "harness/metrics.h"
+#include "imaging/image.h"
+#include "imaging/metrics.h"
 #include "tests/test_util.h"
 #include "tests/window_test_util.h"
 

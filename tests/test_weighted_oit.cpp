@@ -11,8 +11,8 @@
 #include <map>
 
 #include "gpu_test_util.h"
-#include "harness/image.h"
-#include "harness/metrics.h"
+#include "imaging/image.h"
+#include "imaging/metrics.h"
 #include "scenes/scene.h"
 #include "techniques/frame/renderer.h"
 #include "techniques/wboit/wboit_math.h"

@@ -10,8 +10,8 @@
 
 #include "backends/device.h"
 #include "backends/window.h"
-#include "harness/metrics.h"
 #include "harness/render.h"
+#include "imaging/metrics.h"
 #include "tests/test_util.h"
 #include "tests/window_test_util.h"
 

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "backends/device.h"
-#include "harness/image.h"
+#include "imaging/image.h"
 
 namespace sbtest {
 
@@ -40,7 +40,7 @@ class WindowTest : public ::testing::TestWithParam<std::string> {
 };
 
 // The image as its PNG holds it: round(clamp(v, 0, 1) * 255) / 255, alpha 1
-// (harness/image.h), which is what a window shows.
+// (imaging/image.h), which is what a window shows.
 inline sb::Image asPng(sb::Image img) {
   for (std::size_t i = 0; i < img.pixels.size(); ++i) {
     float v = img.pixels[i];

@@ -52,6 +52,19 @@ const TechniqueDescriptor* tryFindTechnique(Family f, const std::string& name) {
   return it == registry(f).end() ? nullptr : &it->second;
 }
 
+const TechniqueDescriptor& defaultTechnique(Family f) {
+  const TechniqueDescriptor* found = nullptr;
+  for (const TechniqueDescriptor* d : techniques(f)) {
+    if (!d->isDefault) continue;
+    if (found)
+      throw std::logic_error(std::string("two default ") + familyName(f) +
+                             " techniques: " + found->name + ", " + d->name);
+    found = d;
+  }
+  if (!found) throw std::logic_error(std::string("no default ") + familyName(f) + " technique");
+  return *found;
+}
+
 const TechniqueDescriptor& findTechnique(Family f, const std::string& name) {
   if (const TechniqueDescriptor* d = tryFindTechnique(f, name)) return *d;
   std::vector<std::string> names;

@@ -19,7 +19,7 @@ enum class ShadingKind { KajiyaKay = 0, Marschner = 1, Sadeghi = 2 };  // SB_SHA
 
 struct ShadingModel {
   ShadingKind kind = ShadingKind::KajiyaKay;
-  std::string spec = "kajiya-kay";  // canonical NAME[:options] as given
+  std::string spec;  // canonical NAME[:options] as given (fromSpec)
   // Diffuse and specular weights, Kajiya-Kay's exponent, ambient.
   glm::vec4 material{0.8f, 0.35f, 40.0f, 0.12f};
   // Marschner: (alpha_R, alpha_TT, alpha_TRT, eta), (beta_R, beta_TT, beta_TRT, caustic floor).

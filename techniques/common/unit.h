@@ -49,6 +49,7 @@ struct TechniqueDescriptor {
   std::vector<OptionInfo> options;
   std::optional<SteppedOption> stepped;
   Capabilities caps;
+  bool isDefault = false;  // its family's default: the spec when none is given
   // The factory of its family; the reader has validated every typed option.
   std::function<std::unique_ptr<ShadowTechnique>(const OptionReader&)> makeShadow;
   std::function<std::unique_ptr<OitTechnique>(const OptionReader&)> makeOit;
@@ -76,6 +77,9 @@ std::vector<const TechniqueDescriptor*> techniques(Family f);
 // Throws InputError naming the closest registered name.
 const TechniqueDescriptor& findTechnique(Family f, const std::string& name);
 const TechniqueDescriptor* tryFindTechnique(Family f, const std::string& name);
+// The family's default (its one descriptor with isDefault): none for shadows and
+// transparency, kajiya-kay for shading.
+const TechniqueDescriptor& defaultTechnique(Family f);
 // The descriptor's reader for a spec: unknown options and bad values throw InputError.
 OptionReader readerFor(const TechniqueDescriptor& d, const Spec& spec);
 

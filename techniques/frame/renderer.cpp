@@ -3,10 +3,19 @@
 #include <algorithm>
 
 #include "techniques/common/composite.h"
+#include "techniques/common/unit.h"
 
 namespace sb {
 
 namespace {
+// The transparency techniques that render into multisampled targets, from the registry.
+std::string multisampledNames() {
+  std::string s;
+  for (const TechniqueDescriptor* d : techniques(Family::Transparency))
+    if (d->caps.multisampling) s += (s.empty() ? "" : ", ") + d->name;
+  return s;
+}
+
 // Vulkan needs every declared binding backed; a scene without a mesh gets
 // 16-byte placeholders (reported like any other buffer).
 Buffer makeBuffer(Device& dev, const std::string& name, const void* data, std::size_t bytes) {
@@ -96,11 +105,11 @@ Renderer::Renderer(Device& dev, const Scene& scene, const RenderSettings& settin
   // per-pixel data is not multisampled are refused (InputError, before any work).
   const uint32_t n = settings.msaa;
   if (n > 1 && !oit().multisampled())
-    throw InputError("--msaa " + std::to_string(n) + ": transparency technique '" + oit().name() +
-                     "' keeps per-pixel data (fragment lists, layers, accumulation or occupancy "
-                     "targets) that is not multisampled; it runs with --msaa 1 (multisampled: "
-                     "none, wsum, wavg, wboit; stochastic transparency has its own samples= "
-                     "option)");
+    throw InputError(
+        "--msaa " + std::to_string(n) + ": transparency technique '" + oit().name() +
+        "' keeps per-pixel data (fragment lists, layers, accumulation or occupancy-map "
+        "targets) that is not multisampled; it runs with --msaa 1 (multisampled: " +
+        multisampledNames() + "; a technique may have its own samples= option)");
   // The visibility and probe outputs are the key light's.
   wantVisibility_ = outputs.count("visibility") > 0;
   wantProbe_ = outputs.count("probe") > 0;

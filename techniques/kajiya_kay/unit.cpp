@@ -10,6 +10,7 @@ SB_TECHNIQUE(
      .options = {opt::number("diffuse", "0.8", 0, 4, "diffuse weight, 0..4"),
                  opt::number("specular", "0.35", 0, 4, "specular weight, 0..4"),
                  opt::number("shininess", "40", 1, 1000, "specular exponent, 1..1000")},
+     .isDefault = true,
      .makeShading = [](const OptionReader& o) {
        const auto f = [&](const char* name) { return static_cast<float>(o.number(name)); };
        ShadingModel m;

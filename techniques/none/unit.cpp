@@ -8,4 +8,5 @@ SB_TECHNIQUE({.name = "none",
               .folder = "none",
               .paper = "",
               .help = "no shadows: Kajiya-Kay shading with the light always visible",
+              .isDefault = true,
               .makeShadow = [](const OptionReader&) { return std::make_unique<NoShadow>(); }});

@@ -10,4 +10,5 @@ SB_TECHNIQUE({.name = "none",
               .help = "no transparency: opaque, depth-tested hair",
               // --msaa: geometry only, no per-pixel data.
               .caps = {.multisampling = true},
+              .isDefault = true,
               .makeOit = [](const OptionReader&) { return std::make_unique<OpaqueHair>(); }});

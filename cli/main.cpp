@@ -11,7 +11,7 @@
 #endif
 
 #include "backends/device.h"
-#include "harness/commands.h"
+#include "cli/commands.h"
 #include "harness/stop.h"
 #include "harness/version.h"
 

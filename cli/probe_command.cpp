@@ -6,7 +6,7 @@
 #include <memory>
 #include <sstream>
 
-#include "harness/commands.h"
+#include "cli/commands.h"
 #include "harness/render.h"
 #include "reports/files.h"
 #include "techniques/frame/renderer.h"
@@ -17,7 +17,7 @@ namespace {
 
 struct ProbeRequest {
   RenderRequest render;
-  std::vector<std::string> shadows = {"shadowmap"};
+  std::vector<std::string> shadows;  // none: the exact curve alone
   std::string texel = "256,256";
   int mapSize = 512;  // signed, so that a negative size gets the range message
   int samples = 256;
@@ -89,7 +89,8 @@ void registerProbeCommand(CLI::App& app) {
                                "near", "far", "light", "light_position", "light_direction",
                                "light_color", "light_intensity"},
       p->render);
-  cmd->add_option("--shadow", p->shadows, "shadow technique spec (repeatable)")
+  cmd->add_option("--shadow", p->shadows,
+                  "shadow technique spec (repeatable; none given: the exact curve alone)")
       ->capture_default_str();
   cmd->add_option("--texel", p->texel, "light texel X,Y")->capture_default_str();
   cmd->add_option("--map-size", p->mapSize, "light map size the texel refers to")

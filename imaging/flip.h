@@ -41,7 +41,7 @@
 // display would, then decoded to linear RGB. An HDR image (EXR) holds linear
 // RGB of any range. Only RGB (channels 0..2) is compared.
 //
-// NaN policy (as harness/metrics.h: a NaN must never make two images look
+// NaN policy (as imaging/metrics.h: a NaN must never make two images look
 // alike): a pixel with a NaN sample in either image (for HDR input, also an
 // infinite one) is a "NaN pixel": its FLIP is 1, the largest error, it is
 // counted in nanPixels, and its samples count as 0 for the filters of its
@@ -55,7 +55,7 @@
 #include <optional>
 #include <vector>
 
-#include "harness/image.h"
+#include "imaging/image.h"
 
 namespace sb {
 

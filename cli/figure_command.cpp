@@ -1,5 +1,5 @@
 // `strandbench figure NAME` (harness/figure.h): the figure's suite is swept into a temporary
-// folder, the grid image is composed with OpenImageIO (fit, paste, text: harness/oiio/)
+// folder, the grid image is composed with OpenImageIO (fit, paste, text: imaging/oiio/)
 // and figure.md / figure.json are written (reports/figure_report.h), then the folder is renamed
 // into place, so a stopped or failed run leaves nothing half written.
 #include <unistd.h>
@@ -9,13 +9,13 @@
 #include <iostream>
 #include <memory>
 
-#include "harness/backend_names.h"
-#include "harness/commands.h"
 #include "base/errors.h"
+#include "cli/commands.h"
+#include "harness/backend_names.h"
 #include "harness/figure.h"
-#include "harness/image.h"
-#include "harness/oiio/oiio_api.h"
 #include "harness/sweep.h"
+#include "imaging/image.h"
+#include "imaging/oiio/oiio_api.h"
 #include "reports/figure_report.h"
 #include "reports/files.h"
 #include "reports/json_file.h"

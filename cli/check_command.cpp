@@ -3,8 +3,8 @@
 #include <memory>
 #include <string>
 
+#include "cli/commands.h"
 #include "harness/baselines.h"
-#include "harness/commands.h"
 
 namespace sb {
 

@@ -1,4 +1,4 @@
-#include "harness/image.h"
+#include "imaging/image.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -15,8 +15,7 @@
 #include <system_error>
 
 #include "base/errors.h"
-#include "harness/oiio/oiio_api.h"
-#include "scenes/scene.h"
+#include "imaging/oiio/oiio_api.h"
 
 namespace sb {
 

@@ -1,4 +1,4 @@
-#include "harness/metrics.h"
+#include "imaging/metrics.h"
 
 #include <algorithm>
 #include <cctype>
@@ -9,8 +9,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "harness/flip.h"
-#include "scenes/scene.h"
+#include "base/errors.h"
+#include "imaging/flip.h"
 
 namespace sb {
 

@@ -6,8 +6,8 @@
 #include <utility>
 #include <vector>
 
-#include "harness/commands.h"
 #include "base/errors.h"
+#include "cli/commands.h"
 #include "reports/compare_runs.h"
 
 namespace sb {

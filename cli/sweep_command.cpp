@@ -4,7 +4,7 @@
 #include <cstdlib>
 #include <memory>
 
-#include "harness/commands.h"
+#include "cli/commands.h"
 #include "harness/sweep.h"
 
 namespace sb {

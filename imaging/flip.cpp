@@ -1,4 +1,4 @@
-#include "harness/flip.h"
+#include "imaging/flip.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include <utility>
 
 #include "base/errors.h"
-#include "harness/metrics.h"
+#include "imaging/metrics.h"
 
 namespace sb {
 namespace flip {

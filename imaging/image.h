@@ -88,7 +88,7 @@ void writeImage(const Image& img, const std::string& path,
 // Throws InputError naming the file on any failure.
 Image readImage(const std::string& path);
 
-// Loads the image module (OpenImageIO, harness/oiio/) now rather than at the first image
+// Loads the image module (OpenImageIO, imaging/oiio/) now rather than at the first image
 // file. A run that will write images calls it before its memory check, so that the module's
 // address space counts against the host's budget (an address-space limit) there.
 void loadImageModule();

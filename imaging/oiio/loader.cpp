@@ -1,4 +1,4 @@
-// Loads libsb_oiio.so on first use (harness/oiio/oiio_api.h says why).
+// Loads libsb_oiio.so on first use (imaging/oiio/oiio_api.h says why).
 #include <dlfcn.h>
 #include <unistd.h>
 
@@ -8,7 +8,7 @@
 #include <system_error>
 
 #include "base/errors.h"
-#include "harness/oiio/oiio_api.h"
+#include "imaging/oiio/oiio_api.h"
 
 namespace sb::oiio {
 

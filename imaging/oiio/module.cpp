@@ -1,11 +1,11 @@
 // libsb_oiio.so: every OpenImageIO call of strandbench, behind the plain functions of
-// harness/oiio/oiio_api.h, so that only a process that reads or writes an image file loads
-// OpenImageIO (harness/oiio/loader.cpp).
+// imaging/oiio/oiio_api.h, so that only a process that reads or writes an image file loads
+// OpenImageIO (imaging/oiio/loader.cpp).
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 
-#include "harness/oiio/oiio_api.h"
+#include "imaging/oiio/oiio_api.h"
 
 namespace sb::oiio {
 

@@ -11,7 +11,7 @@
 #include <optional>
 #include <set>
 
-#include "harness/commands.h"
+#include "cli/commands.h"
 #include "harness/measure.h"
 #include "harness/render.h"
 #include "reports/stats.h"

@@ -22,8 +22,8 @@
 #include <nlohmann/json_fwd.hpp>
 #include <string>
 
-#include "harness/flip.h"
-#include "harness/image.h"
+#include "imaging/flip.h"
+#include "imaging/image.h"
 
 namespace sb {
 
@@ -86,7 +86,7 @@ Image diffHeatmap(const Image& a, const Image& b, double scale, int channels = 3
 // one JSON object to `out`:
 //   {"a", "b", "width", "height", "channels", "threshold", "rmse", "psnr",
 //    "max_abs", "ssim", "fraction_over", "pixels_over", "nan_pixels", "identical",
-//    "flip": {FLIP of A against B at `ppd`, harness/flip.h toJson}}
+//    "flip": {FLIP of A against B at `ppd`, imaging/flip.h toJson}}
 // and returns 0. B is FLIP's reference; FLIP is HDR-FLIP when B is an EXR file
 // (linear values), else LDR-FLIP (display values, as a PNG holds). With a
 // `flipMap` path, also writes FLIP's magma error map there. On InputError

@@ -24,11 +24,11 @@
 #include <thread>
 
 #include "backends/window.h"
-#include "harness/commands.h"
-#include "harness/image.h"
-#include "harness/metrics.h"
+#include "cli/commands.h"
 #include "harness/render.h"
 #include "harness/settings.h"
+#include "imaging/image.h"
+#include "imaging/metrics.h"
 #include "reports/stats.h"
 #include "scenes/options.h"
 #include "techniques/common/unit.h"

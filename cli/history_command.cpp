@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/commands.h"
+#include "cli/commands.h"
 #include "reports/history.h"
 
 namespace sb {

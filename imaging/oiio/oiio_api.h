@@ -1,4 +1,4 @@
-// What the OpenImageIO module (libsb_oiio.so, built from harness/oiio/module.cpp) gives the
+// What the OpenImageIO module (libsb_oiio.so, built from imaging/oiio/module.cpp) gives the
 // harness. OpenImageIO pulls in about 260 shared libraries whose loading cost every process
 // about 0.6 s before main; loaded with dlopen on the first image read or write, only the
 // processes that touch an image file pay it. Errors come back as text (empty: success), so
@@ -10,7 +10,7 @@
 
 namespace sb::oiio {
 
-// The drawing surface of a figure grid (harness/figure_command.cpp).
+// The drawing surface of a figure grid (cli/figure_command.cpp).
 struct Canvas;
 
 struct Api {

@@ -1,0 +1,189 @@
+// The render result as JSON (`render --json`, a sweep's results.json).
+#include <nlohmann/json.hpp>
+
+#include "harness/render_steps.h"
+#include "reports/stats.h"
+#include "techniques/frame/renderer.h"
+
+namespace sb {
+namespace {
+
+nlohmann::json boundsJson(const Bounds& b) {
+  return {{"min", {b.min.x, b.min.y, b.min.z}}, {"max", {b.max.x, b.max.y, b.max.z}}};
+}
+
+nlohmann::json visibilityJson(const VisibilityError& e) {
+  return {{"rmse", e.rmse}, {"max", e.max}, {"pixels", e.pixels}};
+}
+
+}  // namespace
+
+// `error` of the report: {image (with an image), visibility, total, own}.
+nlohmann::json errorJson(const RenderResult& r) {
+  nlohmann::json error;
+  if (r.imageError) error["image"] = toJson(*r.imageError);
+  if (r.flip) error["image"]["flip"] = toJson(*r.flip);
+  if (r.visibilityError) error["visibility"] = visibilityJson(*r.visibilityError);
+  // `image` and `visibility` above are the total error, kept under their old
+  // keys for the readers of earlier result files (baselines, compare-runs).
+  nlohmann::json total;
+  if (error.contains("image")) total["image"] = error["image"];
+  if (error.contains("visibility")) total["visibility"] = error["visibility"];
+  error["total"] = total;
+  if (r.own) {
+    const OwnError& o = *r.own;
+    nlohmann::json own = {{"technique", o.technique},
+                          {"reference", {{"shadow", o.referenceShadow}, {"oit", o.referenceOit}}}};
+    if (o.image) own["image"] = toJson(*o.image);
+    if (o.flipMean) own["image"]["flip"] = {{"mean", *o.flipMean}};
+    if (o.visibility) own["visibility"] = visibilityJson(*o.visibility);
+    error["own"] = own;
+  }
+  if (!r.errorByEyeLayers.empty()) {
+    nlohmann::json buckets = nlohmann::json::array();
+    for (const LayerBucket& b : r.errorByEyeLayers) {
+      nlohmann::json j = {{"layers", {b.lo, b.hi}}, {"pixels", b.pixels}};
+      if (b.imageMeanAbs) j["image_mean_abs"] = *b.imageMeanAbs;
+      if (b.flipMean) j["flip_mean"] = *b.flipMean;
+      if (b.visibilityMeanAbs) j["visibility_mean_abs"] = *b.visibilityMeanAbs;
+      buckets.push_back(j);
+    }
+    error["by_eye_layers"] = buckets;
+  }
+  return error;
+}
+
+namespace {
+
+nlohmann::json animationJson(const AnimationResult& a) {
+  nlohmann::json frames = nlohmann::json::array();
+  for (const AnimationFrame& f : a.frames) {
+    nlohmann::json j = {
+        {"frame", f.frame}, {"degrees", f.degrees}, {"visibility", {{"rmse", f.visibilityRmse}}}};
+    if (f.imageRmse) j["image"] = {{"rmse", *f.imageRmse}, {"flip", *f.flipMean}};
+    frames.push_back(j);
+  }
+  nlohmann::json flicker = {{"visibility", a.visibilityFlicker},
+                            {"visibility_pixels", a.visibilityPixels}};
+  if (a.imageFlicker) flicker["image"] = *a.imageFlicker;
+  return {{"kind", a.spec.kind}, {"frames", a.spec.frames}, {"degrees", a.spec.degrees},
+          {"flicker", flicker},  {"per_frame", frames},     {"strip_frames", a.stripFrames}};
+}
+
+nlohmann::json complexityJson(const std::optional<DepthComplexity>& c) {
+  if (!c) return nullptr;
+  return {{"max", c->max}, {"mean", c->mean}, {"fragments", c->total}};
+}
+
+nlohmann::json statsJson(const std::vector<double>& samples) {
+  const Stats s = summarize(samples);
+  return {{"median", s.median}, {"min", s.min},       {"max", s.max},
+          {"mean", s.mean},     {"stddev", s.stddev}, {"samples", samples}};
+}
+
+}  // namespace
+
+nlohmann::json renderJson(const RenderResult& r) {
+  nlohmann::json j;
+  j["backend"] = r.device.backend;
+  j["platform"] = r.device.platform;
+  j["device"] = r.device.device;
+  j["driver"] = r.device.driver;
+  j["timing"] = r.device.timing;
+  j["lines"] = r.device.lines;
+  j["scene"] = {{"spec", r.scene.spec},
+                {"strands", r.scene.strands},
+                {"points", r.scene.points},
+                {"segments", r.scene.segments},
+                {"mesh_triangles", r.scene.meshTriangles},
+                {"bounds", boundsJson(r.scene.bounds)}};
+  j["shadow"] = r.shadow;
+  j["oit"] = r.oit;
+  j["shading"] = r.shading;
+  j["primitive"] = r.primitive;
+  j["size"] = {r.width, r.height};
+  j["repeat"] = r.repeat;
+  j["warmup"] = r.warmup;
+  j["graph"] = r.graph;
+  nlohmann::json pipelines = nlohmann::json::array();
+  for (const auto& [name, technique] : r.pipelines)
+    pipelines.push_back({{"name", name}, {"technique", technique}});
+  j["build"] = {{"pipelines", pipelines}, {"preparations", r.preparations}};
+  j["passes"] = nlohmann::json::array();
+  for (const PassTimes& p : r.passes)
+    j["passes"].push_back(
+        {{"name", p.name}, {"executions", p.executions}, {"ms", statsJson(p.ms)}});
+  j["frame_ms"] = statsJson(r.frameMs);
+
+  nlohmann::json resources = nlohmann::json::array();
+  std::size_t total = 0;
+  for (const auto& res : r.resources) {
+    resources.push_back({{"name", res.name}, {"owner", res.owner}, {"bytes", res.bytes}});
+    total += res.bytes;
+  }
+  j["memory"] = {{"shadow_bytes", r.bytesOwnedBy("shadow")},
+                 {"oit_bytes", r.bytesOwnedBy("oit")},
+                 {"scene_bytes", r.bytesOwnedBy("scene")},
+                 {"frame_bytes", r.bytesOwnedBy("frame")},
+                 {"total_bytes", total},
+                 {"estimated_bytes", r.estimatedBytes},
+                 {"resources", resources}};
+
+  if (!r.lights.empty()) {
+    auto v3 = [](const glm::vec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); };
+    nlohmann::json lights = nlohmann::json::array();
+    for (std::size_t i = 0; i < r.lights.size(); ++i) {
+      const Light& l = r.lights[i].light;
+      const bool point = l.type == LightType::Point;
+      lights.push_back({{"light", i + 1},
+                        {"type", point ? "point" : "directional"},
+                        {point ? "position" : "direction", v3(point ? l.position : l.direction)},
+                        {"color", v3(l.color)},
+                        {"intensity", l.intensity},
+                        {"prefix", Renderer::lightPrefix(i)},
+                        {"ms", statsJson(r.lights[i].ms)},
+                        {"shadow_bytes", r.lights[i].shadowBytes},
+                        {"bytes", r.lights[i].bytes}});
+    }
+    j["lights"] = lights;
+  }
+  if (r.measurementGraph) j["measurement_graph"] = *r.measurementGraph;
+  if (r.reference) j["reference"] = {{"shadow", r.reference->first}, {"oit", r.reference->second}};
+  if (r.visibilityError) j["error"] = errorJson(r);
+  if (r.animation) j["animation"] = animationJson(*r.animation);
+  if (r.probe)
+    j["probe"] = {{"texel", {r.probe->texel.x, r.probe->texel.y}},
+                  {"map_size", r.probe->mapSize},
+                  {"light_depth", r.probe->lightDepth},
+                  {"exact", r.probe->exact},
+                  {"visibility", r.probe->visibility}};
+  if (r.invariants) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const auto& f : *r.invariants) list.push_back({{"pass", f.pass}, {"what", f.what}});
+    j["invariants"] = {{"failures", list}};
+  }
+  if (r.eyeComplexity || r.lightComplexity)
+    j["depth_complexity"] = {{"eye", complexityJson(r.eyeComplexity)},
+                             {"light", complexityJson(r.lightComplexity)}};
+  j["warnings"] = r.warnings;
+  if (!r.counters.empty()) {
+    nlohmann::json counters = nlohmann::json::object();
+    for (const Counter& c : r.counters) counters[c.name] = c.value;
+    j["counters"] = counters;
+  }
+  if (!r.timingEmulated.empty()) j["timing_emulated"] = r.timingEmulated;
+  if (r.validationMessages) j["validation_messages"] = *r.validationMessages;
+  if (r.presented) {
+    // frame_ms plus the present: the frame time with presentation included.
+    std::vector<double> withPresent = r.frameMs;
+    for (std::size_t i = 0; i < withPresent.size() && i < r.presented->ms.size(); ++i)
+      withPresent[i] += r.presented->ms[i];
+    j["presented"] = {{"frames", r.presented->frames},
+                      {"how", r.presented->how},
+                      {"present_ms", statsJson(r.presented->ms)},
+                      {"frame_ms", statsJson(withPresent)}};
+  }
+  return j;
+}
+
+}  // namespace sb
