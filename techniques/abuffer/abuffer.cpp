@@ -30,11 +30,8 @@ void ABufferOit::setup(Device& dev, const GpuScene& scene, const RenderSettings&
   fill_ = hairPipeline(dev, fillPass(), "techniques/abuffer/fill.frag", {});
 
   const ShaderCode comp = loadShader(resolveShader(), resolveDefines());
-  PipelineDesc c;
-  c.name = name() + ".resolve";
-  c.technique = name();
+  PipelineDesc c = resolvePass().pipeline(dev, name() + ".resolve", name());
   c.compute = &comp;
-  c.bindings = resolvePass().slots();
   resolve_ = dev.createPipeline(c);
 }
 

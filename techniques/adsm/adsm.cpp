@@ -59,15 +59,11 @@ void ApproximatedDeepShadows::setup(Device& dev, const GpuScene& scene, const Re
   if (!scene.hasHair()) return;
   const ShaderCode vert = Geometry::strandVertexShader(s);
   const ShaderCode frag = loadShader("techniques/common/depth_only.frag");
-  PipelineDesc d;
-  d.name = "adsm.depth";
-  d.technique = "adsm";
+  PipelineDesc d = depthPass().pipeline(dev, "adsm.depth", "adsm");
   d.vertex = &vert;
   d.fragment = &frag;
   d.topology = Geometry::strandTopology(s);
-  d.hasDepth = d.depthTest = d.depthWrite = true;
   d.depthCompare = CompareOp::Less;
-  d.bindings = depthPass().slots();
   pipeline_ = dev.createPipeline(d);
 }
 

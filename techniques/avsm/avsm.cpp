@@ -57,11 +57,8 @@ void AdaptiveVolumetricShadowMaps::setup(Device& dev, const GpuScene& scene,
                    : "has no fragment-shader interlock)");
 
   const ShaderCode comp = loadShader("techniques/avsm/resolve.comp", defines());
-  PipelineDesc c;
-  c.name = "avsm.resolve";
-  c.technique = "avsm";
+  PipelineDesc c = resolvePass().pipeline(dev, "avsm.resolve", "avsm");
   c.compute = &comp;
-  c.bindings = resolvePass().slots();
   pipeline_ = dev.createPipeline(c);
 }
 

@@ -4,20 +4,15 @@
 
 namespace sb {
 
-Pipeline fullScreenPipeline(Device& dev, const std::string& name, const std::string& technique,
-                            const std::string& fragShader, const ShaderDefines& defines,
-                            std::vector<Format> formats, std::vector<BlendState> blend,
-                            std::vector<BindingSlot> slots) {
+Pipeline fullScreenPipeline(Device& dev, const Pass& pass, const std::string& name,
+                            const std::string& technique, const std::string& fragShader,
+                            const ShaderDefines& defines, std::vector<BlendState> blend) {
   const ShaderCode vert = loadShader("techniques/common/composite.vert");
   const ShaderCode frag = loadShader(fragShader, defines);
-  PipelineDesc d;
-  d.name = name;
-  d.technique = technique;
+  PipelineDesc d = pass.pipeline(dev, name, technique);
   d.vertex = &vert;
   d.fragment = &frag;
-  d.colorFormats = std::move(formats);
   d.blend = std::move(blend);
-  d.bindings = std::move(slots);
   return dev.createPipeline(d);
 }
 
@@ -30,15 +25,11 @@ void AccumComposite::setup(Device& dev, const RenderSettings& s, Buffer viewUbo,
       {technique + ".accum", "oit", BufferUsage::Storage, std::size_t(s.width) * s.height * 16});
   const ShaderCode vert = loadShader("techniques/common/composite.vert");
   const ShaderCode frag = loadShader("techniques/common/composite.frag");
-  PipelineDesc d;
-  d.name = technique + ".composite";
-  d.technique = technique;
+  PipelineDesc d = pass().pipeline(dev, technique + ".composite", technique);
   d.vertex = &vert;
   d.fragment = &frag;
-  d.colorFormats = {Format::RGBA32F};
   d.blend = {{true, BlendFactor::One, BlendFactor::OneMinusSrcAlpha, BlendOp::Add, BlendFactor::One,
               BlendFactor::OneMinusSrcAlpha, BlendOp::Add}};
-  d.bindings = pass().slots();
   pipeline_ = dev.createPipeline(d);
 }
 

@@ -7,11 +7,11 @@
 namespace sb {
 
 // A full-screen pass's pipeline: techniques/common/composite.vert and
-// `fragShader`, drawn with 3 vertices.
-Pipeline fullScreenPipeline(Device& dev, const std::string& name, const std::string& technique,
-                            const std::string& fragShader, const ShaderDefines& defines,
-                            std::vector<Format> formats, std::vector<BlendState> blend,
-                            std::vector<BindingSlot> slots);
+// `fragShader`, drawn with 3 vertices, its targets and slots from `pass`
+// (Pass::pipeline).
+Pipeline fullScreenPipeline(Device& dev, const Pass& pass, const std::string& name,
+                            const std::string& technique, const std::string& fragShader,
+                            const ShaderDefines& defines, std::vector<BlendState> blend);
 // The blend of a resolve writing vec4(hair, T) over the opaque colour:
 // C = hair + T * C_dst (One, SrcAlpha), the destination alpha kept.
 inline BlendState hairOverBlend() {

@@ -33,21 +33,17 @@ ListLayout layoutFromCounts(const std::vector<uint8_t>& countBytes) {
 }
 
 Pipeline makeHairCountPipeline(Device& dev, const RenderSettings& s, const Pass& pass,
-                               uint32_t countsBinding, bool depthTest,
-                               const std::string& technique) {
+                               uint32_t countsBinding, const std::string& technique) {
   ShaderDefines defs;
   defs.defines.push_back({"COUNTS_BINDING", std::to_string(countsBinding)});
   const ShaderCode vert = Geometry::strandVertexShader(s);
   const ShaderCode frag = loadShader("techniques/common/count.frag", defs);
-  PipelineDesc d;
-  d.name = technique + ".count";
-  d.technique = technique;
+  PipelineDesc d = pass.pipeline(dev, technique + ".count", technique);
   d.vertex = &vert;
   d.fragment = &frag;
   d.topology = Geometry::strandTopology(s);
-  d.hasDepth = d.depthTest = depthTest;
+  d.depthWrite = false;  // tested only, also where the pass clears the depth
   d.depthCompare = CompareOp::Less;
-  d.bindings = pass.slots();
   return dev.createPipeline(d);
 }
 
@@ -58,15 +54,12 @@ Pipeline makePeelAdvancePipeline(Device& dev, const Pass& pass, uint32_t stateBi
   defs.defines = {{"STATE_BINDING", std::to_string(stateBinding)},
                   {"PEELED_BINDING", std::to_string(peeledBinding)},
                   {"SIZE_BINDING", std::to_string(kSizeBinding)}};
-  PipelineDesc d;
-  d.bindings = pass.slots();
   if (nodesBinding) {
     defs.defines.push_back({"OFFSETS_BINDING", std::to_string(offsetsBinding)});
     defs.defines.push_back({"NODES_BINDING", std::to_string(nodesBinding)});
   }
   const ShaderCode comp = loadShader("techniques/common/peel_advance.comp", defs);
-  d.name = technique + ".peel_advance";
-  d.technique = technique;
+  PipelineDesc d = pass.pipeline(dev, technique + ".peel_advance", technique);
   d.compute = &comp;
   return dev.createPipeline(d);
 }

@@ -19,12 +19,12 @@ struct ListLayout {
 // From the read-back per-pixel counts (uint32 each).
 ListLayout layoutFromCounts(const std::vector<uint8_t>& countBytes);
 
-// A pipeline for `pass` (its slots) that counts the hair fragments of every
-// pixel into the storage buffer at `countsBinding` (depth-tested against an
-// opaque depth when `depthTest`, no colour targets).
+// A pipeline for `pass` (Pass::pipeline: its slots, no colour targets) that
+// counts the hair fragments of every pixel into the storage buffer at
+// `countsBinding`, depth-tested (never written) against an opaque depth when
+// the pass has one.
 Pipeline makeHairCountPipeline(Device& dev, const RenderSettings& s, const Pass& pass,
-                               uint32_t countsBinding, bool depthTest,
-                               const std::string& technique);
+                               uint32_t countsBinding, const std::string& technique);
 
 // A compute pipeline for `pass` (its slots; the size uniform at 0) finishing
 // one peel layer (techniques/common/peel_advance.comp). nodesBinding and

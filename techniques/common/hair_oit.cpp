@@ -5,15 +5,13 @@
 
 namespace sb {
 
-PipelineDesc transparentHairDesc(const std::string& name, const std::string& technique,
-                                 const ShaderCode& vert, const RenderSettings& s) {
-  PipelineDesc d;
-  d.name = name;
-  d.technique = technique;
+PipelineDesc transparentHairDesc(const Device& dev, const Pass& pass, const std::string& name,
+                                 const std::string& technique, const ShaderCode& vert,
+                                 const RenderSettings& s) {
+  PipelineDesc d = pass.pipeline(dev, name, technique);
   d.vertex = &vert;
   d.topology = Geometry::strandTopology(s);
-  d.hasDepth = d.depthTest = true;
-  d.depthWrite = false;
+  d.depthWrite = false;  // also where the pass clears the depth (nothing opaque drawn)
   d.depthCompare = CompareOp::Less;
   return d;
 }
@@ -27,7 +25,7 @@ void HairOit::setupCommon(Device& dev, const GpuScene& scene, const RenderSettin
   composite_.setup(dev, s, shading.viewUbo(), targets, name());
   counts_ = dev.createBuffer(
       {name() + ".counts", "oit", BufferUsage::Storage, std::size_t(s.width) * s.height * 4});
-  count_ = makeHairCountPipeline(dev, s, countPass(), kCountsBinding, true, name());
+  count_ = makeHairCountPipeline(dev, s, countPass(), kCountsBinding, name());
 }
 
 Pass HairOit::hairPass(const std::string& name, bool first) const {
@@ -44,10 +42,9 @@ Pipeline HairOit::hairPipeline(Device& dev, const Pass& pass, const std::string&
   defs.add(shading_->hairDefines());
   const ShaderCode vert = Geometry::strandVertexShader(settings_);
   const ShaderCode frag = loadShader(fragShader, defs);
-  PipelineDesc d = transparentHairDesc(pass.name(), this->name() + "+" + shading_->shadow().name(),
-                                       vert, settings_);
+  PipelineDesc d = transparentHairDesc(
+      dev, pass, pass.name(), this->name() + "+" + shading_->shadow().name(), vert, settings_);
   d.fragment = &frag;
-  d.bindings = pass.slots();
   return dev.createPipeline(d);
 }
 

@@ -14,10 +14,12 @@ namespace sb {
 
 // What every transparent hair pass's pipeline shares: the strands (`vert`,
 // the settings' topology), depth-tested against the opaque depth (Less)
-// without writing it, so that hair behind the opaque mesh is left out. The
-// caller adds the fragment shader, targets, blend and bindings.
-PipelineDesc transparentHairDesc(const std::string& name, const std::string& technique,
-                                 const ShaderCode& vert, const RenderSettings& s);
+// without writing it, so that hair behind the opaque mesh is left out; its
+// targets and slots from `pass` (Pass::pipeline), which has the opaque depth
+// as its depth attachment. The caller adds the fragment shader and blend.
+PipelineDesc transparentHairDesc(const Device& dev, const Pass& pass, const std::string& name,
+                                 const std::string& technique, const ShaderCode& vert,
+                                 const RenderSettings& s);
 
 class HairOit : public OitTechnique {
  public:

@@ -12,13 +12,9 @@ void OpaqueShadow::setup(Device& dev, const GpuScene& scene, uint32_t size, Buff
       {technique + ".opaque_depth", "shadow", Format::Depth32F, size, size, false});
   const ShaderCode vert = Geometry::meshVertexShader();
   const ShaderCode frag = loadShader("techniques/common/depth_only.frag");
-  PipelineDesc d;
-  d.name = technique + ".opaque";
-  d.technique = technique;
+  PipelineDesc d = pass().pipeline(dev, technique + ".opaque", technique);
   d.vertex = &vert;
   d.fragment = &frag;
-  d.hasDepth = d.depthTest = d.depthWrite = true;
-  d.bindings = pass().slots();
   pipeline_ = dev.createPipeline(d);
 }
 

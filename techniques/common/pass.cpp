@@ -146,6 +146,36 @@ PassDesc Pass::desc() const {
   return d;
 }
 
+PipelineDesc Pass::pipeline(const Device& dev, std::string name, std::string technique) const {
+  PipelineDesc d;
+  d.name = std::move(name);
+  d.technique = std::move(technique);
+  d.bindings = slots();
+  uint32_t samples = 0;
+  auto describe = [&](Texture t, const std::string& what) {
+    if (!t)
+      throw std::logic_error("pass '" + name_ + "': pipeline '" + d.name + "' made before its " +
+                             what + " texture (create the textures first)");
+    const TextureDesc td = dev.describe(t);
+    if (samples != 0 && td.samples != samples)
+      throw std::logic_error("pass '" + name_ + "': its attachments differ in sample count ('" +
+                             td.name + "' has " + std::to_string(td.samples) + ", the others " +
+                             std::to_string(samples) + ")");
+    samples = td.samples;
+    return td;
+  };
+  for (std::size_t i = 0; i < desc_.color.size(); ++i)
+    d.colorFormats.push_back(
+        describe(desc_.color[i].texture, "colour attachment " + std::to_string(i)).format);
+  if (desc_.depth.texture) {
+    d.depthFormat = describe(desc_.depth.texture, "depth attachment").format;
+    d.hasDepth = d.depthTest = true;
+    d.depthWrite = depthWritten_;
+  }
+  if (samples != 0) d.samples = samples;
+  return d;
+}
+
 std::vector<GraphResource> Pass::reads() const {
   std::vector<GraphResource> out = inputs_.reads();
   for (const ColorAttachment& a : desc_.color)

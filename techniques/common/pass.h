@@ -2,9 +2,11 @@
 // storage), samples and binds, by slot; from that one declaration follow the
 // pipeline's binding slots (slots()), the draw's bindings (bindings()), the
 // device pass (desc(), with the textures it samples) and the frame graph's
-// edges (reads(), writes()). A technique builds the declaration in one member
-// function and calls it both when it makes the pipeline (slots only: handles
-// made later may still be empty) and when it adds the pass to the graph.
+// edges (reads(), writes()) and the pipelines drawing in it (pipeline(): their
+// attachment formats, samples, depth state and slots). A technique builds the
+// declaration in one member function and calls it both when it makes the
+// pipeline and when it adds the pass to the graph; its attachments' textures
+// must exist by the time it makes the pipeline.
 #pragma once
 
 #include <array>
@@ -84,6 +86,17 @@ class Pass {
   std::vector<BindingSlot> slots() const { return inputs_.slots(); }
   std::vector<Binding> bindings() const { return inputs_.bindings(); }
   PassDesc desc() const;
+  // A pipeline drawing in this pass, its targets from the declaration: colour
+  // formats (of the colour attachments' textures, in order), samples (of the
+  // attachments, which must agree), depth (present, tested and with the depth
+  // texture's format when the pass has a depth attachment; written when it is
+  // depth(), not depthReadOnly()) and binding slots (slots()). A pass without
+  // attachments (size(), or a compute dispatch) gives only the slots. The
+  // technique sets the shaders, topology, blend, compare op and anything else
+  // special (e.g. depthWrite off over a written depth attachment).
+  // std::logic_error, naming the pass, when an attachment's texture is not
+  // made yet or the attachments' sample counts differ.
+  PipelineDesc pipeline(const Device& dev, std::string name, std::string technique = {}) const;
   std::vector<GraphResource> reads() const;
   std::vector<GraphResource> writes() const;
 

@@ -58,42 +58,34 @@ void DensityClusteringShadow::setup(Device& dev, const GpuScene& scene, const Re
   const ShaderDefines defs = lookup().defines;
   {  // The centres: a full-map triangle (also needed without hair: it clears).
     const ShaderCode vert = loadShader("techniques/common/composite.vert");
-    PipelineDesc d;
-    d.technique = "dc";
-    d.vertex = &vert;
-    d.colorFormats.assign(layers(), Format::RGBA32F);
     for (int first = 1; first >= 0; --first) {
       ShaderDefines md = defs;
       md.defines.push_back({"SB_DC_FIRST", std::to_string(first)});
       const ShaderCode frag = loadShader("techniques/dc/means.frag", md);
-      d.name = first ? "dc.means.first" : "dc.means";
+      PipelineDesc d = meansPass(first).pipeline(dev, first ? "dc.means.first" : "dc.means", "dc");
+      d.vertex = &vert;
       d.fragment = &frag;
-      d.bindings = meansPass(first).slots();
       (first ? firstMeansPipeline_ : meansPipeline_) = dev.createPipeline(d);
     }
   }
   if (!scene.hasHair()) return;
 
   const ShaderCode vert = Geometry::strandVertexShader(s);
-  PipelineDesc d;
-  d.technique = "dc";
+  const ShaderCode rangeFrag = loadShader("techniques/common/depth_range.frag", defs);
+  PipelineDesc d = initPass().pipeline(dev, "dc.init", "dc");
   d.vertex = &vert;
   d.topology = Geometry::strandTopology(s);
-  d.bindings = initPass().slots();
-  const ShaderCode rangeFrag = loadShader("techniques/common/depth_range.frag", defs);
-  d.name = "dc.init";
   d.fragment = &rangeFrag;
-  d.colorFormats = {Format::RG32F};
   d.blend = {BlendState::min()};
   rangePipeline_ = dev.createPipeline(d);
 
   const ShaderCode iterateFrag = loadShader("techniques/dc/iterate.frag", defs);
-  d.name = "dc.iterate";
-  d.fragment = &iterateFrag;
-  d.bindings = iteratePass().slots();
-  d.colorFormats.assign(3 * layers(), Format::RGBA32F);
-  d.blend.assign(3 * layers(), BlendState::additive());
-  iteratePipeline_ = dev.createPipeline(d);
+  PipelineDesc it = iteratePass().pipeline(dev, "dc.iterate", "dc");
+  it.vertex = &vert;
+  it.topology = Geometry::strandTopology(s);
+  it.fragment = &iterateFrag;
+  it.blend.assign(3 * layers(), BlendState::additive());
+  iteratePipeline_ = dev.createPipeline(it);
 }
 
 // The hair's depth range per texel (min blending of near and -far).

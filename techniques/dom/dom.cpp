@@ -93,28 +93,23 @@ void DeepOpacityMaps::setup(Device& dev, const GpuScene& scene, const RenderSett
   if (!scene.hasHair()) return;
 
   const ShaderCode vert = Geometry::strandVertexShader(s);
-  PipelineDesc d;
-  d.technique = "dom";
-  d.vertex = &vert;
-  d.topology = Geometry::strandTopology(s);
   {
     const ShaderCode frag = loadShader("techniques/common/depth_only.frag");
-    d.name = "dom.depth";
+    PipelineDesc d = depthPass().pipeline(dev, "dom.depth", "dom");
+    d.vertex = &vert;
+    d.topology = Geometry::strandTopology(s);
     d.fragment = &frag;
-    d.hasDepth = d.depthTest = d.depthWrite = true;
     d.depthCompare = CompareOp::Less;
-    d.bindings = depthPass().slots();
     depthPipeline_ = dev.createPipeline(d);
   }
-  d.hasDepth = d.depthTest = d.depthWrite = false;
   ShaderDefines defs;
   defs.defines.push_back({"SB_DOM_TARGETS", std::to_string(targets())});
   const ShaderCode frag = loadShader("techniques/dom/opacity.frag", defs);
-  d.name = "dom.opacity";
+  PipelineDesc d = opacityPass().pipeline(dev, "dom.opacity", "dom");
+  d.vertex = &vert;
+  d.topology = Geometry::strandTopology(s);
   d.fragment = &frag;
-  d.colorFormats.assign(targets(), Format::RGBA32F);
   d.blend.assign(targets(), BlendState::additive());
-  d.bindings = opacityPass().slots();
   opacityPipeline_ = dev.createPipeline(d);
 }
 

@@ -48,11 +48,8 @@ void DeepShadowMaps::setup(Device& dev, const GpuScene& scene, const RenderSetti
       dev.createBuffer({"dsm.nodes", "shadow", BufferUsage::Storage, 8});  // sized by prepare()
 
   const ShaderCode comp = loadShader("techniques/dsm/compress.comp");
-  PipelineDesc c2;
-  c2.name = "dsm.compress";
-  c2.technique = "dsm";
+  PipelineDesc c2 = compressPass().pipeline(dev, "dsm.compress", "dsm");
   c2.compute = &comp;
-  c2.bindings = compressPass().slots();
   pipeline_ = dev.createPipeline(c2);
 }
 

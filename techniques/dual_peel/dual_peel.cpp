@@ -30,32 +30,28 @@ void DualPeelOit::setup(Device& dev, const GpuScene& scene, const RenderSettings
   // opaque depth is tested in the shader).
   const ShaderDefines hair = shading.hairDefines();
   const ShaderCode vert = Geometry::strandVertexShader(s);
-  auto geometry = [&](const Pass& pass, const char* define, std::vector<Format> formats) {
+  auto geometry = [&](const Pass& pass, const char* define) {
     ShaderDefines defs = hair;
     defs.defines.push_back({define, "1"});
     const ShaderCode frag = loadShader("techniques/dual_peel/peel.frag", defs);
-    PipelineDesc d;
-    d.name = pass.name();
-    d.technique = name() + "+" + shading.shadow().name();
+    PipelineDesc d = pass.pipeline(dev, pass.name(), name() + "+" + shading.shadow().name());
     d.vertex = &vert;
     d.fragment = &frag;
     d.topology = Geometry::strandTopology(s);
-    d.blend.assign(formats.size(), BlendState::max());
-    d.colorFormats = std::move(formats);
-    d.bindings = pass.slots();
+    d.blend.assign(d.colorFormats.size(), BlendState::max());
     return dev.createPipeline(d);
   };
-  init_ = geometry(initPass(), "SB_DUAL_INIT", {Format::RG32F, Format::RGBA32F});
-  peel_ = geometry(peelPass(1), "SB_DUAL_PEEL", {Format::RG32F, Format::RGBA32F, Format::RGBA32F});
+  init_ = geometry(initPass(), "SB_DUAL_INIT");
+  peel_ = geometry(peelPass(1), "SB_DUAL_PEEL");
   // Back layer over the back accumulation: colour a c + (1 - a) B, alpha
   // (the back transmittance) T (1 - a).
   const BlendState over{true,         BlendFactor::SrcAlpha, BlendFactor::OneMinusSrcAlpha,
                         BlendOp::Add, BlendFactor::Zero,     BlendFactor::OneMinusSrcAlpha,
                         BlendOp::Add};
-  back_blend_ = fullScreenPipeline(dev, "dual_peel.back", name(), "techniques/dual_peel/back.frag",
-                                   {}, {Format::RGBA32F}, {over}, backPass().slots());
-  final_ = fullScreenPipeline(dev, "dual_peel.final", name(), "techniques/dual_peel/final.frag", {},
-                              {Format::RGBA32F}, {hairOverBlend()}, finalPass().slots());
+  back_blend_ = fullScreenPipeline(dev, backPass(), "dual_peel.back", name(),
+                                   "techniques/dual_peel/back.frag", {}, {over});
+  final_ = fullScreenPipeline(dev, finalPass(), "dual_peel.final", name(),
+                              "techniques/dual_peel/final.frag", {}, {hairOverBlend()});
 }
 
 // The back accumulation (T = 1), and the opaque depth when nothing opaque was

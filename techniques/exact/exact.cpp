@@ -43,26 +43,20 @@ void ExactShadow::setup(Device& dev, const GpuScene& scene, const RenderSettings
     state_ = dev.createBuffer({"exact.peel_state", "shadow", BufferUsage::Storage, 16});
   opaque_.setup(dev, scene, size_, lightView_, "exact");
 
-  count_ = makeHairCountPipeline(dev, s, countPass(), kCounts, false, "exact");
+  count_ = makeHairCountPipeline(dev, s, countPass(), kCounts, "exact");
   const ShaderCode vert = Geometry::strandVertexShader(s);
-  PipelineDesc d;
-  d.technique = "exact";
+  PipelineDesc d = listPass("exact.fill").pipeline(dev, "exact.fill", "exact");
   d.vertex = &vert;
   d.topology = Geometry::strandTopology(s);
-  d.bindings = listPass("exact.fill").slots();
   if (method_ == Method::ABuffer) {
     const ShaderCode frag = loadShader("techniques/exact/fill.frag");
-    d.name = "exact.fill";
     d.fragment = &frag;
     fill_ = dev.createPipeline(d);
     ShaderDefines order;
     if (bySubmission_) order.defines.push_back({"SB_EXACT_BY_SUBMISSION", "1"});
     const ShaderCode comp = loadShader("techniques/exact/sort.comp", order);
-    PipelineDesc c;
-    c.name = "exact.sort";
-    c.technique = "exact";
+    PipelineDesc c = sortPass().pipeline(dev, "exact.sort", "exact");
     c.compute = &comp;
-    c.bindings = sortPass().slots();
     sort_ = dev.createPipeline(c);
   } else {
     for (int pass = 0; pass < 2; ++pass) {

@@ -47,16 +47,11 @@ void FakeTransparency::setup(Device& dev, const GpuScene& scene, const RenderSet
   // Each subset: opaque hair, shaded as --oit none shades it, depth-tested.
   const ShaderCode vert = Geometry::strandVertexShader(s);
   const ShaderCode frag = loadShader("techniques/shading/hair.frag", shading.hairDefines());
-  PipelineDesc d;
-  d.name = "fake.subset";
-  d.technique = "fake+" + shading.shadow().name();
+  PipelineDesc d = subsetPass(0).pipeline(dev, "fake.subset", "fake+" + shading.shadow().name());
   d.vertex = &vert;
   d.fragment = &frag;
   d.topology = Geometry::strandTopology(s);
-  d.colorFormats = {Format::RGBA32F};
-  d.hasDepth = d.depthTest = d.depthWrite = true;
   d.depthCompare = CompareOp::Less;
-  d.bindings = subsetPass(0).slots();
   hairPipeline_ = dev.createPipeline(d);
   if (scene.hasMesh()) {
     const ShaderCode meshVert = Geometry::meshVertexShader();
@@ -71,16 +66,12 @@ void FakeTransparency::setup(Device& dev, const GpuScene& scene, const RenderSet
   // The blend: C = hair + (1 - coverage) C_dst; the destination alpha kept.
   const ShaderCode fullScreen = loadShader("techniques/common/composite.vert");
   const ShaderCode blend = loadShader("techniques/fake/blend.frag");
-  PipelineDesc b;
-  b.name = "fake.blend";
-  b.technique = "fake";
+  PipelineDesc b = blendPass().pipeline(dev, "fake.blend", "fake");
   b.vertex = &fullScreen;
   b.fragment = &blend;
-  b.colorFormats = {Format::RGBA32F};
-  b.hasDepth = !targets.opaqueDrawn;  // clears the frame depth (no test, no write)
+  b.depthTest = b.depthWrite = false;  // the pass only clears the frame depth, if it has one
   b.blend = {{true, BlendFactor::One, BlendFactor::SrcAlpha, BlendOp::Add, BlendFactor::Zero,
               BlendFactor::One, BlendOp::Add}};
-  b.bindings = blendPass().slots();
   blendPipeline_ = dev.createPipeline(b);
 }
 

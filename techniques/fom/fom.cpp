@@ -46,15 +46,13 @@ void FourierOpacityMaps::setup(Device& dev, const GpuScene& scene, const RenderS
     defs.defines = {{"SB_FOM_FIRST", std::to_string(first)},
                     {"SB_FOM_TARGETS", std::to_string(count)}};
     const ShaderCode frag = loadShader("techniques/fom/accumulate.frag", defs);
-    PipelineDesc d;
-    d.name = "fom.accumulate." + std::to_string(first / kTargetsPerPass);
-    d.technique = "fom";
+    PipelineDesc d =
+        accumulatePass(first, count)
+            .pipeline(dev, "fom.accumulate." + std::to_string(first / kTargetsPerPass), "fom");
     d.vertex = &vert;
     d.fragment = &frag;
     d.topology = Geometry::strandTopology(s);
-    d.colorFormats.assign(count, Format::RGBA32F);
     d.blend.assign(count, BlendState::additive());
-    d.bindings = accumulatePass(first, count).slots();
     pipelines_.push_back(dev.createPipeline(d));
   }
 }

@@ -238,9 +238,8 @@ void Renderer::addSumPass() {
   const BlendState add = {true,         BlendFactor::One,  BlendFactor::One,
                           BlendOp::Add, BlendFactor::Zero, BlendFactor::One,
                           BlendOp::Add};
-  sumPipeline_ =
-      fullScreenPipeline(dev_, "lights.sum", "renderer", "techniques/common/lights_sum.frag", {},
-                         {Format::RGBA32F}, {add}, passes[0].slots());
+  sumPipeline_ = fullScreenPipeline(dev_, passes[0], "lights.sum", "renderer",
+                                    "techniques/common/lights_sum.frag", {}, {add});
   graph_.add("lights.sum", passes, [this, passes] {
     for (const Pass& p : passes) p.draw(dev_, sumPipeline_, 3);
   });

@@ -73,24 +73,19 @@ void MomentOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& 
 
   // Both hair passes: depth-tested against the opaque depth without writing it,
   // additive into their targets.
-  PipelineDesc d = transparentHairDesc("mboit.moments", "mboit", vert, s);
+  PipelineDesc d = transparentHairDesc(dev, momentsPass(), "mboit.moments", "mboit", vert, s);
   d.fragment = &momentsFrag;
-  d.colorFormats = {Format::R32F, f};
-  if (highTarget()) d.colorFormats.push_back(f);
   d.blend.assign(d.colorFormats.size(), BlendState::additive());
-  d.bindings = momentsPass().slots();
   moments_ = dev.createPipeline(d);
 
-  d.name = "mboit.accumulate";
-  d.technique = "mboit+" + shading.shadow().name();
-  d.fragment = &accumFrag;
-  d.colorFormats = {f};
-  d.blend = {BlendState::additive()};
-  d.bindings = accumulatePass().slots();
-  accumulate_ = dev.createPipeline(d);
+  PipelineDesc a = transparentHairDesc(dev, accumulatePass(), "mboit.accumulate",
+                                       "mboit+" + shading.shadow().name(), vert, s);
+  a.fragment = &accumFrag;
+  a.blend = {BlendState::additive()};
+  accumulate_ = dev.createPipeline(a);
 
-  resolve_ = fullScreenPipeline(dev, "mboit.resolve", "mboit", "techniques/mboit/resolve.frag", {},
-                                {Format::RGBA32F}, {hairOverBlend()}, resolvePass().slots());
+  resolve_ = fullScreenPipeline(dev, resolvePass(), "mboit.resolve", "mboit",
+                                "techniques/mboit/resolve.frag", {}, {hairOverBlend()});
 }
 
 // The first pass clears the depth when nothing opaque was drawn.

@@ -53,16 +53,11 @@ void MomentShadowMaps::setup(Device& dev, const GpuScene& scene, const RenderSet
   if (highTarget()) defs.defines.push_back({"SB_MSM_HIGH", "1"});
   const ShaderCode vert = Geometry::strandVertexShader(s);
   const ShaderCode frag = loadShader("techniques/msm/accumulate.frag", defs);
-  PipelineDesc d;
-  d.name = "msm.accumulate";
-  d.technique = "msm";
+  PipelineDesc d = accumulatePass().pipeline(dev, "msm.accumulate", "msm");
   d.vertex = &vert;
   d.fragment = &frag;
   d.topology = Geometry::strandTopology(s);
-  d.colorFormats = {Format::R32F, Format::RGBA32F};
-  if (highTarget()) d.colorFormats.push_back(Format::RGBA32F);
   d.blend.assign(d.colorFormats.size(), BlendState::additive());
-  d.bindings = accumulatePass().slots();
   pipeline_ = dev.createPipeline(d);
 }
 

@@ -33,39 +33,35 @@ void OccupancyMaps::setup(Device& dev, const GpuScene& scene, const RenderSettin
 
   const ShaderDefines defs = defines();
   const ShaderCode vert = Geometry::strandVertexShader(s);
-  PipelineDesc d;
-  d.technique = config.prefix;
-  d.vertex = &vert;
-  d.topology = Geometry::strandTopology(s);
-  d.hasDepth = d.depthTest = bool(config.depth);  // hair behind the opaque mesh is left out
-  d.depthCompare = CompareOp::Less;
-  d.bindings = rangePass().slots();
+  // Each pass's pipeline, named after it. With a depth (from the eye): tested,
+  // so that hair behind the opaque mesh is left out, never written.
+  auto hairDesc = [&](const Pass& pass) {
+    PipelineDesc d = pass.pipeline(dev, pass.name(), config.prefix);
+    d.vertex = &vert;
+    d.topology = Geometry::strandTopology(s);
+    d.depthWrite = false;
+    d.depthCompare = CompareOp::Less;
+    return d;
+  };
 
   const ShaderCode rangeFrag = loadShader("techniques/common/depth_range.frag", defs);
-  d.name = config.prefix + ".depth_range";
-  d.fragment = &rangeFrag;
-  d.colorFormats = {Format::RG32F};
-  d.blend = {BlendState::min()};
-  rangePipeline_ = dev.createPipeline(d);
+  PipelineDesc range = hairDesc(rangePass());
+  range.fragment = &rangeFrag;
+  range.blend = {BlendState::min()};
+  rangePipeline_ = dev.createPipeline(range);
 
-  d.bindings = bitsPass().slots();
   const ShaderCode bitsFrag = loadShader("techniques/occupancy/occupancy.frag", defs);
-  d.name = config.prefix + ".occupancy";
-  d.fragment = &bitsFrag;
-  d.colorFormats.assign(wordTargets(), Format::RGBA32UI);
-  d.blend.clear();
-  d.logicOpOr = true;
-  bitsPipeline_ = dev.createPipeline(d);
+  PipelineDesc bits = hairDesc(bitsPass());
+  bits.fragment = &bitsFrag;
+  bits.logicOpOr = true;
+  bitsPipeline_ = dev.createPipeline(bits);
 
   if (!config.slabMap) return;
   const ShaderCode slabsFrag = loadShader("techniques/occupancy/slabs.frag", defs);
-  d.name = config.prefix + ".slabs";
-  d.bindings = slabsPass().slots();
-  d.fragment = &slabsFrag;
-  d.colorFormats.assign(slabTargets(), Format::RGBA32F);
-  d.blend.assign(slabTargets(), BlendState::additive());
-  d.logicOpOr = false;
-  slabsPipeline_ = dev.createPipeline(d);
+  PipelineDesc slabs = hairDesc(slabsPass());
+  slabs.fragment = &slabsFrag;
+  slabs.blend.assign(slabTargets(), BlendState::additive());
+  slabsPipeline_ = dev.createPipeline(slabs);
 }
 
 // A hair pass of the maps. From the eye the passes test against the opaque

@@ -62,26 +62,17 @@ void OccupancyOit::setup(Device& dev, const GpuScene& scene, const RenderSetting
   {
     const ShaderCode vert = loadShader("techniques/common/composite.vert");
     const ShaderCode frag = loadShader("techniques/occupancy_oit/resolve.frag", defs);
-    PipelineDesc d;
-    d.name = "occupancy_oit.resolve";
-    d.technique = "occupancy_oit";
+    PipelineDesc d = resolvePass().pipeline(dev, "occupancy_oit.resolve", "occupancy_oit");
     d.vertex = &vert;
     d.fragment = &frag;
-    d.colorFormats = {Format::RGBA32F};
     d.blend = {{true, BlendFactor::One, BlendFactor::OneMinusSrcAlpha, BlendOp::Add,
                 BlendFactor::One, BlendFactor::OneMinusSrcAlpha, BlendOp::Add}};
-    d.bindings = resolvePass().slots();
     resolvePipeline_ = dev.createPipeline(d);
   }
   if (!scene.hasHair()) return;  // the hair passes only clear their targets
 
   // The accumulation pass draws the hair with the shading's pipeline state.
   const ShaderCode vert = Geometry::strandVertexShader(s);
-  PipelineDesc d;
-  d.vertex = &vert;
-  d.topology = Geometry::strandTopology(s);
-  d.hasDepth = d.depthTest = true;  // hair behind the opaque mesh is left out
-  d.depthCompare = CompareOp::Less;
 
   // The accumulation: shaded hair (shading and shadow bindings) plus the maps.
   // Own define names: the occupancy shadow's lookup defines SB_OCC_* too.
@@ -107,12 +98,14 @@ void OccupancyOit::setup(Device& dev, const GpuScene& scene, const RenderSetting
   accumDefs.defines.push_back({"SB_OCC_MAX_WORDS", std::to_string(words)});
   accumDefs.defines.push_back({"SB_OCC_MAX_SLABS", std::to_string(slabs)});
   const ShaderCode accumFrag = loadShader("techniques/occupancy_oit/accumulate.frag", accumDefs);
-  d.name = "occupancy_oit.accumulate";
-  d.technique = "occupancy_oit+" + shading.shadow().name();
+  // Depth-tested (hair behind the opaque mesh is left out), not written.
+  PipelineDesc d = accumulatePass().pipeline(dev, "occupancy_oit.accumulate",
+                                             "occupancy_oit+" + shading.shadow().name());
+  d.vertex = &vert;
+  d.topology = Geometry::strandTopology(s);
+  d.depthCompare = CompareOp::Less;
   d.fragment = &accumFrag;
-  d.colorFormats = {Format::RGBA32F, Format::R32F};
   d.blend.assign(2, BlendState::additive());
-  d.bindings = accumulatePass().slots();
   accumPipeline_ = dev.createPipeline(d);
 }
 

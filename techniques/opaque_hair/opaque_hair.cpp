@@ -13,17 +13,11 @@ void OpaqueHair::setup(Device& dev, const GpuScene& scene, const RenderSettings&
   targets_ = targets;
   const ShaderCode vert = Geometry::strandVertexShader(s);
   const ShaderCode frag = loadShader("techniques/shading/hair.frag", shading.hairDefines());
-  PipelineDesc d;
-  d.name = "shading.hair";
-  d.technique = "kajiya_kay+" + shading.shadow().name();
+  PipelineDesc d = pass().pipeline(dev, "shading.hair", "kajiya_kay+" + shading.shadow().name());
   d.vertex = &vert;
   d.fragment = &frag;
   d.topology = Geometry::strandTopology(s);
-  d.colorFormats = {Format::RGBA32F};
-  d.hasDepth = d.depthTest = d.depthWrite = true;
   d.depthCompare = CompareOp::Less;
-  d.samples = s.msaa;
-  d.bindings = pass().slots();
   pipeline_ = dev.createPipeline(d);
 }
 

@@ -173,15 +173,11 @@ void OpacityShadowMaps::setup(Device& dev, const GpuScene& scene, const RenderSe
     ShaderDefines defs;
     defs.defines.push_back({"SB_OSM_TARGETS", std::to_string(mp.targets)});
     const ShaderCode frag = loadShader("techniques/osm/map.frag", defs);
-    PipelineDesc d;
-    d.name = "osm.map" + std::to_string(mp.targets);
-    d.technique = "osm";
+    PipelineDesc d = mapPass(mp).pipeline(dev, "osm.map" + std::to_string(mp.targets), "osm");
     d.vertex = &vert;
     d.fragment = &frag;
     d.topology = Geometry::strandTopology(s);
-    d.colorFormats.assign(mp.targets, format);
     d.blend.assign(mp.targets, BlendState::additive());
-    d.bindings = mapPass(mp).slots();
     pipe = dev.createPipeline(d);
   }
 }

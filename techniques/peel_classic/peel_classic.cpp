@@ -33,16 +33,11 @@ void ClassicPeelOit::setup(Device& dev, const GpuScene& scene, const RenderSetti
     const ShaderDefines hair = shading.hairDefines();
     const ShaderCode vert = Geometry::strandVertexShader(s);
     const ShaderCode frag = loadShader("techniques/peel_classic/layer.frag", hair);
-    PipelineDesc d;
-    d.name = lp.name();
-    d.technique = name() + "+" + shading.shadow().name();
+    PipelineDesc d = lp.pipeline(dev, lp.name(), name() + "+" + shading.shadow().name());
     d.vertex = &vert;
     d.fragment = &frag;
     d.topology = Geometry::strandTopology(s);
-    d.colorFormats = {Format::RGBA32F, Format::R32F};
-    d.hasDepth = d.depthTest = d.depthWrite = true;
     d.depthCompare = CompareOp::Less;
-    d.bindings = lp.slots();
     layer_ = dev.createPipeline(d);
   }
   // Under blending (front to back): acc += (1 - acc.a) * (a c, a); and +1
@@ -50,12 +45,11 @@ void ClassicPeelOit::setup(Device& dev, const GpuScene& scene, const RenderSetti
   const BlendState under{true,         BlendFactor::OneMinusDstAlpha, BlendFactor::One,
                          BlendOp::Add, BlendFactor::OneMinusDstAlpha, BlendFactor::One,
                          BlendOp::Add};
-  blend_ = fullScreenPipeline(
-      dev, "peel_classic.blend", name(), "techniques/peel_classic/blend.frag", {},
-      {Format::RGBA32F, Format::R32F}, {under, BlendState::additive()}, blendPass(0).slots());
-  composite_ = fullScreenPipeline(dev, "peel_classic.composite", name(),
-                                  "techniques/peel_classic/composite.frag", {}, {Format::RGBA32F},
-                                  {hairOverBlend()}, compositePass().slots());
+  blend_ =
+      fullScreenPipeline(dev, blendPass(0), "peel_classic.blend", name(),
+                         "techniques/peel_classic/blend.frag", {}, {under, BlendState::additive()});
+  composite_ = fullScreenPipeline(dev, compositePass(), "peel_classic.composite", name(),
+                                  "techniques/peel_classic/composite.frag", {}, {hairOverBlend()});
 }
 
 // Clears the accumulation, the peeled count and the "previous layer" depth

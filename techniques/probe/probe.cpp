@@ -21,11 +21,8 @@ void ProbeOutput::setup(Device& dev, const std::vector<glm::vec3>& points,
       {"probe.points", "frame", BufferUsage::Storage, p.size() * sizeof(glm::vec4)}, p.data());
   values_ = dev.createBuffer({"probe.values", "frame", BufferUsage::Storage, p.size() * 4});
   const ShaderCode comp = loadShader("techniques/probe/probe.comp", shading.hairDefines());
-  PipelineDesc d;
-  d.name = "probe";
-  d.technique = "probe+" + shading.shadow().name();
+  PipelineDesc d = pass().pipeline(dev, "probe", "probe+" + shading.shadow().name());
   d.compute = &comp;
-  d.bindings = pass().slots();
   pipeline_ = dev.createPipeline(d);
 }
 

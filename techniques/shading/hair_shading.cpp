@@ -49,16 +49,10 @@ void HairShading::setup(Device& dev, const GpuScene& scene, const RenderSettings
   if (scene.hasMesh()) {
     const ShaderCode vert = Geometry::meshVertexShader();
     const ShaderCode frag = loadShader("techniques/shading/mesh.frag", hairDefines());
-    PipelineDesc d;
-    d.name = "shading.mesh";
-    d.technique = "kajiya_kay+" + shadow.name();
+    PipelineDesc d = meshPass().pipeline(dev, "shading.mesh", "kajiya_kay+" + shadow.name());
     d.vertex = &vert;
     d.fragment = &frag;
-    d.colorFormats = {Format::RGBA32F};
-    d.hasDepth = d.depthTest = d.depthWrite = true;
     d.depthCompare = CompareOp::Less;
-    d.samples = s.msaa;
-    d.bindings = meshPass().slots();
     meshPipeline_ = dev.createPipeline(d);
   }
 }

@@ -24,12 +24,9 @@ void ShadowMap::setup(Device& dev, const GpuScene& scene, const RenderSettings& 
   paramsUbo_ = dev.createBuffer({"shadowmap.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
 
   const ShaderCode frag = loadShader("techniques/common/depth_only.frag");
-  PipelineDesc d;
-  d.technique = "shadowmap";
+  PipelineDesc d = pass().pipeline(dev, "shadowmap.depth", "shadowmap");
   d.fragment = &frag;
-  d.hasDepth = d.depthTest = d.depthWrite = true;
   d.depthCompare = CompareOp::Less;
-  d.bindings = pass().slots();
   const auto pipelines = Geometry::pipelines(dev, d, scene, s, "shadowmap");
   hairPipeline_ = pipelines.hair;
   meshPipeline_ = pipelines.mesh;

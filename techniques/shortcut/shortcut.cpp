@@ -34,26 +34,22 @@ void ShortCutOit::setup(Device& dev, const GpuScene& scene, const RenderSettings
   const ShaderCode depthsFrag = loadShader("techniques/shortcut/depths.frag", defs);
   const ShaderCode colorsFrag = loadShader("techniques/shortcut/colors.frag", shaded);
 
-  PipelineDesc d = transparentHairDesc("shortcut.depths", "shortcut", vert, s);
+  PipelineDesc d = transparentHairDesc(dev, depthsPass(), "shortcut.depths", "shortcut", vert, s);
   d.fragment = &depthsFrag;
-  d.colorFormats = {Format::R32F};
   // dst *= (1 - alpha): the product of (1 - alpha) over the pixel's fragments.
   d.blend = {{true, BlendFactor::Zero, BlendFactor::OneMinusSrcColor, BlendOp::Add,
               BlendFactor::Zero, BlendFactor::OneMinusSrcAlpha, BlendOp::Add}};
-  d.bindings = depthsPass().slots();
   depthsPipeline_ = dev.createPipeline(d);
 
-  d.name = "shortcut.colors";
-  d.technique = "shortcut+" + shading.shadow().name();
-  d.fragment = &colorsFrag;
-  d.colorFormats = {Format::RGBA32F};
-  d.blend = {BlendState::additive()};
-  d.bindings = colorsPass().slots();
-  colorsPipeline_ = dev.createPipeline(d);
+  PipelineDesc c = transparentHairDesc(dev, colorsPass(), "shortcut.colors",
+                                       "shortcut+" + shading.shadow().name(), vert, s);
+  c.fragment = &colorsFrag;
+  c.blend = {BlendState::additive()};
+  colorsPipeline_ = dev.createPipeline(c);
 
   resolvePipeline_ =
-      fullScreenPipeline(dev, "shortcut.resolve", "shortcut", "techniques/shortcut/resolve.frag",
-                         defs, {Format::RGBA32F}, {hairOverBlend()}, resolvePass().slots());
+      fullScreenPipeline(dev, resolvePass(), "shortcut.resolve", "shortcut",
+                         "techniques/shortcut/resolve.frag", defs, {hairOverBlend()});
 }
 
 Inputs ShortCutOit::slots() const {

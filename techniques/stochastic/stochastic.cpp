@@ -39,14 +39,11 @@ void StochasticOit::setup(Device& dev, const GpuScene& scene, const RenderSettin
   auto hairPipeline = [&](const std::string& pass, const std::string& shader, const Pass& decl,
                           auto&& fill) {
     const ShaderCode frag = loadShader(shader, defs);
-    PipelineDesc d;
-    d.name = pass;
-    d.technique = name() + "+" + shading.shadow().name();
+    PipelineDesc d = decl.pipeline(dev, pass, name() + "+" + shading.shadow().name());
     d.vertex = &vert;
     d.fragment = &frag;
     d.topology = Geometry::strandTopology(s);
-    d.bindings = decl.slots();
-    d.hasDepth = d.depthTest = true;
+    d.depthWrite = false;  // also where the first pass clears the depth
     d.depthCompare = CompareOp::Less;
     fill(d);
     return dev.createPipeline(d);
@@ -54,7 +51,6 @@ void StochasticOit::setup(Device& dev, const GpuScene& scene, const RenderSettin
   // Total alpha: T *= (1 - a).
   alphaPipe_ = hairPipeline(
       "stochastic.alpha", "techniques/stochastic/alpha.frag", alphaPass(), [](PipelineDesc& d) {
-        d.colorFormats = {Format::R32F};
         d.blend = {{true, BlendFactor::Zero, BlendFactor::OneMinusSrcColor, BlendOp::Add,
                     BlendFactor::Zero, BlendFactor::OneMinusSrcAlpha, BlendOp::Add}};
       });
@@ -62,14 +58,11 @@ void StochasticOit::setup(Device& dev, const GpuScene& scene, const RenderSettin
   depthPipe_ = hairPipeline("stochastic.depth", "techniques/stochastic/depth.frag", depthPass(),
                             [](PipelineDesc&) {});
   // Accumulation: every fragment weighted by the samples it is not behind.
-  accumulatePipe_ = hairPipeline("stochastic.accumulate", "techniques/stochastic/accumulate.frag",
-                                 accumulatePass(), [](PipelineDesc& d) {
-                                   d.colorFormats = {Format::RGBA32F};
-                                   d.blend = {BlendState::additive()};
-                                 });
-  resolvePipe_ =
-      fullScreenPipeline(dev, "stochastic.resolve", name(), "techniques/stochastic/resolve.frag",
-                         {}, {Format::RGBA32F}, {hairOverBlend()}, resolvePass().slots());
+  accumulatePipe_ =
+      hairPipeline("stochastic.accumulate", "techniques/stochastic/accumulate.frag",
+                   accumulatePass(), [](PipelineDesc& d) { d.blend = {BlendState::additive()}; });
+  resolvePipe_ = fullScreenPipeline(dev, resolvePass(), "stochastic.resolve", name(),
+                                    "techniques/stochastic/resolve.frag", {}, {hairOverBlend()});
 }
 
 // The first pass: it clears the depth when nothing opaque was drawn.

@@ -15,13 +15,9 @@ void VisibilityOutput::setup(Device& dev, const GpuScene& scene, const RenderSet
       dev.createTexture({"visibility.depth", "frame", Format::Depth32F, s.width, s.height, false});
   const ShaderCode frag =
       loadShader("techniques/visibility/visibility.frag", shading.hairDefines());
-  PipelineDesc d;
-  d.technique = "visibility+" + shading.shadow().name();
+  PipelineDesc d = pass().pipeline(dev, "visibility", "visibility+" + shading.shadow().name());
   d.fragment = &frag;
-  d.colorFormats = {Format::R32F};
-  d.hasDepth = d.depthTest = d.depthWrite = true;
   d.depthCompare = CompareOp::Less;
-  d.bindings = pass().slots();
   const auto pipelines = Geometry::pipelines(dev, d, scene, s, "visibility");
   hair_ = pipelines.hair;
   mesh_ = pipelines.mesh;

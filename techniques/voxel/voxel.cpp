@@ -46,13 +46,10 @@ void VoxelDensityShadow::setup(Device& dev, const GpuScene& scene, const RenderS
   if (!scene.hasHair()) return;
   const ShaderCode vert = Geometry::strandVertexShader(s);
   const ShaderCode frag = loadShader("techniques/voxel/splat.frag");
-  PipelineDesc d;
-  d.name = "voxel.splat";
-  d.technique = "voxel";
+  PipelineDesc d = splatPass().pipeline(dev, "voxel.splat", "voxel");
   d.vertex = &vert;
   d.fragment = &frag;
   d.topology = Geometry::strandTopology(s);
-  d.bindings = splatPass().slots();
   pipeline_ = dev.createPipeline(d);
 }
 

@@ -37,37 +37,26 @@ void BlendedOitBase::setup(Device& dev, const GpuScene& scene, const RenderSetti
   defs.add(shading.hairDefines());
   const ShaderCode vert = Geometry::strandVertexShader(s);
   const ShaderCode frag = loadShader(cfg.accumulateShader, defs);
-  PipelineDesc d;
-  d.name = name() + ".accumulate";
-  d.technique = name() + "+" + shading.shadow().name();
+  PipelineDesc d = accumulatePass().pipeline(dev, name() + ".accumulate",
+                                             name() + "+" + shading.shadow().name());
   d.vertex = &vert;
   d.fragment = &frag;
   d.topology = Geometry::strandTopology(s);
-  for (const Target& t : cfg.targets) {
-    d.colorFormats.push_back(t.format);
-    d.blend.push_back(t.blend);
-  }
-  d.hasDepth = d.depthTest = true;
-  d.depthWrite = false;
+  for (const Target& t : cfg.targets) d.blend.push_back(t.blend);
+  d.depthWrite = false;  // also where the pass clears the depth (nothing opaque drawn)
   d.depthCompare = CompareOp::Less;
-  d.samples = n;
-  d.bindings = accumulatePass().slots();
   accumulate_ = dev.createPipeline(d);
 
   // Resolve: (hair, T) over the opaque colour, C = hair + T * C_dst; the
   // destination alpha is kept.
   const ShaderCode fullScreen = loadShader("techniques/common/composite.vert");
   const ShaderCode resolve = loadShader(cfg.resolveShader, cfg.defines);
-  PipelineDesc r;
-  r.name = name() + ".resolve";
-  r.technique = name();
+  // Over the (multisampled) opaque colour, then averaged into the frame.
+  PipelineDesc r = resolvePass().pipeline(dev, name() + ".resolve", name());
   r.vertex = &fullScreen;
   r.fragment = &resolve;
-  r.colorFormats = {Format::RGBA32F};
   r.blend = {{true, BlendFactor::One, BlendFactor::SrcAlpha, BlendOp::Add, BlendFactor::Zero,
               BlendFactor::One, BlendOp::Add}};
-  r.samples = n;  // over the (multisampled) opaque colour, then averaged into the frame
-  r.bindings = resolvePass().slots();
   resolve_ = dev.createPipeline(r);
 }
 
