@@ -48,9 +48,10 @@ std::vector<std::string> splitLines(const std::string& text) {
   return lines;
 }
 
-// "file:line: text" for every binding given as a number (`binding = 3`, `binding=3`).
+// "file:line: text" for every binding given as a number (`binding = 3`, `binding=3`,
+// `SB_UNIFORM_BLOCK(Name, 3)`: techniques/common/uniform_block.h).
 std::vector<std::string> numericBindings(const std::string& file, const std::string& text) {
-  static const std::regex numeric(R"(\bbinding\s*=\s*[0-9])");
+  static const std::regex numeric(R"((\bbinding\s*=|\bSB_UNIFORM_BLOCK\(\s*\w+\s*,)\s*[0-9])");
   std::vector<std::string> found;
   const auto lines = splitLines(text);
   for (std::size_t i = 0; i < lines.size(); ++i)
@@ -96,9 +97,11 @@ std::set<std::string> includedSlotsHeaders(const std::string& file, const std::s
   return found;
 }
 
-// The names a (loaded) shader binds: `binding = SB_SLOT_NAME`.
+// The names a (loaded) shader binds: `binding = SB_SLOT_NAME`, and a uniform
+// block's `SB_UNIFORM_BLOCK(Name, SB_SLOT_NAME)` (techniques/common/uniform_block.h).
 std::set<std::string> boundNames(const std::string& text) {
-  static const std::regex bound(R"(\bbinding\s*=\s*(SB_SLOT_\w+))");
+  static const std::regex bound(
+      R"((?:\bbinding\s*=|\bSB_UNIFORM_BLOCK\(\s*\w+\s*,)\s*(SB_SLOT_\w+))");
   std::set<std::string> names;
   for (std::sregex_iterator it(text.begin(), text.end(), bound), end; it != end; ++it)
     names.insert(it->str(1));
@@ -198,11 +201,13 @@ TEST(Slots, TheScannersCatchANumericBindingAndAnUnknownName) {
       "layout(binding = SB_SLOT_VIEW) uniform sampler2D a;\n"
       "layout(std140, binding=12) uniform Y { vec4 y; };\n"
       "layout(std430, binding = COUNTS_BINDING) buffer Z { uint z[]; };\n"
-      "layout(binding = SB_SLOT_NO_SUCH_THING) uniform sampler2D b;\n";
+      "layout(binding = SB_SLOT_NO_SUCH_THING) uniform sampler2D b;\n"
+      "SB_UNIFORM_BLOCK(W, 5)\n";
   EXPECT_EQ(numericBindings("techniques/x/bad.frag", bad),
             (std::vector<std::string>{
                 "techniques/x/bad.frag:2: layout(std430, binding = 3) buffer X { uint x[]; };",
-                "techniques/x/bad.frag:4: layout(std140, binding=12) uniform Y { vec4 y; };"}));
+                "techniques/x/bad.frag:4: layout(std140, binding=12) uniform Y { vec4 y; };",
+                "techniques/x/bad.frag:7: SB_UNIFORM_BLOCK(W, 5)"}));
   const auto used = slotNamesUsed("techniques/x/bad.frag", bad);
   EXPECT_EQ(used.size(), 2u);
   EXPECT_EQ(used.at("SB_SLOT_NO_SUCH_THING"), "techniques/x/bad.frag:6");
@@ -223,17 +228,21 @@ TEST(Slots, TheScannersCatchANumericBindingAndAnUnknownName) {
             1u);
   // Two names bound at one number are caught; one name bound twice is not.
   const std::string twice = bad + "layout(binding = SB_SLOT_OTHER) uniform sampler2D c;\n" +
-                            "layout(binding = SB_SLOT_VIEW) uniform sampler2D d;\n";
-  EXPECT_EQ(boundNames(twice),
-            (std::set<std::string>{"SB_SLOT_NO_SUCH_THING", "SB_SLOT_OTHER", "SB_SLOT_VIEW"}));
+                            "layout(binding = SB_SLOT_VIEW) uniform sampler2D d;\n" +
+                            "SB_UNIFORM_BLOCK(V, SB_SLOT_BLOCK)\n";
+  EXPECT_EQ(boundNames(twice), (std::set<std::string>{"SB_SLOT_BLOCK", "SB_SLOT_NO_SUCH_THING",
+                                                      "SB_SLOT_OTHER", "SB_SLOT_VIEW"}));
   EXPECT_EQ(collisions(boundNames(twice), {{"SB_SLOT_VIEW", 0}, {"SB_SLOT_OTHER", 0}}),
             (std::vector<std::string>{"SB_SLOT_OTHER and SB_SLOT_VIEW at 0"}));
   EXPECT_EQ(guardOf("techniques/dual_peel/slots.h"), "SB_DUAL_PEEL_SLOTS_H");
 }
 
 TEST(Slots, NoShaderGivesABindingAsANumber) {
-  const auto files = shaderFiles();
+  auto files = shaderFiles();
   ASSERT_GT(files.size(), 40u);  // the scan sees the shaders
+  // and the uniform blocks, which the shaders include
+  for (const auto& f : cppFiles())
+    if (f.ends_with("uniforms.h")) files.push_back(f);
   std::vector<std::string> found;
   for (const auto& f : files)
     for (const auto& hit : numericBindings(f, readText(kSource / f))) found.push_back(hit);

@@ -2,6 +2,7 @@
 
 #include <cstring>
 
+#include "techniques/abuffer/uniforms.h"
 #include "techniques/common/shader_library.h"
 #include "techniques/shading/hair_shading.h"
 
@@ -24,7 +25,7 @@ void ABufferOit::setup(Device& dev, const GpuScene& scene, const RenderSettings&
   // Sized by prepare()'s count.
   fragments_ =
       dev.createBuffer({name() + ".fragments", "oit", BufferUsage::Storage, kFragmentBytes});
-  const glm::uvec4 size(pixels(), s.width, s.height, 0);
+  const AbufferSize size{glm::uvec4(pixels(), s.width, s.height, 0)};
   sizeUbo_ =
       dev.createBuffer({name() + ".size", "frame", BufferUsage::Uniform, sizeof size}, &size);
   fill_ = hairPipeline(dev, fillPass(), "techniques/abuffer/fill.frag", {});

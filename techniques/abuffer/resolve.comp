@@ -5,7 +5,7 @@
 #include "../common/invocation.glsl"
 #include "../common/slots.h"
 layout(local_size_x = 64) in;
-layout(std140, binding = SB_SLOT_ABUFFER_SIZE) uniform Size { uvec4 size; };  // x: pixel count
+#include "uniforms.h"
 
 void main() {
   uint p = linearInvocation();

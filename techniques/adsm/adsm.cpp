@@ -4,18 +4,13 @@
 #include <cstring>
 
 #include "techniques/adsm/slots.h"
+#include "techniques/adsm/uniforms.h"
 #include "techniques/common/shader_library.h"
 
 namespace sb {
 
 namespace {
 constexpr uint32_t kParams = SB_SLOT_ADSM_PARAMS, kDepth = SB_SLOT_ADSM_DEPTH;
-
-struct Params {
-  glm::mat4 viewProj;
-  glm::vec4 params;  // bias, size, shadow alpha, 0
-  glm::vec4 fiber;   // world units per light depth unit, spacing x radius, kernel, 0
-};
 
 // Half the mean strand thickness (vec4 w of the points), read back once.
 float meanRadius(Device& dev, const GpuScene& scene) {
@@ -49,10 +44,10 @@ void ApproximatedDeepShadows::setup(Device& dev, const GpuScene& scene, const Re
   const glm::vec3 zRow(view.viewProj[0][2], view.viewProj[1][2], view.viewProj[2][2]);
   worldPerDepth_ = 1.0f / std::max(glm::length(zRow), 1e-12f);
   radius_ = meanRadius(dev, scene);
-  Params p{};
-  p.viewProj = view.viewProj;
-  p.params = glm::vec4(opt_.bias, float(opt_.size), scene.shadowAlpha, 0.0f);
-  p.fiber = glm::vec4(worldPerDepth_, opt_.spacing * radius_, float(opt_.kernel), 0.0f);
+  AdsmParams p{};
+  p.adsmViewProj = view.viewProj;
+  p.adsmParams = glm::vec4(opt_.bias, float(opt_.size), scene.shadowAlpha, 0.0f);
+  p.adsmFiber = glm::vec4(worldPerDepth_, opt_.spacing * radius_, float(opt_.kernel), 0.0f);
   params_ = dev.createBuffer({"adsm.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
   depth_ =
       dev.createTexture({"adsm.depth", "shadow", Format::Depth32F, opt_.size, opt_.size, false});

@@ -5,12 +5,7 @@
 #include "slots.h"
 #include "adsm_math.glsl"
 
-layout(std140, binding = SB_SLOT_ADSM_PARAMS) uniform AdsmParams {
-  mat4 adsmViewProj;
-  vec4 adsmParams;  // x: bias (light depth units), y: map size, z: shadow alpha
-  vec4 adsmFiber;   // x: world units per light depth unit, y: fiber depth (spacing x radius),
-                    // z: kernel taps per side
-};
+#include "uniforms.h"
 layout(binding = SB_SLOT_ADSM_DEPTH) uniform sampler2D adsmDepth;  // the hair's front
 
 float shadowVisibility(vec3 worldPos) {

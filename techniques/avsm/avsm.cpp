@@ -2,7 +2,9 @@
 
 #include <cstring>
 
+#include "techniques/avsm/resolve_uniforms.h"
 #include "techniques/avsm/slots.h"
+#include "techniques/avsm/uniforms.h"
 #include "techniques/common/shader_library.h"
 
 namespace sb {
@@ -39,8 +41,9 @@ void AdaptiveVolumetricShadowMaps::setup(Device& dev, const GpuScene& scene,
                                          const RenderSettings& s) {
   lists_.setup(dev, scene, s);
   const ViewUniforms view = setupLight(dev, scene, s, opt_.size);
-  params_ = createLightLookupParams(dev, view, opt_.bias, opt_.size, scene.shadowAlpha, "avsm");
-  const glm::vec4 r(1.0f - scene.shadowAlpha, float(opt_.size), 0.0f, 0.0f);
+  params_ = createLightLookupParams<AvsmLookupParams>(dev, view, opt_.bias, opt_.size,
+                                                      scene.shadowAlpha, "avsm");
+  const AvsmResolve r{glm::vec4(1.0f - scene.shadowAlpha, float(opt_.size), 0.0f, 0.0f)};
   resolve_ = dev.createBuffer({"avsm.resolve", "frame", BufferUsage::Uniform, sizeof r}, &r);
   const std::size_t texels = std::size_t(opt_.size) * opt_.size;
   count_ = dev.createBuffer({"avsm.count", "shadow", BufferUsage::Storage, texels * 4});

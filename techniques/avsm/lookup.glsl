@@ -3,10 +3,7 @@
 #include "../common/opaque_shadow.glsl"
 #include "slots.h"
 
-layout(std140, binding = SB_SLOT_AVSM_PARAMS) uniform AvsmLookupParams {
-  mat4 avsmViewProj;
-  vec4 avsmParams;  // x: bias (light depth units), y: map size, z: shadow alpha
-};
+#include "uniforms.h"
 layout(std430, binding = SB_SLOT_AVSM_COUNT) readonly buffer AvsmCount { uint avsmCount[]; };
 layout(std430, binding = SB_SLOT_AVSM_NODES) readonly buffer AvsmNodes { vec2 avsmNodes[]; };
 // The texel's curve, read in place.

@@ -23,9 +23,7 @@ layout(std430, binding = SB_SLOT_AVSM_OUT_COUNT) writeonly buffer AvsmCount { ui
 layout(std430, binding = SB_SLOT_AVSM_OUT_NODES) buffer AvsmNodes { vec2 avsmNodes[]; };
 // x: fragments streamed (the emulated steps), y: nodes removed by the compression
 layout(std430, binding = SB_SLOT_AVSM_OUT_STATUS) buffer AvsmStatus { uvec2 avsmStatus; };
-layout(std140, binding = SB_SLOT_AVSM_RESOLVE) uniform AvsmResolve {
-  vec4 avsmResolve;  // x: transmittance 1 - alpha_s, y: map size
-};
+#include "resolve_uniforms.h"
 // The texel's curve is built in place in its SB_AVSM_SLOTS node slots (the
 // budget and the two an insertion adds): a local array dynamically indexed
 // gave wrong curves on Mesa's GL (they stopped changing at the first

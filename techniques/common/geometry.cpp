@@ -9,9 +9,9 @@ ViewUniforms cameraView(const RenderSettings& s) {
   const float aspect = static_cast<float>(s.width) / static_cast<float>(s.height);
   ViewUniforms v{};
   v.viewProj = s.camera.projection(aspect) * s.camera.view();
-  v.eye = glm::vec4(s.camera.eye, 1.0f);
-  v.forward = glm::vec4(glm::normalize(s.camera.target - s.camera.eye), 0.0f);
-  v.viewport =
+  v.viewEye = glm::vec4(s.camera.eye, 1.0f);
+  v.viewForward = glm::vec4(glm::normalize(s.camera.target - s.camera.eye), 0.0f);
+  v.viewViewport =
       glm::vec4(static_cast<float>(s.width), static_cast<float>(s.height), s.ribbonWidth, 0);
   return v;
 }
@@ -20,9 +20,9 @@ ViewUniforms lightView(const RenderSettings& s, uint32_t mapWidth, uint32_t mapH
   ViewUniforms v{};
   v.viewProj = s.light.projection() * s.light.view();
   const bool point = s.light.type == LightType::Point;
-  v.eye = glm::vec4(s.light.position, point ? 1.0f : 0.0f);
-  v.forward = glm::vec4(glm::normalize(s.light.direction), 0.0f);
-  v.viewport =
+  v.viewEye = glm::vec4(s.light.position, point ? 1.0f : 0.0f);
+  v.viewForward = glm::vec4(glm::normalize(s.light.direction), 0.0f);
+  v.viewViewport =
       glm::vec4(static_cast<float>(mapWidth), static_cast<float>(mapHeight), s.ribbonWidth, 0);
   return v;
 }
@@ -30,12 +30,6 @@ ViewUniforms lightView(const RenderSettings& s, uint32_t mapWidth, uint32_t mapH
 Buffer createLightViewBuffer(Device& dev, const ViewUniforms& view, const std::string& technique) {
   return dev.createBuffer({technique + ".light_view", "frame", BufferUsage::Uniform, sizeof view},
                           &view);
-}
-
-Buffer createLightLookupParams(Device& dev, const ViewUniforms& view, float bias, uint32_t size,
-                               float shadowAlpha, const std::string& technique) {
-  const LightLookupParams p{view.viewProj, glm::vec4(bias, float(size), shadowAlpha, 0.0f)};
-  return dev.createBuffer({technique + ".params", "frame", BufferUsage::Uniform, sizeof p}, &p);
 }
 
 ShaderCode Geometry::strandVertexShader(const RenderSettings& s) {

@@ -1,5 +1,6 @@
 // After a peel layer: the key found becomes the previous key, the layer count
-// grows, and the minimum is reset. STATE_BINDING / PEELED_BINDING / SIZE_BINDING.
+// grows, and the minimum is reset. STATE_BINDING / PEELED_BINDING (and the nodes'),
+// from the C++; the size: PeelSize (peel_uniforms.h).
 #include "invocation.glsl"
 layout(local_size_x = 64) in;
 layout(std430, binding = STATE_BINDING) buffer PeelState { uvec4 peelState[]; };
@@ -9,7 +10,7 @@ layout(std430, binding = PEELED_BINDING) buffer Peeled { uint peeled[]; };
 layout(std430, binding = OFFSETS_BINDING) readonly buffer Offsets { uint offsets[]; };
 layout(std430, binding = NODES_BINDING) buffer Nodes { uvec2 nodes[]; };
 #endif
-layout(std140, binding = SIZE_BINDING) uniform PeelSize { uvec4 peelSize; };  // x: pixel count
+#include "peel_uniforms.h"
 
 void main() {
   uint p = linearInvocation();

@@ -1,6 +1,7 @@
 #include "techniques/common/shader_library.h"
 
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -29,10 +30,28 @@ void expand(const std::string& path, const ShaderDefines& defs, ShaderCode& out,
   std::istringstream in(readShaderFile(path));
   std::string line;
   int lineNo = 0;
+  // Nesting depth of conditionals inside `#ifdef __cplusplus` (0: outside): a
+  // header both languages read (techniques/common/uniform_block.h) keeps the C++'s
+  // #includes there; they are left out (the GLSL preprocessor skips that part).
+  int cppOnly = 0;
   out.text += "#line 1 " + std::to_string(fileIndex) + "\n";
   while (std::getline(in, line)) {
     ++lineNo;
     const auto start = line.find_first_not_of(" \t");
+    const auto directive = [&](const char* d) {
+      return start != std::string::npos && line.compare(start, std::strlen(d), d) == 0;
+    };
+    if (cppOnly > 0) {
+      if (directive("#if")) ++cppOnly;
+      if (directive("#endif") || (cppOnly == 1 && (directive("#else") || directive("#elif"))))
+        --cppOnly;
+      if (directive("#include")) {
+        out.text += "\n";
+        continue;
+      }
+    } else if (directive("#ifdef __cplusplus")) {
+      cppOnly = 1;
+    }
     if (start != std::string::npos && line.compare(start, 8, "#include") == 0) {
       const auto open = line.find_first_of("\"<", start + 8);
       const auto close = open == std::string::npos
@@ -48,6 +67,8 @@ void expand(const std::string& path, const ShaderDefines& defs, ShaderCode& out,
           throw DeviceError(path + ":" + std::to_string(lineNo) + ": no file bound to <" + name +
                             ">");
         target = a->second;
+      } else if (name.rfind("techniques/", 0) == 0) {
+        target = name;  // from the source root, as the C++ includes it
       } else {
         target = (std::filesystem::path(path).parent_path() / name).lexically_normal().string();
       }

@@ -1,5 +1,7 @@
 // Loads a technique's GLSL (embedded in the binary at build time) and resolves
-// #include "file" (relative to the including file) and #include <alias>, keeping
+// #include "file" (relative to the including file; "techniques/..." from the
+// source root), #include <alias> (#includes under `#ifdef __cplusplus` are left
+// out: the C++'s, in a header both languages read), keeping
 // #line numbers so compile errors name the right file and line.
 #pragma once
 

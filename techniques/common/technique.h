@@ -19,6 +19,7 @@
 #include "techniques/common/shader_library.h"
 #include "techniques/common/shading_model.h"
 #include "techniques/common/slots.h"
+#include "techniques/common/view_uniforms.h"
 
 namespace sb {
 
@@ -69,27 +70,23 @@ struct DepthComplexity {
   std::vector<uint32_t> counts;
 };
 
-// A view's uniforms (binding 0 in every geometry pass), std140.
-struct ViewUniforms {
-  glm::mat4 viewProj;
-  glm::vec4 eye;       // xyz: camera/light position; w: 1 perspective, 0 orthographic
-  glm::vec4 forward;   // view direction (for orthographic views)
-  glm::vec4 viewport;  // width, height, ribbon width in pixels, 0
-};
+// A view's uniforms (binding 0 in every geometry pass): ViewUniforms, declared in
+// techniques/common/view_uniforms.h.
 ViewUniforms cameraView(const RenderSettings& s);
 ViewUniforms lightView(const RenderSettings& s, uint32_t mapWidth, uint32_t mapHeight);
 // A shadow technique's light view as the uniform buffer "<technique>.light_view"
 // (owner "frame"), bound at binding 0 of its light passes.
 Buffer createLightViewBuffer(Device& dev, const ViewUniforms& view, const std::string& technique);
-// The lookup parameters most shadow techniques share (std140), as the uniform
-// buffer "<technique>.params": the light's view-projection and (bias, map size,
-// shadow alpha, 0).
-struct LightLookupParams {
-  glm::mat4 viewProj;
-  glm::vec4 params;
-};
+// The lookup parameters most shadow techniques share, as the uniform buffer
+// "<technique>.params": Block, the technique's own block (its uniforms.h), holds
+// the light's view-projection and (bias, map size, shadow alpha, 0), in that order.
+template <class Block>
 Buffer createLightLookupParams(Device& dev, const ViewUniforms& view, float bias, uint32_t size,
-                               float shadowAlpha, const std::string& technique);
+                               float shadowAlpha, const std::string& technique) {
+  static_assert(sizeof(Block) == sizeof(glm::mat4) + sizeof(glm::vec4), "a mat4 and a vec4");
+  const Block p{view.viewProj, glm::vec4(bias, float(size), shadowAlpha, 0.0f)};
+  return dev.createBuffer({technique + ".params", "frame", BufferUsage::Uniform, sizeof p}, &p);
+}
 
 // Binding numbers shared by every shader, named in techniques/common/slots.h
 // (which the GLSL includes too; techniques/common/bindings.glsl).

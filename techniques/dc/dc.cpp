@@ -3,6 +3,7 @@
 #include "scenes/options.h"
 #include "techniques/common/shader_library.h"
 #include "techniques/dc/slots.h"
+#include "techniques/dc/uniforms.h"
 
 namespace sb {
 
@@ -44,7 +45,7 @@ void DensityClusteringShadow::setup(Device& dev, const GpuScene& scene, const Re
   const uint32_t size = opts_.size;
   const ViewUniforms view = lightView(s, size, size);
   lightView_ = createLightViewBuffer(dev, view, "dc");
-  params_ = createLightLookupParams(dev, view, opts_.bias, size, scene.shadowAlpha, "dc");
+  params_ = createLightLookupParams<DcParams>(dev, view, opts_.bias, size, scene.shadowAlpha, "dc");
   auto map = [&](const std::string& what, Format f, uint32_t layers) {
     return dev.createTexture({"dc." + what, "shadow", f, size, size, false, layers});
   };

@@ -7,10 +7,7 @@
 #include "dc_math.glsl"
 #include "slots.h"
 
-layout(std140, binding = SB_SLOT_DC_PARAMS) uniform DcParams {
-  mat4 dcViewProj;
-  vec4 dcParams;  // x: bias (light depth units), y: map size, z: shadow alpha
-};
+#include "uniforms.h"
 layout(binding = SB_SLOT_DC_RANGE) uniform sampler2D dcRange;  // x: nearest, y: -furthest depth
 // 4 clusters per layer: fragments, sum of (z - nearest), sum of (z - nearest)^2
 layout(binding = SB_SLOT_DC_COUNTS) uniform sampler2DArray dcCounts;

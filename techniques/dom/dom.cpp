@@ -7,6 +7,7 @@
 #include "techniques/common/opacity_filter.h"
 #include "techniques/common/shader_library.h"
 #include "techniques/dom/slots.h"
+#include "techniques/dom/uniforms.h"
 
 namespace sb {
 
@@ -14,12 +15,6 @@ namespace {
 constexpr uint32_t kParams = SB_SLOT_DOM_PARAMS, kDepth = SB_SLOT_DOM_DEPTH,
                    kMaps = SB_SLOT_DOM_MAPS;
 
-struct Params {
-  glm::mat4 viewProj;
-  glm::vec4 params;   // bias, size, shadow alpha, depth bits
-  glm::ivec4 layout;  // K, targets, beyond, 0
-  glm::vec4 d[8];     // d_0..d_K, K <= 31
-};
 }  // namespace
 
 DeepOpacityMaps::Options DeepOpacityMaps::readOptions(const OptionReader& o) {
@@ -78,11 +73,11 @@ void DeepOpacityMaps::setup(Device& dev, const GpuScene& scene, const RenderSett
       opt_.depthBits < 32 ? 1.0f / (std::exp2(float(opt_.depthBits)) - 1.0f) : 0.0f;
   d_ = domBoundaries(K, opt_.spacing, size, opt_.list, opt_.beyond, extent + quantum);
 
-  Params p{};
-  p.viewProj = view.viewProj;
-  p.params = glm::vec4(opt_.bias, float(opt_.size), scene.shadowAlpha, float(opt_.depthBits));
-  p.layout = glm::ivec4(K, int(targets()), opt_.beyond, opt_.filter);
-  for (int k = 0; k <= K; ++k) p.d[k / 4][k % 4] = d_[std::size_t(k)];
+  DomParams p{};
+  p.domViewProj = view.viewProj;
+  p.domParams = glm::vec4(opt_.bias, float(opt_.size), scene.shadowAlpha, float(opt_.depthBits));
+  p.domLayout = glm::ivec4(K, int(targets()), opt_.beyond, opt_.filter);
+  for (int k = 0; k <= K; ++k) p.domD[k / 4][k % 4] = d_[std::size_t(k)];
   params_ = dev.createBuffer({"dom.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
 
   // z0: the depth buffer of a depth-only pass (the paper's depth map).

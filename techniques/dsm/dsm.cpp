@@ -3,7 +3,9 @@
 #include <cstring>
 
 #include "techniques/common/shader_library.h"
+#include "techniques/dsm/compress_uniforms.h"
 #include "techniques/dsm/slots.h"
+#include "techniques/dsm/uniforms.h"
 
 namespace sb {
 
@@ -37,8 +39,10 @@ DeepShadowMaps::DeepShadowMaps(const Options& o)
 void DeepShadowMaps::setup(Device& dev, const GpuScene& scene, const RenderSettings& s) {
   lists_.setup(dev, scene, s);
   const ViewUniforms view = setupLight(dev, scene, s, opt_.size);
-  params_ = createLightLookupParams(dev, view, opt_.bias, opt_.size, scene.shadowAlpha, "dsm");
-  const glm::vec4 c(opt_.epsilon, 1.0f - scene.shadowAlpha, float(opt_.size), float(opt_.maxNodes));
+  params_ = createLightLookupParams<DsmLookupParams>(dev, view, opt_.bias, opt_.size,
+                                                     scene.shadowAlpha, "dsm");
+  const DsmCompressParams c{
+      glm::vec4(opt_.epsilon, 1.0f - scene.shadowAlpha, float(opt_.size), float(opt_.maxNodes))};
   compress_ = dev.createBuffer({"dsm.compress", "frame", BufferUsage::Uniform, sizeof c}, &c);
   const std::size_t texels = std::size_t(opt_.size) * opt_.size;
   kept_ = dev.createBuffer({"dsm.kept", "shadow", BufferUsage::Storage, texels * 4});

@@ -5,10 +5,7 @@
 #include "slots.h"
 #include "dsm_math.glsl"
 
-layout(std140, binding = SB_SLOT_DSM_PARAMS) uniform DsmLookupParams {
-  mat4 dsmViewProj;
-  vec4 dsmParams;  // x: bias (light depth units), y: map size, z: shadow alpha
-};
+#include "uniforms.h"
 layout(std430, binding = SB_SLOT_DSM_KEPT) readonly buffer DsmKept { uint dsmKept[]; };
 layout(std430, binding = SB_SLOT_DSM_OFFSETS) readonly buffer DsmOffsets { uint dsmOffsets[]; };
 layout(std430, binding = SB_SLOT_DSM_NODES) readonly buffer DsmNodes { vec2 dsmNodes[]; };

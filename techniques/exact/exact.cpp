@@ -2,7 +2,9 @@
 
 #include <cstring>
 
+#include "techniques/common/peel_uniforms.h"
 #include "techniques/common/shader_library.h"
+#include "techniques/exact/uniforms.h"
 
 namespace sb {
 
@@ -26,8 +28,9 @@ void ExactShadow::setup(Device& dev, const GpuScene& scene, const RenderSettings
   const std::size_t texels = std::size_t(size_) * size_;
   const ViewUniforms view = lightView(s, size_, size_);
   lightView_ = createLightViewBuffer(dev, view, "exact");
-  params_ = createLightLookupParams(dev, view, bias_, size_, scene.shadowAlpha, "exact");
-  const glm::uvec4 sizeData(uint32_t(texels), size_, 0, 0);
+  params_ = createLightLookupParams<ExactShadowParams>(dev, view, bias_, size_, scene.shadowAlpha,
+                                                       "exact");
+  const PeelSize sizeData{glm::uvec4(uint32_t(texels), size_, 0, 0)};
   sizeUbo_ =
       dev.createBuffer({"exact.size", "frame", BufferUsage::Uniform, sizeof sizeData}, &sizeData);
   counts_ = dev.createBuffer({"exact.counts", "shadow", BufferUsage::Storage, texels * 4});

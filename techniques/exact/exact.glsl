@@ -1,9 +1,6 @@
 // Bindings of the exact shadow technique (8..15, the shadow range).
 #include "../common/slots.h"
-layout(std140, binding = SB_SLOT_EXACT_PARAMS) uniform ExactShadowParams {
-  mat4 exactViewProj;
-  vec4 exactParams;  // x: bias (light depth units), y: map size, z: shadow alpha, w: 1 = opaque map
-};
+#include "uniforms.h"
 // Counts: fragments per texel; offsets: their prefix sum; cursor: fill / layers
 // peeled; nodes: sorted keys per texel; state: peeling state.
 layout(std430, binding = SB_SLOT_EXACT_COUNTS) buffer ExactCounts { uint exactCounts[]; };

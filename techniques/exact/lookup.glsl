@@ -6,10 +6,7 @@
 #include "../common/slots.h"
 
 // Only the blocks the lookup reads (GL counts declared blocks per stage).
-layout(std140, binding = SB_SLOT_EXACT_PARAMS) uniform ExactShadowParams {
-  mat4 exactViewProj;
-  vec4 exactParams;  // x: bias (light depth units), y: map size, z: shadow alpha
-};
+#include "uniforms.h"
 layout(std430, binding = SB_SLOT_EXACT_COUNTS) readonly buffer ExactCounts { uint exactCounts[]; };
 layout(std430, binding = SB_SLOT_EXACT_OFFSETS) readonly buffer ExactOffsets {
   uint exactOffsets[];

@@ -3,6 +3,7 @@
 #include "techniques/common/opacity.h"
 #include "techniques/common/shader_library.h"
 #include "techniques/fom/slots.h"
+#include "techniques/fom/uniforms.h"
 
 namespace sb {
 
@@ -10,11 +11,6 @@ namespace {
 constexpr uint32_t kParams = SB_SLOT_FOM_PARAMS, kMaps = SB_SLOT_FOM_MAPS;
 constexpr uint32_t kTargetsPerPass = 8;
 
-struct Params {
-  glm::mat4 viewProj;
-  glm::vec4 params;  // bias, size, shadow alpha, 0
-  glm::vec4 range;   // near, far, n, 0
-};
 }  // namespace
 
 FourierOpacityMaps::Options FourierOpacityMaps::readOptions(const OptionReader& o) {
@@ -31,10 +27,10 @@ void FourierOpacityMaps::setup(Device& dev, const GpuScene& scene, const RenderS
   // hair points: exact for lines and ribbons), a little wider so that the
   // farthest fragment stays inside [0, 1).
   const DepthRange r = paddedHairDepthRange(dev, scene, view.viewProj);
-  Params p{};
-  p.viewProj = view.viewProj;
-  p.params = glm::vec4(opt_.bias, float(opt_.size), scene.shadowAlpha, 0.0f);
-  p.range = glm::vec4(r.nearZ, r.farZ, float(opt_.coefficients), 0.0f);
+  FomParams p{};
+  p.fomViewProj = view.viewProj;
+  p.fomParams = glm::vec4(opt_.bias, float(opt_.size), scene.shadowAlpha, 0.0f);
+  p.fomRange = glm::vec4(r.nearZ, r.farZ, float(opt_.coefficients), 0.0f);
   params_ = dev.createBuffer({"fom.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
   maps_ = dev.createTexture(
       {"fom.coefficients", "shadow", Format::RGBA32F, opt_.size, opt_.size, false, layers()});

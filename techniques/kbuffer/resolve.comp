@@ -9,7 +9,7 @@
 #define SB_KBUFFER_MAX SB_KBUFFER_K
 #include "kbuffer_math.glsl"
 layout(local_size_x = 64) in;
-layout(std140, binding = SB_SLOT_ABUFFER_SIZE) uniform Size { uvec4 size; };  // x: pixel count
+#include "../abuffer/uniforms.h"
 
 void main() {
   uint p = linearInvocation();

@@ -4,20 +4,16 @@
 
 #include "scenes/options.h"
 #include "techniques/common/hair_oit.h"
-#include "techniques/shading/hair_shading.h"
 #include "techniques/mboit/mboit_math.h"
 #include "techniques/mboit/slots.h"
+#include "techniques/mboit/uniforms.h"
+#include "techniques/shading/hair_shading.h"
 
 namespace sb {
 
 namespace {
 constexpr uint32_t kParams = SB_SLOT_MBOIT_PARAMS, kB0 = SB_SLOT_MBOIT_B0, kLow = SB_SLOT_MBOIT_LOW,
                    kHigh = SB_SLOT_MBOIT_HIGH, kAccum = SB_SLOT_MBOIT_ACCUM;
-
-struct Params {
-  glm::vec4 warp;  // ln(near), 1 / (ln(far) - ln(near)), bias, overestimation
-  glm::ivec4 n;
-};
 
 // The view distances (along the camera's forward axis) that bound the scene:
 // the log warp maps [near, far] onto [-1, 1].
@@ -26,7 +22,7 @@ glm::vec2 depthRange(const Bounds& b, const ViewUniforms& v) {
   for (int i = 0; i < 8; ++i) {
     const glm::vec3 c((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y,
                       (i & 4) ? b.max.z : b.min.z);
-    const float z = glm::dot(c - glm::vec3(v.eye), glm::vec3(v.forward));
+    const float z = glm::dot(c - glm::vec3(v.viewEye), glm::vec3(v.viewForward));
     lo = std::min(lo, z);
     hi = std::max(hi, z);
   }
@@ -52,9 +48,9 @@ void MomentOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& 
   targets_ = targets;
   const glm::vec2 range = depthRange(scene.bounds, cameraView(s));
   const int kind = o_.trig ? SB_MBOIT_TRIG : SB_MBOIT_POWER;
-  Params p{{std::log(range.x), 1.0f / (std::log(range.y) - std::log(range.x)),
-            glsl::mboitKindBias(kind, o_.moments, o_.bits), SB_MBOIT_OVERESTIMATION},
-           {o_.moments / 2, o_.bits, kind, 0}};
+  MboitParams p{{std::log(range.x), 1.0f / (std::log(range.y) - std::log(range.x)),
+                 glsl::mboitKindBias(kind, o_.moments, o_.bits), SB_MBOIT_OVERESTIMATION},
+                {o_.moments / 2, o_.bits, kind, 0}};
   params_ = dev.createBuffer({"mboit.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
   const Format f = o_.bits == 16 ? Format::RGBA16F : Format::RGBA32F;
   b0_ = dev.createTexture({"mboit.b0", "oit", Format::R32F, s.width, s.height, false});

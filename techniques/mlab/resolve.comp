@@ -11,7 +11,7 @@
 #define SB_MLAB_MAX SB_MLAB_LAYERS
 #include "mlab_math.glsl"
 layout(local_size_x = 64) in;
-layout(std140, binding = SB_SLOT_ABUFFER_SIZE) uniform Size { uvec4 size; };  // x: pixel count
+#include "../abuffer/uniforms.h"
 
 void main() {
   uint p = linearInvocation();

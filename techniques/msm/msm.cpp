@@ -4,19 +4,13 @@
 #include "techniques/common/shader_library.h"
 #include "techniques/mboit/mboit_math.h"
 #include "techniques/msm/slots.h"
+#include "techniques/msm/uniforms.h"
 
 namespace sb {
 
 namespace {
 constexpr uint32_t kParams = SB_SLOT_MSM_PARAMS, kB0 = SB_SLOT_MSM_B0, kLow = SB_SLOT_MSM_LOW,
                    kHigh = SB_SLOT_MSM_HIGH;
-
-struct Params {
-  glm::mat4 viewProj;
-  glm::vec4 params;  // lookup bias, size, shadow alpha, moment bias
-  glm::vec4 range;   // near, far, overestimation, 0
-  glm::ivec4 n;      // moments, kind
-};
 
 int kind(const MomentShadowMaps::Options& o) { return o.trig ? SB_MBOIT_TRIG : SB_MBOIT_POWER; }
 }  // namespace
@@ -35,12 +29,12 @@ void MomentShadowMaps::setup(Device& dev, const GpuScene& scene, const RenderSet
   // The moments' depth interval: the hair's depth range from the light (as
   // fom's series period), a little wider so that no fragment sits on its end.
   const DepthRange r = paddedHairDepthRange(dev, scene, view.viewProj);
-  Params p{};
-  p.viewProj = view.viewProj;
-  p.params = glm::vec4(opt_.bias, float(opt_.size), scene.shadowAlpha,
-                       glsl::mboitKindBias(kind(opt_), opt_.moments, 32));
-  p.range = glm::vec4(r.nearZ, r.farZ, SB_MBOIT_OVERESTIMATION, 0.0f);
-  p.n = glm::ivec4(opt_.moments, kind(opt_), 0, 0);
+  MsmParams p{};
+  p.msmViewProj = view.viewProj;
+  p.msmParams = glm::vec4(opt_.bias, float(opt_.size), scene.shadowAlpha,
+                          glsl::mboitKindBias(kind(opt_), opt_.moments, 32));
+  p.msmRange = glm::vec4(r.nearZ, r.farZ, SB_MBOIT_OVERESTIMATION, 0.0f);
+  p.msmN = glm::ivec4(opt_.moments, kind(opt_), 0, 0);
   params_ = dev.createBuffer({"msm.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
   b0_ = dev.createTexture({"msm.b0", "shadow", Format::R32F, opt_.size, opt_.size, false});
   low_ = dev.createTexture(

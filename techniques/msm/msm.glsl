@@ -1,12 +1,7 @@
 // Parameters of moment shadow maps, for the light pass and the lookup.
 #include "../common/light_space.glsl"
 #include "slots.h"
-layout(std140, binding = SB_SLOT_MSM_PARAMS) uniform MsmParams {
-  mat4 msmViewProj;
-  vec4 msmParams;  // lookup bias (light depth units), map size, shadow alpha, moment bias
-  vec4 msmRange;   // the hair's near and far light depth, overestimation, 0
-  ivec4 msmN;      // x: real moments beyond b0 (4, 6, 8), y: kind (0 power, 1 trig)
-};
+#include "uniforms.h"
 // Both passes compute a point's light depth with msmLightDepth: `precise`,
 // the matrix product's sums in one written order (clipOf) and the division as a
 // reciprocal product (mboitRcp: include mboit_math.glsl first), so that GL and

@@ -7,10 +7,7 @@
 #include "occupancy_math.glsl"
 #include "slots.h"
 
-layout(std140, binding = SB_SLOT_OCC_PARAMS) uniform OccupancyParams {
-  mat4 occViewProj;
-  vec4 occParams;  // x: bias (light depth units), y: map size, z: shadow alpha
-};
+#include "uniforms.h"
 layout(binding = SB_SLOT_OCC_RANGE) uniform sampler2D occRange;  // x: nearest, y: -furthest depth
 layout(binding = SB_SLOT_OCC_BITS) uniform usampler2DArray occBits;  // 128 slices per layer
 #if SB_OCC_SLAB_TARGETS > 0

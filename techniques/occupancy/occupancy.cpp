@@ -3,6 +3,7 @@
 #include "scenes/options.h"
 #include "techniques/common/shader_library.h"
 #include "techniques/occupancy/slots.h"
+#include "techniques/occupancy/uniforms.h"
 
 namespace sb {
 
@@ -48,7 +49,8 @@ void OccupancyShadow::setup(Device& dev, const GpuScene& scene, const RenderSett
   const uint32_t size = opts_.size;
   const ViewUniforms view = lightView(s, size, size);
   lightView_ = createLightViewBuffer(dev, view, "occupancy");
-  params_ = createLightLookupParams(dev, view, opts_.bias, size, scene.shadowAlpha, "occupancy");
+  params_ = createLightLookupParams<OccupancyParams>(dev, view, opts_.bias, size, scene.shadowAlpha,
+                                                     "occupancy");
   OccupancyMaps::Config c;
   c.prefix = "occupancy";
   c.owner = "shadow";

@@ -6,10 +6,7 @@
 #include "../common/light_space.glsl"
 #include "slots.h"
 
-layout(std140, binding = SB_SLOT_OSM_PASS) uniform OsmPass {
-  ivec4 osmPass;  // first texel group of target 0, first map, end map, 0
-  vec4 osmTile;   // the tile's pixel rectangle x0, y0, x1, y1
-};
+#include "pass_uniforms.h"
 
 // Target k is layer k of the atlas array. One output per target, written by
 // name: llvmpipe runs this pass about 20% slower when an output array is

@@ -6,26 +6,15 @@
 #include "techniques/common/opacity.h"
 #include "techniques/common/opacity_filter.h"
 #include "techniques/common/shader_library.h"
+#include "techniques/osm/pass_uniforms.h"
 #include "techniques/osm/slots.h"
+#include "techniques/osm/uniforms.h"
 
 namespace sb {
 
 namespace {
 constexpr uint32_t kParams = SB_SLOT_OSM_PARAMS, kPass = SB_SLOT_OSM_PASS,
                    kAtlases = SB_SLOT_OSM_ATLASES;
-
-struct Params {
-  glm::mat4 viewProj;
-  glm::vec4 params;   // bias, size, shadow alpha, weight
-  glm::ivec4 layout;  // cols, maps, atlases, filter
-  // D_0..D_n, n <= 512 (the OSM paper's Plate 3 uses 500 maps)
-  glm::vec4 slices[129];
-};
-
-struct PassParams {
-  glm::ivec4 pass;  // first texel group, first map, end map, 0
-  glm::vec4 tile;   // pixel rectangle
-};
 
 Format mapFormat(uint32_t bits) {
   return bits == 8 ? Format::RGBA8 : bits == 16 ? Format::RGBA16F : Format::RGBA32F;
@@ -109,11 +98,11 @@ void OpacityShadowMaps::setup(Device& dev, const GpuScene& scene, const RenderSe
     weight_ = std::clamp(std::round(w * 255.0f), 1.0f, 255.0f) / 255.0f;
   }
 
-  Params p{};
-  p.viewProj = view.viewProj;
-  p.params = glm::vec4(opt_.bias, float(opt_.size), scene.shadowAlpha, weight_);
-  p.layout = glm::ivec4(int(layout_.cols), n, int(layout_.atlases), opt_.filter);
-  for (int i = 0; i <= n; ++i) p.slices[i / 4][i % 4] = slices_[std::size_t(i)];
+  OsmParams p{};
+  p.osmViewProj = view.viewProj;
+  p.osmParams = glm::vec4(opt_.bias, float(opt_.size), scene.shadowAlpha, weight_);
+  p.osmLayout = glm::ivec4(int(layout_.cols), n, int(layout_.atlases), opt_.filter);
+  for (int i = 0; i <= n; ++i) p.osmSlices[i / 4][i % 4] = slices_[std::size_t(i)];
   params_ = dev.createBuffer({"osm.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
 
   const Format format = mapFormat(opt_.bits);
@@ -131,7 +120,7 @@ void OpacityShadowMaps::setup(Device& dev, const GpuScene& scene, const RenderSe
     m[3][1] = (2.0f * float(t / layout_.cols) + 1.0f) / rows - 1.0f;
     ViewUniforms tv = view;
     tv.viewProj = m * view.viewProj;
-    tv.viewport = glm::vec4(float(w), float(h), s.ribbonWidth, 0.0f);
+    tv.viewViewport = glm::vec4(float(w), float(h), s.ribbonWidth, 0.0f);
     tileViews_.push_back(dev.createBuffer(
         {"osm.tile_view" + std::to_string(t), "frame", BufferUsage::Uniform, sizeof tv}, &tv));
   }
@@ -141,7 +130,7 @@ void OpacityShadowMaps::setup(Device& dev, const GpuScene& scene, const RenderSe
     return glm::vec4(x, y, x + float(opt_.size), y + float(opt_.size));
   };
   auto addPass = [&](uint32_t targets, uint32_t tile, bool clear, glm::ivec4 range) {
-    const PassParams pp{range, tileRect(tile)};
+    const OsmPass pp{range, tileRect(tile)};
     MapPass mp{targets, tile, clear, {}};
     mp.params = dev.createBuffer(
         {"osm.pass" + std::to_string(passes_.size()), "frame", BufferUsage::Uniform, sizeof pp},

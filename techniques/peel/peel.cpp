@@ -1,5 +1,6 @@
 #include "techniques/peel/peel.h"
 
+#include "techniques/common/peel_uniforms.h"
 #include "techniques/shading/hair_shading.h"
 
 namespace sb {
@@ -15,7 +16,7 @@ void PeelOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
   setupCommon(dev, scene, s, shading, targets);
   state_ = dev.createBuffer({"peel.state", "oit", BufferUsage::Storage, pixels() * 16ull});
   peeled_ = dev.createBuffer({"peel.layers", "oit", BufferUsage::Storage, pixels() * 4ull});
-  const glm::uvec4 size(pixels(), s.width, s.height, 0);
+  const PeelSize size{glm::uvec4(pixels(), s.width, s.height, 0)};
   sizeUbo_ = dev.createBuffer({"peel.size", "frame", BufferUsage::Uniform, sizeof size}, &size);
   for (int step = 0; step < 3; ++step) {
     ShaderDefines defs;

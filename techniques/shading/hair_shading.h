@@ -1,21 +1,10 @@
 #pragma once
 
 #include "techniques/common/shader_library.h"
+#include "techniques/common/shading_uniforms.h"
 #include "techniques/common/technique.h"
 
 namespace sb {
-
-struct ShadingUniforms {
-  glm::vec4 eyePos;
-  glm::vec4 lightPos;
-  glm::vec4 lightColor;
-  glm::vec4 hairMaterial;  // kd, ks, shininess, ambient
-  glm::vec4 meshMaterial;  // rgb, ambient
-  glm::vec4 sceneParams;   // hair alpha, shadow alpha, glint width (Sadeghi)
-  glm::vec4 lobeShift;     // the shading model's parameters (ShadingModel)
-  glm::vec4 lobeWidth;
-  glm::vec4 lobeIntensity;
-};
 
 // Final shading from the camera: the opaque mesh (Lambert, pass "shading.mesh")
 // and what every hair pass of a transparency technique needs to shade hair with

@@ -4,10 +4,7 @@
 #include "slots.h"
 
 layout(binding = SB_SLOT_SHADOWMAP_DEPTH) uniform sampler2D shadowDepth;
-layout(std140, binding = SB_SLOT_SHADOWMAP_PARAMS) uniform ShadowMapParams {
-  mat4 shadowViewProj;
-  vec4 shadowParams;  // bias (light depth units), 0, 0, 0
-};
+#include "uniforms.h"
 
 float shadowVisibility(vec3 worldPos) {
   vec3 ndc;

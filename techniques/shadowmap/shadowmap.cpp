@@ -2,16 +2,12 @@
 
 #include "techniques/common/shader_library.h"
 #include "techniques/shadowmap/slots.h"
+#include "techniques/shadowmap/uniforms.h"
 
 namespace sb {
 
 namespace {
 constexpr uint32_t kDepth = SB_SLOT_SHADOWMAP_DEPTH, kParams = SB_SLOT_SHADOWMAP_PARAMS;
-
-struct Params {
-  glm::mat4 lightViewProj;
-  glm::vec4 params;
-};
 }  // namespace
 
 void ShadowMap::setup(Device& dev, const GpuScene& scene, const RenderSettings& s) {
@@ -20,7 +16,7 @@ void ShadowMap::setup(Device& dev, const GpuScene& scene, const RenderSettings& 
   depth_ = dev.createTexture({"shadowmap.depth", "shadow", Format::Depth32F, size_, size_, false});
   const ViewUniforms view = lightView(s, size_, size_);
   lightViewUbo_ = createLightViewBuffer(dev, view, "shadowmap");
-  const Params p{view.viewProj, glm::vec4(bias_, 0, 0, 0)};
+  const ShadowMapParams p{view.viewProj, glm::vec4(bias_, 0, 0, 0)};
   paramsUbo_ = dev.createBuffer({"shadowmap.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
 
   const ShaderCode frag = loadShader("techniques/common/depth_only.frag");

@@ -4,6 +4,7 @@
 #include "techniques/common/composite.h"
 #include "techniques/shading/hair_shading.h"
 #include "techniques/stochastic/slots.h"
+#include "techniques/stochastic/uniforms.h"
 
 namespace sb {
 
@@ -25,8 +26,8 @@ void StochasticOit::setup(Device& dev, const GpuScene& scene, const RenderSettin
   shading_ = &shading;
   settings_ = s;
   targets_ = targets;
-  const uint32_t p[4] = {options_.seed, options_.samples, 0, 0};
-  params_ = dev.createBuffer({"stochastic.params", "frame", BufferUsage::Uniform, sizeof p}, p);
+  const StochasticParams p{glm::uvec4(options_.seed, options_.samples, 0, 0)};
+  params_ = dev.createBuffer({"stochastic.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
   const uint32_t w = s.width, h = s.height;
   depths_ = dev.createBuffer({"stochastic.depths", "oit", BufferUsage::Storage,
                               std::size_t(w) * h * options_.samples * 4});

@@ -3,7 +3,5 @@
 // depth: for depths in [0, 1] their order is the floats' order).
 #include "slots.h"
 
-layout(std140, binding = SB_SLOT_STOCH_PARAMS) uniform StochasticParams {
-  uvec4 stochParams;  // seed, samples S, -, -
-};
+#include "uniforms.h"
 layout(std430, binding = SB_SLOT_STOCH_DEPTHS) buffer StochasticDepths { uint stochDepths[]; };

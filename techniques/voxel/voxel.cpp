@@ -5,18 +5,13 @@
 #include "techniques/common/opacity.h"
 #include "techniques/common/shader_library.h"
 #include "techniques/voxel/slots.h"
+#include "techniques/voxel/uniforms.h"
 
 namespace sb {
 
 namespace {
 constexpr uint32_t kParams = SB_SLOT_VOXEL_PARAMS, kGrid = SB_SLOT_VOXEL_GRID;
 
-struct Params {
-  glm::mat4 viewProj;
-  glm::vec4 params;  // bias, splat size, shadow alpha, density_scale
-  glm::vec4 range;   // near, far, steps, 0
-  glm::vec4 cells;   // columns per side, slices, 0, 0
-};
 }  // namespace
 
 VoxelDensityShadow::Options VoxelDensityShadow::readOptions(const OptionReader& o) {
@@ -35,11 +30,11 @@ void VoxelDensityShadow::setup(Device& dev, const GpuScene& scene, const RenderS
   // points, exact for lines and ribbons), a little wider so that the farthest
   // fragment falls inside the last slice.
   const DepthRange r = paddedHairDepthRange(dev, scene, view.viewProj);
-  Params p{};
-  p.viewProj = view.viewProj;
-  p.params = glm::vec4(opt_.bias, float(opt_.size), scene.shadowAlpha, opt_.densityScale);
-  p.range = glm::vec4(r.nearZ, r.farZ, float(opt_.steps), 0.0f);
-  p.cells = glm::vec4(float(columns()), float(opt_.grid), 0.0f, 0.0f);
+  VoxelParams p{};
+  p.voxelViewProj = view.viewProj;
+  p.voxelParams = glm::vec4(opt_.bias, float(opt_.size), scene.shadowAlpha, opt_.densityScale);
+  p.voxelRange = glm::vec4(r.nearZ, r.farZ, float(opt_.steps), 0.0f);
+  p.voxelCells = glm::vec4(float(columns()), float(opt_.grid), 0.0f, 0.0f);
   params_ = dev.createBuffer({"voxel.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
   const std::size_t voxels = std::size_t(columns()) * columns() * opt_.grid;
   grid_ = dev.createBuffer({"voxel.grid", "shadow", BufferUsage::Storage, voxels * 4});

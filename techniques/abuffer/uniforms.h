@@ -1,0 +1,15 @@
+// The size of the resolve (abuffer, and kbuffer and mlab, which reuse abuffer's C++).
+// Declared once for the C++ and the GLSL (techniques/common/uniform_block.h).
+#ifndef SB_ABUFFER_UNIFORMS_H
+#define SB_ABUFFER_UNIFORMS_H
+
+#include "techniques/common/slots.h"
+#include "techniques/common/uniform_block.h"
+
+// clang-format off
+SB_UNIFORM_BLOCK(AbufferSize, SB_SLOT_ABUFFER_SIZE)
+  SB_FIELD(uvec4, size)  // x: pixel count
+SB_UNIFORM_BLOCK_END(AbufferSize)
+// clang-format on
+
+#endif  // SB_ABUFFER_UNIFORMS_H
