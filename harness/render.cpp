@@ -57,7 +57,8 @@ RenderSettings makeRenderSettings(const RenderRequest& req, const Scene& scene) 
 
   const Bounds b = scene.bounds();
   const ViewOverrides& o = req.view;
-  s.camera = fitCamera(b, static_cast<float>(req.width) / static_cast<float>(req.height));
+  s.camera = fitCamera(b, static_cast<float>(req.width) / static_cast<float>(req.height),
+                       scene.frameByBox);
   if (o.cameraEye) s.camera.eye = *o.cameraEye;
   if (o.cameraTarget) s.camera.target = *o.cameraTarget;
   if (o.cameraUp) s.camera.up = *o.cameraUp;

@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <functional>
 #include <limits>
 #include <new>
 #include <numbers>
+#include <optional>
 #include <random>
 
 #include "scenes/loader_util.h"
@@ -104,7 +106,13 @@ std::vector<SceneInfo> buildCatalog() {
                  "consecutive vertices, 2.." +
                      std::to_string(kMaxPointsPerStrand)},
                 {"alpha", "1", "hair opacity in [0,1] for transparency"},
-                {"shadow_alpha", "0.5", "per-fragment shadow opacity in [0,1]"}}});
+                {"shadow_alpha", "0.5", "per-fragment shadow opacity in [0,1]"},
+                {"up", "auto",
+                 "the file's up axis, turned to +y: auto (z for .hair, Yuksel's models are "
+                 "z-up; y for .tfx and .ply), y, z, -y or -z"},
+                {"color", "file",
+                 "strand colours: file (the file's own, where it has them) or R/G/B in [0,1] "
+                 "for every strand (color=0.45/0.3/0.18)"}}});
   // Stiff cases for every scene: extreme scales and degenerate segments.
   for (SceneInfo& info : c) {
     info.options.push_back({"scale", "1", "uniform scale of the whole scene, 1e-6..1e6"});
@@ -131,6 +139,9 @@ class Options {
 
   bool given(const std::string& key) const { return reader_.has(key); }
   std::string text(const std::string& key) const { return reader_.text(key); }
+  std::string choice(const std::string& key, const std::vector<std::string>& valid) const {
+    return reader_.choice(key, valid);
+  }
   int64_t integer(const std::string& key, int64_t lo, int64_t hi) const {
     return int64_t(reader_.integer(key, lo, hi));
   }
@@ -590,6 +601,23 @@ Scene makeFur(const Options& o) {
   return scene;
 }
 
+// "R/G/B", each in [0,1] (a spec's commas separate its options).
+glm::vec3 colorOption(const Options& o, const std::string& key) {
+  const std::string t = o.text(key);
+  float c[3];
+  std::size_t at = 0;
+  for (int i = 0; i < 3; ++i) {
+    const std::size_t end = i < 2 ? t.find('/', at) : t.size();
+    char* stop = nullptr;
+    const std::string part = end == std::string::npos ? "" : t.substr(at, end - at);
+    c[i] = std::strtof(part.c_str(), &stop);
+    if (part.empty() || *stop != '\0' || !(c[i] >= 0.0f && c[i] <= 1.0f))
+      throw o.error(key + "=" + t + ": expected file or R/G/B, three numbers in [0,1]");
+    at = end + 1;
+  }
+  return {c[0], c[1], c[2]};
+}
+
 Scene makeFile(const Options& o) {
   Scene scene;
   const std::string path = o.text("path");
@@ -602,9 +630,30 @@ Scene makeFile(const Options& o) {
   if (o.given("points_per_strand")) {
     pointsPerStrand = uint32_t(o.integer("points_per_strand", 2, kMaxPointsPerStrand));
   }
+  std::string up = o.choice("up", {"auto", "y", "z", "-y", "-z"});
+  if (up == "auto")
+    up = path.size() > 5 && path.compare(path.size() - 5, 5, ".hair") == 0 ? "z" : "y";
+  std::optional<glm::vec3> color;
+  if (o.text("color") != "file") color = colorOption(o, "color");
+  scene.frameByBox = true;
   const std::string mesh = o.text("mesh");
   if (!mesh.empty()) scene.mesh = loadMesh(mesh);
   Strands all = loadStrandFile(path, pointsPerStrand, &scene.warnings);
+  // The file's up axis turned to +y (a rotation about x, so handedness holds), the
+  // strands and the mesh alike; its colours replaced where asked.
+  const auto turn = [&](glm::vec3 p) {
+    if (up == "z") return glm::vec3(p.x, p.z, -p.y);
+    if (up == "-z") return glm::vec3(p.x, -p.z, p.y);
+    if (up == "-y") return glm::vec3(p.x, -p.y, -p.z);
+    return p;
+  };
+  if (up != "y") {
+    for (glm::vec3& p : all.points) p = turn(p);
+    for (glm::vec3& p : scene.mesh.positions) p = turn(p);
+    for (glm::vec3& n : scene.mesh.normals) n = turn(n);
+  }
+  if (color)
+    for (glm::vec3& c : all.colors) c = *color;
   if (keep == 0 || uint64_t(keep) == all.strandCount()) {
     scene.strands = std::move(all);
     return scene;

@@ -47,6 +47,9 @@ struct Scene {
   float hairAlpha = 1.0f;    // hair opacity for transparency (scene option alpha=)
   float shadowAlpha = 0.5f;  // per-fragment shadow opacity alpha_s (shadow_alpha=)
   glm::vec3 hairColor{0.45f, 0.3f, 0.18f};
+  // The default camera fits the bounding box seen from +z (files: elongated models fill
+  // the frame), else the bounding sphere (the generated scenes and their baselines).
+  bool frameByBox = false;
   // Input accepted with a defect worth knowing (e.g. a file cut inside a block that is
   // not read); `render` reports them under "warnings".
   std::vector<std::string> warnings;

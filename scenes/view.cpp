@@ -53,7 +53,7 @@ void fitCameraPlanes(Camera& cam, const Bounds& b) {
   cam.farPlane = dist + 1.02f * r;
 }
 
-Camera fitCamera(const Bounds& b, float aspect) {
+Camera fitCamera(const Bounds& b, float aspect, bool byBox) {
   Camera cam;
   const glm::vec3 c = b.center();
   const float r = safeRadius(b);
@@ -62,7 +62,14 @@ Camera fitCamera(const Bounds& b, float aspect) {
   const float halfX = std::atan(std::tan(halfY) * a);
   const float half = std::min(halfY, halfX);
   const float margin = 1.08f;
-  const float dist = margin * r / std::sin(half);
+  float dist = margin * r / std::sin(half);
+  if (byBox) {
+    // The box's front face (nearest the camera, the largest in the image) just inside
+    // the frame: an elongated model fills the frame along its long side.
+    const glm::vec3 h = glm::max(0.5f * (b.max - b.min), glm::vec3(1e-4f * r));
+    const float fit = std::max(h.x / std::tan(halfX), h.y / std::tan(halfY));
+    if (std::isfinite(fit)) dist = h.z + 1.04f * fit;
+  }
   cam.target = c;
   cam.eye = c + glm::vec3(0.0f, 0.0f, dist);  // looks along -z
   cam.up = glm::vec3(0, 1, 0);

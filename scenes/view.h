@@ -44,7 +44,8 @@ void fitCameraPlanes(Camera& cam, const Bounds& b);
 // the light's position and direction.
 void fitLightFrustum(Light& light, const Bounds& b);
 // Front view at a distance that frames the bounds with a small margin.
-Camera fitCamera(const Bounds& b, float aspect);
+// byBox: fit the bounding box seen from +z instead of the bounding sphere (Scene::frameByBox).
+Camera fitCamera(const Bounds& b, float aspect, bool byBox = false);
 // Key light from above-front-left; near/far and extent enclose the bounds.
 Light fitLight(const Bounds& b, LightType type);
 

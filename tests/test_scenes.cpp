@@ -2,11 +2,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <numbers>
 #include <set>
 #include <string>
+#include <tuple>
 
 #include "scenes/scene.h"
 #include "scenes/view.h"
@@ -474,3 +476,84 @@ TEST(StiffSceneOptions, ScaleZeroSegmentsAndSheet) {
 }
 
 }  // namespace
+
+namespace {
+
+// Where the default camera puts a scene's strand points: their extent in NDC, x and y.
+glm::vec2 framedExtent(const sb::Scene& s, float aspect) {
+  const sb::Camera cam = sb::fitCamera(s.bounds(), aspect, s.frameByBox);
+  const glm::mat4 m = cam.projection(aspect) * cam.view();
+  glm::vec2 lo(1e30f), hi(-1e30f);
+  for (const glm::vec3& p : s.strands.points) {
+    const glm::vec4 c = m * glm::vec4(p, 1.0f);
+    EXPECT_GT(c.w, 0.0f);
+    const glm::vec2 ndc = glm::vec2(c) / c.w;
+    lo = glm::min(lo, ndc);
+    hi = glm::max(hi, ndc);
+  }
+  EXPECT_GE(lo.x, -1.0f);  // inside the frame
+  EXPECT_GE(lo.y, -1.0f);
+  EXPECT_LE(hi.x, 1.0f);
+  EXPECT_LE(hi.y, 1.0f);
+  return hi - lo;
+}
+
+}  // namespace
+
+// Every strand file in ../shared/models, in its default view: inside the frame and
+// filling at least half of its width or height (NDC spans 2).
+TEST(SceneFraming, EveryModelFillsHalfTheFrame) {
+  const std::filesystem::path models =
+      std::filesystem::path(SB_SOURCE_DIR) / ".." / "shared" / "models";
+  if (!std::filesystem::exists(models)) GTEST_SKIP() << "../shared/models not found: " << models;
+  int files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(models)) {
+    const std::string ext = e.path().extension().string();
+    if (ext != ".hair" && ext != ".tfx" && ext != ".ply") continue;
+    SCOPED_TRACE(e.path().filename().string());
+    ++files;
+    const sb::Scene s = make("file:path=" + e.path().string());
+    for (float aspect : {1.0f, 16.0f / 9.0f}) {
+      const glm::vec2 extent = framedExtent(s, aspect);
+      EXPECT_GE(std::max(extent.x, extent.y), 1.0f) << "aspect " << aspect;
+    }
+  }
+  EXPECT_GE(files, 4);
+}
+
+// Yuksel's .hair models are z-up: loaded with up=auto, the roots are above the tips
+// (the hair hangs, seen from the front, not from above onto the parting); up=y keeps
+// the file's axes, and the sphere fit of a generated scene is unchanged.
+TEST(SceneFraming, HairFilesAreTurnedZUp) {
+  const std::string hair = std::string(SB_SOURCE_DIR) + "/../shared/models/straight.hair";
+  if (!std::ifstream(hair)) GTEST_SKIP() << "../shared/models not found: " << hair;
+  auto rootsAboveTips = [](const sb::Scene& s) {
+    double roots = 0, tips = 0;
+    for (std::size_t i = 0; i < s.strands.strandCount(); ++i) {
+      roots += s.strands.points[s.strands.firstPoint[i]].y;
+      tips += s.strands.points[s.strands.firstPoint[i] + s.strands.pointCount[i] - 1].y;
+    }
+    return roots - tips;
+  };
+  EXPECT_GT(rootsAboveTips(make("file:path=" + hair + ",strands=500")), 0.0);
+  const sb::Scene asIs = make("file:path=" + hair + ",strands=500,up=y");
+  const sb::Scene turned = make("file:path=" + hair + ",strands=500,up=z");
+  ASSERT_EQ(asIs.strands.points.size(), turned.strands.points.size());
+  EXPECT_EQ(turned.strands.points[7].y, asIs.strands.points[7].z);
+  EXPECT_EQ(turned.strands.points[7].z, -asIs.strands.points[7].y);
+  EXPECT_FALSE(make("curly:strands=10").frameByBox);
+}
+
+TEST(SceneFraming, ColorOverridesTheFilesColours) {
+  const std::string ply = std::string(SB_SOURCE_DIR) + "/../shared/models/Curly_100.ply";
+  expectSceneError("file:path=x.hair,color=1/2", {"color=1/2", "R/G/B"});
+  expectSceneError("file:path=x.hair,color=0.1/0.2/1.5", {"color=0.1/0.2/1.5"});
+  expectSceneError("file:path=x.hair,color=red", {"color=red"});
+  if (!std::ifstream(ply)) GTEST_SKIP() << "../shared/models not found: " << ply;
+  const sb::Scene own = make("file:path=" + ply);
+  std::set<std::tuple<float, float, float>> colours;
+  for (const glm::vec3& c : own.strands.colors) colours.insert({c.x, c.y, c.z});
+  EXPECT_GT(colours.size(), 10u);  // the file's (CT2Hair's per-strand colours)
+  const sb::Scene grey = make("file:path=" + ply + ",color=0.5/0.4/0.3");
+  for (const glm::vec3& c : grey.strands.colors) EXPECT_EQ(c, glm::vec3(0.5f, 0.4f, 0.3f));
+}
