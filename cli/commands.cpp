@@ -11,6 +11,7 @@
 #include <new>
 
 #include "backends/device.h"
+#include "cli/render_summary.h"
 #include "harness/render.h"
 #include "harness/settings.h"
 #include "harness/stop.h"
@@ -217,25 +218,7 @@ void registerRender(CLI::App& app) {
         std::cout << report.dump(2) << "\n";
         return 0;
       }
-      std::cout << req->scene << " | shadow " << req->shadow << " | oit " << req->oit << " | "
-                << result.device.backend << "/" << result.device.platform << " ("
-                << result.device.device << ") | " << result.scene.segments << " segments | "
-                << req->primitive << " | " << req->width << "x" << req->height << "\n";
-      for (const auto& p : report["passes"])
-        std::cout << "  " << p["name"].get<std::string>() << ": median "
-                  << p["ms"]["median"].get<double>() << " ms (min " << p["ms"]["min"].get<double>()
-                  << ", max " << p["ms"]["max"].get<double>() << ", " << req->repeat << " runs)\n";
-      std::cout << "  frame: median " << report["frame_ms"]["median"].get<double>() << " ms\n";
-      if (report.contains("error"))
-        std::cout << "  error against " << result.reference->first << " + "
-                  << result.reference->second << ": image " << report["error"]["image"].dump()
-                  << ", visibility " << report["error"]["visibility"].dump() << "\n";
-      if (report.contains("animation"))
-        std::cout << "  animation " << settingText(*req, *findSetting("animate")) << ": flicker "
-                  << report["animation"]["flicker"].dump() << "\n";
-      if (report.contains("depth_complexity"))
-        std::cout << "  depth complexity: " << report["depth_complexity"].dump() << "\n";
-      for (const auto& warning : result.warnings) std::cout << "  warning: " << warning << "\n";
+      printRenderSummary(std::cout, *req, result);
       if (!out->empty()) std::cout << "  wrote " << *out << "\n";
       return 0;
     });

@@ -79,6 +79,26 @@ TEST(Cli, RenderJsonHasTheDocumentedKeys) {
   std::filesystem::remove_all(dir);
 }
 
+// Without --json, render prints a summary a person reads: a table of pass times to
+// three significant digits, the errors and depth complexity in words, no JSON.
+TEST(Cli, RenderPrintsASummaryNotJson) {
+  auto r = runCli(
+      "render --scene straight:strands=100,points=8 --oit wboit --reference "
+      "--size 48x48 --repeat 2 --no-image");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out.find('{'), std::string::npos) << r.out;
+  for (const char* line :
+       {"  pass ", "min-max over 2 frames", "\n  visibility ", "\n  frame ",
+        "    visibility: RMSE ", "depth complexity, eye: max ", "depth complexity, light: max "})
+    EXPECT_NE(r.out.find(line), std::string::npos) << line << " in\n" << r.out;
+  // With an image: its PSNR, SSIM and FLIP as words; identical images say so.
+  r = runCli(
+      "render --scene straight:strands=100,points=8 --oit abuffer --shadow exact "
+      "--reference --size 48x48");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("    image: identical (PSNR infinite)"), std::string::npos) << r.out;
+}
+
 // --reference adds the error against exact shadows + exact transparency, in
 // image and visibility space, and the depth complexity from eye and light.
 TEST(Cli, ReferenceReportsErrorsAndDepthComplexity) {
