@@ -607,8 +607,8 @@ void registerViewCommand(CLI::App& app) {
   auto req = std::make_shared<RenderRequest>();
   req->width = req->height = 512;
   // The settings of the picture (not timing, measurement or the platform: always a window).
-  std::vector<std::string> keys = {"scene", "shadow",    "oit",          "backend",
-                                   "size",  "primitive", "ribbon_width", "validation"};
+  std::vector<std::string> keys = {"scene",   "shadow", "oit",       "shading",      "msaa",
+                                   "backend", "size",   "primitive", "ribbon_width", "validation"};
   for (std::string& k : viewSettingKeys()) keys.push_back(std::move(k));
   auto settings = std::make_shared<CliSettings>(*cmd, keys, *req);
   auto script = std::make_shared<std::string>();

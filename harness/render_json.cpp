@@ -18,18 +18,14 @@ nlohmann::json visibilityJson(const VisibilityError& e) {
 
 }  // namespace
 
-// `error` of the report: {image (with an image), visibility, total, own}.
+// `error` of the report: {image (with an image), visibility, own, by_eye_layers}. `image`
+// and `visibility` are the total error (against exact shadows plus exact transparency),
+// written once: there is no separate `total` copy.
 nlohmann::json errorJson(const RenderResult& r) {
   nlohmann::json error;
   if (r.imageError) error["image"] = toJson(*r.imageError);
   if (r.flip) error["image"]["flip"] = toJson(*r.flip);
   if (r.visibilityError) error["visibility"] = visibilityJson(*r.visibilityError);
-  // `image` and `visibility` above are the total error, kept under their old
-  // keys for the readers of earlier result files (baselines, compare-runs).
-  nlohmann::json total;
-  if (error.contains("image")) total["image"] = error["image"];
-  if (error.contains("visibility")) total["visibility"] = error["visibility"];
-  error["total"] = total;
   if (r.own) {
     const OwnError& o = *r.own;
     nlohmann::json own = {{"technique", o.technique},

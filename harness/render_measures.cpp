@@ -75,7 +75,7 @@ std::vector<InvariantFailure> checkInvariants(const RenderRequest& req, const Re
     for (const auto& [kind, e] : errors.items())
       for (const auto& [metric, v] : e.items())
         // PSNR is infinite (null) exactly when the images are identical.
-        if (kind != "total" && kind != "own" &&
+        if (kind != "own" &&
             kind != "by_eye_layers" &&  // copies and objects, checked apart
             ((v.is_null() && !(metric == "psnr" && e.value("identical", false))) ||
              (v.is_number_float() && !std::isfinite(v.get<double>()))))

@@ -68,7 +68,7 @@ TEST_P(ViewTest, ScriptedSessionScreenshotIsReproducedByItsRenderCommand) {
   const sbtest::CliResult r =
       shell(std::string(SB_CLI) + " view --backend " + backend +
                 " --validation --scene curly:strands=150,points=12,seed=5,alpha=0.4 --shadow avsm "
-                "--oit stochastic --size 128x96 --script " +
+                "--oit stochastic --shading marschner --size 128x96 --script " +
                 script.string() + " --screenshot-dir " + (dir / "shots").string(),
             dir);
   ASSERT_EQ(r.status, 0) << r.err << r.out;
@@ -83,6 +83,8 @@ TEST_P(ViewTest, ScriptedSessionScreenshotIsReproducedByItsRenderCommand) {
   EXPECT_TRUE(j.at("case").contains("camera_eye"));
   EXPECT_EQ(j.at("suite").at("defaults").at("backends"), nlohmann::json::array({backend}));
   EXPECT_EQ(j.at("case").at("size"), "128x96");
+  // view takes --shading as render does; the screenshot's case and command keep it.
+  EXPECT_EQ(j.at("case").at("shading").get<std::string>().rfind("marschner", 0), 0u);
   const std::string line = j.at("render").get<std::string>();
   EXPECT_EQ(line.rfind("strandbench render ", 0), 0u) << line;
   EXPECT_NE(line.find("--light-direction"), std::string::npos) << line;
