@@ -228,6 +228,7 @@ struct Binding {
 struct PassTiming {
   std::string name;
   double ms = 0;
+  double startMs = 0;  // from the frame's start, on the same clock as ms (traces)
 };
 
 struct ResourceBytes {

@@ -19,6 +19,7 @@
 #include "imaging/flip.h"
 #include "imaging/image.h"
 #include "imaging/metrics.h"
+#include "reports/files.h"
 #include "scenes/options.h"
 #include "scenes/scene.h"
 #include "techniques/common/technique.h"
@@ -154,6 +155,10 @@ void registerRender(CLI::App& app) {
   auto heatmap = std::make_shared<std::string>();
   auto flipMap = std::make_shared<std::string>();
   auto strip = std::make_shared<std::string>();
+  auto trace = std::make_shared<std::string>();
+  cmd->add_option("--trace", *trace,
+                  "write the timed frames' passes as a Chrome/Perfetto trace (.json; open in "
+                  "ui.perfetto.dev or chrome://tracing)");
   cmd->add_option("--reference-out", *referenceOut, "with --reference: write the reference image");
   cmd->add_option("--strip", *strip,
                   "with --animate: write up to four frames side by side, the technique's above "
@@ -168,6 +173,8 @@ void registerRender(CLI::App& app) {
     runGuarded("render", [&] {
       settings->apply(*req);
       if (!out->empty()) checkOutputPath("--out", *out, {".png", ".exr"});
+      if (!trace->empty()) checkOutputPath("--trace", *trace, {".json"});
+      req->timeline = !trace->empty();
       if (!req->image && (!out->empty() || !referenceOut->empty() || !heatmap->empty() ||
                           !flipMap->empty() || !strip->empty()))
         throw InputError(
@@ -206,6 +213,10 @@ void registerRender(CLI::App& app) {
         write(*heatmap, [&] { return diffHeatmap(result.image, result.referenceImage, 0.25); });
         write(*flipMap, [&] { return flipErrorImage(*result.flip); });
         write(*strip, [&] { return animationStrip(*result.animation); });
+        if (!trace->empty()) {
+          writeFileAtomic(*trace, traceJson(result).dump() + "\n");
+          written.push_back(*trace);
+        }
         throwIfStopped();
       } catch (...) {
         std::error_code ec;

@@ -405,6 +405,7 @@ void frames(const RenderRequest& req, Plan& p, const RunDevice& d, RenderProgres
       total += t.ms;
     }
     out.frameMs.push_back(total);
+    if (req.timeline) out.timeline.push_back(renderer.lastTimings());
     if (d.window) {
       const auto [shown, ms] = present(nullptr);
       out.presented->frames += shown ? 1 : 0;

@@ -84,6 +84,7 @@ struct RenderRequest {
   float ribbonWidth = 1.0f;
   int msaa = 1;  // samples per pixel of the frame targets: 1, 2, 4, 8 (what the device has)
   int repeat = 1;
+  bool timeline = false;  // keep each timed frame's passes with their starts (render --trace)
   int warmup = 1;
   bool validation = false;
   // Refuse the run (InputError) when the resources its timed frames need
@@ -180,6 +181,8 @@ struct RenderResult {
   std::optional<std::vector<std::string>> measurementGraph;
   std::vector<PassTimes> passes;  // in the order they first ran
   std::vector<double> frameMs;    // per timed frame: the sum of its passes
+  // With RenderRequest::timeline: per timed frame, each pass execution with its start.
+  std::vector<std::vector<PassTiming>> timeline;
   // This run's own resources (not the reference's), sorted by name.
   std::vector<ResourceBytes> resources;
   // Their bytes as known before the first frame (from the culled graph).
@@ -240,6 +243,10 @@ Image animationStrip(const AnimationResult& a);
 
 // The `render --json` object (keys in docs/suites-and-results.md).
 nlohmann::json renderJson(const RenderResult& r);
+// The timed frames as a Chrome/Perfetto trace (trace-event JSON, "X" slices in
+// microseconds): one slice per frame, its passes nested in it, the frames one after
+// another on one track; args name the clock and each pass's execution. Needs timeline.
+nlohmann::json traceJson(const RenderResult& r);
 
 // What a sweep computes once and reuses across its cases: scenes by spec and
 // references by backend, scene, view, reference technique and probe.

@@ -1,4 +1,6 @@
 // The render result as JSON (`render --json`, a sweep's results.json).
+#include <algorithm>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "harness/render_steps.h"
@@ -180,6 +182,54 @@ nlohmann::json renderJson(const RenderResult& r) {
                       {"frame_ms", statsJson(withPresent)}};
   }
   return j;
+}
+
+nlohmann::json traceJson(const RenderResult& r) {
+  nlohmann::json events = nlohmann::json::array();
+  const std::string thread = r.device.backend + " " + r.device.device;
+  events.push_back({{"name", "process_name"},
+                    {"ph", "M"},
+                    {"pid", 1},
+                    {"args", {{"name", "strandbench render"}}}});
+  events.push_back(
+      {{"name", "thread_name"}, {"ph", "M"}, {"pid", 1}, {"tid", 1}, {"args", {{"name", thread}}}});
+  double at = 0.0;  // microseconds: frames one after another, 10 us apart
+  for (std::size_t f = 0; f < r.timeline.size(); ++f) {
+    const std::vector<PassTiming>& passes = r.timeline[f];
+    double end = 0.0, sum = 0.0;  // milliseconds from the frame's start
+    for (const PassTiming& p : passes) {
+      end = std::max(end, p.startMs + p.ms);
+      sum += p.ms;
+    }
+    events.push_back({{"name", "frame " + std::to_string(f + 1)},
+                      {"cat", "frame"},
+                      {"ph", "X"},
+                      {"pid", 1},
+                      {"tid", 1},
+                      {"ts", at},
+                      {"dur", end * 1000.0},
+                      {"args", {{"passes", passes.size()}, {"pass_ms_sum", sum}}}});
+    std::map<std::string, int> executions;
+    for (const PassTiming& p : passes)
+      events.push_back({{"name", p.name},
+                        {"cat", "pass"},
+                        {"ph", "X"},
+                        {"pid", 1},
+                        {"tid", 1},
+                        {"ts", at + p.startMs * 1000.0},
+                        {"dur", p.ms * 1000.0},
+                        {"args", {{"execution", ++executions[p.name]}}}});
+    at += end * 1000.0 + 10.0;
+  }
+  return {{"traceEvents", events},
+          {"displayTimeUnit", "ms"},
+          {"otherData",
+           {{"scene", r.scene.spec},
+            {"shadow", r.shadow},
+            {"oit", r.oit},
+            {"backend", r.device.backend},
+            {"device", r.device.device},
+            {"clock", r.device.timing}}}};
 }
 
 }  // namespace sb

@@ -71,11 +71,12 @@ inline std::filesystem::path tempDir(const std::string& tag) {
   return dir;
 }
 
-// args are passed through the shell; quote them where needed.
-inline CliResult runCli(const std::string& args) {
+// args are passed through the shell; quote them where needed. env: "NAME=value ..." set
+// for this command only.
+inline CliResult runCli(const std::string& args, const std::string& env = "") {
   const auto dir = tempDir("cli");
-  const std::string cmd = std::string(SB_CLI) + " " + args + " >" + (dir / "out").string() + " 2>" +
-                          (dir / "err").string();
+  const std::string cmd = (env.empty() ? "" : "env " + env + " ") + std::string(SB_CLI) + " " +
+                          args + " >" + (dir / "out").string() + " 2>" + (dir / "err").string();
   CliResult r;
   const int raw = std::system(cmd.c_str());
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;

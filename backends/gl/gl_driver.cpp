@@ -67,6 +67,9 @@ const char* glErrorName(GLenum e) {
 }
 
 using Clock = std::chrono::steady_clock;
+double msBetween(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
 
 struct GLBuffer : DriverObject {
   GLuint name = 0;
@@ -298,6 +301,7 @@ class GLDriver final : public Driver {
   void beginFrame() override {
     timings_.clear();
     gl_.Finish();  // earlier uploads do not count against the first pass
+    frameStart_ = Clock::now();
   }
 
   void beginPass(const DriverPass& pass) override {
@@ -369,7 +373,7 @@ class GLDriver final : public Driver {
     resolves_.clear();
     gl_.Finish();  // GL timer queries on llvmpipe miss vertex work: time with the CPU
     timings_.push_back(
-        {passName_, std::chrono::duration<double, std::milli>(Clock::now() - passStart_).count()});
+        {passName_, msBetween(passStart_, Clock::now()), msBetween(frameStart_, passStart_)});
     checkError("pass " + passName_);
   }
 
@@ -383,8 +387,7 @@ class GLDriver final : public Driver {
     bind(bindings);
     gl_.DispatchCompute(x, y, z);
     gl_.Finish();
-    timings_.push_back(
-        {passName, std::chrono::duration<double, std::milli>(Clock::now() - start).count()});
+    timings_.push_back({passName, msBetween(start, Clock::now()), msBetween(frameStart_, start)});
     checkError("dispatch " + passName);
   }
 
@@ -680,7 +683,7 @@ class GLDriver final : public Driver {
   };
   std::vector<Resolve> resolves_;  // of the open pass, blitted at its end
   uint32_t passSamples_ = 1;       // of the open pass
-  Clock::time_point passStart_;
+  Clock::time_point passStart_, frameStart_;
   std::vector<PassTiming> timings_;
 };
 

@@ -226,6 +226,8 @@ class VulkanDriver final : public Driver {
     passNames_.clear();
     passQueries_.clear();
     cpuMs_.clear();
+    cpuStartMs_.clear();
+    frameStart_ = std::chrono::steady_clock::now();
     timings_.clear();
     queryCount_ = 0;
     queryPoolsReset_ = 0;
@@ -354,7 +356,8 @@ class VulkanDriver final : public Driver {
     timings_.clear();
     if (cpuTiming_) {
       for (std::size_t i = 0; i < passNames_.size(); ++i) {
-        timings_.push_back({passNames_[i], i < cpuMs_.size() ? cpuMs_[i] : 0.0});
+        timings_.push_back({passNames_[i], i < cpuMs_.size() ? cpuMs_[i] : 0.0,
+                            i < cpuStartMs_.size() ? cpuStartMs_[i] : 0.0});
       }
       return;
     }
@@ -372,7 +375,9 @@ class VulkanDriver final : public Driver {
     for (std::size_t i = 0; i < passNames_.size(); ++i) {
       const uint32_t q = passQueries_[i];
       const uint64_t ticks = (stamps[q + 1] - stamps[q]) & mask;
-      timings_.push_back({passNames_[i], static_cast<double>(ticks) * timestampPeriod_ / 1e6});
+      const uint64_t since = (stamps[q] - stamps[passQueries_.front()]) & mask;
+      timings_.push_back({passNames_[i], static_cast<double>(ticks) * timestampPeriod_ / 1e6,
+                          static_cast<double>(since) * timestampPeriod_ / 1e6});
     }
   }
 
@@ -518,6 +523,7 @@ class VulkanDriver final : public Driver {
       flushFrame();
       const auto t1 = std::chrono::steady_clock::now();
       cpuMs_.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+      cpuStartMs_.push_back(std::chrono::duration<double, std::milli>(t0 - frameStart_).count());
       return;
     }
     const uint32_t q = passQueries_.back() + 1;
@@ -616,6 +622,8 @@ class VulkanDriver final : public Driver {
   std::vector<std::string> passNames_;
   std::vector<uint32_t> passQueries_;
   std::vector<double> cpuMs_;
+  std::vector<double> cpuStartMs_;  // from frameStart_
+  std::chrono::steady_clock::time_point frameStart_;
   std::vector<PassTiming> timings_;
 };
 

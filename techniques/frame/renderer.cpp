@@ -339,8 +339,9 @@ std::vector<PassTime> Renderer::run(const std::vector<const PassNode*>& passes) 
     p->execute();
   }
   dev_.endFrame();
+  lastTimings_ = dev_.lastFrameTimings();
   std::vector<PassTime> out;
-  for (const auto& t : dev_.lastFrameTimings()) {
+  for (const auto& t : lastTimings_) {
     auto it =
         std::find_if(out.begin(), out.end(), [&](const PassTime& x) { return x.name == t.name; });
     if (it == out.end()) it = out.insert(out.end(), {t.name, 0.0, 0});

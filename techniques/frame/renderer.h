@@ -21,8 +21,8 @@
 #include <vector>
 
 #include "techniques/common/technique.h"
-#include "techniques/shading/hair_shading.h"
 #include "techniques/probe/probe.h"
+#include "techniques/shading/hair_shading.h"
 #include "techniques/visibility/visibility.h"
 
 namespace sb {
@@ -124,6 +124,14 @@ class Renderer {
   // The graph resources behind the outputs "color", "visibility" and "probe".
   std::vector<GraphResource> resources(const std::set<std::string>& outputs) const;
   std::vector<PassTime> run(const std::vector<const PassNode*>& passes);
+
+ public:
+  // The last frame's passes as the device timed them, each execution apart, with its
+  // start in the frame (a trace's slices).
+  const std::vector<PassTiming>& lastTimings() const { return lastTimings_; }
+
+ private:
+  std::vector<PassTiming> lastTimings_;
 
   Device& dev_;
   // Everything the renderer and its techniques create on the device, freed
