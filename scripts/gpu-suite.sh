@@ -7,10 +7,10 @@
 #   --small     the quick suite only (minutes on CPU drivers; proves the script works)
 #   --suites S  the suites to run (names in suites/, default: quick and every paper-*)
 # On a machine without an NVIDIA GPU it runs on whatever devices there are (Mesa's llvmpipe
-# and lavapipe here) and says so in the summary. Vulkan timing: SB_VULKAN_GPU_TIMING=1
-# (timestamps also on a CPU device, where lavapipe's are not trustworthy: README, "Measured
-# figures"); GL: glFinish and the clock per pass (GL has no per-pass timestamps here). Exit 0,
-# or the first failing sweep's status. Needs build/strandbench (scripts/setup.sh).
+# and lavapipe here) and says so in the summary. Timing: GPU timestamps on both APIs, no
+# finish between passes (SB_VULKAN_GPU_TIMING=1, SB_GL_GPU_TIMING=1: Vulkan timestamps, GL
+# glQueryCounter; forced also on a CPU device, where they are not trustworthy: docs/measured.md).
+# Exit 0, or the first failing sweep's status. Needs build/strandbench (scripts/setup.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="out/gpu-$(date -u +%Y%m%d)"
@@ -31,7 +31,7 @@ for s in $suites; do
   [ -f "suites/$s.json" ] || { echo "gpu-suite.sh: suites/$s.json: no such suite" >&2; exit 2; }
 done
 mkdir -p "$out"
-export SB_VULKAN_GPU_TIMING=1
+export SB_VULKAN_GPU_TIMING=1 SB_GL_GPU_TIMING=1
 if command -v nvidia-smi >/dev/null && nvidia-smi -L >/dev/null 2>&1; then
   gpu=$(nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader | head -n 1)
 else
@@ -43,7 +43,7 @@ fi
   echo "- date: $(date -u +%Y-%m-%dT%H:%M:%SZ)"
   echo "- commit: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
   echo "- GPU (nvidia-smi: name, driver, memory): $gpu"
-  echo "- Vulkan timing forced to timestamps (SB_VULKAN_GPU_TIMING=1); GL: glFinish + clock per pass"
+  echo "- timing forced to GPU timestamps on both APIs (SB_VULKAN_GPU_TIMING=1, SB_GL_GPU_TIMING=1)"
   echo
   echo "| suite | cases | failed | seconds | devices (backend: device, driver, timing) |"
   echo "|---|---|---|---|---|"

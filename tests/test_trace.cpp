@@ -83,22 +83,29 @@ TEST_P(TraceTest, PassesNestInTheirFramesAndSumToTheFrame) {
   EXPECT_GE(best, 0.95);
 }
 
-// Vulkan's timestamp path (what GPUs use; forced here on lavapipe): slices in order and
-// nested. lavapipe writes end stamps before rasterizing ends, so their sum is not checked.
-TEST(Trace, VulkanTimestampSlicesNestInOrder) {
-  const auto dir = sbtest::tempDir("trace-gpu");
-  const auto file = dir / "t.json";
-  const auto r = sbtest::runCli(
-      "render --scene curly:strands=300,points=12 --shadow dom "
-      "--oit wboit --size 96x96 --repeat 2 --backend vulkan --json "
-      "--trace " +
-          file.string(),
-      "SB_VULKAN_GPU_TIMING=1");
-  ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_EQ(json::parse(r.out).at("timing"), "gpu timestamps");
-  const Slices s = slicesOf(json::parse(sbtest::readFile(file)));
-  ASSERT_EQ(s.frames.size(), 2u);
-  for (double sum : checkNesting(s)) EXPECT_GT(sum, 0.0);
+// The timestamp paths (what GPUs use; forced here on the CPU drivers): Vulkan's
+// vkCmdWriteTimestamp and GL's glQueryCounter, with no finish between passes. Slices
+// in order and nested; their sum is not judged (lavapipe writes end stamps before
+// rasterizing ends).
+TEST(Trace, TimestampSlicesNestInOrderOnBothApis) {
+  for (const char* backend : {"vulkan", "gl"}) {
+    SCOPED_TRACE(backend);
+    const auto dir = sbtest::tempDir("trace-gpu");
+    const auto file = dir / "t.json";
+    const auto r = sbtest::runCli(std::string("render --scene curly:strands=300,points=12 "
+                                              "--shadow dom --oit wboit --size 96x96 --repeat 2 "
+                                              "--json --backend ") +
+                                      backend + " --trace " + file.string(),
+                                  "SB_VULKAN_GPU_TIMING=1 SB_GL_GPU_TIMING=1");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const json report = json::parse(r.out);
+    EXPECT_NE(report.at("timing").get<std::string>().find("gpu timestamps"), std::string::npos)
+        << report.at("timing");
+    const Slices s = slicesOf(json::parse(sbtest::readFile(file)));
+    ASSERT_EQ(s.frames.size(), 2u);
+    ASSERT_EQ(s.passes.size(), 2 * report.at("passes").size());
+    for (double sum : checkNesting(s)) EXPECT_GT(sum, 0.0);
+  }
 }
 
 TEST(Trace, BadPathIsRefusedBeforeAnyWork) {

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
 #include <iterator>
 #include <map>
@@ -67,6 +68,10 @@ const char* glErrorName(GLenum e) {
 }
 
 using Clock = std::chrono::steady_clock;
+bool envSet(const char* name) {
+  const char* v = std::getenv(name);
+  return v != nullptr && *v != '\0' && std::string(v) != "0";
+}
 double msBetween(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double, std::milli>(b - a).count();
 }
@@ -107,7 +112,15 @@ class GLDriver final : public Driver {
     info_.platform = platform_->name();
     info_.device = reinterpret_cast<const char*>(gl_.GetString(GL_RENDERER));
     info_.driver = reinterpret_cast<const char*>(gl_.GetString(GL_VERSION));
-    info_.timing = "cpu clock per pass (glFinish before and after)";
+    // Timing: GPU timestamps (glQueryCounter at each pass's start and end, no finish
+    // between passes) on GPUs; on llvmpipe the CPU clock around each pass, since its
+    // timer queries miss vertex work. SB_GL_GPU_TIMING=1 / SB_GL_CPU_TIMING=1 force one.
+    const std::string renderer = info_.device;
+    const bool cpuDevice = renderer.find("llvmpipe") != std::string::npos ||
+                           renderer.find("softpipe") != std::string::npos;
+    gpuTiming_ = !envSet("SB_GL_CPU_TIMING") && (!cpuDevice || envSet("SB_GL_GPU_TIMING"));
+    info_.timing = gpuTiming_ ? "gpu timestamps (glQueryCounter)"
+                              : "cpu clock per pass (glFinish before and after)";
     info_.lines = "aliased (diamond exit)";
     info_.present = platform_->presentMode();
     // Draw buffers and framebuffer attachments both bound a pass's targets.
@@ -139,6 +152,7 @@ class GLDriver final : public Driver {
   }
 
   ~GLDriver() override {
+    if (!queries_.empty()) gl_.DeleteQueries(GLsizei(queries_.size()), queries_.data());
     for (auto& [key, fbo] : fbos_) gl_.DeleteFramebuffers(1, &fbo);
     if (presentFbo_) gl_.DeleteFramebuffers(1, &presentFbo_);
     gl_.DeleteVertexArrays(1, &vao_);
@@ -300,8 +314,37 @@ class GLDriver final : public Driver {
 
   void beginFrame() override {
     timings_.clear();
+    stampNames_.clear();
     gl_.Finish();  // earlier uploads do not count against the first pass
     frameStart_ = Clock::now();
+  }
+
+  // GPU timing: a timestamp query written now, after the commands before it.
+  void stamp(std::size_t i) {
+    if (i >= queries_.size()) {
+      const std::size_t more = std::max<std::size_t>(64, queries_.size());
+      queries_.resize(queries_.size() + more);
+      gl_.CreateQueries(GL_TIMESTAMP, GLsizei(more), queries_.data() + queries_.size() - more);
+    }
+    gl_.QueryCounter(queries_[i], GL_TIMESTAMP);
+  }
+  void beginTiming(const std::string& name) {
+    if (!gpuTiming_) {
+      gl_.Finish();
+      passStart_ = Clock::now();
+      return;
+    }
+    stamp(2 * stampNames_.size());  // pass p: queries 2p (start) and 2p + 1 (end)
+    stampNames_.push_back(name);
+  }
+  void endTiming(const std::string& name) {
+    if (!gpuTiming_) {
+      gl_.Finish();  // GL timer queries on llvmpipe miss vertex work: time with the CPU
+      const auto end = Clock::now();
+      timings_.push_back({name, msBetween(passStart_, end), msBetween(frameStart_, passStart_)});
+      return;
+    }
+    stamp(2 * stampNames_.size() - 1);
   }
 
   void beginPass(const DriverPass& pass) override {
@@ -323,8 +366,7 @@ class GLDriver final : public Driver {
     resolves_.clear();
     for (std::size_t i = 0; i < pass.color.size(); ++i)
       if (pass.color[i].resolve.object) resolves_.push_back({fbo, i, pass.color[i], pass});
-    gl_.Finish();
-    passStart_ = Clock::now();
+    beginTiming(pass.name);
     for (std::size_t i = 0; i < pass.color.size(); ++i) {
       const auto& a = pass.color[i];
       if (a.load != LoadOp::Clear) continue;
@@ -371,9 +413,7 @@ class GLDriver final : public Driver {
       gl_.BlitNamedFramebuffer(r.fbo, to, 0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
     }
     resolves_.clear();
-    gl_.Finish();  // GL timer queries on llvmpipe miss vertex work: time with the CPU
-    timings_.push_back(
-        {passName_, msBetween(passStart_, Clock::now()), msBetween(frameStart_, passStart_)});
+    endTiming(passName_);
     checkError("pass " + passName_);
   }
 
@@ -381,19 +421,26 @@ class GLDriver final : public Driver {
                 const std::vector<DriverBinding>& bindings, uint32_t x, uint32_t y,
                 uint32_t z) override {
     gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
-    gl_.Finish();
-    const auto start = Clock::now();
+    beginTiming(passName);
     gl_.UseProgram(static_cast<GLPipeline&>(pipeline).program);
     bind(bindings);
     gl_.DispatchCompute(x, y, z);
-    gl_.Finish();
-    timings_.push_back({passName, msBetween(start, Clock::now()), msBetween(frameStart_, start)});
+    endTiming(passName);
     checkError("dispatch " + passName);
   }
 
   void endFrame() override {
     gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
     gl_.Finish();
+    if (gpuTiming_ && !stampNames_.empty()) {
+      // Each pass's start and end stamps, in nanoseconds, from the frame's first stamp.
+      std::vector<GLuint64> ns(2 * stampNames_.size());
+      for (std::size_t i = 0; i < ns.size(); ++i)
+        gl_.GetQueryObjectui64v(queries_[i], GL_QUERY_RESULT, &ns[i]);
+      for (std::size_t p = 0; p < stampNames_.size(); ++p)
+        timings_.push_back({stampNames_[p], double(ns[2 * p + 1] - ns[2 * p]) / 1e6,
+                            double(ns[2 * p] - ns[0]) / 1e6});
+    }
     checkError("endFrame");
   }
 
@@ -684,6 +731,9 @@ class GLDriver final : public Driver {
   std::vector<Resolve> resolves_;  // of the open pass, blitted at its end
   uint32_t passSamples_ = 1;       // of the open pass
   Clock::time_point passStart_, frameStart_;
+  bool gpuTiming_ = false;
+  std::vector<GLuint> queries_;          // timestamp queries, two per pass, reused per frame
+  std::vector<std::string> stampNames_;  // this frame's timed passes (GPU timing)
   std::vector<PassTiming> timings_;
 };
 

@@ -63,6 +63,10 @@
   X(PFNGLDISPATCHCOMPUTEPROC, DispatchCompute)                           \
   X(PFNGLMEMORYBARRIERPROC, MemoryBarrier)                               \
   X(PFNGLFINISHPROC, Finish)                                             \
+  X(PFNGLCREATEQUERIESPROC, CreateQueries)                               \
+  X(PFNGLDELETEQUERIESPROC, DeleteQueries)                               \
+  X(PFNGLQUERYCOUNTERPROC, QueryCounter)                                 \
+  X(PFNGLGETQUERYOBJECTUI64VPROC, GetQueryObjectui64v)                   \
   X(PFNGLDEPTHMASKPROC, DepthMask)                                       \
   X(PFNGLDEPTHFUNCPROC, DepthFunc)                                       \
   X(PFNGLBLENDFUNCSEPARATEIPROC, BlendFuncSeparatei)                     \
