@@ -98,7 +98,7 @@ std::vector<Setting> buildTable() {
     const std::string example = exampleSpec(f);
     const std::string name = example.substr(0, example.find(':'));
     return make(key, flag, T::Spec, defaultTechnique(f).name,
-                what + " spec NAME:option=value,...: " + techniqueNames(f) +
+                what + " spec NAME:option=value,...: " + joinOr(techniqueNames(f)) +
                     " (`strandbench list " + name + "`: its options)",
                 example, name + name.back());
   };
@@ -153,13 +153,14 @@ std::vector<Setting> buildTable() {
     // data that is not multisampled refuse N > 1; the reference stays at one
     // sample (exact at pixel centres). The device's counts are checked when it
     // is made.
-    Setting& s = add(
-        make("msaa", "--msaa", T::Enum, "1",
-             "samples per pixel of the frame (anti-aliasing): 1, 2, 4, 8, as the "
-             "device supports; multisampled: --oit " +
-                 techniqueNames(Family::Transparency,
-                                [](const TechniqueDescriptor& d) { return d.caps.multisampling; }),
-             "4", "3"));
+    Setting& s = add(make("msaa", "--msaa", T::Enum, "1",
+                          "samples per pixel of the frame (anti-aliasing): 1, 2, 4, 8, as the "
+                          "device supports; multisampled: --oit " +
+                              joinOr(techniqueNames(Family::Transparency,
+                                                    [](const TechniqueDescriptor& d) {
+                                                      return d.caps.multisampling;
+                                                    })),
+                          "4", "3"));
     s.choices = {"1", "2", "4", "8"};
     s.get = [](const RenderRequest& r) { return ojson(std::to_string(r.msaa)); };
     s.set = [](RenderRequest& r, const ojson& v) { r.msaa = std::stoi(v.get<std::string>()); };

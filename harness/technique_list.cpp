@@ -72,16 +72,6 @@ nlohmann::json optionsJson(const std::vector<OptionInfo>& options) {
   return a;
 }
 
-std::string techniqueNames(Family f, bool (*keep)(const TechniqueDescriptor&)) {
-  std::vector<std::string> names;
-  for (const TechniqueDescriptor* d : techniques(f))
-    if (!keep || keep(*d)) names.push_back(d->name);
-  std::string s;
-  for (std::size_t i = 0; i < names.size(); ++i)
-    s += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
-  return s;
-}
-
 std::string exampleSpec(Family f) {
   for (const TechniqueDescriptor* d : techniques(f))
     if (!d->isDefault && !d->options.empty())

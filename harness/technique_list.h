@@ -25,9 +25,6 @@ void printTechnique(std::ostream& out, const TechniqueDescriptor& d, bool detail
 // The capabilities as words ("multisampling, exact"), "-" when none.
 std::string capabilitiesText(const TechniqueDescriptor& d);
 std::string techniquesMarkdown();
-// The family's names as "a, b or c", those `keep` accepts (all when null): help texts
-// name techniques through the registry, never by a list of their own.
-std::string techniqueNames(Family f, bool (*keep)(const TechniqueDescriptor&) = nullptr);
 // A spec other than the default, for help texts and the settings' examples: the first
 // technique by name with an option, that option at its default ("adsm:size=512").
 std::string exampleSpec(Family f);

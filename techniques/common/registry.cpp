@@ -52,6 +52,13 @@ const TechniqueDescriptor* tryFindTechnique(Family f, const std::string& name) {
   return it == registry(f).end() ? nullptr : &it->second;
 }
 
+std::vector<std::string> techniqueNames(Family f, bool (*keep)(const TechniqueDescriptor&)) {
+  std::vector<std::string> names;
+  for (const TechniqueDescriptor* d : techniques(f))
+    if (!keep || keep(*d)) names.push_back(d->name);
+  return names;
+}
+
 const TechniqueDescriptor& defaultTechnique(Family f) {
   const TechniqueDescriptor* found = nullptr;
   for (const TechniqueDescriptor* d : techniques(f)) {

@@ -74,6 +74,10 @@ struct TechniqueRegistrar {
 
 // A family's techniques: "none" first, then by name.
 std::vector<const TechniqueDescriptor*> techniques(Family f);
+// Their names, in that order, those `keep` accepts (all when null): messages and help
+// texts name techniques through the registry, never by a list of their own.
+std::vector<std::string> techniqueNames(Family f,
+                                        bool (*keep)(const TechniqueDescriptor&) = nullptr);
 // Throws InputError naming the closest registered name.
 const TechniqueDescriptor& findTechnique(Family f, const std::string& name);
 const TechniqueDescriptor* tryFindTechnique(Family f, const std::string& name);

@@ -11,8 +11,9 @@ namespace {
 // The transparency techniques that render into multisampled targets, from the registry.
 std::string multisampledNames() {
   std::string s;
-  for (const TechniqueDescriptor* d : techniques(Family::Transparency))
-    if (d->caps.multisampling) s += (s.empty() ? "" : ", ") + d->name;
+  for (const std::string& name : techniqueNames(
+           Family::Transparency, [](const TechniqueDescriptor& d) { return d.caps.multisampling; }))
+    s += (s.empty() ? "" : ", ") + name;
   return s;
 }
 
