@@ -1,6 +1,7 @@
 // The registry the technique folders fill (techniques/common/unit.h), and what
 // is made from it: the factories by name and the option declarations.
 #include <algorithm>
+#include <iterator>
 #include <map>
 
 #include "techniques/common/unit.h"
@@ -184,6 +185,20 @@ OptionInfo moments() {
 OptionInfo momentKind() {
   return choice("kind", "power", {"power", "trig"},
                 "power | trig: power moments of depth or trigonometric moments");
+}
+
+std::vector<OptionInfo> lobes(std::string diffuseHelp, std::string specularHelp,
+                              std::vector<OptionInfo> more) {
+  std::vector<OptionInfo> o = {
+      number("diffuse", "0.4", 0, 4, std::move(diffuseHelp)),
+      number("specular", "0.5", 0, 4, std::move(specularHelp)),
+      number("alpha", "-7.5", -20, 20,
+             "R lobe's longitudinal shift in degrees (cuticle tilt; TT -alpha/2, TRT "
+             "-3alpha/2), -20..20"),
+      number("beta", "7.5", 1, 45,
+             "R lobe's longitudinal width in degrees (TT beta/2, TRT 2beta), 1..45")};
+  o.insert(o.end(), std::make_move_iterator(more.begin()), std::make_move_iterator(more.end()));
+  return o;
 }
 
 }  // namespace opt

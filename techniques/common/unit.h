@@ -109,6 +109,10 @@ OptionInfo opacityFilter();
 // The moments of msm and mboit.
 OptionInfo moments();
 OptionInfo momentKind();
+// The lobe options ShadingModel::withLobes reads (marschner, sadeghi): diffuse, specular,
+// alpha and beta, the models' own options after them.
+std::vector<OptionInfo> lobes(std::string diffuseHelp, std::string specularHelp,
+                              std::vector<OptionInfo> more);
 }  // namespace opt
 
 }  // namespace sb

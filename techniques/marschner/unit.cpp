@@ -9,19 +9,13 @@ SB_TECHNIQUE(
      .help =
          "Marschner et al. 2003: R, TT, TRT lobes, longitudinal Gaussians, azimuthal terms with "
          "Fresnel and absorption (from the strand colour)",
-     .options =
-         {opt::number("diffuse", "0.4", 0, 4,
-                      "weight of a Kajiya-Kay diffuse term (the thesis adds one), 0..4"),
-          opt::number("specular", "0.5", 0, 4, "weight of the scattering function, 0..4"),
-          opt::number("alpha", "-7.5", -20, 20,
-                      "R lobe's longitudinal shift in degrees (cuticle tilt; TT -alpha/2, "
-                      "TRT -3alpha/2), -20..20"),
-          opt::number("beta", "7.5", 1, 45,
-                      "R lobe's longitudinal width in degrees (TT beta/2, TRT 2beta), 1..45"),
-          opt::number("eta", "1.55", 1.01, 3, "index of refraction of the fibre, 1.01..3"),
+     .options = opt::lobes(
+         "weight of a Kajiya-Kay diffuse term (the thesis adds one), 0..4",
+         "weight of the scattering function, 0..4",
+         {opt::number("eta", "1.55", 1.01, 3, "index of refraction of the fibre, 1.01..3"),
           opt::number("caustic", "0.5", 0.01, 4,
                       "floor on |dphi/dh| bounding the TRT caustic (the paper fades it with a "
-                      "Gaussian), 0.01..4")},
+                      "Gaussian), 0.01..4")}),
      .makeShading = [](const OptionReader& o) {
        ShadingModel m = ShadingModel::withLobes(o);
        m.kind = ShadingKind::Marschner;

@@ -8,16 +8,10 @@ SB_TECHNIQUE(
      .paper = "Sadeghi et al. 2010 (as Kraft 2018 implements it)",
      .help = "Sadeghi et al. 2010, the artist-friendly model as Kraft 2018 implements it (eqs. "
              "20-24, Listing 2)",
-     .options =
-         {opt::number("diffuse", "0.4", 0, 4,
-                      "weight of the Kajiya-Kay diffuse term (the thesis: 0.4), 0..4"),
-          opt::number("specular", "0.5", 0, 4, "weight of the specular sum, 0..4"),
-          opt::number("alpha", "-7.5", -20, 20,
-                      "R lobe's longitudinal shift in degrees (TT -alpha/2, TRT -3alpha/2), "
-                      "-20..20"),
-          opt::number("beta", "7.5", 1, 45,
-                      "R lobe's longitudinal width in degrees (TT beta/2, TRT 2beta), 1..45"),
-          opt::number("i_r", "1", 0, 10, "intensity of the primary highlight R, 0..10"),
+     .options = opt::lobes(
+         "weight of the Kajiya-Kay diffuse term (the thesis: 0.4), 0..4",
+         "weight of the specular sum, 0..4",
+         {opt::number("i_r", "1", 0, 10, "intensity of the primary highlight R, 0..10"),
           opt::number("i_tt", "1", 0, 10, "intensity of the transmission TT, 0..10"),
           opt::number("i_trt", "1", 0, 10, "intensity of the secondary highlight TRT, 0..10"),
           opt::number("tt_width", "10", 1, 90, "azimuthal width of TT in degrees, 1..90"),
@@ -25,7 +19,7 @@ SB_TECHNIQUE(
           opt::number("glint_angle", "35", 0, 90,
                       "glints' half angle in degrees (the thesis: 30..45), 0..90"),
           opt::number("glint_width", "5", 1, 90,
-                      "azimuthal width of the glints in degrees, 1..90")},
+                      "azimuthal width of the glints in degrees, 1..90")}),
      .makeShading = [](const OptionReader& o) {
        const auto f = [&](const char* name) { return static_cast<float>(o.number(name)); };
        ShadingModel m = ShadingModel::withLobes(o);
