@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <iterator>
 #include <new>
+#include <set>
+#include <tuple>
 
 #include "backends/driver.h"
 
@@ -57,7 +59,64 @@ struct Device::OpenPass {
   std::vector<Format> colorFormats;
   bool hasDepth = false;
   uint32_t samples = 0;  // of its attachments (0 until the first)
+  PassWork work;         // the front end's counts (PassWork)
+  std::set<std::tuple<char, uint32_t, uint32_t>> touched;
 };
+
+namespace {
+// Counts a resource once per pass execution: the first access kind it was
+// counted with stays (an attachment loaded is "read" and written).
+// Several layers of one array attached are one entry with their layers.
+void touch(PassWork& w, std::set<std::tuple<char, uint32_t, uint32_t>>& seen, char kind,
+           uint32_t id, uint32_t layer, PassResource r) {
+  if (!seen.insert({kind, id, layer}).second) return;
+  (r.access == "write"  ? w.bytesWritten
+   : r.access == "read" ? w.bytesRead
+                        : w.bytesStorage) += r.bytes;
+  auto it = std::find_if(w.resources.begin(), w.resources.end(), [&](const PassResource& x) {
+    return x.name == r.name && x.access == r.access;
+  });
+  if (it == w.resources.end()) {
+    w.resources.push_back(std::move(r));
+  } else {
+    it->layers += r.layers;
+    it->bytes += r.bytes;
+  }
+}
+
+PassResource textureTouch(const TextureDesc& d, uint32_t layers, const char* access) {
+  const uint64_t bytes =
+      uint64_t{d.width} * d.height * layers * d.samples * bytesPerPixel(d.format);
+  return {d.name, formatName(d.format), d.width, d.height, layers, d.samples, bytes, access};
+}
+}  // namespace
+
+PassWork& PassWork::operator+=(const PassWork& o) {
+  statistics = statistics || o.statistics;
+  vertices += o.vertices;
+  primitives += o.primitives;
+  vertexInvocations += o.vertexInvocations;
+  clipInvocations += o.clipInvocations;
+  clipPrimitives += o.clipPrimitives;
+  fragmentInvocations += o.fragmentInvocations;
+  computeInvocations += o.computeInvocations;
+  samplesPassed += o.samplesPassed;
+  draws += o.draws;
+  dispatches += o.dispatches;
+  bytesWritten += o.bytesWritten;
+  bytesRead += o.bytesRead;
+  bytesStorage += o.bytesStorage;
+  for (const PassResource& r : o.resources) {
+    auto it = std::find_if(resources.begin(), resources.end(), [&](const PassResource& x) {
+      return x.name == r.name && x.access == r.access;
+    });
+    if (it == resources.end())
+      resources.push_back(r);
+    else
+      it->bytes += r.bytes;
+  }
+  return *this;
+}
 
 namespace {
 std::string quoted(const std::string& op, const std::string& name) {
@@ -390,6 +449,7 @@ void Device::beginFrame() {
   if (inFrame_) throw DeviceError("beginFrame: a frame is already being recorded");
   driver_->beginFrame();
   inFrame_ = true;
+  frameWork_.clear();
 }
 
 void Device::beginPass(const PassDesc& pd) {
@@ -503,6 +563,21 @@ void Device::beginPass(const PassDesc& pd) {
     open->sampled.push_back(s.id);
     dp.sampled.push_back({created(t), &t.desc});
   }
+  // The work counters: what the pass writes (each attachment's layer, the
+  // resolve targets) and reads (attachments it loads; sampling is counted by
+  // the draws that bind it).
+  PassWork& w = open->work;
+  auto attached = [&](Texture tex, uint32_t layer, LoadOp load) {
+    const TextureDesc& d = texture(tex, where).desc;
+    touch(w, open->touched, 'w', tex.id, layer, textureTouch(d, 1, "write"));
+    if (load == LoadOp::Load)
+      touch(w, open->touched, 'l', tex.id, layer, textureTouch(d, 1, "read"));
+  };
+  for (const ColorAttachment& a : pd.color) {
+    attached(a.texture, a.layer, a.load);
+    if (a.resolve) attached(a.resolve, 0, LoadOp::Clear);
+  }
+  if (pd.depth.texture) attached(pd.depth.texture, 0, pd.depth.load);
   driver_->beginPass(dp);
   pass_ = std::move(open);
   inPass_ = true;
@@ -511,7 +586,8 @@ void Device::beginPass(const PassDesc& pd) {
 // Checks `given` against the pipeline's declared slots and resolves it, in
 // slot order, to driver objects.
 std::vector<DriverBinding> Device::resolve(const PipelineRec& p, const std::vector<Binding>& given,
-                                           const std::string& where, bool inPass) {
+                                           const std::string& where, bool inPass,
+                                           OpenPass& counted) {
   for (std::size_t i = 0; i < given.size(); ++i) {
     const uint32_t n = given[i].binding;
     if (std::none_of(p.desc.bindings.begin(), p.desc.bindings.end(),
@@ -542,10 +618,16 @@ std::vector<DriverBinding> Device::resolve(const PipelineRec& p, const std::vect
         throw DeviceError(where + ": texture '" + t.desc.name + "' is sampled but pass '" +
                           pass_->name + "' does not list it in sampledTextures");
       out.push_back({s.binding, s.kind, created(t), nullptr, &t.desc});
+      const uint32_t layers = s.kind == BindingKind::SampledTexture ? 1 : t.desc.layers;
+      touch(counted.work, counted.touched, 't', it->texture.id, 0,
+            textureTouch(t.desc, layers, "read"));
     } else {
       if (!it->buffer || it->texture) throw DeviceError(slot + " needs a buffer");
       BufferRec& b = buffer(it->buffer, where);
       out.push_back({s.binding, s.kind, created(b), &b.desc, nullptr});
+      const bool storage = s.kind == BindingKind::StorageBuffer;
+      touch(counted.work, counted.touched, 'b', it->buffer.id, 0,
+            {b.desc.name, "buffer", 0, 0, 0, 0, b.desc.bytes, storage ? "storage" : "read"});
     }
   }
   return out;
@@ -564,13 +646,15 @@ void Device::draw(Pipeline pipe, const std::vector<Binding>& bindings, uint32_t 
     throw DeviceError(where + ": the pipeline has " + std::to_string(p.desc.samples) +
                       " samples, pass '" + pass_->name + "' " + std::to_string(pass_->samples) +
                       " (they must be the same)");
-  const auto resolved = resolve(p, bindings, where, true);
+  const auto resolved = resolve(p, bindings, where, true, *pass_);
+  ++pass_->work.draws;
   driver_->draw(*compiled(p), p.desc, resolved, vertexCount, instanceCount);
 }
 
 void Device::endPass() {
   if (!inPass_) throw DeviceError("endPass: no pass is open");
   inPass_ = false;
+  frameWork_.push_back(std::move(pass_->work));
   driver_->endPass();
 }
 
@@ -582,7 +666,10 @@ void Device::dispatch(const std::string& givenName, Pipeline pipe,
   requireFrame(where, true, false);
   PipelineRec& p = pipeline(pipe, where);
   if (!p.compute) throw DeviceError(where + ": '" + p.desc.name + "' is not a compute pipeline");
-  const auto resolved = resolve(p, bindings, where, false);
+  OpenPass counted;
+  const auto resolved = resolve(p, bindings, where, false, counted);
+  counted.work.dispatches = 1;
+  frameWork_.push_back(std::move(counted.work));
   driver_->dispatch(passName, *compiled(p), p.desc, resolved, x, y, z);
 }
 
@@ -594,9 +681,16 @@ void Device::endFrame() {
     driver_->endFrame();
     return 0;
   });
+  // The driver's timings are in pass order, one per pass or dispatch, with the
+  // API's counts; the front end adds its own.
+  lastTimings_ = driver_->lastFrameTimings();
+  if (lastTimings_.size() != frameWork_.size())
+    throw DeviceError("endFrame: the driver timed " + std::to_string(lastTimings_.size()) +
+                      " passes, the frame had " + std::to_string(frameWork_.size()));
+  for (std::size_t i = 0; i < lastTimings_.size(); ++i) lastTimings_[i].work += frameWork_[i];
 }
 
-std::vector<PassTiming> Device::lastFrameTimings() const { return driver_->lastFrameTimings(); }
+std::vector<PassTiming> Device::lastFrameTimings() const { return lastTimings_; }
 
 std::vector<uint8_t> Device::readTexture(Texture t) {
   TextureRec& r = texture(t, "readTexture");

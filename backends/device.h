@@ -225,10 +225,46 @@ struct Binding {
   static Binding tex(uint32_t b, Texture t) { return {b, {}, t}; }
 };
 
+// A resource a pass touches, as the work counters count it: its whole bound
+// extent (an attachment: the one layer attached, all its samples).
+struct PassResource {
+  std::string name;
+  std::string format;                                       // formatName, or "buffer"
+  uint32_t width = 0, height = 0, layers = 0, samples = 0;  // 0 for buffers
+  uint64_t bytes = 0;
+  std::string access;  // "write" (attachment), "read" (sampled, uniform, loaded
+                       // attachment: both), "storage" (read and/or written)
+  bool operator==(const PassResource&) const = default;
+};
+
+// The work a pass did, counted exactly: the same case gives the same counts on
+// every run. The first group is what the API's queries report (pipeline
+// statistics, and an occlusion query in render passes); `statistics` is false,
+// and they are zero, where the device has no such queries. The rest the front
+// end counts from what the pass declared and recorded.
+struct PassWork {
+  bool statistics = false;
+  uint64_t vertices = 0;             // input assembly vertices
+  uint64_t primitives = 0;           // input assembly primitives
+  uint64_t vertexInvocations = 0;    // vertex shader invocations
+  uint64_t clipInvocations = 0;      // primitives entering clipping
+  uint64_t clipPrimitives = 0;       // primitives leaving clipping
+  uint64_t fragmentInvocations = 0;  // fragment shader invocations
+  uint64_t computeInvocations = 0;   // compute shader invocations
+  uint64_t samplesPassed = 0;        // samples passing the depth test (render passes)
+  uint32_t draws = 0, dispatches = 0;
+  uint64_t bytesWritten = 0, bytesRead = 0, bytesStorage = 0;  // by PassResource::access
+  std::vector<PassResource> resources;                         // each once per pass execution
+  // Another execution of the same pass (frames sum a pass's executions).
+  PassWork& operator+=(const PassWork& o);
+  bool operator==(const PassWork&) const = default;
+};
+
 struct PassTiming {
   std::string name;
   double ms = 0;
   double startMs = 0;  // from the frame's start, on the same clock as ms (traces)
+  PassWork work;
 };
 
 struct ResourceBytes {
@@ -243,6 +279,7 @@ struct DeviceInfo {
   std::string device;    // renderer / deviceName
   std::string driver;    // version string / driverInfo
   std::string timing;    // how pass times are measured
+  std::string counters;  // which API queries fill PassWork ("" : none)
   std::string lines;     // how Lines topology is rasterized
   // Window platforms: how present() shows an image (GL swap interval; Vulkan
   // present mode and why it was chosen). Empty on headless platforms.
@@ -439,8 +476,9 @@ class Device {
   DriverObject* created(BufferRec& r);
   DriverObject* created(TextureRec& t);
   std::vector<ResourceBytes> resources(bool createdOnly, const std::set<uint32_t>& alsoIds) const;
+  // Counts what it binds in `counted` (the open pass, or a dispatch's own).
   std::vector<DriverBinding> resolve(const PipelineRec& p, const std::vector<Binding>& given,
-                                     const std::string& where, bool inPass);
+                                     const std::string& where, bool inPass, OpenPass& counted);
 
   std::unique_ptr<Driver> driver_;
   uint32_t maxColorAttachments_ = 0;
@@ -451,6 +489,8 @@ class Device {
   std::map<uint32_t, std::unique_ptr<PipelineRec>> pipelines_;
   bool inFrame_ = false, inPass_ = false;
   std::unique_ptr<OpenPass> pass_;
+  std::vector<PassWork> frameWork_;      // the open frame's passes, in order
+  std::vector<PassTiming> lastTimings_;  // the last frame's, with their work
   std::function<void(const std::string&)> passObserver_;
   std::string labelPrefix_;
   uint32_t nextGroup_ = 1, group_ = 0;

@@ -399,7 +399,12 @@ void frames(const RenderRequest& req, Plan& p, const RunDevice& d, RenderProgres
     for (const auto& t : renderer.renderFrame(p.timed)) {
       auto pass = std::find_if(out.passes.begin(), out.passes.end(),
                                [&](const PassTimes& pt) { return pt.name == t.name; });
-      if (pass == out.passes.end()) pass = out.passes.insert(out.passes.end(), {t.name, 0, {}});
+      if (pass == out.passes.end())
+        pass = out.passes.insert(out.passes.end(), {t.name, 0, {}, t.work});
+      // Work is exact: a timed frame that did other work than the first is named.
+      if (!pass->ms.empty() && !(t.work == pass->work) &&
+          std::find(out.workVaries.begin(), out.workVaries.end(), t.name) == out.workVaries.end())
+        out.workVaries.push_back(t.name);
       pass->ms.push_back(t.ms);
       pass->executions = t.executions;
       total += t.ms;
@@ -439,6 +444,9 @@ void outputs(const RenderRequest& req, const Validated& v, Plan& p, Device& dev,
             [](const ResourceBytes& a, const ResourceBytes& b) { return a.name < b.name; });
   out.warnings = scene.warnings;  // the input's, then the techniques'
   for (const auto& w : renderer.warnings()) out.warnings.push_back(w);
+  for (const std::string& name : out.workVaries)
+    out.warnings.push_back("pass '" + name +
+                           "' did different work in different timed frames (its counters)");
   out.counters = renderer.counters();
   // Either technique's emulation (the shadow's, then the transparency's).
   for (const std::string& why :

@@ -102,6 +102,7 @@ struct PassTimes {
   std::string name;
   int executions = 0;      // times the pass ran in a frame
   std::vector<double> ms;  // one per timed frame
+  PassWork work;           // of the first timed frame (the others are checked equal)
 };
 
 struct SceneSummary {
@@ -180,7 +181,10 @@ struct RenderResult {
   // The passes of the untimed frame that measured errors and the probe (when one ran).
   std::optional<std::vector<std::string>> measurementGraph;
   std::vector<PassTimes> passes;  // in the order they first ran
-  std::vector<double> frameMs;    // per timed frame: the sum of its passes
+  // Passes whose work counters differed between timed frames (a warning: the
+  // counters are exact, so the same frame should repeat them).
+  std::vector<std::string> workVaries;
+  std::vector<double> frameMs;  // per timed frame: the sum of its passes
   // With RenderRequest::timeline: per timed frame, each pass execution with its start.
   std::vector<std::vector<PassTiming>> timeline;
   // This run's own resources (not the reference's), sorted by name.
@@ -243,6 +247,9 @@ Image animationStrip(const AnimationResult& a);
 
 // The `render --json` object (keys in docs/suites-and-results.md).
 nlohmann::json renderJson(const RenderResult& r);
+// A pass's (or a frame's) work counters as JSON; the API's counts are null
+// where the device has no queries; `resources`: with each resource touched.
+nlohmann::json workJson(const PassWork& w, bool resources);
 // The timed frames as a Chrome/Perfetto trace (trace-event JSON, "X" slices in
 // microseconds): one slice per frame, its passes nested in it, the frames one after
 // another on one track; args name the clock and each pass's execution. Needs timeline.

@@ -108,10 +108,17 @@ nlohmann::json renderJson(const RenderResult& r) {
     pipelines.push_back({{"name", name}, {"technique", technique}});
   j["build"] = {{"pipelines", pipelines}, {"preparations", r.preparations}};
   j["passes"] = nlohmann::json::array();
-  for (const PassTimes& p : r.passes)
-    j["passes"].push_back(
-        {{"name", p.name}, {"executions", p.executions}, {"ms", statsJson(p.ms)}});
+  PassWork frame;
+  for (const PassTimes& p : r.passes) {
+    j["passes"].push_back({{"name", p.name},
+                           {"executions", p.executions},
+                           {"ms", statsJson(p.ms)},
+                           {"work", workJson(p.work, true)}});
+    frame += p.work;
+  }
   j["frame_ms"] = statsJson(r.frameMs);
+  j["frame_work"] = workJson(frame, false);
+  j["counters_from"] = r.device.counters;
 
   nlohmann::json resources = nlohmann::json::array();
   std::size_t total = 0;
@@ -184,6 +191,34 @@ nlohmann::json renderJson(const RenderResult& r) {
   return j;
 }
 
+nlohmann::json workJson(const PassWork& w, bool resources) {
+  auto api = [&](uint64_t v) { return w.statistics ? nlohmann::json(v) : nlohmann::json(); };
+  nlohmann::json j = {{"vertices", api(w.vertices)},
+                      {"primitives", api(w.primitives)},
+                      {"vertex_invocations", api(w.vertexInvocations)},
+                      {"clip_invocations", api(w.clipInvocations)},
+                      {"clip_primitives", api(w.clipPrimitives)},
+                      {"fragment_invocations", api(w.fragmentInvocations)},
+                      {"compute_invocations", api(w.computeInvocations)},
+                      {"samples_passed", api(w.samplesPassed)},
+                      {"draws", w.draws},
+                      {"dispatches", w.dispatches},
+                      {"bytes_written", w.bytesWritten},
+                      {"bytes_read", w.bytesRead},
+                      {"bytes_storage", w.bytesStorage}};
+  if (resources) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const PassResource& x : w.resources) {
+      nlohmann::json e = {
+          {"name", x.name}, {"access", x.access}, {"format", x.format}, {"bytes", x.bytes}};
+      if (x.format != "buffer") e["extent"] = {x.width, x.height, x.layers, x.samples};
+      list.push_back(e);
+    }
+    j["resources"] = list;
+  }
+  return j;
+}
+
 nlohmann::json traceJson(const RenderResult& r) {
   nlohmann::json events = nlohmann::json::array();
   const std::string thread = r.device.backend + " " + r.device.device;
@@ -211,14 +246,15 @@ nlohmann::json traceJson(const RenderResult& r) {
                       {"args", {{"passes", passes.size()}, {"pass_ms_sum", sum}}}});
     std::map<std::string, int> executions;
     for (const PassTiming& p : passes)
-      events.push_back({{"name", p.name},
-                        {"cat", "pass"},
-                        {"ph", "X"},
-                        {"pid", 1},
-                        {"tid", 1},
-                        {"ts", at + p.startMs * 1000.0},
-                        {"dur", p.ms * 1000.0},
-                        {"args", {{"execution", ++executions[p.name]}}}});
+      events.push_back(
+          {{"name", p.name},
+           {"cat", "pass"},
+           {"ph", "X"},
+           {"pid", 1},
+           {"tid", 1},
+           {"ts", at + p.startMs * 1000.0},
+           {"dur", p.ms * 1000.0},
+           {"args", {{"execution", ++executions[p.name]}, {"work", workJson(p.work, false)}}}});
     at += end * 1000.0 + 10.0;
   }
   return {{"traceEvents", events},

@@ -2,6 +2,7 @@
 #include "backends/gl/gl_driver.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
@@ -135,7 +136,10 @@ class GLDriver final : public Driver {
       const char* e = reinterpret_cast<const char*>(gl_.GetStringi(GL_EXTENSIONS, GLuint(i)));
       if (e && std::strcmp(e, "GL_ARB_fragment_shader_interlock") == 0)
         info_.fragmentShaderInterlock = true;
+      if (e && std::strcmp(e, "GL_ARB_pipeline_statistics_query") == 0) statistics_ = true;
     }
+    statistics_ = statistics_ || major * 10 + minor >= 46;  // core in 4.6
+    info_.counters = statistics_ ? "ARB_pipeline_statistics_query, GL_SAMPLES_PASSED" : "";
     info_.sampleCounts = multisampleCounts();
     // Same conventions as Vulkan: NDC y=-1 at row 0, depth in [0,1].
     gl_.ClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
@@ -153,6 +157,7 @@ class GLDriver final : public Driver {
 
   ~GLDriver() override {
     if (!queries_.empty()) gl_.DeleteQueries(GLsizei(queries_.size()), queries_.data());
+    for (auto& q : counterQueries_) gl_.DeleteQueries(GLsizei(q.size()), q.data());
     for (auto& [key, fbo] : fbos_) gl_.DeleteFramebuffers(1, &fbo);
     if (presentFbo_) gl_.DeleteFramebuffers(1, &presentFbo_);
     gl_.DeleteVertexArrays(1, &vao_);
@@ -315,6 +320,7 @@ class GLDriver final : public Driver {
   void beginFrame() override {
     timings_.clear();
     stampNames_.clear();
+    counted_.clear();
     gl_.Finish();  // earlier uploads do not count against the first pass
     frameStart_ = Clock::now();
   }
@@ -345,6 +351,48 @@ class GLDriver final : public Driver {
       return;
     }
     stamp(2 * stampNames_.size() - 1);
+  }
+
+  // The work counters: one query of each target per pass (reused per frame),
+  // begun after the pass's clears and ended before its resolves, so that
+  // neither counts (Vulkan's happen outside the queries too).
+  void beginCounting(bool graphics) {
+    if (!statistics_) return;
+    const std::size_t i = counted_.size();
+    if (i == counterQueries_.size()) {
+      // glGenQueries: Mesa 22.3's glCreateQueries refuses the statistics
+      // targets (GL_INVALID_ENUM); a name gets its target at its first begin.
+      counterQueries_.emplace_back();
+      gl_.GenQueries(GLsizei(kCounterTargets.size()), counterQueries_[i].data());
+    }
+    counted_.push_back(graphics);
+    for (std::size_t t = 0; t < kCounterTargets.size(); ++t)
+      if (graphics || kCounterTargets[t] != GL_SAMPLES_PASSED)
+        gl_.BeginQuery(kCounterTargets[t], counterQueries_[i][t]);
+  }
+  void endCounting() {
+    if (!statistics_) return;
+    for (GLenum target : kCounterTargets)
+      if (counted_.back() || target != GL_SAMPLES_PASSED) gl_.EndQuery(target);
+  }
+  // After the frame's finish: each pass's counts into its timing.
+  void readCounts() {
+    for (std::size_t p = 0; p < counted_.size() && p < timings_.size(); ++p) {
+      std::array<GLuint64, kCounterTargets.size()> v{};
+      for (std::size_t t = 0; t < v.size(); ++t)
+        if (counted_[p] || kCounterTargets[t] != GL_SAMPLES_PASSED)
+          gl_.GetQueryObjectui64v(counterQueries_[p][t], GL_QUERY_RESULT, &v[t]);
+      PassWork& w = timings_[p].work;
+      w.statistics = true;
+      w.vertices = v[0];
+      w.primitives = v[1];
+      w.vertexInvocations = v[2];
+      w.clipInvocations = v[3];
+      w.clipPrimitives = v[4];
+      w.fragmentInvocations = v[5];
+      w.computeInvocations = v[6];
+      w.samplesPassed = v[7];
+    }
   }
 
   void beginPass(const DriverPass& pass) override {
@@ -380,6 +428,7 @@ class GLDriver final : public Driver {
       gl_.DepthMask(GL_TRUE);
       gl_.ClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &pass.depthClear);
     }
+    beginCounting(true);
   }
 
   void draw(DriverObject& pipeline, const PipelineDesc& desc,
@@ -404,6 +453,7 @@ class GLDriver final : public Driver {
   }
 
   void endPass() override {
+    endCounting();
     // Resolves, part of the pass (Vulkan's happen at the end of rendering):
     // a blit from each multisampled attachment averages its samples.
     for (const Resolve& r : resolves_) {
@@ -424,7 +474,9 @@ class GLDriver final : public Driver {
     beginTiming(passName);
     gl_.UseProgram(static_cast<GLPipeline&>(pipeline).program);
     bind(bindings);
+    beginCounting(false);
     gl_.DispatchCompute(x, y, z);
+    endCounting();
     endTiming(passName);
     checkError("dispatch " + passName);
   }
@@ -441,6 +493,7 @@ class GLDriver final : public Driver {
         timings_.push_back({stampNames_[p], double(ns[2 * p + 1] - ns[2 * p]) / 1e6,
                             double(ns[2 * p] - ns[0]) / 1e6});
     }
+    readCounts();
     checkError("endFrame");
   }
 
@@ -735,6 +788,17 @@ class GLDriver final : public Driver {
   std::vector<GLuint> queries_;          // timestamp queries, two per pass, reused per frame
   std::vector<std::string> stampNames_;  // this frame's timed passes (GPU timing)
   std::vector<PassTiming> timings_;
+  // Work counters (ARB_pipeline_statistics_query and an occlusion query), in
+  // PassWork's order: the queries of each pass of a frame, and whether it was
+  // a render pass (compute passes have no samples-passed query).
+  static constexpr std::array<GLenum, 8> kCounterTargets{
+      GL_VERTICES_SUBMITTED_ARB,         GL_PRIMITIVES_SUBMITTED_ARB,
+      GL_VERTEX_SHADER_INVOCATIONS_ARB,  GL_CLIPPING_INPUT_PRIMITIVES_ARB,
+      GL_CLIPPING_OUTPUT_PRIMITIVES_ARB, GL_FRAGMENT_SHADER_INVOCATIONS_ARB,
+      GL_COMPUTE_SHADER_INVOCATIONS_ARB, GL_SAMPLES_PASSED};
+  bool statistics_ = false;
+  std::vector<std::array<GLuint, 8>> counterQueries_;
+  std::vector<bool> counted_;
 };
 
 }  // namespace

@@ -66,6 +66,9 @@
   X(PFNGLCREATEQUERIESPROC, CreateQueries)                               \
   X(PFNGLDELETEQUERIESPROC, DeleteQueries)                               \
   X(PFNGLQUERYCOUNTERPROC, QueryCounter)                                 \
+  X(PFNGLGENQUERIESPROC, GenQueries)                                     \
+  X(PFNGLBEGINQUERYPROC, BeginQuery)                                     \
+  X(PFNGLENDQUERYPROC, EndQuery)                                         \
   X(PFNGLGETQUERYOBJECTUI64VPROC, GetQueryObjectui64v)                   \
   X(PFNGLDEPTHMASKPROC, DepthMask)                                       \
   X(PFNGLDEPTHFUNCPROC, DepthFunc)                                       \

@@ -23,6 +23,7 @@
 #include <vulkan/vulkan.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstring>
 #include <string>
@@ -54,6 +55,8 @@ class VulkanDriver final : public Driver {
     timestampPeriod_ = p.timestampPeriod;
     timestampBits_ = p.timestampBits;
     cpuTiming_ = p.cpuTiming;
+    statistics_ = p.statistics;
+    preciseOcclusion_ = p.preciseOcclusion;
     try {
       createCommandObjects();
       if (platform_->surface != VK_NULL_HANDLE) {
@@ -231,6 +234,8 @@ class VulkanDriver final : public Driver {
     timings_.clear();
     queryCount_ = 0;
     queryPoolsReset_ = 0;
+    counted_.clear();
+    for (VkQueryPool q : counterPools_) vkResetQueryPool(device_, q, 0, kQueriesPerPool);
   }
 
   void beginPass(const DriverPass& pd) override {
@@ -295,6 +300,7 @@ class VulkanDriver final : public Driver {
     vkCmdSetViewport(frameCmd_, 0, 1, &vp);
     vkCmdSetScissor(frameCmd_, 0, 1, &sc);
     boundPipeline_ = VK_NULL_HANDLE;
+    beginCounting(true);
   }
 
   void draw(DriverObject& pipeline, const PipelineDesc&, const std::vector<DriverBinding>& bindings,
@@ -315,6 +321,7 @@ class VulkanDriver final : public Driver {
   }
 
   void endPass() override {
+    endCounting();  // inside the rendering, as begun: the resolves are not counted
     vkCmdEndRendering(frameCmd_);
     endTiming();
   }
@@ -339,7 +346,9 @@ class VulkanDriver final : public Driver {
       vkCmdBindDescriptorSets(frameCmd_, VK_PIPELINE_BIND_POINT_COMPUTE, p.layout, 0, 1, &set, 0,
                               nullptr);
     }
+    beginCounting(false);
     if (x > 0 && y > 0 && z > 0) vkCmdDispatch(frameCmd_, x, y, z);
+    endCounting();
     endTiming();
   }
 
@@ -359,6 +368,7 @@ class VulkanDriver final : public Driver {
         timings_.push_back({passNames_[i], i < cpuMs_.size() ? cpuMs_[i] : 0.0,
                             i < cpuStartMs_.size() ? cpuStartMs_[i] : 0.0});
       }
+      readCounts();
       return;
     }
     std::vector<uint64_t> stamps(queryCount_);
@@ -379,6 +389,7 @@ class VulkanDriver final : public Driver {
       timings_.push_back({passNames_[i], static_cast<double>(ticks) * timestampPeriod_ / 1e6,
                           static_cast<double>(since) * timestampPeriod_ / 1e6});
     }
+    readCounts();
   }
 
   std::vector<PassTiming> lastFrameTimings() const override { return timings_; }
@@ -470,6 +481,8 @@ class VulkanDriver final : public Driver {
     descPools_.clear();
     for (VkQueryPool q : queryPools_) vkDestroyQueryPool(device_, q, nullptr);
     queryPools_.clear();
+    for (VkQueryPool q : counterPools_) vkDestroyQueryPool(device_, q, nullptr);
+    counterPools_.clear();
     for (VkSampler& s : samplers_) {
       if (s != VK_NULL_HANDLE) vkDestroySampler(device_, s, nullptr);
       s = VK_NULL_HANDLE;
@@ -529,6 +542,75 @@ class VulkanDriver final : public Driver {
     const uint32_t q = passQueries_.back() + 1;
     vkCmdWriteTimestamp(frameCmd_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT,
                         queryPools_[q / kQueriesPerPool], q % kQueriesPerPool);
+  }
+
+  // The work counters: a pipeline statistics query and (render passes) an
+  // occlusion query per pass, from pools of kQueriesPerPool of each kind
+  // (statistics pool, occlusion pool alternate in counterPools_), reset from
+  // the host before the frame or when made.
+  static constexpr VkQueryPipelineStatisticFlags kStatistics =
+      VK_QUERY_PIPELINE_STATISTIC_INPUT_ASSEMBLY_VERTICES_BIT |
+      VK_QUERY_PIPELINE_STATISTIC_INPUT_ASSEMBLY_PRIMITIVES_BIT |
+      VK_QUERY_PIPELINE_STATISTIC_VERTEX_SHADER_INVOCATIONS_BIT |
+      VK_QUERY_PIPELINE_STATISTIC_CLIPPING_INVOCATIONS_BIT |
+      VK_QUERY_PIPELINE_STATISTIC_CLIPPING_PRIMITIVES_BIT |
+      VK_QUERY_PIPELINE_STATISTIC_FRAGMENT_SHADER_INVOCATIONS_BIT |
+      VK_QUERY_PIPELINE_STATISTIC_COMPUTE_SHADER_INVOCATIONS_BIT;
+  static constexpr uint32_t kStatisticValues = 7;  // the bits above, in bit order
+
+  VkQueryPool counterPool(uint32_t pass, bool occlusion) {
+    const std::size_t index = 2 * (pass / kQueriesPerPool) + (occlusion ? 1 : 0);
+    while (counterPools_.size() <= index) {
+      const bool makeOcclusion = counterPools_.size() % 2 == 1;
+      VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+      qi.queryType = makeOcclusion ? VK_QUERY_TYPE_OCCLUSION : VK_QUERY_TYPE_PIPELINE_STATISTICS;
+      qi.pipelineStatistics = makeOcclusion ? 0 : kStatistics;
+      qi.queryCount = kQueriesPerPool;
+      VkQueryPool qp = VK_NULL_HANDLE;
+      check(vkCreateQueryPool(device_, &qi, nullptr, &qp), "vkCreateQueryPool");
+      vkResetQueryPool(device_, qp, 0, kQueriesPerPool);
+      counterPools_.push_back(qp);
+    }
+    return counterPools_[index];
+  }
+  void beginCounting(bool graphics) {
+    if (!statistics_) return;
+    const uint32_t pass = static_cast<uint32_t>(counted_.size());
+    counted_.push_back(graphics);
+    vkCmdBeginQuery(frameCmd_, counterPool(pass, false), pass % kQueriesPerPool, 0);
+    if (graphics)
+      vkCmdBeginQuery(frameCmd_, counterPool(pass, true), pass % kQueriesPerPool,
+                      preciseOcclusion_ ? VK_QUERY_CONTROL_PRECISE_BIT : 0);
+  }
+  void endCounting() {
+    if (!statistics_) return;
+    const uint32_t pass = static_cast<uint32_t>(counted_.size() - 1);
+    vkCmdEndQuery(frameCmd_, counterPool(pass, false), pass % kQueriesPerPool);
+    if (counted_.back()) vkCmdEndQuery(frameCmd_, counterPool(pass, true), pass % kQueriesPerPool);
+  }
+  // After the frame's wait: each pass's counts into its timing.
+  void readCounts() {
+    for (uint32_t p = 0; p < counted_.size() && p < timings_.size(); ++p) {
+      std::array<uint64_t, kStatisticValues> v{};
+      check(vkGetQueryPoolResults(device_, counterPool(p, false), p % kQueriesPerPool, 1, sizeof v,
+                                  v.data(), sizeof v,
+                                  VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
+            "vkGetQueryPoolResults (statistics)");
+      PassWork& w = timings_[p].work;
+      w.statistics = true;
+      w.vertices = v[0];
+      w.primitives = v[1];
+      w.vertexInvocations = v[2];
+      w.clipInvocations = v[3];
+      w.clipPrimitives = v[4];
+      w.fragmentInvocations = v[5];
+      w.computeInvocations = v[6];
+      if (counted_[p])
+        check(vkGetQueryPoolResults(device_, counterPool(p, true), p % kQueriesPerPool, 1,
+                                    sizeof(uint64_t), &w.samplesPassed, sizeof(uint64_t),
+                                    VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
+              "vkGetQueryPoolResults (occlusion)");
+    }
   }
 
   VkDescriptorSet allocateSet(VkDescriptorSetLayout layout) {
@@ -617,6 +699,9 @@ class VulkanDriver final : public Driver {
   std::vector<VkDescriptorPool> descPools_;
   std::size_t descPool_ = 0;  // first pool that may still have room this frame
   std::vector<VkQueryPool> queryPools_;
+  bool statistics_ = false, preciseOcclusion_ = false;
+  std::vector<VkQueryPool> counterPools_;  // statistics, occlusion, statistics, ...
+  std::vector<bool> counted_;              // this frame's passes: render pass or compute
   uint32_t queryCount_ = 0;
   uint32_t queryPoolsReset_ = 0;
   std::vector<std::string> passNames_;

@@ -305,6 +305,11 @@ void VulkanPlatform::createLogicalDevice() {
   f11.protectedMemory = VK_FALSE;
   f13.robustImageAccess = VK_FALSE;
   logicOp = f2.features.logicOp == VK_TRUE;
+  statistics = f2.features.pipelineStatisticsQuery == VK_TRUE && f12.hostQueryReset == VK_TRUE;
+  preciseOcclusion = f2.features.occlusionQueryPrecise == VK_TRUE;
+  info.counters = statistics ? std::string("pipeline statistics queries, ") +
+                                   (preciseOcclusion ? "precise " : "") + "occlusion queries"
+                             : "";
   // SB_VULKAN_LINES=default keeps the API's default (rectangular) lines, to
   // measure how far they are from GL's aliased lines.
   const char* linesEnv = std::getenv("SB_VULKAN_LINES");

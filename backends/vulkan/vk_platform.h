@@ -50,7 +50,11 @@ class VulkanPlatform {
   bool bresenham = false;     // Bresenham lines (VK_EXT_line_rasterization)
   bool memoryBudget = false;  // VK_EXT_memory_budget (queried, not enabled: no device state)
   bool cpuDevice = false;     // VK_PHYSICAL_DEVICE_TYPE_CPU: its memory is the host's
-  DeviceInfo info;            // backend, platform, device, driver, timing, lines
+  // Work counters: pipeline statistics queries, reset from the host
+  // (pipelineStatisticsQuery and hostQueryReset), precise occlusion queries.
+  bool statistics = false;
+  bool preciseOcclusion = false;
+  DeviceInfo info;  // backend, platform, device, driver, timing, lines
 
  private:
   void createInstance(bool validation, const std::vector<const char*>& windowExtensions);

@@ -345,9 +345,10 @@ std::vector<PassTime> Renderer::run(const std::vector<const PassNode*>& passes) 
   for (const auto& t : lastTimings_) {
     auto it =
         std::find_if(out.begin(), out.end(), [&](const PassTime& x) { return x.name == t.name; });
-    if (it == out.end()) it = out.insert(out.end(), {t.name, 0.0, 0});
+    if (it == out.end()) it = out.insert(out.end(), {t.name, 0.0, 0, {}});
     it->ms += t.ms;
     ++it->executions;
+    it->work += t.work;
   }
   return out;
 }

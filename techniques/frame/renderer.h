@@ -31,6 +31,7 @@ struct PassTime {
   std::string name;
   double ms = 0;  // summed over every execution of the pass in the frame
   int executions = 0;
+  PassWork work;  // likewise summed
 };
 
 class Renderer {
