@@ -124,6 +124,12 @@ ojson writeCaseResult(const fs::path& dir, const SweepCase& c, const CaseRun& ru
   if (!measurement.is_null()) result["measurement"] = measurement;
   result["case"] = {{"id", c.id}, {"group", c.group}, {"index", c.index}, {"params", c.params}};
   result["images"] = run.images;
+  // The case's timed frames (every round) as a Chrome/Perfetto trace, beside its images.
+  if (!run.out.timeline.empty()) {
+    const std::string trace = "traces/" + c.stem + ".json";
+    writeFileAtomic(dir / trace, traceJson(run.out).dump() + "\n");
+    result["trace"] = trace;
+  }
   writeFileAtomic(caseFile(dir, c), result.dump(1) + "\n");
   return result;
 }
@@ -132,6 +138,7 @@ ojson writeCaseResult(const fs::path& dir, const SweepCase& c, const CaseRun& ru
 // animation; a visibility-only case keeps its reference, which its timed output needs).
 RenderRequest timingRequest(const RenderRequest& q) {
   RenderRequest t = q;
+  t.timeline = true;
   t.repeat = 1;
   t.reference = !q.image;
   t.probe.reset();
@@ -143,13 +150,22 @@ RenderRequest timingRequest(const RenderRequest& q) {
 // Adds a later round's frames to the case's first run.
 void appendFrames(RenderResult& into, const RenderResult& more) {
   into.frameMs.insert(into.frameMs.end(), more.frameMs.begin(), more.frameMs.end());
+  into.timeline.insert(into.timeline.end(), more.timeline.begin(), more.timeline.end());
   for (const PassTimes& p : more.passes) {
     auto pass = std::find_if(into.passes.begin(), into.passes.end(),
                              [&](const PassTimes& q) { return q.name == p.name; });
-    if (pass == into.passes.end())
+    if (pass == into.passes.end()) {
       into.passes.push_back(p);
-    else
-      pass->ms.insert(pass->ms.end(), p.ms.begin(), p.ms.end());
+      continue;
+    }
+    pass->ms.insert(pass->ms.end(), p.ms.begin(), p.ms.end());
+    // Work is exact: a round that did other work than the first is named.
+    if (!(p.work == pass->work) && std::find(into.workVaries.begin(), into.workVaries.end(),
+                                             p.name) == into.workVaries.end()) {
+      into.workVaries.push_back(p.name);
+      into.warnings.push_back("pass '" + p.name +
+                              "' did different work in different rounds (its counters)");
+    }
   }
   into.repeat += more.repeat;
 }
@@ -317,7 +333,8 @@ int runSweep(const SweepOptions& o) {
   std::error_code ec;
   fs::create_directories(dir / "cases", ec);
   fs::create_directories(dir / "images", ec);
-  if (ec || !fs::is_directory(dir / "images"))
+  fs::create_directories(dir / "traces", ec);
+  if (ec || !fs::is_directory(dir / "traces"))
     throw InputError("--out " + o.out + ": cannot create the folder (" + ec.message() + ")");
   if (!fs::exists(sweepFile)) {
     writeFileAtomic(dir / "context.json", runContext().dump(2) + "\n");
@@ -389,6 +406,7 @@ int runSweep(const SweepOptions& o) {
           try {
             if (first) {
               RenderRequest q = c.request;
+              q.timeline = true;
               if (o.interleave) q.repeat = 1;
               runs[i] = runCase(dir, c, q, cache);
               // Written; the rounds to come need only the timings.
@@ -576,6 +594,7 @@ MergeOutcome mergeSweeps(const std::string& outText, const std::vector<std::stri
   fs::remove_all(tmp, ec);
   fs::create_directories(tmp / "images", ec);
   fs::create_directories(tmp / "cases", ec);
+  fs::create_directories(tmp / "traces", ec);
   if (ec) throw InputError("merge: cannot create " + tmp.string() + " (" + ec.message() + ")");
   try {
     for (const auto& [name, in] : owner) {
@@ -583,6 +602,9 @@ MergeOutcome mergeSweeps(const std::string& outText, const std::vector<std::stri
       const ojson images = result.value("images", ojson::object());
       for (const auto& [kind, rel] : images.items())
         fs::copy_file(fs::path(in) / rel.get<std::string>(), tmp / rel.get<std::string>());
+      if (result.contains("trace") && fs::exists(fs::path(in) / result["trace"].get<std::string>()))
+        fs::copy_file(fs::path(in) / result["trace"].get<std::string>(),
+                      tmp / result["trace"].get<std::string>());
       fs::copy_file(fs::path(in) / "cases" / name, tmp / "cases" / name);
     }
     ojson context = readJsonFile<ojson>(fs::path(inputs.front()) / "context.json");

@@ -581,6 +581,38 @@ TEST_P(DeviceTest, TimingsPerPassInOrder) {
       EXPECT_GE(pt.ms, 0.0) << pt.name;
       EXPECT_LT(pt.ms, 10000.0) << pt.name;
     }
+    // The work, by arithmetic: a full-screen quad (6 vertices, 2 triangles) covers
+    // every pixel once; RGBA8 writes 4 bytes a pixel; the colour is a 16-byte
+    // uniform, the quad's 6 vec4 a storage buffer. gamma also loads its target.
+    const uint64_t pixels = kSize * kSize, quadBytes = 6 * 4 * sizeof(float);
+    const PassWork& alpha = timings[0].work;
+    ASSERT_TRUE(alpha.statistics) << "no pipeline statistics: " << dev_->info().counters;
+    EXPECT_EQ(alpha.vertices, 6u);
+    EXPECT_EQ(alpha.primitives, 2u);
+    EXPECT_EQ(alpha.vertexInvocations, 6u);
+    EXPECT_EQ(alpha.clipInvocations, 2u);
+    EXPECT_EQ(alpha.clipPrimitives, 2u);
+    // Fragment invocations may count helper invocations (the API leaves it to the
+    // implementation): llvmpipe counts whole 2x2 quads, so the quads along the
+    // diagonal, shaded once per triangle, count twice (320 for these 256 pixels).
+    EXPECT_GE(alpha.fragmentInvocations, pixels);
+    EXPECT_EQ(alpha.samplesPassed, pixels);
+    EXPECT_EQ(alpha.computeInvocations, 0u);
+    EXPECT_EQ(alpha.draws, 1u);
+    EXPECT_EQ(alpha.dispatches, 0u);
+    EXPECT_EQ(alpha.bytesWritten, pixels * 4);
+    EXPECT_EQ(alpha.bytesRead, 16u);
+    EXPECT_EQ(alpha.bytesStorage, quadBytes);
+    const PassWork& beta = timings[1].work;
+    EXPECT_EQ(beta.computeInvocations, 4u * 64u);  // 4 groups of 64
+    EXPECT_EQ(beta.fragmentInvocations + beta.vertices + beta.samplesPassed, 0u);
+    EXPECT_EQ(beta.dispatches, 1u);
+    EXPECT_EQ(beta.bytesStorage, 257u * 4u);
+    PassWork gammaExpected = alpha;
+    gammaExpected.bytesRead += pixels * 4;
+    gammaExpected.resources.insert(gammaExpected.resources.begin() + 1,
+                                   {"target", "RGBA8", kSize, kSize, 1, 1, pixels * 4, "read"});
+    EXPECT_EQ(timings[2].work, gammaExpected);
   }
 }
 
@@ -593,7 +625,7 @@ TEST_P(DeviceTest, ManyDrawsAndPassesInOneFrame) {
   d.blend = {BlendState::additive()};
   Pipeline p = dev_->createPipeline(d);
   dev_->beginFrame();
-  for (int i = 0; i < 80; ++i) {
+  for (int i = 0; i < 130; ++i) {  // more passes than a pool of 128 work queries
     PassDesc pd = pass("pass" + std::to_string(i), t, {0, 0, 0, 0});
     if (i > 0) pd.color[0].load = LoadOp::Load;
     dev_->beginPass(pd);
@@ -601,10 +633,14 @@ TEST_P(DeviceTest, ManyDrawsAndPassesInOneFrame) {
     dev_->endPass();
   }
   dev_->endFrame();
-  EXPECT_EQ(dev_->lastFrameTimings().size(), 80u);
-  EXPECT_EQ(dev_->lastFrameTimings().back().name, "pass79");
+  const std::vector<PassTiming> timings = dev_->lastFrameTimings();
+  ASSERT_EQ(timings.size(), 130u);
+  EXPECT_EQ(timings.back().name, "pass129");
+  EXPECT_EQ(timings.back().work.draws, 10u);
+  EXPECT_EQ(timings.back().work.vertices, 60u);
+  EXPECT_EQ(timings.back().work.samplesPassed, 10u * kSize * kSize);
   const std::vector<uint8_t> px = dev_->readTexture(t);
-  EXPECT_FLOAT_EQ(at<float>(px, 0), 800.0f / 1024);
+  EXPECT_FLOAT_EQ(at<float>(px, 0), 1300.0f / 1024);
 }
 
 // Two layers of one array as the two attachments of one pass (out of order,
