@@ -231,6 +231,15 @@ std::vector<std::pair<std::string, double>> countersOf(const json& pass) {
   return out;
 }
 
+// Counters are counts: written whole (200000, not 2e+05), as render --json writes them.
+bool isCount(double v) { return v == std::floor(v) && std::abs(v) < 9007199254740992.0; }
+std::string counterText(double v) {
+  return isCount(v) ? std::to_string(static_cast<std::int64_t>(v)) : report::shortest(v);
+}
+json counterJson(const std::optional<double>& v) {
+  return v && isCount(*v) ? json(static_cast<std::int64_t>(*v)) : optionalJson(v);
+}
+
 // Passes by name; a name that repeats keeps its occurrences in order (k-th matches k-th).
 std::map<std::string, std::vector<const json*>> passesByName(const json& r) {
   std::map<std::string, std::vector<const json*>> out;
@@ -357,7 +366,6 @@ WorkComparison compareWork(const json& a, const json& b) {
 }
 
 std::string describeWorkChange(const PassWorkChange& p) {
-  using report::shortest;
   std::string s =
       "pass " + p.pass +
       (p.kind == PassWorkKind::Changed ? "" : std::string(" ") + passWorkKindName(p.kind)) + ":";
@@ -366,11 +374,11 @@ std::string describeWorkChange(const PassWorkChange& p) {
     const CounterChange& c = p.counters[i];
     s += (i ? ", " : " ") + c.counter + " ";
     if (p.kind == PassWorkKind::Added) {
-      s += shortest(*c.newValue);
+      s += counterText(*c.newValue);
     } else if (p.kind == PassWorkKind::Removed) {
-      s += shortest(*c.oldValue);
+      s += counterText(*c.oldValue);
     } else {
-      s += shortest(*c.oldValue) + " -> " + shortest(*c.newValue);
+      s += counterText(*c.oldValue) + " -> " + counterText(*c.newValue);
       if (const auto r = c.ratio())
         s += " (x" + report::formatSig(*r, 3) + ", " + format("%+.1f%%", *c.changePct()) + ")";
       else
@@ -381,19 +389,13 @@ std::string describeWorkChange(const PassWorkChange& p) {
 }
 
 json workChangesJson(const std::vector<PassWorkChange>& passes) {
-  // Counters are counts: written as integers, as render --json writes them.
-  auto value = [](const std::optional<double>& v) {
-    return v && *v == std::floor(*v) && std::abs(*v) < 9007199254740992.0
-               ? json(static_cast<std::int64_t>(*v))
-               : optionalJson(v);
-  };
   json out = json::array();
   for (const auto& p : passes) {
     json counters = json::array();
     for (const auto& c : p.counters)
       counters.push_back({{"counter", c.counter},
-                          {"old", value(c.oldValue)},
-                          {"new", value(c.newValue)},
+                          {"old", counterJson(c.oldValue)},
+                          {"new", counterJson(c.newValue)},
                           {"ratio", optionalJson(c.ratio())},
                           {"change_pct", optionalJson(c.changePct())}});
     out.push_back({{"pass", p.pass}, {"change", passWorkKindName(p.kind)}, {"counters", counters}});
