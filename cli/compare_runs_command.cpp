@@ -15,7 +15,8 @@ namespace sb {
 void registerCompareRunsCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "compare-runs",
-      "compare the timings of two runs case by case (exit 1 when a case slowed significantly)");
+      "compare the work and the timings of two runs case by case (exit 1 when a case slowed "
+      "significantly)");
   auto oldPath = std::make_shared<std::string>();
   auto newPath = std::make_shared<std::string>();
   auto threshold = std::make_shared<std::string>("5");
@@ -23,6 +24,7 @@ void registerCompareRunsCommand(CLI::App& app) {
   auto asJson = std::make_shared<bool>(false);
   auto correction = std::make_shared<std::string>("holm");
   auto pairs = std::make_shared<std::vector<std::string>>();
+  auto failOnWork = std::make_shared<bool>(false);
   cmd->add_option("OLD", *oldPath, "results.json, or a sweep folder (results.json or cases/*.json)")
       ->required();
   cmd->add_option("NEW", *newPath, "the same, for the run to judge")->required();
@@ -37,12 +39,24 @@ void registerCompareRunsCommand(CLI::App& app) {
       ->check(CLI::IsMember({"holm", "none"}))
       ->capture_default_str();
   cmd->add_flag("--json", *asJson, "print one JSON object instead of the table");
+  cmd->add_flag("--fail-on-work-change", *failOnWork,
+                "exit 1 when any work counter changed (by default a work change only shows)");
   cmd->add_option("--pair", *pairs,
                   "OLD NEW: one more pair of runs taken one after the other; OLD NEW and every "
                   "--pair are then judged as paired rounds (repeat the option)")
       ->expected(2)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   cmd->footer(
+      "The output opens with two lines: 'work changed' and 'time changed'.\n"
+      "Work (passes[].work: vertices, primitives, fragment_invocations, draws, bytes_written, "
+      "...)\n"
+      "is exact: a case counts the same every time it runs, so any difference in any counter of\n"
+      "any pass, and a pass in only one run, is a work change, listed with the pass, counter, old\n"
+      "and new value and their ratio; no threshold, no test. A work change does not fail the\n"
+      "comparison (exit 0) unless --fail-on-work-change is given: it is often what a commit\n"
+      "meant to do, and it shows in the first line either way. Results without work (older runs)\n"
+      "are 'not counted'; counters null in either run (samples_passed without device queries)\n"
+      "are not compared, nor are cases added, removed or redefined.\n"
       "Cases are matched by case.id; cases in only one run are listed as added/removed and do not\n"
       "fail. A case whose scene, shadow, oit, size or primitive differ is 'definition changed' "
       "and\n"
@@ -66,8 +80,10 @@ void registerCompareRunsCommand(CLI::App& app) {
       "than the change to judge): each pair's runs were taken one after the other, alternating\n"
       "which went first; change = median over pairs of new/old frame median - 1, and p is a\n"
       "one-sided Wilcoxon signed-rank test of the log ratios over the pairs (exact up to 20\n"
-      "pairs); at alpha 0.05, 5 pairs are the fewest that can be judged. Passes are not listed.\n"
-      "Exit status: 0 no regression, 1 a case SLOWER, 2 bad input.");
+      "pairs); at alpha 0.05, 5 pairs are the fewest that can be judged. Passes are not listed;\n"
+      "work is compared between the first pair.\n"
+      "Exit status: 0 no regression, 1 a case SLOWER (or, with --fail-on-work-change, a work\n"
+      "change), 2 bad input.");
   cmd->callback([=] {
     runGuarded("compare-runs", [&] {
       CompareRunsOptions opt;
@@ -83,6 +99,7 @@ void registerCompareRunsCommand(CLI::App& app) {
         throw InputError("--threshold " + *threshold + ": not a percentage >= 0");
       opt.alpha = *alpha;
       opt.correction = *correction == "none" ? Correction::None : Correction::Holm;
+      opt.failOnWorkChange = *failOnWork;
       if (pairs->size() % 2 != 0)
         throw InputError("--pair needs two runs, OLD and NEW; got " +
                          std::to_string(pairs->size()) + " values");

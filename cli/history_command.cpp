@@ -12,7 +12,8 @@ namespace sb {
 void registerHistoryCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "history",
-      "each case's frame time over many runs, with change points; exit 1 on a new slowdown");
+      "each case's work and frame time over many runs, with change points; exit 1 on a new "
+      "slowdown");
   auto paths = std::make_shared<std::vector<std::string>>();
   auto out = std::make_shared<std::string>();
   auto o = std::make_shared<HistoryOptions>();
@@ -31,7 +32,13 @@ void registerHistoryCommand(CLI::App& app) {
                   "alarm when the latest slowdown starts within this many newest runs")
       ->capture_default_str();
   cmd->footer(
-      "Per case and run: the frame_ms median with its 95% percentile-bootstrap interval over the\n"
+      "The summary and history.html open with 'work changed' and 'time changed'.\n"
+      "Work: per case, every run whose work counters (passes[].work) differ from the previous\n"
+      "run's, naming the pass and counter with old and new value, or a pass added or removed.\n"
+      "Counters are exact, so any difference is listed; runs without work and redefined cases\n"
+      "are not compared. A work change is information: it never raises the alarm.\n"
+      "Time, per case and run: the frame_ms median with its 95% percentile-bootstrap interval over "
+      "the\n"
       "run's repetitions (frame_ms.samples). Change points in the series of medians: binary\n"
       "segmentation; each segment is split where Pettitt's rank statistic (the Mann-Whitney\n"
       "statistic of the split, standardized) is largest, when its permutation p-value (999\n"

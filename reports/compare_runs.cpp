@@ -26,11 +26,17 @@
 //  - Passes (passes[].ms) are judged the same way and listed under their case when they are
 //    slower or faster, or exist in only one run; information only (written "slower" in lower
 //    case: only a case's frame time fails the comparison).
+//  - Work (passes[].work) is judged apart from time and exactly: the counters are the same
+//    every time a case runs, so any difference in any counter of any pass, and any pass in only
+//    one run, is a change of work (compareWork). It shows, first, but fails the comparison only
+//    with --fail-on-work-change: a change of work is often the intended effect of a commit.
+//    Results without work (older runs) are "not counted": neither a change nor an error.
 #include "reports/compare_runs.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -38,6 +44,7 @@
 
 #include "base/errors.h"
 #include "reports/json_file.h"
+#include "reports/report_data.h"
 #include "reports/stats.h"
 
 namespace sb {
@@ -87,8 +94,12 @@ void validateResult(json& r, const std::string& where) {
         throw InputError(name + " lacks a name");
       if (!pass.contains("ms")) throw InputError(name + " has no ms");
       validateTiming(pass["ms"], name + ".ms");
+      if (pass.contains("work") && !pass["work"].is_object())
+        throw InputError(name + ".work must be an object");
     }
   }
+  if (r.contains("frame_work") && !r["frame_work"].is_object())
+    throw InputError(prefix + "frame_work must be an object");
 }
 
 RunResults loadResultsFile(const fs::path& file) {
@@ -138,23 +149,6 @@ RunResults loadCaseFiles(const fs::path& folder, const fs::path& cases) {
 }
 
 std::string caseId(const json& r) { return r["case"]["id"].get<std::string>(); }
-
-// The settings that define what a case measures; a difference makes its timings incomparable.
-std::vector<std::string> definitionChanges(const json& a, const json& b) {
-  static const std::vector<std::pair<std::string, json::json_pointer>> kFields = {
-      {"scene", json::json_pointer("/scene/spec")},
-      {"shadow", json::json_pointer("/shadow")},
-      {"oit", json::json_pointer("/oit")},
-      {"size", json::json_pointer("/size")},
-      {"primitive", json::json_pointer("/primitive")}};
-  std::vector<std::string> changed;
-  for (const auto& [name, ptr] : kFields) {
-    const json va = a.contains(ptr) ? a[ptr] : json();
-    const json vb = b.contains(ptr) ? b[ptr] : json();
-    if (va != vb) changed.push_back(name + " " + va.dump() + " -> " + vb.dump());
-  }
-  return changed;
-}
 
 std::string format(const char* fmt, double v) {
   char buf[64];
@@ -218,7 +212,196 @@ std::vector<std::string> contextDifferences(const json& a, const json& b) {
   return diff;
 }
 
+// A result counts work when it has frame_work or work in a pass (runs from before the
+// counters have neither).
+bool countsWork(const json& r) {
+  if (r.contains("frame_work") && r["frame_work"].is_object()) return true;
+  if (r.contains("passes"))
+    for (const json& p : r["passes"])
+      if (p.contains("work") && p["work"].is_object()) return true;
+  return false;
+}
+
+// The counters of a pass: every number in its work except the resource list.
+std::vector<std::pair<std::string, double>> countersOf(const json& pass) {
+  std::vector<std::pair<std::string, double>> out;
+  if (!pass.contains("work") || !pass["work"].is_object()) return out;
+  for (const auto& [key, v] : pass["work"].items())
+    if (key != "resources" && isFiniteNumber(v)) out.emplace_back(key, v.get<double>());
+  return out;
+}
+
+// Counters are counts: written whole (200000, not 2e+05), as render --json writes them.
+bool isCount(double v) { return v == std::floor(v) && std::abs(v) < 9007199254740992.0; }
+std::string counterText(double v) {
+  return isCount(v) ? std::to_string(static_cast<std::int64_t>(v)) : report::shortest(v);
+}
+json counterJson(const std::optional<double>& v) {
+  return v && isCount(*v) ? json(static_cast<std::int64_t>(*v)) : optionalJson(v);
+}
+
+// Passes by name; a name that repeats keeps its occurrences in order (k-th matches k-th).
+std::map<std::string, std::vector<const json*>> passesByName(const json& r) {
+  std::map<std::string, std::vector<const json*>> out;
+  if (r.contains("passes"))
+    for (const json& p : r["passes"]) out[p["name"].get<std::string>()].push_back(&p);
+  return out;
+}
+
 }  // namespace
+
+std::vector<std::string> definitionChanges(const json& a, const json& b) {
+  static const std::vector<std::pair<std::string, json::json_pointer>> kFields = {
+      {"scene", json::json_pointer("/scene/spec")},
+      {"shadow", json::json_pointer("/shadow")},
+      {"oit", json::json_pointer("/oit")},
+      {"size", json::json_pointer("/size")},
+      {"primitive", json::json_pointer("/primitive")}};
+  std::vector<std::string> changed;
+  for (const auto& [name, ptr] : kFields) {
+    const json va = a.contains(ptr) ? a[ptr] : json();
+    const json vb = b.contains(ptr) ? b[ptr] : json();
+    if (va != vb) changed.push_back(name + " " + va.dump() + " -> " + vb.dump());
+  }
+  return changed;
+}
+
+std::optional<double> CounterChange::ratio() const {
+  if (!oldValue || !newValue || *oldValue == 0) return std::nullopt;
+  return *newValue / *oldValue;
+}
+
+std::optional<double> CounterChange::changePct() const {
+  const auto r = ratio();
+  return r ? std::optional<double>((*r - 1.0) * 100.0) : std::nullopt;
+}
+
+const char* passWorkKindName(PassWorkKind k) {
+  switch (k) {
+    case PassWorkKind::Changed:
+      return "changed";
+    case PassWorkKind::Added:
+      return "added";
+    case PassWorkKind::Removed:
+      return "removed";
+  }
+  return "?";
+}
+
+const char* workStatusName(WorkStatus s) {
+  switch (s) {
+    case WorkStatus::Same:
+      return "same";
+    case WorkStatus::Changed:
+      return "changed";
+    case WorkStatus::NotCounted:
+      return "not counted";
+    case WorkStatus::NotCompared:
+      return "not compared";
+  }
+  return "?";
+}
+
+std::size_t WorkComparison::counterCount() const {
+  std::size_t n = 0;
+  for (const auto& p : passes) n += p.counters.size();
+  return n;
+}
+
+WorkComparison compareWork(const json& a, const json& b) {
+  WorkComparison w;
+  const bool oldCounts = countsWork(a), newCounts = countsWork(b);
+  if (!oldCounts || !newCounts) {
+    w.status = WorkStatus::NotCounted;
+    w.note = !oldCounts && !newCounts ? "neither run counted work"
+             : !oldCounts             ? "the old run did not count work"
+                                      : "the new run did not count work";
+    return w;
+  }
+  auto listAll = [](const json& pass, PassWorkKind kind) {
+    PassWorkChange c;
+    c.pass = pass["name"].get<std::string>();
+    c.kind = kind;
+    for (const auto& [key, v] : countersOf(pass)) {
+      CounterChange cc;
+      cc.counter = key;
+      (kind == PassWorkKind::Added ? cc.newValue : cc.oldValue) = v;
+      c.counters.push_back(std::move(cc));
+    }
+    return c;
+  };
+  const auto oldByName = passesByName(a);
+  std::map<std::string, std::size_t> seen;  // occurrences of each name in NEW so far
+  if (b.contains("passes")) {
+    for (const json& p : b["passes"]) {
+      const std::string name = p["name"].get<std::string>();
+      const std::size_t k = seen[name]++;
+      const auto it = oldByName.find(name);
+      if (it == oldByName.end() || k >= it->second.size()) {
+        w.passes.push_back(listAll(p, PassWorkKind::Added));
+        continue;
+      }
+      const auto before = countersOf(*it->second[k]);
+      const auto afterList = countersOf(p);
+      const std::map<std::string, double> after(afterList.begin(), afterList.end());
+      PassWorkChange c;
+      c.pass = name;
+      for (const auto& [key, v] : before) {
+        const auto n = after.find(key);
+        if (n == after.end() || n->second == v) continue;
+        CounterChange cc;
+        cc.counter = key;
+        cc.oldValue = v;
+        cc.newValue = n->second;
+        c.counters.push_back(std::move(cc));
+      }
+      if (!c.counters.empty()) w.passes.push_back(std::move(c));
+    }
+  }
+  for (const auto& [name, passes] : oldByName)
+    for (std::size_t k = seen[name]; k < passes.size(); ++k)
+      w.passes.push_back(listAll(*passes[k], PassWorkKind::Removed));
+  w.status = w.passes.empty() ? WorkStatus::Same : WorkStatus::Changed;
+  return w;
+}
+
+std::string describeWorkChange(const PassWorkChange& p) {
+  std::string s =
+      "pass " + p.pass +
+      (p.kind == PassWorkKind::Changed ? "" : std::string(" ") + passWorkKindName(p.kind)) + ":";
+  if (p.counters.empty()) s += " (no counters)";
+  for (std::size_t i = 0; i < p.counters.size(); ++i) {
+    const CounterChange& c = p.counters[i];
+    s += (i ? ", " : " ") + c.counter + " ";
+    if (p.kind == PassWorkKind::Added) {
+      s += counterText(*c.newValue);
+    } else if (p.kind == PassWorkKind::Removed) {
+      s += counterText(*c.oldValue);
+    } else {
+      s += counterText(*c.oldValue) + " -> " + counterText(*c.newValue);
+      if (const auto r = c.ratio())
+        s += " (x" + report::formatSig(*r, 3) + ", " + format("%+.1f%%", *c.changePct()) + ")";
+      else
+        s += " (from 0)";
+    }
+  }
+  return s;
+}
+
+json workChangesJson(const std::vector<PassWorkChange>& passes) {
+  json out = json::array();
+  for (const auto& p : passes) {
+    json counters = json::array();
+    for (const auto& c : p.counters)
+      counters.push_back({{"counter", c.counter},
+                          {"old", counterJson(c.oldValue)},
+                          {"new", counterJson(c.newValue)},
+                          {"ratio", optionalJson(c.ratio())},
+                          {"change_pct", optionalJson(c.changePct())}});
+    out.push_back({{"pass", p.pass}, {"change", passWorkKindName(p.kind)}, {"counters", counters}});
+  }
+  return out;
+}
 
 const char* verdictName(Verdict v) {
   switch (v) {
@@ -324,6 +507,7 @@ std::vector<CaseComparison> compareRuns(const RunResults& oldRun, const RunResul
     const auto it = newById.find(c.id);
     if (it == newById.end()) {
       c.verdict = c.frame.verdict = Verdict::Removed;
+      c.work.note = "removed";
       out.push_back(std::move(c));
       continue;
     }
@@ -334,12 +518,14 @@ std::vector<CaseComparison> compareRuns(const RunResults& oldRun, const RunResul
       c.verdict = c.frame.verdict = Verdict::DefinitionChanged;
       c.frame.newMedian = b["frame_ms"]["median"].get<double>();
       for (std::size_t i = 0; i < changes.size(); ++i) c.frame.note += (i ? "; " : "") + changes[i];
+      c.work.note = "definition changed";  // other work by definition
       out.push_back(std::move(c));
       continue;
     }
     c.frame = compareTiming(a["frame_ms"], b["frame_ms"], opt);
     c.frame.name = c.id;
     c.verdict = c.frame.verdict;
+    c.work = compareWork(a, b);
 
     const json empty = json::array();
     const json& oldPasses = a.contains("passes") ? a["passes"] : empty;
@@ -379,6 +565,7 @@ std::vector<CaseComparison> compareRuns(const RunResults& oldRun, const RunResul
     c.id = c.frame.name = caseId(b);
     c.verdict = c.frame.verdict = Verdict::Added;
     c.frame.newMedian = b["frame_ms"]["median"].get<double>();
+    c.work.note = "added";
     out.push_back(std::move(c));
   }
   return out;
@@ -501,8 +688,18 @@ int runCompareRuns(const std::string& oldPath, const std::string& newPath,
   applyCorrection(cases, opt);
 
   std::map<Verdict, int> counts;
-  for (const auto& c : cases) ++counts[c.verdict];
-  const int status = counts[Verdict::Slower] > 0 ? 1 : 0;
+  std::map<WorkStatus, int> workCounts;
+  std::size_t workCounters = 0;
+  std::map<PassWorkKind, int> passKinds;
+  for (const auto& c : cases) {
+    ++counts[c.verdict];
+    ++workCounts[c.work.status];
+    workCounters += c.work.counterCount();
+    for (const auto& p : c.work.passes) ++passKinds[p.kind];
+  }
+  const int workChanged = workCounts[WorkStatus::Changed];
+  const int status =
+      counts[Verdict::Slower] > 0 || (opt.failOnWorkChange && workChanged > 0) ? 1 : 0;
   const std::vector<std::string> contextDiff = contextDifferences(oldRun.context, newRun.context);
 
   if (asJson) {
@@ -514,10 +711,24 @@ int runCompareRuns(const std::string& oldPath, const std::string& newPath,
     j["alpha"] = opt.alpha;
     j["correction"] = opt.correction == Correction::Holm ? "holm" : "none";
     j["context_differs"] = contextDiff;
+    j["fail_on_work_change"] = opt.failOnWorkChange;
+    // Work first, as in the text: exact changes, apart from the timing verdicts.
+    json work = {{"changed_cases", workChanged},
+                 {"changed_counters", workCounters},
+                 {"same_cases", workCounts[WorkStatus::Same]},
+                 {"not_counted_cases", workCounts[WorkStatus::NotCounted]},
+                 {"not_compared_cases", workCounts[WorkStatus::NotCompared]},
+                 {"cases", json::array()}};
+    for (const auto& c : cases)
+      if (c.work.status == WorkStatus::Changed)
+        work["cases"].push_back({{"id", c.id}, {"passes", workChangesJson(c.work.passes)}});
+    j["work"] = work;
     j["cases"] = json::array();
     for (const auto& c : cases) {
       json cj = timingJson(c.frame);
       cj["id"] = c.id;
+      cj["work"] = workStatusName(c.work.status);
+      cj["work_note"] = c.work.note;
       cj["passes"] = json::array();
       for (const auto& p : c.passes) {
         json pj = timingJson(p);
@@ -536,6 +747,34 @@ int runCompareRuns(const std::string& oldPath, const std::string& newPath,
     return status;
   }
 
+  // Two summary lines first: work (exact) and time (statistical) are separate questions.
+  const int notCounted = workCounts[WorkStatus::NotCounted];
+  const int compared = workCounts[WorkStatus::Same] + workChanged;
+  std::string notCountedText;
+  if (notCounted)
+    notCountedText = std::to_string(notCounted) + " case" + (notCounted == 1 ? "" : "s") +
+                     " not counted (results without work)";
+  if (workChanged) {
+    out << "work changed: " << workChanged << " case" << (workChanged == 1 ? "" : "s") << " ("
+        << workCounters << " counter" << (workCounters == 1 ? "" : "s");
+    for (PassWorkKind k : {PassWorkKind::Changed, PassWorkKind::Added, PassWorkKind::Removed})
+      if (passKinds[k])
+        out << "; " << passKinds[k] << " pass" << (passKinds[k] == 1 ? " " : "es ")
+            << passWorkKindName(k);
+    out << ") of " << compared << " compared"
+        << (notCountedText.empty() ? "" : "; " + notCountedText)
+        << (opt.failOnWorkChange ? "" : "; information, exit status unaffected") << "\n";
+  } else {
+    out << "work changed: none (" << compared << " cases compared"
+        << (notCountedText.empty() ? "" : "; " + notCountedText) << ")\n";
+  }
+  const int judged = counts[Verdict::Slower] + counts[Verdict::Faster] + counts[Verdict::Ok];
+  if (counts[Verdict::Slower] + counts[Verdict::Faster] > 0)
+    out << "time changed: " << counts[Verdict::Slower] << " SLOWER, " << counts[Verdict::Faster]
+        << " faster of " << judged << " judged cases\n";
+  else
+    out << "time changed: none (" << judged << " cases judged, " << counts[Verdict::NotJudged]
+        << " not judged)\n";
   out << "old: " << runLabel(oldRun) << "\n";
   out << "new: " << runLabel(newRun) << "\n";
   if (!morePairs.empty())
@@ -545,6 +784,14 @@ int runCompareRuns(const std::string& oldPath, const std::string& newPath,
     out << "note: the runs' contexts differ in";
     for (const auto& k : contextDiff) out << " " << k;
     out << "; timings may not be comparable\n";
+  }
+  if (workChanged) {
+    out << "work changes (exact counters, old -> new):\n";
+    for (const auto& c : cases) {
+      if (c.work.status != WorkStatus::Changed) continue;
+      out << "  " << c.id << "\n";
+      for (const auto& p : c.work.passes) out << "    " << describeWorkChange(p) << "\n";
+    }
   }
   // One row per case, then its notable passes indented.
   std::vector<std::array<std::string, 7>> rows;

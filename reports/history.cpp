@@ -30,12 +30,22 @@ std::string number(double v, int precision = 3) {
   return s.str();
 }
 
+// "run 3 of 5 (date): pass a: ...; pass b added: ..."
+std::string workStepText(const CaseHistory& c, const WorkStep& w) {
+  std::string s = "run " + std::to_string(w.index + 1) + " of " + std::to_string(c.points.size()) +
+                  " (" + c.points[std::size_t(w.index)].date + "): ";
+  for (std::size_t i = 0; i < w.passes.size(); ++i)
+    s += (i ? "; " : "") + describeWorkChange(w.passes[i]);
+  return s;
+}
+
 }  // namespace
 
 History buildHistory(const std::vector<RunResults>& runs, const HistoryOptions& o) {
   History h;
   std::map<std::string, CaseHistory> byId;
-  std::vector<std::string> order;  // first appearance
+  std::vector<std::string> order;               // first appearance
+  std::map<std::string, const json*> previous;  // each case's result in the last run that had it
   for (const RunResults& run : runs) {
     h.runs.push_back(run.source);
     const std::string date = run.context.is_object() ? run.context.value("date", "") : "";
@@ -53,8 +63,16 @@ History buildHistory(const std::vector<RunResults>& runs, const HistoryOptions& 
                                             ms.value("median", 0.0)}
                                  : bootstrapMedian(samples);
       if (!byId.count(id)) order.push_back(id);
-      byId[id].id = id;
-      byId[id].points.push_back(p);
+      CaseHistory& c = byId[id];
+      c.id = id;
+      c.points.push_back(p);
+      const auto prev = previous.find(id);
+      if (prev != previous.end() && definitionChanges(*prev->second, r).empty()) {
+        WorkComparison w = compareWork(*prev->second, r);
+        if (w.status == WorkStatus::Changed)
+          c.workChanges.push_back({static_cast<int>(c.points.size()) - 1, std::move(w.passes)});
+      }
+      previous[id] = &r;
     }
   }
   ChangePointOptions cp;
@@ -76,7 +94,10 @@ History buildHistory(const std::vector<RunResults>& runs, const HistoryOptions& 
                   " (" + c.points[std::size_t(last.index)].date + "), p = " + number(last.p, 2) +
                   (c.alarm ? "  ALARM" : "");
     }
+    if (!c.workChanges.empty())
+      c.verdict += "; work changed at run " + std::to_string(c.workChanges.back().index + 1);
     h.alarms += c.alarm;
+    h.workChanged += !c.workChanges.empty();
     h.cases.push_back(std::move(c));
   }
   std::stable_sort(h.cases.begin(), h.cases.end(), [](const CaseHistory& a, const CaseHistory& b) {
@@ -96,8 +117,15 @@ json historyJson(const History& h, const HistoryOptions& o) {
               {"permutations", o.permutations},
               {"runs", h.runs},
               {"alarms", h.alarms},
+              {"work_changed", h.workChanged},
               {"cases", json::array()}};
   for (const auto& c : h.cases) {
+    json work = json::array();
+    for (const auto& w : c.workChanges)
+      work.push_back({{"index", w.index},
+                      {"run", c.points[std::size_t(w.index)].run},
+                      {"date", c.points[std::size_t(w.index)].date},
+                      {"passes", workChangesJson(w.passes)}});
     json points = json::array(), changes = json::array();
     for (const auto& p : c.points)
       points.push_back({{"run", p.run},
@@ -116,6 +144,7 @@ json historyJson(const History& h, const HistoryOptions& o) {
     doc["cases"].push_back({{"id", c.id},
                             {"points", points},
                             {"changes", changes},
+                            {"work_changes", work},
                             {"alarm", c.alarm},
                             {"verdict", c.verdict}});
   }
@@ -160,6 +189,12 @@ std::string caseChart(const CaseHistory& c) {
       << "\" stroke-dasharray=\"4 3\"><title>" << htmlEscape(percent(ch.size)) << ", p "
       << number(ch.p, 2) << "</title></line>";
   }
+  for (const auto& wc : c.workChanges) {
+    const double cx = 0.5 * (x(std::size_t(wc.index)) + x(std::size_t(wc.index) - 1));
+    s << "<line class=\"work\" x1=\"" << cx << "\" y1=\"" << top << "\" x2=\"" << cx << "\" y2=\""
+      << hgt - bottom
+      << "\" stroke=\"#888\" stroke-dasharray=\"1 2\"><title>work changed</title></line>";
+  }
   s << "<polyline fill=\"none\" stroke=\"#36c\" points=\"";
   for (std::size_t i = 0; i < n; ++i) s << x(i) << "," << y(c.points[i].median.estimate) << " ";
   s << "\"/>";
@@ -182,16 +217,37 @@ std::string historyHtml(const History& h, const HistoryOptions& o) {
   std::ostringstream s;
   s << "<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>strandbench history</title>"
        "<style>body{font:13px sans-serif;margin:16px}.case{display:inline-block;margin:6px;"
-       "vertical-align:top}.alarm h3{color:#c00}h3{font-size:12px;margin:2px 0}"
+       "vertical-align:top}.alarm h3,li.alarm{color:#c00}h3{font-size:12px;margin:2px 0}"
        "p.v{margin:0;font-size:11px;color:#444}</style></head><body>";
-  s << "<h1>Frame time over " << h.runs.size() << " runs</h1><p>" << h.cases.size() << " cases, "
-    << h.alarms
+  s << "<h1>Frame time over " << h.runs.size() << " runs</h1>";
+  // Work first: exact, so each entry is a fact; then the time changes, which are judgments.
+  s << "<h2>Work changed</h2>";
+  if (h.workChanged == 0) {
+    s << "<p>None: every case counted the same work as in its previous run (or did not count "
+         "work).</p>";
+  } else {
+    s << "<ul class=\"work\">";
+    for (const auto& c : h.cases)
+      for (const auto& w : c.workChanges)
+        s << "<li><b>" << htmlEscape(c.id) << "</b>: " << htmlEscape(workStepText(c, w)) << "</li>";
+    s << "</ul>";
+  }
+  s << "<h2>Time changed</h2>";
+  bool anyTime = false;
+  for (const auto& c : h.cases)
+    if (!c.changes.empty()) {
+      s << (anyTime ? "" : "<ul class=\"time\">") << "<li" << (c.alarm ? " class=\"alarm\"" : "")
+        << "><b>" << htmlEscape(c.id) << "</b>: " << htmlEscape(c.verdict) << "</li>";
+      anyTime = true;
+    }
+  s << (anyTime ? "</ul>" : "<p>None: no change points.</p>");
+  s << "<p>" << h.cases.size() << " cases, " << h.alarms
     << " alarms. Each point: the frame_ms median of a run with its 95% bootstrap interval. "
        "Dashed lines: change points (binary segmentation, Pettitt's rank statistic with a "
        "permutation p-value, alpha "
     << o.alpha << "); red a slowdown, green a speed-up. Alarm: a slowdown above " << o.thresholdPct
     << "% starting within the newest " << o.recent
-    << " runs. Sorted by the size of the latest change.</p>";
+    << " runs. Dotted grey lines: work changes. Sorted by the size of the latest change.</p>";
   for (const auto& c : h.cases)
     s << "<div class=\"case" << (c.alarm ? " alarm" : "") << "\"><h3>" << htmlEscape(c.id)
       << "</h3>" << caseChart(c) << "<p class=\"v\">" << htmlEscape(c.verdict) << "</p></div>";
@@ -242,11 +298,26 @@ int runHistory(const std::vector<std::string>& paths, const std::string& out,
   if (!fs::is_directory(dir)) throw InputError("--out " + out + ": cannot create the folder");
   writeFileAtomic(dir / "history.json", historyJson(h, o).dump(1) + "\n");
   writeFileAtomic(dir / "history.html", historyHtml(h, o));
+  if (h.workChanged == 0) {
+    log << "work changed: none\n";
+  } else {
+    log << "work changed: " << h.workChanged << " case" << (h.workChanged == 1 ? "" : "s") << "\n";
+    for (const auto& c : h.cases)
+      for (const auto& w : c.workChanges) log << "  " << c.id << ": " << workStepText(c, w) << "\n";
+  }
+  int timeChanged = 0;
+  for (const auto& c : h.cases) timeChanged += !c.changes.empty();
+  if (timeChanged == 0) {
+    log << "time changed: none (" << h.alarms << " alarms)\n";
+  } else {
+    log << "time changed: " << timeChanged << " case" << (timeChanged == 1 ? "" : "s") << ", "
+        << h.alarms << " alarm" << (h.alarms == 1 ? "" : "s") << "\n";
+    for (const auto& c : h.cases)
+      if (!c.changes.empty()) log << "  " << c.id << ": " << c.verdict << "\n";
+  }
   log << "history of " << h.cases.size() << " cases over " << h.runs.size() << " runs ("
       << runs.front().context["date"].get<std::string>() << " .. "
       << runs.back().context["date"].get<std::string>() << ")\n";
-  for (const auto& c : h.cases)
-    if (!c.changes.empty()) log << "  " << c.id << ": " << c.verdict << "\n";
   log << "wrote " << (dir / "history.json").string() << ", history.html; " << h.alarms << " alarm"
       << (h.alarms == 1 ? "" : "s") << "\n";
   return h.alarms ? 1 : 0;

@@ -638,3 +638,164 @@ TEST(CompareRunsHolm, ChanceVerdictsAmongManyCasesAreNotRegressions) {
 }
 
 }  // namespace
+
+namespace {
+
+// ---- work: exact counters, judged apart from time ----
+
+// The run of makeRun with work counters in every pass (as render --json writes them: counters,
+// resources, and frame_work their sum), the same for every case and repetition.
+json withWork(json run) {
+  for (auto& r : run["results"]) {
+    json frame = json::object();
+    for (std::size_t i = 0; i < r["passes"].size(); ++i) {
+      const double k = static_cast<double>(i + 1);
+      json work = {{"vertices", 8000 * k},
+                   {"primitives", 4000 * k},
+                   {"vertex_invocations", 8000 * k},
+                   {"clip_invocations", 4000 * k},
+                   {"clip_primitives", 4000 * k},
+                   {"fragment_invocations", 100000 * k},
+                   {"compute_invocations", 0},
+                   {"samples_passed", 5000 * k},
+                   {"draws", 1},
+                   {"dispatches", 0},
+                   {"bytes_written", 65536 * k},
+                   {"bytes_read", 256},
+                   {"bytes_storage", 300000}};
+      for (const auto& [key, v] : work.items())
+        frame[key] = frame.value(key, 0.0) + v.get<double>();
+      work["resources"] = json::array(
+          {{{"access", "write"}, {"bytes", 65536 * k}, {"format", "Depth32F"}, {"name", "d"}}});
+      r["passes"][i]["work"] = work;
+    }
+    r["frame_work"] = frame;
+  }
+  return run;
+}
+
+TEST(CompareRunsWork, IdenticalRunsChangeNeitherWorkNorTime) {
+  const auto dir = tempDir("cmpwork");
+  const std::string before = write(dir / "old.json", withWork(makeRun()));
+  const std::string after = write(dir / "new.json", withWork(makeRun()));
+  const auto r = runCli(compareRuns(before, after));
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  // The two summary lines open the output.
+  EXPECT_EQ(r.out.rfind("work changed: none (3 cases compared)\ntime changed: none (", 0), 0u)
+      << r.out;
+  EXPECT_EQ(r.out.find("work changes"), std::string::npos) << r.out;
+  const auto j = runCli(compareRuns(before, after) + " --json --fail-on-work-change");
+  EXPECT_EQ(j.status, 0) << j.out << j.err;
+  const json doc = json::parse(j.out);
+  EXPECT_EQ(doc["work"]["changed_cases"], 0);
+  EXPECT_EQ(doc["work"]["same_cases"], 3);
+  EXPECT_TRUE(doc["work"]["cases"].empty());
+  for (const auto& c : doc["cases"]) EXPECT_EQ(c["work"], "same") << c["id"];
+  std::filesystem::remove_all(dir);
+}
+
+// A case with one more pass (a copy of one, renamed, with its work): a work change naming the
+// pass with its counters; exit 0 unless --fail-on-work-change. The other way round, removed.
+TEST(CompareRunsWork, ExtraPassIsAWorkChange) {
+  const auto dir = tempDir("cmpwork");
+  json extra = withWork(makeRun());
+  json pass = extra["results"][1]["passes"][1];
+  pass["name"] = "extra.pass";
+  extra["results"][1]["passes"].push_back(pass);
+  const std::string before = write(dir / "old.json", withWork(makeRun()));
+  const std::string after = write(dir / "new.json", extra);
+  const auto r = runCli(compareRuns(before, after));
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_EQ(r.out.rfind("work changed: 1 case (13 counters; 1 pass added) of 3 compared", 0), 0u)
+      << r.out;
+  const std::size_t at = r.out.find("    pass extra.pass added: ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  EXPECT_LT(r.out.find("  " + kIds[1] + "\n"), at) << r.out;  // under its case
+  const std::string line = r.out.substr(at, r.out.find('\n', at) - at);
+  EXPECT_NE(line.find("fragment_invocations 200000"), std::string::npos) << line;
+  EXPECT_NE(line.find("draws 1"), std::string::npos) << line;
+  EXPECT_EQ(line.find("resources"), std::string::npos) << line;  // not a counter
+  // Work apart from time: the frame timings are the same, so no time change.
+  EXPECT_NE(r.out.find("\ntime changed: none"), std::string::npos) << r.out;
+  EXPECT_EQ(runCli(compareRuns(before, after) + " --fail-on-work-change").status, 1);
+
+  const auto j = runCli(compareRuns(before, after) + " --json");
+  EXPECT_EQ(j.status, 0) << j.err;
+  const json doc = json::parse(j.out);
+  EXPECT_EQ(doc["work"]["changed_cases"], 1);
+  EXPECT_EQ(doc["work"]["changed_counters"], 13);
+  ASSERT_EQ(doc["work"]["cases"].size(), 1u);
+  EXPECT_EQ(doc["work"]["cases"][0]["id"], kIds[1]);
+  const json& p = doc["work"]["cases"][0]["passes"][0];
+  EXPECT_EQ(p["pass"], "extra.pass");
+  EXPECT_EQ(p["change"], "added");
+  EXPECT_EQ(doc["cases"][1]["work"], "changed");
+  EXPECT_EQ(doc["cases"][0]["work"], "same");
+
+  const auto back = runCli(compareRuns(after, before));
+  EXPECT_EQ(back.status, 0) << back.out;
+  EXPECT_NE(back.out.find("    pass extra.pass removed: "), std::string::npos) << back.out;
+  std::filesystem::remove_all(dir);
+}
+
+// One counter of one pass doubled: reported with the pass, the counter, old and new value and
+// the ratio. A counter null in one run (samples_passed without device queries) is not compared.
+TEST(CompareRunsWork, ChangedCounterShowsOldAndNewValues) {
+  const auto dir = tempDir("cmpwork");
+  json changed = withWork(makeRun());
+  changed["results"][2]["passes"][1]["work"]["fragment_invocations"] = 400000;
+  changed["results"][0]["passes"][0]["work"]["samples_passed"] = nullptr;
+  const std::string before = write(dir / "old.json", withWork(makeRun()));
+  const std::string after = write(dir / "new.json", changed);
+  const auto r = runCli(compareRuns(before, after));
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_EQ(r.out.rfind("work changed: 1 case (1 counter; 1 pass changed) of 3 compared", 0), 0u)
+      << r.out;
+  EXPECT_NE(
+      r.out.find("  " + kIds[2] +
+                 "\n    pass color: fragment_invocations 200000 -> 400000 (x2.00, +100.0%)\n"),
+      std::string::npos)
+      << r.out;
+  EXPECT_EQ(r.out.find("samples_passed"), std::string::npos) << r.out;
+  const json doc = json::parse(runCli(compareRuns(before, after) + " --json").out);
+  const json& c = doc["work"]["cases"][0]["passes"][0]["counters"][0];
+  EXPECT_EQ(c["counter"], "fragment_invocations");
+  EXPECT_EQ(c["old"], 200000);
+  EXPECT_EQ(c["new"], 400000);
+  EXPECT_DOUBLE_EQ(c["ratio"].get<double>(), 2.0);
+  EXPECT_DOUBLE_EQ(c["change_pct"].get<double>(), 100.0);
+  std::filesystem::remove_all(dir);
+}
+
+// Runs from before the counters: "not counted", never a change, whichever run lacks them; a
+// redefined case is not compared for work either.
+TEST(CompareRunsWork, ResultsWithoutWorkAreNotCounted) {
+  const auto dir = tempDir("cmpwork");
+  const std::string plain = write(dir / "plain.json", makeRun());
+  const std::string counted = write(dir / "counted.json", withWork(makeRun()));
+  for (const auto& [a, b] : {std::pair{plain, plain}, {plain, counted}, {counted, plain}}) {
+    const auto r = runCli(compareRuns(a, b));
+    EXPECT_EQ(r.status, 0) << r.out << r.err;
+    EXPECT_EQ(r.out.rfind("work changed: none (0 cases compared; 3 cases not counted", 0), 0u)
+        << r.out;
+    const json doc = json::parse(runCli(compareRuns(a, b) + " --json --fail-on-work-change").out);
+    EXPECT_EQ(doc["status"], 0);
+    EXPECT_EQ(doc["work"]["not_counted_cases"], 3);
+    EXPECT_EQ(doc["cases"][0]["work"], "not counted");
+  }
+  json redefined = withWork(makeRun());
+  redefined["results"][0]["shadow"] = "osm";
+  redefined["results"][0]["passes"][0]["work"]["draws"] = 7;
+  const auto r = runCli(compareRuns(counted, write(dir / "redefined.json", redefined)) + " --json");
+  const json doc = json::parse(r.out);
+  EXPECT_EQ(doc["work"]["changed_cases"], 0) << r.out;
+  EXPECT_EQ(doc["cases"][0]["work"], "not compared");
+  // The library call directly.
+  const json result = makeRun()["results"][0];
+  EXPECT_EQ(sb::compareWork(result, withWork(makeRun())["results"][0]).status,
+            sb::WorkStatus::NotCounted);
+  EXPECT_EQ(sb::compareWork(result, result).status, sb::WorkStatus::NotCounted);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace

@@ -362,6 +362,59 @@ TEST(HistoryCli, PureNoiseGivesNoAlarm) {
   fs::remove_all(dir);
 }
 
+// Work counters over five runs: one case draws more from run 4 on, one case counts no work.
+// The work change is listed with its run, pass and counter, first in the summary and the page;
+// it raises no alarm.
+TEST(HistoryCli, ListsTheRunWhereWorkChanged) {
+  const fs::path dir = tempDir("history-work");
+  std::mt19937_64 rng(3);
+  std::vector<std::string> runs;
+  for (int i = 0; i < 5; ++i) {
+    char date[32];
+    std::snprintf(date, sizeof date, "2026-09-%02dT02:00:00Z", i + 1);
+    const fs::path run = dir / ("r" + std::to_string(i));
+    writeRun(run, date, {{"g/counted", 10.0}, {"g/old", 10.0}}, rng);
+    json doc = json::parse(readFile(run / "results.json"));
+    for (auto& r : doc["results"]) {
+      if (r["case"]["id"] != "g/counted") continue;  // g/old: a run from before the counters
+      const json work = {{"vertices", 1000}, {"draws", i >= 3 ? 2 : 1}, {"samples_passed", 50}};
+      r["passes"] = {{{"name", "color"}, {"ms", r["frame_ms"]}, {"work", work}}};
+      r["frame_work"] = work;
+    }
+    std::ofstream(run / "results.json") << doc.dump();
+    runs.push_back(run.string());
+  }
+  std::string args;
+  for (const auto& r : runs) args += " " + r;
+  const CliResult r = runCli("history" + args + " --out " + (dir / "h").string());
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_EQ(r.out.rfind("work changed: 1 case\n  g/counted: run 4 of 5 (2026-09-04T02:00:00Z): "
+                        "pass color: draws 1 -> 2 (x2.00, +100.0%)\ntime changed: ",
+                        0),
+            0u)
+      << r.out;
+  const json h = json::parse(readFile(dir / "h" / "history.json"));
+  EXPECT_EQ(h["work_changed"], 1);
+  std::map<std::string, json> byId;
+  for (const auto& c : h["cases"]) byId[c["id"]] = c;
+  ASSERT_EQ(byId["g/counted"]["work_changes"].size(), 1u) << byId["g/counted"].dump();
+  const json& w = byId["g/counted"]["work_changes"][0];
+  EXPECT_EQ(w["index"], 3);
+  EXPECT_EQ(w["date"], "2026-09-04T02:00:00Z");
+  EXPECT_EQ(w["passes"][0]["pass"], "color");
+  EXPECT_EQ(w["passes"][0]["counters"][0]["counter"], "draws");
+  EXPECT_EQ(w["passes"][0]["counters"][0]["old"], 1);
+  EXPECT_EQ(w["passes"][0]["counters"][0]["new"], 2);
+  EXPECT_TRUE(byId["g/old"]["work_changes"].empty());
+  const std::string html = readFile(dir / "h" / "history.html");
+  const std::size_t work = html.find("<h2>Work changed</h2>"), time = html.find("Time changed");
+  ASSERT_NE(work, std::string::npos);
+  EXPECT_LT(work, time);
+  EXPECT_LT(html.find("draws 1 -&gt; 2"), time) << html.substr(0, 2000);
+  EXPECT_NE(html.find("class=\"work\""), std::string::npos);
+  fs::remove_all(dir);
+}
+
 TEST(HistoryCli, BadInputExitsTwo) {
   const fs::path dir = tempDir("history-bad");
   std::mt19937_64 rng(1);
