@@ -72,6 +72,22 @@ constexpr T byEnum(const T (&table)[N], E e) {
   return table[static_cast<std::size_t>(e)];
 }
 
+// The API's counts of a pass, in this order (PassWork's): input assembly
+// vertices and primitives, vertex shader invocations, clipping invocations and
+// primitives, fragment and compute shader invocations, samples passed.
+using ApiCounts = std::array<uint64_t, 8>;
+inline void setApiCounts(PassWork& w, const ApiCounts& v) {
+  w.statistics = true;
+  w.vertices = v[0];
+  w.primitives = v[1];
+  w.vertexInvocations = v[2];
+  w.clipInvocations = v[3];
+  w.clipPrimitives = v[4];
+  w.fragmentInvocations = v[5];
+  w.computeInvocations = v[6];
+  w.samplesPassed = v[7];
+}
+
 class Driver {
  public:
   virtual ~Driver() = default;

@@ -9,6 +9,7 @@
 #include <algorithm>
 
 #include "harness/render.h"
+#include "render_request.h"
 #include "techniques/common/technique.h"
 #include "techniques/common/unit.h"
 
@@ -16,15 +17,8 @@ namespace sb {
 namespace {
 
 RenderRequest tiny(const std::string& backend, const std::string& shadow, const std::string& oit) {
-  RenderRequest req;
-  req.backend = backend;
-  req.scene = "straight:strands=20,points=4,head=1,alpha=0.5";
-  req.shadow = shadow;
-  req.oit = oit;
-  req.width = req.height = 16;
-  req.repeat = 1;
-  req.warmup = 0;
-  return req;
+  return sbtest::smallRender(backend, "straight:strands=20,points=4,head=1,alpha=0.5", shadow, oit,
+                             16);
 }
 
 bool preparedFor(const RenderResult& r, const std::string& technique) {

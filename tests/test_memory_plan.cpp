@@ -16,6 +16,7 @@
 #include <regex>
 
 #include "harness/render.h"
+#include "render_request.h"
 #include "techniques/common/unit.h"
 #include "test_util.h"
 
@@ -31,14 +32,8 @@ std::size_t allocated(const RenderResult& r) {
 }
 
 RenderRequest small(const std::string& shadow, const std::string& oit) {
-  RenderRequest req;
-  req.scene = "straight:strands=40,points=6,head=1,alpha=0.5";
-  req.shadow = shadow;
-  req.oit = oit;
-  req.width = req.height = 24;
-  req.repeat = 1;
-  req.warmup = 0;
-  return req;
+  return sbtest::smallRender(RenderRequest{}.backend,
+                             "straight:strands=40,points=6,head=1,alpha=0.5", shadow, oit, 24);
 }
 
 TEST(MemoryPlan, TheEstimateIsWhatEveryTechniqueAllocates) {

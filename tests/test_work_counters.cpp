@@ -8,21 +8,15 @@
 
 #include "backends/device.h"
 #include "harness/render.h"
+#include "render_request.h"
 
 namespace sb {
 namespace {
 
 RenderRequest small(const std::string& backend, const std::string& shadow,
                     const std::string& oit = "none") {
-  RenderRequest req;
-  req.backend = backend;
-  req.scene = "straight:strands=200,points=8,head=1,alpha=0.5";
-  req.shadow = shadow;
-  req.oit = oit;
-  req.width = req.height = 64;
-  req.repeat = 2;
-  req.warmup = 0;
-  return req;
+  return sbtest::smallRender(backend, "straight:strands=200,points=8,head=1,alpha=0.5", shadow, oit,
+                             64, 2);
 }
 
 const PassWork& workOf(const RenderResult& r, const std::string& pass) {

@@ -378,20 +378,11 @@ class GLDriver final : public Driver {
   // After the frame's finish: each pass's counts into its timing.
   void readCounts() {
     for (std::size_t p = 0; p < counted_.size() && p < timings_.size(); ++p) {
-      std::array<GLuint64, kCounterTargets.size()> v{};
+      ApiCounts v{};
       for (std::size_t t = 0; t < v.size(); ++t)
         if (counted_[p] || kCounterTargets[t] != GL_SAMPLES_PASSED)
           gl_.GetQueryObjectui64v(counterQueries_[p][t], GL_QUERY_RESULT, &v[t]);
-      PassWork& w = timings_[p].work;
-      w.statistics = true;
-      w.vertices = v[0];
-      w.primitives = v[1];
-      w.vertexInvocations = v[2];
-      w.clipInvocations = v[3];
-      w.clipPrimitives = v[4];
-      w.fragmentInvocations = v[5];
-      w.computeInvocations = v[6];
-      w.samplesPassed = v[7];
+      setApiCounts(timings_[p].work, v);
     }
   }
 

@@ -591,25 +591,18 @@ class VulkanDriver final : public Driver {
   // After the frame's wait: each pass's counts into its timing.
   void readCounts() {
     for (uint32_t p = 0; p < counted_.size() && p < timings_.size(); ++p) {
-      std::array<uint64_t, kStatisticValues> v{};
-      check(vkGetQueryPoolResults(device_, counterPool(p, false), p % kQueriesPerPool, 1, sizeof v,
-                                  v.data(), sizeof v,
+      ApiCounts v{};  // the statistics (kStatisticValues), then the occlusion query
+      check(vkGetQueryPoolResults(device_, counterPool(p, false), p % kQueriesPerPool, 1,
+                                  kStatisticValues * sizeof(uint64_t), v.data(),
+                                  kStatisticValues * sizeof(uint64_t),
                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
             "vkGetQueryPoolResults (statistics)");
-      PassWork& w = timings_[p].work;
-      w.statistics = true;
-      w.vertices = v[0];
-      w.primitives = v[1];
-      w.vertexInvocations = v[2];
-      w.clipInvocations = v[3];
-      w.clipPrimitives = v[4];
-      w.fragmentInvocations = v[5];
-      w.computeInvocations = v[6];
       if (counted_[p])
         check(vkGetQueryPoolResults(device_, counterPool(p, true), p % kQueriesPerPool, 1,
-                                    sizeof(uint64_t), &w.samplesPassed, sizeof(uint64_t),
+                                    sizeof(uint64_t), &v[kStatisticValues], sizeof(uint64_t),
                                     VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
               "vkGetQueryPoolResults (occlusion)");
+      setApiCounts(timings_[p].work, v);
     }
   }
 
