@@ -93,19 +93,14 @@ PassResource textureTouch(const TextureDesc& d, uint32_t layers, const char* acc
 
 PassWork& PassWork::operator+=(const PassWork& o) {
   statistics = statistics || o.statistics;
-  vertices += o.vertices;
-  primitives += o.primitives;
-  vertexInvocations += o.vertexInvocations;
-  clipInvocations += o.clipInvocations;
-  clipPrimitives += o.clipPrimitives;
-  fragmentInvocations += o.fragmentInvocations;
-  computeInvocations += o.computeInvocations;
-  samplesPassed += o.samplesPassed;
+  for (auto count :
+       {&PassWork::vertices, &PassWork::primitives, &PassWork::vertexInvocations,
+        &PassWork::clipInvocations, &PassWork::clipPrimitives, &PassWork::fragmentInvocations,
+        &PassWork::computeInvocations, &PassWork::samplesPassed, &PassWork::bytesWritten,
+        &PassWork::bytesRead, &PassWork::bytesStorage})
+    this->*count += o.*count;
   draws += o.draws;
   dispatches += o.dispatches;
-  bytesWritten += o.bytesWritten;
-  bytesRead += o.bytesRead;
-  bytesStorage += o.bytesStorage;
   for (const PassResource& r : o.resources) {
     auto it = std::find_if(resources.begin(), resources.end(), [&](const PassResource& x) {
       return x.name == r.name && x.access == r.access;
