@@ -223,7 +223,7 @@ std::vector<Setting> buildTable() {
         &RenderRequest::invariants);
   plain(add(make("run_to_run", "--no-run-to-run", T::Flag, "true",
                  "sweeps with invariants: run each case again on a fresh device and require "
-                 "identical outputs; false (--no-run-to-run): once",
+                 "identical outputs and work counters; false (--no-run-to-run): once",
                  "false", "maybe")),
         &RenderRequest::runToRun);
   plain(add(make("validation", "--validation", T::Flag, "false",

@@ -107,9 +107,15 @@ CaseRun runCase(const fs::path& dir, const SweepCase& c, const RenderRequest& re
     auto curve = [](const RenderResult& r) {
       return r.probe ? r.probe->visibility : std::vector<float>{};
     };
+    auto work = [](const RenderResult& r) {
+      std::vector<PassWork> w;
+      for (const PassTimes& p : r.passes) w.push_back(p.work);
+      return w;
+    };
     for (const auto& [what, same] : {std::pair{"color", again.image.pixels == out.image.pixels},
                                      std::pair{"visibility", again.visibility == out.visibility},
-                                     std::pair{"probe", curve(again) == curve(out)}})
+                                     std::pair{"probe", curve(again) == curve(out)},
+                                     std::pair{"work counters", work(again) == work(out)}})
       if (!same) {
         if (!out.invariants) out.invariants.emplace();
         out.invariants->push_back({what, "not identical run to run"});
