@@ -182,40 +182,76 @@ CostModel fitOne(const std::string& backend, const std::string& device,
   }
   for (double& sc : scale)
     if (sc == 0) sc = 1;
-  const std::vector<double> coef = fitScaled(rows, y, scale);
+  // A case whose time its work does not explain (a heavy shader, a stall) would drag the
+  // constant and the costs of every other case towards itself: the fit is repeated
+  // without the cases it marks until the marked set settles (a few rounds at most).
+  const std::size_t n = rows.size();
+  std::vector<bool> keep(n, true);
+  std::vector<double> coef, predicted(n, 0.0);
+  std::vector<bool> marked(n, false);
+  for (int round = 0; round < kFitRounds; ++round) {
+    std::vector<std::vector<double>> kr;
+    std::vector<double> ky;
+    for (std::size_t i = 0; i < n; ++i)
+      if (keep[i]) kr.push_back(rows[i]), ky.push_back(y[i]);
+    coef = fitScaled(kr, ky, scale);
+    std::vector<double> absRes;
+    for (std::size_t i = 0; i < n; ++i)
+      if (keep[i]) absRes.push_back(std::abs(y[i] - dot(rows[i], coef)));
+    const double spread = 1.4826 * median(absRes);
+    const double floor = 0.01 * median(y);  // an exact fit has no spread: ignore rounding
+    // A case in the fit is predicted by the fit over the others, so that a slow case
+    // cannot pull the fit towards itself and hide (a few dozen refits are cheap).
+    for (std::size_t i = 0; i < n; ++i) {
+      if (keep[i]) {
+        std::vector<std::vector<double>> others;
+        std::vector<double> yo;
+        for (std::size_t j = 0; j < n; ++j)
+          if (j != i && keep[j]) others.push_back(rows[j]), yo.push_back(y[j]);
+        predicted[i] = dot(rows[i], fitScaled(others, yo, scale));
+      } else {
+        predicted[i] = dot(rows[i], coef);
+      }
+      const double excess = y[i] - predicted[i];
+      marked[i] = (predicted[i] <= 0 || y[i] / predicted[i] > kInefficientRatio) &&
+                  excess > std::max(kInefficientSpread * spread, floor);
+    }
+    std::vector<bool> next(n);
+    for (std::size_t i = 0; i < n; ++i) next[i] = !marked[i];
+    if (next == keep || round + 1 == kFitRounds ||
+        static_cast<std::size_t>(std::count(next.begin(), next.end(), true)) < used.size() + 2)
+      break;
+    keep = next;
+  }
   m.fitted = true;
   for (std::size_t k = 0; k < used.size(); ++k)
     m.terms[k].coefficient = coef[k] * kTerms[used[k]].per;
-
-  double mean = 0;
-  for (double v : y) mean += v;
-  mean /= static_cast<double>(y.size());
-  double ssRes = 0, ssTot = 0;
-  std::vector<double> absRes;
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const double res = y[i] - dot(rows[i], coef);
-    ssRes += res * res;
-    ssTot += (y[i] - mean) * (y[i] - mean);
-    absRes.push_back(std::abs(res));
-  }
-  m.r2 = ssTot > 0 ? 1 - ssRes / ssTot : (ssRes < 1e-18 ? 1.0 : 0.0);
-
-  // Each case against the fit over the others: a slow case cannot pull the fit up
-  // towards itself and so hide (with a few dozen cases the refits are cheap).
-  const double spread = 1.4826 * median(absRes);
-  const double floor = 0.01 * median(y);  // an exact fit has no spread: ignore rounding
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    std::vector<std::vector<double>> others;
-    std::vector<double> yo;
-    for (std::size_t j = 0; j < rows.size(); ++j)
-      if (j != i) others.push_back(rows[j]), yo.push_back(y[j]);
-    const double predicted = dot(rows[i], fitScaled(others, yo, scale));
-    CostCase c{
-        caseId(*samples[i].r), shortTechniqueOf(*samples[i].r, true), y[i], predicted, {}, false};
-    if (predicted > 0) c.ratio = y[i] / predicted;
-    const double excess = y[i] - predicted;
-    c.inefficient = (!c.ratio || *c.ratio > kInefficientRatio) &&
-                    excess > std::max(kInefficientSpread * spread, floor);
+  auto r2 = [&](bool all) {
+    double mean = 0, count = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      if (all || keep[i]) mean += y[i], ++count;
+    mean /= count;
+    double ssRes = 0, ssTot = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!all && !keep[i]) continue;
+      const double res = y[i] - dot(rows[i], coef);
+      ssRes += res * res;
+      ssTot += (y[i] - mean) * (y[i] - mean);
+    }
+    return ssTot > 0 ? 1 - ssRes / ssTot : (ssRes < 1e-18 ? 1.0 : 0.0);
+  };
+  m.r2 = r2(false);
+  m.r2All = r2(true);
+  m.fitCases = static_cast<int>(std::count(keep.begin(), keep.end(), true));
+  for (std::size_t i = 0; i < n; ++i) {
+    CostCase c{caseId(*samples[i].r),
+               shortTechniqueOf(*samples[i].r, true),
+               y[i],
+               predicted[i],
+               {},
+               marked[i],
+               keep[i]};
+    if (predicted[i] > 0) c.ratio = y[i] / predicted[i];
     m.cases.push_back(std::move(c));
   }
   std::stable_sort(m.cases.begin(), m.cases.end(), [](const CostCase& a, const CostCase& b) {
@@ -305,6 +341,8 @@ json costModelsJson(const std::vector<CostModel>& models) {
     json jm = {{"backend", m.backend}, {"device", m.device}, {"fitted", m.fitted}};
     if (!m.note.empty()) jm["note"] = m.note;
     jm["r2"] = m.r2 ? json(*m.r2) : json(nullptr);
+    jm["r2_all_cases"] = m.r2All ? json(*m.r2All) : json(nullptr);
+    jm["fit_cases"] = m.fitCases;
     jm["terms"] = json::array();
     for (const CostTerm& t : m.terms)
       jm["terms"].push_back({{"name", t.name},
@@ -317,7 +355,8 @@ json costModelsJson(const std::vector<CostModel>& models) {
                              {"measured_ms", c.measured},
                              {"predicted_ms", c.predicted ? json(*c.predicted) : json(nullptr)},
                              {"ratio", c.ratio ? json(*c.ratio) : json(nullptr)},
-                             {"inefficient", c.inefficient}});
+                             {"inefficient", c.inefficient},
+                             {"in_fit", c.inFit}});
     out["models"].push_back(std::move(jm));
   }
   return out;

@@ -25,25 +25,32 @@ struct CostTerm {
 
 struct CostCase {
   std::string caseId, technique;
-  double measured = 0;              // frame_ms.median
-  std::optional<double> predicted;  // by the fit over the other cases (leave one out)
-  std::optional<double> ratio;      // measured / predicted
-  bool inefficient = false;         // far slower than its work predicts
+  double measured = 0;  // frame_ms.median
+  // By the fit over the other cases in the fit (leave one out); for a case left out of
+  // the fit, by the fit.
+  std::optional<double> predicted;
+  std::optional<double> ratio;  // measured / predicted
+  bool inefficient = false;     // far slower than its work predicts
+  bool inFit = true;            // false: left out of the fit as inefficient
 };
 
 struct CostModel {
   std::string backend, device;
   bool fitted = false;
-  std::string note;  // why there is no fit, or what was left out
-  std::optional<double> r2;
+  std::string note;             // why there is no fit, or what was left out
+  std::optional<double> r2;     // over the cases in the fit
+  std::optional<double> r2All;  // the same coefficients over every case
+  int fitCases = 0;
   std::vector<CostTerm> terms;
   std::vector<CostCase> cases;  // by measured / predicted, highest first
 };
 
 // A case is "inefficient" when measured > kInefficientRatio x predicted and the excess is
-// more than kInefficientSpread robust residual spreads (1.4826 x median |residual|).
+// more than kInefficientSpread robust residual spreads (1.4826 x median |residual|); the
+// fit is redone without such cases, at most kFitRounds times in all.
 inline constexpr double kInefficientRatio = 2.0;
 inline constexpr double kInefficientSpread = 3.0;
+inline constexpr int kFitRounds = 4;
 
 // One model per backend and device (in order of first appearance) over the results that
 // ran and carry frame_work (or per-pass work). Fewer cases than terms + 2: no fit.

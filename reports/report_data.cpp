@@ -478,7 +478,9 @@ Table costCasesTable(const CostModel& m) {
                       num(c.measured),
                       num(c.predicted),
                       num(c.ratio, 2),
-                      {c.inefficient ? "inefficient: look at it" : ""}});
+                      {c.inefficient ? "inefficient: look at it"
+                       : c.inFit     ? ""
+                                     : "left out of the fit"}});
   return t;
 }
 

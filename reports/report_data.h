@@ -178,7 +178,9 @@ inline constexpr const char* kCostModelAbout =
     "per MiB written, read or bound as storage, per pass execution, and a constant. Each case's "
     "prediction comes from the fit over the other cases; a case measured over 2x its prediction, "
     "by more than 3 robust spreads of the residuals, is marked \"inefficient: look at it\": "
-    "its time is not explained by its work.";
+    "its time is not explained by its work, and the fit is redone without it so that it does "
+    "not inflate the others' costs. Counters that grow together (vertices and fragments) share "
+    "their time between them: a coefficient describes this run, not the device.";
 std::string costModelTitle(const CostModel& m);    // "gl on llvmpipe (...)"
 std::string costModelSummary(const CostModel& m);  // "R² = 0.93 over 48 cases." or the note
 // Images named by results' `images` are read relative to `dir` and embedded.

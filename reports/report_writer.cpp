@@ -2,6 +2,7 @@
 #include "reports/report_writer.h"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -147,8 +148,14 @@ std::string costModelTitle(const CostModel& m) {
 
 std::string costModelSummary(const CostModel& m) {
   if (!m.fitted) return m.note;
-  return "R² = " + formatSig(*m.r2, 3) + " over " + std::to_string(m.cases.size()) + " cases" +
-         (m.note.empty() ? "" : " (" + m.note + ")") + ".";
+  const std::size_t out = m.cases.size() - static_cast<std::size_t>(m.fitCases);
+  return "R² = " + formatSig(*m.r2, 3) + " over the " + std::to_string(m.fitCases) +
+         " cases in the fit" +
+         (out ? "; " + std::to_string(out) + " marked inefficient left out (R² over all " +
+                    std::to_string(m.cases.size()) + ": " + formatSig(m.r2All.value_or(NAN), 3) +
+                    ")"
+              : "") +
+         (m.note.empty() ? "" : "; " + m.note) + ".";
 }
 
 std::string renderMarkdown(const ReportData& d) {

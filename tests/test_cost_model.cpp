@@ -138,6 +138,15 @@ TEST(CostModel, FlagsACaseFarSlowerThanItsWork) {
   ASSERT_TRUE(m.cases[0].ratio);
   EXPECT_GT(*m.cases[0].ratio, 2.0);
   for (std::size_t k = 1; k < m.cases.size(); ++k) EXPECT_FALSE(m.cases[k].inefficient);
+  // Refitted without it: the others' costs as they are, and R² = 1 over the fit.
+  EXPECT_FALSE(m.cases[0].inFit);
+  EXPECT_EQ(m.fitCases, 13);
+  EXPECT_NEAR(coefficient(m, "fragments"), 2.0, 1e-6);
+  EXPECT_NEAR(coefficient(m, "bytes"), 3.0, 1e-6);
+  EXPECT_NEAR(coefficient(m, "constant"), 1.0, 1e-6);
+  ASSERT_TRUE(m.r2 && m.r2All);
+  EXPECT_NEAR(*m.r2, 1.0, 1e-9);
+  EXPECT_LT(*m.r2All, 0.9);
 }
 
 TEST(CostModel, CoefficientsStayNonNegative) {
