@@ -207,27 +207,43 @@ Cell workCell(const json* work, const WorkColumn& c) {
 
 void buildPassesTable(Group& g) {
   Table& t = g.passes;
-  t.header = {"Case", "Backend", "Technique", "Pass", "Executions", "Median ms"};
-  for (const WorkColumn& c : kWorkColumns) t.header.push_back(c.header);
   std::vector<std::string> params;
   for (const std::string& k : g.params)
     if (k != "backend") params.push_back(k);
   const bool nameOit = anyTransparency(g.results);
+  // The case by what varies within the group (its id repeats the group and backend).
+  auto labelOf = [&](const json& r) {
+    std::string label;
+    for (const std::string& k : params)
+      label += (label.empty() ? "" : ", ") + k + "=" + text(find(r, {"case", "params", k}));
+    return label.empty() ? caseId(r) : label;
+  };
+  // The technique gets a column only where the case's label names neither its shadow
+  // nor its transparency technique ("shadow=dom:layers=3", "oit=wsum" do; the group's
+  // axis is the one that varies): the table is wide enough as it is.
+  const bool techniqueColumn = std::any_of(g.results.begin(), g.results.end(), [&](const json* r) {
+    const std::string label = labelOf(*r);
+    auto names = [&](const char* key) {
+      const std::string spec = text(find(*r, {key}));
+      const std::string name = spec.substr(0, spec.find(':'));  // "exact:method=abuffer"
+      return !name.empty() && label.find(name) != std::string::npos;
+    };
+    return !names("shadow") && !names("oit");
+  });
+  t.header = {"Case", "Backend"};
+  if (techniqueColumn) t.header.push_back("Technique");
+  for (const char* h : {"Pass", "Executions", "Median ms"}) t.header.push_back(h);
+  for (const WorkColumn& c : kWorkColumns) t.header.push_back(c.header);
   for (const json* r : g.results) {
     const json* passes = find(*r, {"passes"});
     if (!passes || !passes->is_array()) continue;
-    // The case by what varies within the group (its id repeats the group and backend).
-    std::string label;
-    for (const std::string& k : params)
-      label += (label.empty() ? "" : ", ") + k + "=" + text(find(*r, {"case", "params", k}));
-    if (label.empty()) label = caseId(*r);
+    const std::string label = labelOf(*r);
     for (const json& p : *passes) {
-      std::vector<Cell> row = {{label},
-                               {backendOf(*r)},
-                               {shortTechniqueOf(*r, nameOit)},
-                               {orDefault(text(find(p, {"name"})), kNone)},
-                               {orDefault(text(find(p, {"executions"})), kNone), true},
-                               num(number(find(p, {"ms", "median"})))};
+      std::vector<Cell> row = {{label}, {backendOf(*r)}};
+      if (techniqueColumn) row.push_back({shortTechniqueOf(*r, nameOit)});
+      row.insert(row.end(), {{orDefault(text(find(p, {"name"})), kNone)},
+                             {orDefault(text(find(p, {"executions"})), kNone), true},
+                             num(number(find(p, {"ms", "median"})))});
       const json* work = find(p, {"work"});
       for (const WorkColumn& c : kWorkColumns) row.push_back(workCell(work, c));
       t.rows.push_back(std::move(row));

@@ -110,9 +110,11 @@ struct Box {
 };
 
 struct PlacedLabel {
-  std::size_t series;
   double x, y;  // text-anchor start, baseline
   std::string text;
+  double px, py;  // the point
+  bool far;       // placed on the outer ring: drawn with a leader line to its point
+  Box box;
 };
 
 struct LabelLayout {
@@ -158,7 +160,7 @@ LabelLayout placeLabels(const Chart& chart, PX px, PY py, Box plot) {
               std::any_of(taken.begin(), taken.end(), [&](const Box& t) { return t.overlaps(b); }))
             continue;
           taken.push_back(b);
-          out.placed.push_back({i, tx, ty, p.label});
+          out.placed.push_back({tx, ty, p.label, x, y, d > 5, b});
           done = true;
           break;
         }
@@ -330,11 +332,6 @@ std::string svgChart(const Chart& chart) {
       }
       o << "</g>\n";
     }
-    for (const PlacedLabel& l : labels.placed)
-      if (l.series == i)
-        o << "<text class=\"point-label\" x=\"" << fmt(l.x) << "\" y=\"" << fmt(l.y)
-          << "\" font-size=\"" << kLabelFontSize << "\" fill=\"#333\">" << htmlEscape(l.text)
-          << "</text>\n";
     const int ly = kTop + plotH + kBottom + kLegendRow * static_cast<int>(i) + 8;
     o << "<line x1=\"" << kLeft << "\" x2=\"" << kLeft + 20 << "\" y1=\"" << ly << "\" y2=\"" << ly
       << "\" stroke=\"" << color << "\" stroke-width=\"" << (s.line ? "1.5" : "0") << "\"" << dash
@@ -344,6 +341,23 @@ std::string svgChart(const Chart& chart) {
         << "\"/>";
     o << "<text x=\"" << kLeft + 26 << "\" y=\"" << ly << "\" dominant-baseline=\"middle\">"
       << htmlEscape(s.name) << "</text>\n";
+  }
+  // Labels over every series, with a white halo, so that no line runs through them.
+  for (const PlacedLabel& l : labels.placed) {
+    if (l.far) {
+      // From the marker's edge to the nearest point of the label's box.
+      const double ex = std::clamp(l.px, l.box.x0, l.box.x1),
+                   ey = std::clamp(l.py, l.box.y0, l.box.y1);
+      const double len = std::hypot(ex - l.px, ey - l.py);
+      if (len > kMarkerRadius + 1)
+        o << "<line class=\"label-leader\" x1=\"" << fmt(l.px + (ex - l.px) * kMarkerRadius / len)
+          << "\" y1=\"" << fmt(l.py + (ey - l.py) * kMarkerRadius / len) << "\" x2=\"" << fmt(ex)
+          << "\" y2=\"" << fmt(ey) << "\" stroke=\"#999\" stroke-width=\"0.75\"/>\n";
+    }
+    o << "<text class=\"point-label\" x=\"" << fmt(l.x) << "\" y=\"" << fmt(l.y)
+      << "\" font-size=\"" << kLabelFontSize
+      << "\" fill=\"#333\" stroke=\"#fff\" stroke-width=\"2.5\" paint-order=\"stroke\">"
+      << htmlEscape(l.text) << "</text>\n";
   }
   for (std::size_t k = 0; k < crowdedLines.size(); ++k)
     o << "<text class=\"crowded\" x=\"" << kLeft << "\" y=\""
