@@ -30,6 +30,7 @@ h2 { border-bottom: 1px solid #ccc; padding-bottom: 4px; margin-top: 32px; }
 table { border-collapse: collapse; margin: 8px 0 16px; font-size: 13px; }
 th, td { border: 1px solid #ccc; padding: 3px 8px; text-align: left; }
 th { background: #f3f3f3; }
+td { overflow-wrap: anywhere; }
 td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
 .cost-cases td:last-child { white-space: nowrap; }
 .charts, .grid { display: flex; flex-wrap: wrap; gap: 16px; align-items: flex-start; }
@@ -43,6 +44,8 @@ nav a { margin-right: 16px; }
 .metric-choice .pick-0:checked ~ .choice-0, .metric-choice .pick-1:checked ~ .choice-1,
 .metric-choice .pick-2:checked ~ .choice-2 { display: block; }
 details { margin: 4px 0; }
+details.passes { overflow-x: auto; }
+details.passes table { font-size: 12px; }
 summary { cursor: pointer; }
 .strip img { width: auto; max-width: 100%; image-rendering: pixelated; border: 1px solid #ccc; }
 </style>
