@@ -148,12 +148,15 @@ LabelLayout placeLabels(const Chart& chart, PX px, PY py, Box plot) {
       const double x = px(p.x), y = py(p.y);
       const double w = static_cast<double>(p.label.size()) * fs * 0.6;
       bool done = false;
-      // Near the point first (up right, as a reader looks), then farther out.
-      for (double d : {5.0, 16.0}) {
+      // Near the point first (up right, as a reader looks), then two rings farther out;
+      // above and below also with the label's end or start over the point, for points
+      // near the plot's edges.
+      for (double d : {5.0, 16.0, 28.0}) {
         const std::pair<double, double> spots[] = {
-            {x + d, y - d},          {x + d, y + d + fs},        {x - d - w, y - d},
-            {x - d - w, y + d + fs}, {x + d + 1, y + fs / 2},    {x - d - 1 - w, y + fs / 2},
-            {x - w / 2, y - d - 1},  {x - w / 2, y + d + 1 + fs}};
+            {x + d, y - d},          {x + d, y + d + fs},         {x - d - w, y - d},
+            {x - d - w, y + d + fs}, {x + d + 1, y + fs / 2},     {x - d - 1 - w, y + fs / 2},
+            {x - w / 2, y - d - 1},  {x - w / 2, y + d + 1 + fs}, {x + 3 - w, y - d - 1},
+            {x - 3, y - d - 1},      {x + 3 - w, y + d + 1 + fs}, {x - 3, y + d + 1 + fs}};
         for (const auto& [tx, ty] : spots) {
           const Box b{tx, ty - fs, tx + w, ty + 2};  // 2 px for descenders
           if (!b.inside(plot) ||
