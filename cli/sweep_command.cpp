@@ -54,15 +54,17 @@ void registerSweepCommands(CLI::App& app) {
     });
   }
   {
-    auto* cmd = app.add_subcommand(
-        "report", "write results.json, results.csv, report.md and report.html of a sweep folder");
+    auto* cmd = app.add_subcommand("report",
+                                   "write results.json, results.csv, passes.csv, cost_model.json, "
+                                   "report.md and report.html of a sweep folder");
     auto dir = std::make_shared<std::string>();
     cmd->add_option("dir", *dir, "sweep folder")->required();
     cmd->callback([dir] {
       runGuarded("report", [&] {
         const int n = writeSweepReport(*dir);
-        std::cout << "wrote " << *dir << "/results.json (" << n
-                  << " results), results.csv, report.md, report.html\n";
+        std::cout
+            << "wrote " << *dir << "/results.json (" << n
+            << " results), results.csv, passes.csv, cost_model.json, report.md, report.html\n";
         return 0;
       });
     });

@@ -484,7 +484,7 @@ int runSweep(const SweepOptions& o) {
   }
   const int n = writeSweepReport(o.out);
   std::cout << "wrote " << (dir / "results.json").string() << " (" << n
-            << " results), results.csv, report.md, report.html\n";
+            << " results), results.csv, passes.csv, cost_model.json, report.md, report.html\n";
   // Cases done by an earlier run count too: a resumed sweep reports them.
   for (const auto* c : selected) {
     if (std::find(todo.begin(), todo.end(), c) != todo.end()) continue;

@@ -197,6 +197,60 @@ PaperTable buildPaperTable(const json& t, const std::vector<const json*>& result
   return pt;
 }
 
+// A work counter as a table cell: counts as "1.2 M", bytes as "16 MiB", absent or
+// null (a device without queries) as kNone.
+Cell workCell(const json* work, const WorkColumn& c) {
+  const std::optional<double> v = work ? number(find(*work, {c.key})) : std::nullopt;
+  if (!v) return {kNone, true};
+  return {c.bytes ? formatBytes(*v) : formatCount(*v), true};
+}
+
+void buildPassesTable(Group& g) {
+  Table& t = g.passes;
+  std::vector<std::string> params;
+  for (const std::string& k : g.params)
+    if (k != "backend") params.push_back(k);
+  const bool nameOit = anyTransparency(g.results);
+  // The case by what varies within the group (its id repeats the group and backend).
+  auto labelOf = [&](const json& r) {
+    std::string label;
+    for (const std::string& k : params)
+      label += (label.empty() ? "" : ", ") + k + "=" + text(find(r, {"case", "params", k}));
+    return label.empty() ? caseId(r) : label;
+  };
+  // The technique gets a column only where the case's label names neither its shadow
+  // nor its transparency technique ("shadow=dom:layers=3", "oit=wsum" do; the group's
+  // axis is the one that varies): the table is wide enough as it is.
+  const bool techniqueColumn = std::any_of(g.results.begin(), g.results.end(), [&](const json* r) {
+    const std::string label = labelOf(*r);
+    auto names = [&](const char* key) {
+      const std::string spec = text(find(*r, {key}));
+      const std::string name = spec.substr(0, spec.find(':'));  // "exact:method=abuffer"
+      return !name.empty() && label.find(name) != std::string::npos;
+    };
+    return !names("shadow") && !names("oit");
+  });
+  t.header = {"Case", "Backend"};
+  if (techniqueColumn) t.header.push_back("Technique");
+  for (const char* h : {"Pass", "Executions", "Median ms"}) t.header.push_back(h);
+  for (const WorkColumn& c : kWorkColumns) t.header.push_back(c.header);
+  for (const json* r : g.results) {
+    const json* passes = find(*r, {"passes"});
+    if (!passes || !passes->is_array()) continue;
+    const std::string label = labelOf(*r);
+    for (const json& p : *passes) {
+      std::vector<Cell> row = {{label}, {backendOf(*r)}};
+      if (techniqueColumn) row.push_back({shortTechniqueOf(*r, nameOit)});
+      row.insert(row.end(), {{orDefault(text(find(p, {"name"})), kNone)},
+                             {orDefault(text(find(p, {"executions"})), kNone), true},
+                             num(number(find(p, {"ms", "median"})))});
+      const json* work = find(p, {"work"});
+      for (const WorkColumn& c : kWorkColumns) row.push_back(workCell(work, c));
+      t.rows.push_back(std::move(row));
+    }
+  }
+}
+
 Group buildGroup(const std::string& name, const json* jgroup,
                  const std::vector<const json*>& results) {
   Group g;
@@ -270,6 +324,7 @@ Group buildGroup(const std::string& name, const json* jgroup,
     }
     g.table.rows.push_back(std::move(cells));
   }
+  buildPassesTable(g);
   return g;
 }
 
@@ -400,6 +455,49 @@ std::string formatSig(double v, int digits) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
   return buf;
+}
+
+std::string formatCount(double v) {
+  if (!std::isfinite(v)) return kNone;
+  const double a = std::abs(v);
+  if (a < 1e3) return shortest(std::round(v * 100) / 100);
+  const char* suffix = a < 1e6 ? " k" : a < 1e9 ? " M" : " G";
+  const double scaled = v / (a < 1e6 ? 1e3 : a < 1e9 ? 1e6 : 1e9);
+  return formatSig(scaled, 2 + (std::abs(scaled) >= 100)) + suffix;
+}
+
+std::string formatBytes(double v) {
+  if (!std::isfinite(v)) return kNone;
+  const double a = std::abs(v);
+  if (a < 1024) return shortest(v) + " B";
+  const char* suffix = a < kMiB ? " KiB" : a < 1024 * kMiB ? " MiB" : " GiB";
+  const double scaled = v / (a < kMiB ? 1024 : a < 1024 * kMiB ? kMiB : 1024 * kMiB);
+  return formatSig(scaled, 2 + (std::abs(scaled) >= 100)) + suffix;
+}
+
+Table costTermsTable(const CostModel& m) {
+  Table t;
+  t.header = {"Term", "Coefficient", "Unit"};
+  for (const CostTerm& term : m.terms)
+    t.rows.push_back({{term.name},
+                      m.fitted ? Cell{formatSig(term.coefficient), true} : Cell{kNone, true},
+                      {term.unit}});
+  return t;
+}
+
+Table costCasesTable(const CostModel& m) {
+  Table t;
+  t.header = {"Case", "Technique", "Measured ms", "Predicted ms", "Measured / predicted", "Note"};
+  for (const CostCase& c : m.cases)
+    t.rows.push_back({{c.caseId},
+                      {c.technique},
+                      num(c.measured),
+                      num(c.predicted),
+                      num(c.ratio, 2),
+                      {c.inefficient ? "inefficient: look at it"
+                       : c.inFit     ? ""
+                                     : "left out of the fit"}});
+  return t;
 }
 
 std::string caseId(const json& r) { return orDefault(text(find(r, {"case", "id"})), "(no id)"); }
@@ -553,6 +651,8 @@ ReportData buildReport(const json& doc) {
                                      {vis}});
     d.animations.push_back(std::move(an));
   }
+
+  d.costModels = fitCostModels(d.results);
 
   for (const json* r : d.results) {
     if (const json* ws = find(*r, {"warnings"}); ws && ws->is_array())

@@ -12,6 +12,8 @@
 #include <utility>
 #include <vector>
 
+#include "reports/cost_model.h"
+
 namespace sb::report {
 
 using nlohmann::json;
@@ -29,6 +31,10 @@ std::string text(const json* j);
 
 // v with `digits` significant digits in fixed notation (1.90, 154, 0.00123).
 std::string formatSig(double v, int digits = 3);
+// A count for reading: "950", "288 k", "1.2 M", "3.4 G".
+std::string formatCount(double v);
+// Bytes for reading: "256 B", "320 KiB", "16 MiB", "1.5 GiB".
+std::string formatBytes(double v);
 // Shortest text that reads back as v.
 std::string shortest(double v);
 // The text of a cell with no value.
@@ -85,7 +91,25 @@ struct Group {
   std::vector<std::string> params;  // case.params keys: sorted, backend last
   std::vector<const json*> results;
   Table table;
+  Table passes;  // one row per case and pass: its median time and work (no rows: no passes)
 };
+
+// The work counters of a pass (`work`) or frame (`frame_work`) that the reports show:
+// key, column header, and whether the value is bytes.
+struct WorkColumn {
+  const char* key;
+  const char* header;
+  bool bytes;
+};
+inline constexpr WorkColumn kWorkColumns[] = {{"fragment_invocations", "Fragments", false},
+                                              {"vertex_invocations", "Vertices", false},
+                                              {"samples_passed", "Samples passed", false},
+                                              {"compute_invocations", "Compute", false},
+                                              {"draws", "Draws", false},
+                                              {"dispatches", "Dispatches", false},
+                                              {"bytes_written", "Written", true},
+                                              {"bytes_read", "Read", true},
+                                              {"bytes_storage", "Storage", true}};
 
 // Per scene, size and backend: for each frame-time budget (the frame times of
 // the Pareto frontiers), the most accurate technique that fits it.
@@ -117,8 +141,14 @@ struct ReportData {
   // Cases that did not finish (a sweep records the reason: out of memory, a
   // device error) and keep going: shown as failed in every table.
   std::vector<Warning> failures;
-  std::vector<const json*> results;  // in document order
+  std::vector<const json*> results;   // in document order
+  std::vector<CostModel> costModels;  // per backend and device
 };
+
+// The tables of a cost model: its terms with coefficients, and its cases by
+// measured / predicted.
+Table costTermsTable(const CostModel& m);
+Table costCasesTable(const CostModel& m);
 
 // Throws InputError when `doc` is not a JSON object; anything missing inside it
 // is shown as absent.
@@ -132,7 +162,27 @@ std::string md(const std::string& s);
 void mdTable(std::ostream& o, const Table& t);
 
 std::string renderCsv(const ReportData& data);
+// passes.csv: one row per case and pass, with the pass's median time and work.
+std::string renderPassesCsv(const ReportData& data);
 std::string renderMarkdown(const ReportData& data);
+
+// The explanations and headings that report.md and report.html share.
+inline constexpr const char* kPassesAbout =
+    "Per case and pass: how often the pass ran in a frame, its median time, and its exact work: "
+    "shader invocations and samples passed from the device's queries, draws, dispatches and "
+    "the bytes the pass writes, reads and binds as storage from the front end (– where the "
+    "device has no queries or the result predates the counters).";
+inline constexpr const char* kCostModelAbout =
+    "Per backend and device, the median frame time fitted against the frame's work with "
+    "non-negative least squares: ms per million fragments, vertices and compute invocations, "
+    "per MiB written, read or bound as storage, per pass execution, and a constant. Each case's "
+    "prediction comes from the fit over the other cases; a case measured over 2x its prediction, "
+    "by more than 3 robust spreads of the residuals, is marked \"inefficient: look at it\": "
+    "its time is not explained by its work, and the fit is redone without it so that it does "
+    "not inflate the others' costs. Counters that grow together (vertices and fragments) share "
+    "their time between them: a coefficient describes this run, not the device.";
+std::string costModelTitle(const CostModel& m);    // "gl on llvmpipe (...)"
+std::string costModelSummary(const CostModel& m);  // "R² = 0.93 over 48 cases." or the note
 // Images named by results' `images` are read relative to `dir` and embedded.
 std::string renderHtml(const ReportData& data, const std::filesystem::path& dir);
 

@@ -30,7 +30,9 @@ h2 { border-bottom: 1px solid #ccc; padding-bottom: 4px; margin-top: 32px; }
 table { border-collapse: collapse; margin: 8px 0 16px; font-size: 13px; }
 th, td { border: 1px solid #ccc; padding: 3px 8px; text-align: left; }
 th { background: #f3f3f3; }
-td.num { text-align: right; font-variant-numeric: tabular-nums; }
+td { overflow-wrap: anywhere; }
+td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
+.cost-cases td:last-child { white-space: nowrap; }
 .charts, .grid { display: flex; flex-wrap: wrap; gap: 16px; align-items: flex-start; }
 figure { margin: 0 0 12px; }
 figcaption { font-size: 12px; max-width: 520px; overflow-wrap: anywhere; }
@@ -41,6 +43,10 @@ nav a { margin-right: 16px; }
 .metric-choice .choice { display: none; }
 .metric-choice .pick-0:checked ~ .choice-0, .metric-choice .pick-1:checked ~ .choice-1,
 .metric-choice .pick-2:checked ~ .choice-2 { display: block; }
+details { margin: 4px 0; }
+details.passes { overflow-x: auto; }
+details.passes table { font-size: 12px; }
+summary { cursor: pointer; }
 .strip img { width: auto; max-width: 100%; image-rendering: pixelated; border: 1px solid #ccc; }
 </style>
 )";
@@ -395,6 +401,7 @@ std::string renderHtml(const ReportData& d, const fs::path& dir) {
        "<a href=\"#error-time\">Error vs time</a><a href=\"#budgets\">Budgets</a>"
        "<a href=\"#depth-complexity\">Error vs depth complexity</a>"
        "<a href=\"#animation\">Animation</a><a href=\"#groups\">Groups</a>"
+       "<a href=\"#passes\">Passes</a><a href=\"#cost-model\">Cost model</a>"
        "<a href=\"#warnings\">Warnings</a></nav>\n";
 
   o << "<h2 id=\"context\">Context</h2>\n<table><tbody>\n";
@@ -463,6 +470,36 @@ std::string renderHtml(const ReportData& d, const fs::path& dir) {
     const std::string charts = groupCharts(g) + probeCharts(g);
     if (!charts.empty()) o << "<div class=\"charts\">\n" << charts << "</div>\n";
     o << imageGrid(g, dir);
+  }
+
+  o << "<h2 id=\"passes\">Passes: time and work</h2>\n<p>" << h(kPassesAbout) << "</p>\n";
+  bool anyPasses = false;
+  for (const Group& g : d.groups) {
+    if (g.passes.rows.empty()) continue;
+    anyPasses = true;
+    // Collapsed: a row per pass of every case would bury the rest of the page.
+    o << "<details class=\"passes\"><summary>" << h(g.name.empty() ? "(no group)" : g.name) << " ("
+      << g.passes.rows.size() << " passes of " << g.results.size() << " cases)</summary>\n";
+    htmlTable(o, g.passes);
+    o << "</details>\n";
+  }
+  if (!anyPasses) o << "<p>No results with passes.</p>\n";
+
+  o << "<h2 id=\"cost-model\">Cost model</h2>\n<p>" << h(kCostModelAbout) << "</p>\n";
+  if (d.costModels.empty()) o << "<p>No results with work counters.</p>\n";
+  for (const CostModel& m : d.costModels) {
+    o << "<h3>" << h(costModelTitle(m)) << "</h3>\n<p>" << h(costModelSummary(m)) << "</p>\n";
+    if (m.fitted) htmlTable(o, costTermsTable(m));
+    if (m.cases.empty()) continue;
+    Table cases = costCasesTable(m);
+    o << "<details class=\"cost-cases\"" << (m.fitted ? " open" : "") << "><summary>"
+      << cases.rows.size() << " cases by measured / predicted";
+    const auto flagged = std::count_if(m.cases.begin(), m.cases.end(),
+                                       [](const CostCase& c) { return c.inefficient; });
+    if (flagged) o << ", " << flagged << " marked inefficient";
+    o << "</summary>\n";
+    htmlTable(o, cases);
+    o << "</details>\n";
   }
 
   if (!d.failures.empty()) {

@@ -1,6 +1,8 @@
 // results.csv and report.md, and writeReports (report.html: reports/report_html.cpp).
 #include "reports/report_writer.h"
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -65,7 +67,10 @@ std::string renderCsv(const ReportData& d) {
        "image_rmse,image_psnr,image_ssim,image_flip_mean,visibility_rmse,visibility_max,"
        "depth_complexity_eye_max,depth_complexity_light_max,own_technique,own_image_rmse,"
        "own_image_flip_mean,own_visibility_rmse,animation,animation_frames,animation_degrees,"
-       "flicker_image,flicker_visibility,failed\n";
+       "flicker_image,flicker_visibility,failed";
+  // The frame's work counters last, so the columns before them keep their places.
+  for (const WorkColumn& c : kWorkColumns) o << "," << c.key;
+  o << "\n";
   for (const json* r : d.results) {
     // Numbers in full precision; null (NaN, Inf) and missing values as empty cells.
     auto n = [&](std::initializer_list<std::string_view> path) {
@@ -107,10 +112,50 @@ std::string renderCsv(const ReportData& d) {
         n({"animation", "flicker", "visibility"}),
         failureOf(*r),  // empty for a case that ran
     };
-    for (std::size_t i = 0; i < fields.size(); ++i) o << (i ? "," : "") << csvField(fields[i]);
+    std::vector<std::string> row = fields;
+    for (const WorkColumn& c : kWorkColumns) row.push_back(n({"frame_work", c.key}));
+    for (std::size_t i = 0; i < row.size(); ++i) o << (i ? "," : "") << csvField(row[i]);
     o << "\n";
   }
   return o.str();
+}
+
+std::string renderPassesCsv(const ReportData& d) {
+  std::ostringstream o;
+  o << "case_id,backend,technique,pass,executions,ms_median";
+  for (const WorkColumn& c : kWorkColumns) o << "," << c.key;
+  o << "\n";
+  const bool nameOit = anyTransparency(d.results);
+  for (const json* r : d.results) {
+    const json* passes = find(*r, {"passes"});
+    if (!passes || !passes->is_array()) continue;
+    for (const json& p : *passes) {
+      auto n = [](const json* v) { return v && v->is_number() ? text(v) : std::string(); };
+      std::vector<std::string> row = {text(find(*r, {"case", "id"})), backendOf(*r),
+                                      shortTechniqueOf(*r, nameOit),  text(find(p, {"name"})),
+                                      n(find(p, {"executions"})),     n(find(p, {"ms", "median"}))};
+      for (const WorkColumn& c : kWorkColumns) row.push_back(n(find(p, {"work", c.key})));
+      for (std::size_t i = 0; i < row.size(); ++i) o << (i ? "," : "") << csvField(row[i]);
+      o << "\n";
+    }
+  }
+  return o.str();
+}
+
+std::string costModelTitle(const CostModel& m) {
+  return m.backend + " on " + (m.device.empty() ? "(unnamed device)" : m.device);
+}
+
+std::string costModelSummary(const CostModel& m) {
+  if (!m.fitted) return m.note;
+  const std::size_t out = m.cases.size() - static_cast<std::size_t>(m.fitCases);
+  return "R² = " + formatSig(*m.r2, 3) + " over the " + std::to_string(m.fitCases) +
+         " cases in the fit" +
+         (out ? "; " + std::to_string(out) + " marked inefficient left out (R² over all " +
+                    std::to_string(m.cases.size()) + ": " + formatSig(m.r2All.value_or(NAN), 3) +
+                    ")"
+              : "") +
+         (m.note.empty() ? "" : "; " + m.note) + ".";
 }
 
 std::string renderMarkdown(const ReportData& d) {
@@ -142,6 +187,25 @@ std::string renderMarkdown(const ReportData& d) {
       o << "No results.\n\n";
     else
       mdTable(o, g.table);
+  }
+
+  if (std::any_of(d.groups.begin(), d.groups.end(),
+                  [](const Group& g) { return !g.passes.rows.empty(); })) {
+    o << "## Passes: time and work\n\n" << kPassesAbout << "\n\n";
+    for (const Group& g : d.groups) {
+      if (g.passes.rows.empty()) continue;
+      o << "### " << md(g.name.empty() ? "(no group)" : g.name) << "\n\n";
+      mdTable(o, g.passes);
+    }
+  }
+
+  if (!d.costModels.empty()) {
+    o << "## Cost model\n\n" << kCostModelAbout << "\n\n";
+    for (const CostModel& m : d.costModels) {
+      o << "### " << md(costModelTitle(m)) << "\n\n" << md(costModelSummary(m)) << "\n\n";
+      if (m.fitted) mdTable(o, costTermsTable(m));
+      if (!m.cases.empty()) mdTable(o, costCasesTable(m));
+    }
   }
 
   if (!d.failures.empty()) {
@@ -184,7 +248,11 @@ void writeReports(const nlohmann::json& results, const std::filesystem::path& di
   const std::string csv = report::renderCsv(data);
   const std::string markdown = report::renderMarkdown(data);
   const std::string html = report::renderHtml(data, dir);
+  const std::string passes = report::renderPassesCsv(data);
+  const std::string costModel = report::costModelsJson(data.costModels).dump(1) + "\n";
   writeFileAtomic(dir / "results.csv", csv);
+  writeFileAtomic(dir / "passes.csv", passes);
+  writeFileAtomic(dir / "cost_model.json", costModel);
   writeFileAtomic(dir / "report.md", markdown);
   writeFileAtomic(dir / "report.html", html);
 }

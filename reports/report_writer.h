@@ -7,8 +7,10 @@
 
 namespace sb {
 
-// Writes dir/results.csv (one row per result), dir/report.md (context, paper
-// tables, one table per group, warnings) and dir/report.html (the same plus
+// Writes dir/results.csv (one row per result), dir/passes.csv (one row per case
+// and pass), dir/cost_model.json (reports/cost_model.h), dir/report.md (context,
+// paper tables, one table per group, passes, cost model, warnings) and
+// dir/report.html (the same plus
 // inline-SVG charts and the images named by results' `images`, relative to dir,
 // embedded as data URIs). Each file is written as NAME.tmp and renamed into
 // place. Missing keys, null (NaN, Inf) values and an empty results array are

@@ -33,11 +33,12 @@ struct Axis {
   std::string label(double v) const {
     char buf[32];
     if (log) {
-      const int e = static_cast<int>(std::lround(std::log10(v)));
+      // Ticks are 1, 2 or 5 x 10^e: as many decimals as the leading digit needs.
+      const int e = static_cast<int>(std::floor(std::log10(v) + 1e-9));
       if (e >= -3 && e <= 5)
         std::snprintf(buf, sizeof buf, "%.*f", std::max(0, -e), v);
       else
-        std::snprintf(buf, sizeof buf, "1e%d", e);
+        std::snprintf(buf, sizeof buf, "%g", v);
     } else if (step >= 1e6 || step < 1e-6) {
       std::snprintf(buf, sizeof buf, "%g", v);
     } else {
@@ -56,13 +57,25 @@ double niceStep(double raw) {
 
 Axis makeAxis(double min, double max, bool autoLog) {
   Axis a;
-  if (autoLog && min > 0 && max / min > 100) {
+  if (autoLog && min > 0 && max / min > kLogAxisRange) {
     a.log = true;
     const int e0 = static_cast<int>(std::floor(std::log10(min)));
     const int e1 = static_cast<int>(std::ceil(std::log10(max)));
-    a.lo = std::pow(10.0, e0);
-    a.hi = std::pow(10.0, e1);
-    for (int e = e0; e <= e1; ++e) a.ticks.push_back(std::pow(10.0, e));
+    // Up to three decades, ticks at 1, 2 and 5 x 10^k and the ends at the nearest of
+    // them, so a range of 15x does not sit in a corner of two bare decades.
+    const bool fine = e1 - e0 <= 3;
+    std::vector<double> steps;
+    for (int e = e0; e <= e1; ++e)
+      for (double m : {1.0, 2.0, 5.0})
+        if (fine || m == 1.0) steps.push_back(m * std::pow(10.0, e));
+    a.lo = steps.front();
+    a.hi = steps.back();
+    for (double t : steps)
+      if (t <= min * (1 + 1e-12)) a.lo = t;
+    for (auto it = steps.rbegin(); it != steps.rend(); ++it)
+      if (*it >= max * (1 - 1e-12)) a.hi = *it;
+    for (double t : steps)
+      if (t >= a.lo && t <= a.hi) a.ticks.push_back(t);
     return a;
   }
   if (max == min) {  // one value: centre it in a small range
@@ -86,6 +99,101 @@ std::string fmt(double v) {
 
 bool finite(const ChartPoint& p) { return std::isfinite(p.x) && std::isfinite(p.y); }
 bool hasBar(const ChartPoint& p) { return std::isfinite(p.xLo) && std::isfinite(p.xHi); }
+
+constexpr int kCrowdedRow = 14;
+constexpr double kMarkerRadius = 3.5;
+
+struct Box {
+  double x0, y0, x1, y1;
+  bool overlaps(const Box& o) const { return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1; }
+  bool inside(const Box& o) const { return x0 >= o.x0 && x1 <= o.x1 && y0 >= o.y0 && y1 <= o.y1; }
+};
+
+struct PlacedLabel {
+  double x, y;  // text-anchor start, baseline
+  std::string text;
+  double px, py;  // the point
+  bool far;       // placed on the outer ring: drawn with a leader line to its point
+  Box box;
+};
+
+struct LabelLayout {
+  std::vector<PlacedLabel> placed;
+  std::vector<std::string> crowded;  // "label — x, y"
+};
+
+std::string g3(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+
+// Greedy placement in series and point order: the first candidate place around the
+// point whose box stays in the plot and overlaps no marker and no label placed so far.
+template <class PX, class PY>
+LabelLayout placeLabels(const Chart& chart, PX px, PY py, Box plot) {
+  std::vector<Box> taken;
+  for (const ChartSeries& s : chart.series) {
+    if (!s.markers) continue;
+    for (const ChartPoint& p : s.points)
+      if (finite(p))
+        taken.push_back({px(p.x) - kMarkerRadius, py(p.y) - kMarkerRadius, px(p.x) + kMarkerRadius,
+                         py(p.y) + kMarkerRadius});
+  }
+  const double fs = kLabelFontSize;
+  LabelLayout out;
+  for (std::size_t i = 0; i < chart.series.size(); ++i) {
+    for (const ChartPoint& p : chart.series[i].points) {
+      if (!finite(p) || p.label.empty()) continue;
+      const double x = px(p.x), y = py(p.y);
+      const double w = static_cast<double>(p.label.size()) * fs * 0.6;
+      bool done = false;
+      // Near the point first (up right, as a reader looks), then two rings farther out;
+      // above and below also with the label's end or start over the point, for points
+      // near the plot's edges.
+      for (double d : {5.0, 16.0, 28.0}) {
+        const std::pair<double, double> spots[] = {
+            {x + d, y - d},          {x + d, y + d + fs},         {x - d - w, y - d},
+            {x - d - w, y + d + fs}, {x + d + 1, y + fs / 2},     {x - d - 1 - w, y + fs / 2},
+            {x - w / 2, y - d - 1},  {x - w / 2, y + d + 1 + fs}, {x + 3 - w, y - d - 1},
+            {x - 3, y - d - 1},      {x + 3 - w, y + d + 1 + fs}, {x - 3, y + d + 1 + fs}};
+        for (const auto& [tx, ty] : spots) {
+          const Box b{tx, ty - fs, tx + w, ty + 2};  // 2 px for descenders
+          if (!b.inside(plot) ||
+              std::any_of(taken.begin(), taken.end(), [&](const Box& t) { return t.overlaps(b); }))
+            continue;
+          taken.push_back(b);
+          out.placed.push_back({tx, ty, p.label, x, y, d > 5, b});
+          done = true;
+          break;
+        }
+        if (done) break;
+      }
+      if (!done) out.crowded.push_back(p.label + " — " + g3(p.x) + ", " + g3(p.y));
+    }
+  }
+  return out;
+}
+
+// The crowded labels as lines of "crowded: a — x, y; b — x, y" that fit `width` at
+// the chart's 11 px font (about 6.6 px a character).
+std::vector<std::string> wrapCrowded(const std::vector<std::string>& items, int width) {
+  std::vector<std::string> lines;
+  const std::size_t chars = static_cast<std::size_t>(std::max(20, width / 7));
+  std::string line = "crowded (x, y): ";
+  bool first = true;
+  for (const std::string& item : items) {
+    if (!first && line.size() + 2 + item.size() > chars) {
+      lines.push_back(line + ";");
+      line = "  ";
+      first = true;
+    }
+    line += (first ? "" : "; ") + item;
+    first = false;
+  }
+  if (!items.empty()) lines.push_back(line);
+  return lines;
+}
 
 }  // namespace
 
@@ -149,11 +257,16 @@ std::string svgChart(const Chart& chart) {
   // About 7 px per character of the 13 px title.
   const int width = std::max(chart.width, 7 * static_cast<int>(chart.title.size()) + 16);
   const int plotW = width - kLeft - kRight, plotH = chart.plotHeight;
-  const int height =
-      kTop + plotH + kBottom + kLegendRow * static_cast<int>(chart.series.size()) + 4;
   // Data are mapped inset from the frame so that points on the range ends stay visible.
   auto px = [&](double x) { return kLeft + kInset + ax.frac(x) * (plotW - 2 * kInset); };
   auto py = [&](double y) { return kTop + kInset + (1 - ay.frac(y)) * (plotH - 2 * kInset); };
+  const LabelLayout labels = empty ? LabelLayout{}
+                                   : placeLabels(chart, px, py,
+                                                 Box{double(kLeft), double(kTop),
+                                                     double(kLeft + plotW), double(kTop + plotH)});
+  const std::vector<std::string> crowdedLines = wrapCrowded(labels.crowded, width - kLeft);
+  const int height = kTop + plotH + kBottom + kLegendRow * static_cast<int>(chart.series.size()) +
+                     kCrowdedRow * static_cast<int>(crowdedLines.size()) + 4;
 
   std::ostringstream o;
   o << "<svg class=\"" << htmlEscape(chart.cssClass.empty() ? "chart" : chart.cssClass)
@@ -222,11 +335,6 @@ std::string svgChart(const Chart& chart) {
       }
       o << "</g>\n";
     }
-    for (const ChartPoint* p : pts)
-      if (!p->label.empty())
-        o << "<text class=\"point-label\" x=\"" << fmt(px(p->x) + 5) << "\" y=\""
-          << fmt(py(p->y) - 5) << "\" font-size=\"9\" fill=\"#333\">" << htmlEscape(p->label)
-          << "</text>\n";
     const int ly = kTop + plotH + kBottom + kLegendRow * static_cast<int>(i) + 8;
     o << "<line x1=\"" << kLeft << "\" x2=\"" << kLeft + 20 << "\" y1=\"" << ly << "\" y2=\"" << ly
       << "\" stroke=\"" << color << "\" stroke-width=\"" << (s.line ? "1.5" : "0") << "\"" << dash
@@ -237,6 +345,29 @@ std::string svgChart(const Chart& chart) {
     o << "<text x=\"" << kLeft + 26 << "\" y=\"" << ly << "\" dominant-baseline=\"middle\">"
       << htmlEscape(s.name) << "</text>\n";
   }
+  // Labels over every series, with a white halo, so that no line runs through them.
+  for (const PlacedLabel& l : labels.placed) {
+    if (l.far) {
+      // From the marker's edge to the nearest point of the label's box.
+      const double ex = std::clamp(l.px, l.box.x0, l.box.x1),
+                   ey = std::clamp(l.py, l.box.y0, l.box.y1);
+      const double len = std::hypot(ex - l.px, ey - l.py);
+      if (len > kMarkerRadius + 1)
+        o << "<line class=\"label-leader\" x1=\"" << fmt(l.px + (ex - l.px) * kMarkerRadius / len)
+          << "\" y1=\"" << fmt(l.py + (ey - l.py) * kMarkerRadius / len) << "\" x2=\"" << fmt(ex)
+          << "\" y2=\"" << fmt(ey) << "\" stroke=\"#999\" stroke-width=\"0.75\"/>\n";
+    }
+    o << "<text class=\"point-label\" x=\"" << fmt(l.x) << "\" y=\"" << fmt(l.y)
+      << "\" font-size=\"" << kLabelFontSize
+      << "\" fill=\"#333\" stroke=\"#fff\" stroke-width=\"2.5\" paint-order=\"stroke\">"
+      << htmlEscape(l.text) << "</text>\n";
+  }
+  for (std::size_t k = 0; k < crowdedLines.size(); ++k)
+    o << "<text class=\"crowded\" x=\"" << kLeft << "\" y=\""
+      << kTop + plotH + kBottom + kLegendRow * static_cast<int>(chart.series.size()) +
+             kCrowdedRow * static_cast<int>(k) + 8
+      << "\" dominant-baseline=\"middle\" fill=\"#555\">" << htmlEscape(crowdedLines[k])
+      << "</text>\n";
   o << "</svg>\n";
   return o.str();
 }

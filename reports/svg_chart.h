@@ -37,7 +37,17 @@ struct Chart {
 };
 
 // An axis is logarithmic when autoLog is set and all its values are positive and
-// span more than two decades, else linear with "nice" ticks (1, 2, 5 x 10^k).
+// span more than kLogAxisRange (frame times from 4 to 60 ms read better on a log
+// axis than squeezed at the bottom of a linear one), else linear with "nice" ticks
+// (1, 2, 5 x 10^k).
+//
+// Point labels do not overprint: each is put at the first of a few places around
+// its point that overlaps no label placed before it and no point (its box
+// estimated as characters x kLabelFontSize x 0.6 wide); a label with no free place
+// is left off and listed below the legend as "crowded: label — x, y" (class
+// "crowded").
+inline constexpr double kLogAxisRange = 10;
+inline constexpr double kLabelFontSize = 9;
 std::string svgChart(const Chart& chart);
 
 // The points of `points` on the Pareto frontier for minimum x and minimum y

@@ -3,11 +3,13 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -106,6 +108,14 @@ json makeDocument(const fs::path& dir) {
   results[1]["error"]["image"]["psnr"] = std::numeric_limits<double>::infinity();
   results[4]["frame_ms"]["stddev"] = std::numeric_limits<double>::quiet_NaN();
   results[3]["warnings"] = {"peeling cap hit: 8 layers | more needed & <tag>"};
+  // Work counters on one case (the others predate them); no queries: samples null.
+  results[2]["passes"][0]["executions"] = 2;
+  results[2]["passes"][0]["work"] = {{"fragment_invocations", 1234567},
+                                     {"vertex_invocations", 30000},
+                                     {"samples_passed", nullptr},
+                                     {"draws", 3},
+                                     {"bytes_written", 16 * 1024 * 1024}};
+  results[2]["frame_work"] = results[2]["passes"][0]["work"];
   results[6]["probe"] = {{"texel", {64, 64}},
                          {"map_size", 128},
                          {"light_depth", {0.1, 0.3, 0.5, 0.7, 0.9}},
@@ -269,6 +279,47 @@ TEST_F(ReportWriter, CsvHasOneQuotedRowPerResult) {
     EXPECT_NE(e.path().extension(), ".tmp") << e.path();
 }
 
+TEST_F(ReportWriter, WorkInCsvPassesCsvAndReports) {
+  const auto rows = parseCsv(sbtest::readFile(dir_ / "results.csv"));
+  const auto col = [&](const std::vector<std::string>& header, const std::string& name) {
+    return std::find(header.begin(), header.end(), name) - header.begin();
+  };
+  ASSERT_LT(col(rows[0], "bytes_storage"), static_cast<long>(rows[0].size()));
+  EXPECT_EQ(rows[3][col(rows[0], "fragment_invocations")], "1234567");
+  EXPECT_EQ(rows[3][col(rows[0], "samples_passed")], "");        // null: no queries
+  EXPECT_EQ(rows[1][col(rows[0], "fragment_invocations")], "");  // no work: empty
+
+  const auto passes = parseCsv(sbtest::readFile(dir_ / "passes.csv"));
+  ASSERT_EQ(passes.size(), 1 + 3 * doc_["results"].size());  // three passes per case
+  for (const auto& row : passes) EXPECT_EQ(row.size(), passes[0].size());
+  EXPECT_EQ(passes[0][0], "case_id");
+  const auto& shadowBuild = passes[1 + 3 * 2];
+  EXPECT_EQ(shadowBuild[col(passes[0], "pass")], "shadow.build");
+  EXPECT_EQ(shadowBuild[col(passes[0], "executions")], "2");
+  EXPECT_EQ(shadowBuild[col(passes[0], "bytes_written")], std::to_string(16 * 1024 * 1024));
+  EXPECT_EQ(shadowBuild[col(passes[0], "bytes_read")], "");
+
+  const std::string md = sbtest::readFile(dir_ / "report.md");
+  EXPECT_NE(md.find("## Passes: time and work"), std::string::npos);
+  EXPECT_NE(lineStarting(md,
+                         "| shadow=osm:maps=16 | gl | shadow.build | 2 | 1.00 | "
+                         "1.2 M | 30 k | – | – | 3 | – | 16 MiB | – | – |"),
+            "")
+      << md;
+  // Where the case's label does not name the technique, a column does.
+  EXPECT_NE(lineStarting(md, "| shadow.maps=1 | gl | osm:maps=1 | shadow.build |"), "") << md;
+  // One case with counters on gl: no fit, and said so.
+  EXPECT_NE(md.find("## Cost model"), std::string::npos);
+  EXPECT_NE(md.find("too few cases to fit"), std::string::npos);
+  const json model = json::parse(sbtest::readFile(dir_ / "cost_model.json"));
+  ASSERT_TRUE(model["models"].is_array());
+  EXPECT_FALSE(model["models"][0]["fitted"].get<bool>());
+
+  const std::string html = sbtest::readFile(dir_ / "report.html");
+  EXPECT_NE(html.find("<details class=\"passes\"><summary>shadows"), std::string::npos);
+  EXPECT_NE(html.find("<h2 id=\"cost-model\">"), std::string::npos);
+}
+
 TEST_F(ReportWriter, MarkdownHasTablesRatiosAndWarnings) {
   const std::string md = sbtest::readFile(dir_ / "report.md");
   EXPECT_NE(md.find("# strandbench report: quick & dirty"), std::string::npos);
@@ -425,6 +476,72 @@ TEST(SvgChart, ParetoFrontierAndScales) {
   EXPECT_NE(svg.find("t &amp; &lt;u&gt;"), std::string::npos);
   EXPECT_NE(svg.find("<title>p2</title>"), std::string::npos);
   EXPECT_NE(sb::svgChart(sb::Chart{"empty"}).find("no data"), std::string::npos);
+}
+
+TEST(SvgChart, LogAxisAboveTenfoldRange) {
+  auto chart = [](double lo, double hi) {
+    sb::Chart c{"frame time", "case", "frame ms"};
+    c.series.push_back({"s", {{1, lo, "lo"}, {2, (lo + hi) / 2, "mid"}, {3, hi, "hi"}}});
+    return sb::svgChart(c);
+  };
+  const std::string wide = chart(4, 60);  // 15x
+  EXPECT_NE(wide.find("frame ms (log)"), std::string::npos);
+  // Ticks at 1, 2, 5 x 10^k within the data's range, not two bare decades.
+  for (const char* tick : {">5</text>", ">10</text>", ">20</text>", ">50</text>"})
+    EXPECT_NE(wide.find(tick), std::string::npos) << tick;
+  EXPECT_EQ(chart(4, 20).find("(log)"), std::string::npos);  // 5x: linear
+}
+
+TEST(SvgChart, PointLabelsDoNotOverprint) {
+  sb::Chart c{"crowd", "frame ms", "error"};
+  c.autoLog = false;
+  sb::ChartSeries s{"points"};
+  s.line = false;
+  for (int i = 0; i < 20; ++i)  // nearly one spot
+    s.points.push_back({10 + 0.01 * i, 0.5 + 0.001 * i, "tip", "technique-" + std::to_string(i)});
+  s.points.push_back({1, 0.1, "tip", "far-low"});
+  s.points.push_back({20, 0.9, "tip", "far-high"});
+  c.series.push_back(s);
+  const std::string svg = sb::svgChart(c);
+
+  struct Box {
+    double x0, y0, x1, y1;
+  };
+  std::vector<Box> boxes;
+  std::vector<std::string> placed;
+  const std::regex label(
+      R"re(<text class="point-label" x="([-0-9.]+)" y="([-0-9.]+)"[^>]*>([^<]*)</text>)re");
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), label); it != std::sregex_iterator();
+       ++it) {
+    const double x = std::stod((*it)[1]), y = std::stod((*it)[2]);
+    const std::string text = (*it)[3];
+    const double w = static_cast<double>(text.size()) * sb::kLabelFontSize * 0.6;
+    boxes.push_back({x, y - sb::kLabelFontSize, x + w, y});
+    placed.push_back(text);
+  }
+  for (std::size_t a = 0; a < boxes.size(); ++a)
+    for (std::size_t b = a + 1; b < boxes.size(); ++b) {
+      const Box &p = boxes[a], &q = boxes[b];
+      EXPECT_FALSE(p.x0 < q.x1 && q.x0 < p.x1 && p.y0 < q.y1 && q.y0 < p.y1)
+          << placed[a] << " overlaps " << placed[b];
+    }
+  std::string crowded;
+  const std::regex listed(R"re(<text class="crowded"[^>]*>([^<]*)</text>)re");
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), listed); it != std::sregex_iterator();
+       ++it)
+    crowded += std::string((*it)[1]) + "\n";
+  // Every label is either drawn or listed as crowded, not both; the far ones are drawn.
+  EXPECT_GT(placed.size(), 2u);
+  EXPECT_LT(placed.size(), 22u) << "20 labels cannot all fit around one spot";
+  for (int i = 0; i < 20; ++i) {
+    const std::string name = "technique-" + std::to_string(i);
+    const bool drawn = std::count(placed.begin(), placed.end(), name) == 1;
+    const bool listedHere = crowded.find(name + " — ") != std::string::npos;
+    EXPECT_NE(drawn, listedHere) << name << "\n" << crowded;
+  }
+  EXPECT_EQ(std::count(placed.begin(), placed.end(), "far-low"), 1);
+  EXPECT_EQ(std::count(placed.begin(), placed.end(), "far-high"), 1);
+  EXPECT_NE(crowded.find("crowded"), std::string::npos);
 }
 
 // report.html in a real browser, offline: no console message (no script error,
