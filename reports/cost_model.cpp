@@ -65,21 +65,6 @@ double median(std::vector<double> v) {
   return v.size() % 2 ? v[h] : 0.5 * (v[h - 1] + v[h]);
 }
 
-// A counter of the frame: frame_work.key, else the sum over the passes' work (results
-// written before frame_work); nullopt where any part is missing or null.
-std::optional<double> frameCounter(const json& r, const char* key) {
-  if (const auto v = number(find(r, {"frame_work", key}))) return v;
-  const json* passes = find(r, {"passes"});
-  if (!passes || !passes->is_array() || passes->empty()) return std::nullopt;
-  double sum = 0;
-  for (const json& p : *passes) {
-    const auto v = number(find(p, {"work", key}));
-    if (!v) return std::nullopt;
-    sum += *v;
-  }
-  return sum;
-}
-
 std::optional<double> passExecutions(const json& r) {
   const json* passes = find(r, {"passes"});
   if (!passes || !passes->is_array() || passes->empty()) return std::nullopt;
@@ -102,13 +87,7 @@ const TermSpec kTerms[] = {
      [](const json& r) { return frameCounter(r, "vertex_invocations"); }},
     {"compute", "ms per million compute invocations", 1e6,
      [](const json& r) { return frameCounter(r, "compute_invocations"); }},
-    {"bytes", "ms per MiB written, read or bound as storage", 1024.0 * 1024.0,
-     [](const json& r) -> std::optional<double> {
-       const auto w = frameCounter(r, "bytes_written"), rd = frameCounter(r, "bytes_read"),
-                  st = frameCounter(r, "bytes_storage");
-       if (!w && !rd && !st) return std::nullopt;
-       return w.value_or(0) + rd.value_or(0) + st.value_or(0);
-     }},
+    {"bytes", "ms per MiB written, read or bound as storage", 1024.0 * 1024.0, frameBytes},
     {"passes", "ms per pass execution", 1, passExecutions},
     {"constant", "ms per frame", 1, [](const json&) -> std::optional<double> { return 1.0; }},
 };

@@ -165,6 +165,27 @@ PaperTable buildPaperTable(const json& t, const std::vector<const json*>& result
     tab.header.push_back(b + " (" + orDefault(tableUnit, "?") + ")");
     tab.header.push_back(b + (baseline >= 0 ? " ratio" : " / paper"));
   }
+  // A time claim in work too: the frame's counters over the baseline's, the same on
+  // every API (docs/work-counters.md), so one column each, from the first backend.
+  const bool workRatios = baseline >= 0 && tableMetric == "frame_ms";
+  auto frameWork = [&](const Row& row, bool bytes) -> std::optional<double> {
+    for (const std::string& b : backends) {
+      auto it = row.byBackend.find(b);
+      if (it == row.byBackend.end()) continue;
+      const auto v =
+          bytes ? frameBytes(*it->second[0]) : frameCounter(*it->second[0], "fragment_invocations");
+      if (v) return v;
+    }
+    return std::nullopt;
+  };
+  if (workRatios) {
+    tab.header.push_back("fragments ratio");
+    tab.header.push_back("bytes ratio");
+    pt.about +=
+        " Work ratios: the frame's fragment shader invocations and bytes (written, read "
+        "and bound as storage) over the baseline's: whether the claim holds in work, "
+        "whatever the device.";
+  }
   for (const Row& row : rows) {
     std::vector<Cell> cells = {{row.label}};
     if (rowMetrics) cells.push_back({row.metric});
@@ -191,6 +212,9 @@ PaperTable buildPaperTable(const json& t, const std::vector<const json*>& result
         cells.push_back(num(comparable ? ratio(v, row.paperComparable) : std::nullopt));
       }
     }
+    if (workRatios)
+      for (bool bytes : {false, true})
+        cells.push_back(num(ratio(frameWork(row, bytes), frameWork(rows[baseline], bytes))));
     tab.rows.push_back(std::move(cells));
   }
   if (backends.empty()) pt.notes.push_back("no results match any row");
@@ -521,6 +545,17 @@ std::string techniqueOf(const json& r) {
 }
 
 std::optional<double> frameMs(const json& r) { return number(find(r, {"frame_ms", "median"})); }
+
+std::optional<double> frameCounter(const json& r, const char* key) {
+  return number(find(r, {"frame_work", key}));
+}
+
+std::optional<double> frameBytes(const json& r) {
+  const auto w = frameCounter(r, "bytes_written"), rd = frameCounter(r, "bytes_read"),
+             st = frameCounter(r, "bytes_storage");
+  if (!w || !rd || !st) return std::nullopt;
+  return *w + *rd + *st;
+}
 
 std::string failureOf(const json& r) {
   const json* f = find(r, {"failed"});

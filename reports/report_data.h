@@ -66,6 +66,10 @@ std::string comparableKey(const json& r);
 // Median frame time in ms / total memory in MiB, when present and finite.
 std::optional<double> frameMs(const json& r);
 std::optional<double> memoryMiB(const json& r, const char* key = "total_bytes");
+// A work counter of the frame (frame_work.key; null where the device has no queries), and
+// its bytes written, read and bound as storage together.
+std::optional<double> frameCounter(const json& r, const char* key);
+std::optional<double> frameBytes(const json& r);
 
 // --- tables ---
 
