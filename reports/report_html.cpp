@@ -1,6 +1,7 @@
 // report.html: one self-contained page (inline CSS, inline-SVG charts, images as
 // data URIs, no scripts) that a browser shows offline.
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -147,6 +148,29 @@ std::string errorTimeCharts(const ReportData& d) {
     if (!byKey.count(key)) keys.push_back(key);
     byKey[key].push_back(r);
   }
+  // One scene and size on several backends: their charts share their axes, so that
+  // GL's and Vulkan's side by side compare at a glance (per metric: x0, x1, y0, y1).
+  std::map<std::string, std::array<std::array<double, 4>, std::size(kErrorMetrics)>> shared;
+  auto sceneAndSize = [](const json& r) {
+    return text(find(r, {"scene", "spec"})) + " | " + sizeOf(r);
+  };
+  for (const json* r : d.results) {
+    auto [it, added] = shared.try_emplace(sceneAndSize(*r));
+    if (added)
+      for (auto& span : it->second) span = {INFINITY, -INFINITY, INFINITY, -INFINITY};
+    const auto ms = frameMs(*r);
+    const auto lo = number(find(*r, {"frame_ms", "min"})),
+               hi = number(find(*r, {"frame_ms", "max"}));
+    for (std::size_t m = 0; m < std::size(kErrorMetrics); ++m) {
+      const auto err = kErrorMetrics[m].value(*r);
+      if (!ms || !err) continue;
+      auto& span = it->second[m];
+      span[0] = std::min({span[0], *ms, lo.value_or(*ms)});
+      span[1] = std::max({span[1], *ms, hi.value_or(*ms)});
+      span[2] = std::min(span[2], *err);
+      span[3] = std::max(span[3], *err);
+    }
+  }
   std::ostringstream o;
   int chooser = 0;
   for (const std::string& key : keys) {
@@ -161,6 +185,8 @@ std::string errorTimeCharts(const ReportData& d) {
       c.yLabel = metric.label;
       c.cssClass = "chart-error-time";
       c.width = 560;
+      const auto& span = shared.at(sceneAndSize(*byKey[key].front()))[m];
+      c.xLo = span[0], c.xHi = span[1], c.yLo = span[2], c.yHi = span[3];
       ChartSeries points{metric.label};
       points.line = false;
       points.color = 2 * static_cast<int>(m);

@@ -241,7 +241,7 @@ std::vector<ChartPoint> paretoFrontier(std::vector<ChartPoint> points) {
 }
 
 std::string svgChart(const Chart& chart) {
-  double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, y0 = x0, y1 = -x0;
+  double x0 = chart.xLo, x1 = chart.xHi, y0 = chart.yLo, y1 = chart.yHi;
   for (const ChartSeries& s : chart.series) {
     for (const ChartPoint& p : s.points) {
       if (!finite(p)) continue;

@@ -3,6 +3,7 @@
 // bars on points; no scripts, no external resources.
 #pragma once
 
+#include <cmath>
 #include <limits>
 #include <string>
 #include <vector>
@@ -34,6 +35,10 @@ struct Chart {
   std::vector<ChartSeries> series;
   int width = 460, plotHeight = 240;  // width grows to fit a long title
   bool autoLog = true;                // false: linear axes whatever the values
+  // Ranges the axes cover besides the points' (charts shown side by side, e.g. one
+  // scene on GL and on Vulkan, share their axes by giving each the union); empty
+  // ranges (lo > hi) add nothing.
+  double xLo = INFINITY, xHi = -INFINITY, yLo = INFINITY, yHi = -INFINITY;
 };
 
 // An axis is logarithmic when autoLog is set and all its values are positive and

@@ -503,6 +503,23 @@ TEST(SvgChart, LogAxisAboveTenfoldRange) {
   EXPECT_EQ(chart(4, 20).find("(log)"), std::string::npos);  // 5x: linear
 }
 
+// Charts shown side by side share their axes by covering each other's range: a chart
+// of values 4 to 20 given the range 4 to 60 draws the same axes as one of 4 to 60.
+TEST(SvgChart, SharedRangeGivesTheSameAxes) {
+  auto ticks = [](double hi, bool share) {
+    sb::Chart c{"frame time", "case", "frame ms"};
+    c.series.push_back({"s", {{1, 4, "lo"}, {2, hi, "hi"}}});
+    if (share) c.xLo = 1, c.xHi = 2, c.yLo = 4, c.yHi = 60;
+    const std::string svg = sb::svgChart(c);
+    std::vector<std::string> found;
+    for (const char* t : {">5</text>", ">10</text>", ">20</text>", ">50</text>", "(log)"})
+      if (svg.find(t) != std::string::npos) found.push_back(t);
+    return found;
+  };
+  EXPECT_EQ(ticks(20, true), ticks(60, false));
+  EXPECT_NE(ticks(20, false), ticks(60, false));  // unshared: its own, linear axes
+}
+
 TEST(SvgChart, PointLabelsDoNotOverprint) {
   sb::Chart c{"crowd", "frame ms", "error"};
   c.autoLog = false;
