@@ -93,7 +93,8 @@ for deb in "$debs"/*.deb; do
 done
 mesa_version="$(dpkg-deb -f "$debs"/mesa-vulkan-drivers_*.deb Version)"
 
-for f in libvulkan_lvp.so libEGL_mesa.so.0 libOSMesa.so.8 libgallium-*.so; do
+for f in libvulkan_lvp.so libEGL_mesa.so.0 libOSMesa.so.8 'libgallium-*.so'; do
+  # shellcheck disable=SC2086 # $f may be a pattern (libgallium's name has the version)
   ls "$lib"/$f >/dev/null 2>&1 || fail "the unpacked packages lack $lib/$f"
 done
 
