@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -75,6 +76,25 @@ TEST(Drivers, Mesa25RendersAndIsNamed) {
     EXPECT_EQ(j["driver_name"], path);
     EXPECT_NE(j["driver"].get<std::string>().find("Mesa 25.0.7"), std::string::npos);
   }
+}
+
+// A suite case cannot switch drivers inside the process: the sweep says which flag does.
+TEST(Drivers, ASuiteCaseNamesOnlyTheProcesssDriver) {
+  if (const std::string why = mesa25Missing(); !why.empty()) GTEST_SKIP() << why;
+  const auto dir = sbtest::tempDir("driver-suite");
+  const nlohmann::json suite = {
+      {"name", "t"},
+      {"defaults",
+       {{"backends", {"gl"}}, {"scene", "straight:strands=20,points=4"}, {"size", "16x16"}}},
+      {"groups", {{{"name", "g"}, {"driver", "mesa-25.0"}}}}};
+  std::ofstream(dir / "suite.json") << suite.dump(2);
+  const sbtest::CliResult r =
+      runCli("sweep " + (dir / "suite.json").string() + " --out " + (dir / "o").string());
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("\"driver\""), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("give --driver mesa-25.0"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "o"));
+  fs::remove_all(dir);
 }
 
 TEST(Drivers, VersionProbesEachDriver) {
