@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include "backends/driver.h"
+#include "backends/driver_env.h"
 
 namespace sb {
 
@@ -157,7 +158,11 @@ Device::~Device() {
   releaseAll(buffers_);
 }
 
-DeviceInfo Device::info() const { return driver_->info(); }
+DeviceInfo Device::info() const {
+  DeviceInfo i = driver_->info();
+  i.driverName = currentDriver();  // the process's, set before any driver loaded
+  return i;
+}
 
 namespace {
 // Every sample of a multisampled texture counts.

@@ -278,9 +278,13 @@ struct DeviceInfo {
   std::string platform;  // "egl" | "osmesa" | "headless"
   std::string device;    // renderer / deviceName
   std::string driver;    // version string / driverInfo
-  std::string timing;    // how pass times are measured
-  std::string counters;  // which API queries fill PassWork ("" : none)
-  std::string lines;     // how Lines topology is rasterized
+  // Which driver the process runs (backends/driver_env.h): "system", the name of a
+  // folder under drivers/ ("mesa-25.0") or its path.
+  std::string driverName;
+  std::string apiVersion;  // GL: "4.5"; Vulkan: the device's "1.3.230"
+  std::string timing;      // how pass times are measured
+  std::string counters;    // which API queries fill PassWork ("" : none)
+  std::string lines;       // how Lines topology is rasterized
   // Window platforms: how present() shows an image (GL swap interval; Vulkan
   // present mode and why it was chosen). Empty on headless platforms.
   std::string present;
@@ -292,6 +296,13 @@ struct DeviceInfo {
   // GL_ARB_fragment_shader_interlock; Vulkan: VK_EXT_fragment_shader_interlock).
   // Absent on Mesa's CPU rasterizers: mlab then emulates the order in a resolve.
   bool fragmentShaderInterlock = false;
+  // Capabilities `strandbench --version` lists per driver: ray queries (Vulkan:
+  // VK_KHR_ray_query; GL has none), mesh shaders (VK_EXT_mesh_shader;
+  // GL_EXT_mesh_shader / GL_NV_mesh_shader) and timestamp queries (Vulkan: the
+  // queue's timestampValidBits; GL: core since 3.3). Pipeline statistics: `counters`.
+  bool rayQuery = false;
+  bool meshShaders = false;
+  bool timestamps = false;
   // The sample counts a texture may have, as a mask of the counts themselves
   // (bit value 4 = 4 samples, like VkSampleCountFlags): those every float and
   // unorm colour format and Depth32F support as render targets (GL:

@@ -20,6 +20,7 @@ void registerCheckCommands(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--out", *out, "where failures are written (actual, expected, diff, JSON)")
         ->capture_default_str();
+    addDriverOption(*cmd);
     cmd->callback([=] {
       runGuarded("check", [&] {
         checkOutputFolder("--out", *out);  // written only on failure, but checked up front

@@ -5,12 +5,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <deque>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 #include <new>
 
 #include "backends/device.h"
+#include "backends/driver_env.h"
 #include "cli/render_summary.h"
 #include "harness/render.h"
 #include "harness/settings.h"
@@ -290,6 +292,12 @@ void registerCommands(CLI::App& app) {
   // Unknown options get the closest valid one, for every command.
   for (CLI::App* cmd : app.get_subcommands([](CLI::App*) { return true; }))
     cmd->parse_complete_callback([cmd] { rejectUnknownArguments(*cmd); });
+}
+
+void addDriverOption(CLI::App& cmd) {
+  static std::deque<std::string> values;  // CLI11 keeps a reference to each
+  values.emplace_back();
+  cmd.add_option("--driver", values.back(), kDriverHelp);
 }
 
 int lastCommandStatus() { return gStatus; }

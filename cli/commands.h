@@ -31,6 +31,9 @@ void registerViewCommand(CLI::App& app);
 // `figure` (cli/figure_command.cpp).
 void registerFigureCommand(CLI::App& app);
 int lastCommandStatus();
+// --driver on a command without the render settings (check, sweep): main() has
+// already acted on it (backends/driver_env.h); the option is for --help and parsing.
+void addDriverOption(CLI::App& cmd);
 // The line printed for an error CLI11 raised while parsing `args` (argv without
 // the program): "strandbench: ..." with the closest command for one that is not
 // a command, the flag given twice for one that takes one value; CLI11's own

@@ -11,6 +11,7 @@
 #endif
 
 #include "backends/device.h"
+#include "backends/driver_env.h"
 #include "cli/commands.h"
 #include "harness/stop.h"
 #include "harness/version.h"
@@ -32,6 +33,14 @@ void pinAllocator() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Before anything loads a GL or Vulkan library: --driver re-executes the process with
+  // that driver's loader environment.
+  sb::selectDriverFromArgs(argc, argv);
+  // Hidden: one driver's devices for `--version`, which runs this per driver.
+  if (argc == 2 && std::string(argv[1]) == "--version-probe") {
+    std::cout << sb::versionProbeText();
+    return 0;
+  }
   pinAllocator();
   sb::installStopHandlers();
   CLI::App app{"strandbench: benchmark and visual-regression harness for strand rendering"};

@@ -34,6 +34,7 @@ void registerSweepCommands(CLI::App& app) {
     cmd->add_option("--target-ci", o->targetCiPct,
                     "PCT: take rounds until every case's median frame time has a 95% interval "
                     "within +-PCT of it (or --max-reps)");
+    addDriverOption(*cmd);
     cmd->add_flag("--interleave,!--no-interleave", o->interleave,
                   "measure a group's cases in interleaved rounds (default), or each case's "
                   "`repeat` frames back to back in one run");

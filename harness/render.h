@@ -78,6 +78,8 @@ struct RenderRequest {
   bool invariants = false;         // check the outputs and maps (harness/invariants.h)
   bool runToRun = true;            // sweeps with invariants: the case twice, outputs identical
   std::string backend = defaultBackend();
+  // Empty: the process's driver (backends/driver_env.h); a request may only name that one.
+  std::string driver;
   std::string platform;  // empty: egl for gl, headless for vulkan
   uint32_t width = 512, height = 512;
   std::string primitive = "lines";  // lines | ribbons

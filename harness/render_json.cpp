@@ -87,6 +87,7 @@ nlohmann::json renderJson(const RenderResult& r) {
   j["platform"] = r.device.platform;
   j["device"] = r.device.device;
   j["driver"] = r.device.driver;
+  j["driver_name"] = r.device.driverName;
   j["timing"] = r.device.timing;
   j["lines"] = r.device.lines;
   j["scene"] = {{"spec", r.scene.spec},

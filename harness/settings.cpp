@@ -10,6 +10,7 @@
 #include <limits>
 #include <sstream>
 
+#include "backends/driver_env.h"
 #include "harness/json_keys.h"
 #include "harness/setting_values.h"
 #include "harness/technique_list.h"
@@ -115,6 +116,20 @@ std::vector<Setting> buildTable() {
                           backendNames().back(), backendNames().back() + "x"));
     s.choices = backendNames();
     plain(s, &RenderRequest::backend);
+  }
+  {
+    // A process runs one driver (its loaders read the environment once), so the
+    // setting names the process's driver; --driver on the command line re-executes
+    // the process with another before anything loads (cli/main.cpp).
+    Setting& s = add(
+        make("driver", "--driver", T::String,
+             "the process's (system unless the command line's --driver)",
+             std::string(kDriverHelp) + "; in suites and manifests it must be the process's driver",
+             "system", "no-such-driver"));
+    s.get = [](const RenderRequest& r) {
+      return r.driver.empty() ? ojson(nullptr) : ojson(r.driver);
+    };
+    s.set = [](RenderRequest& r, const ojson& v) { r.driver = v.get<std::string>(); };
   }
   {
     // The example is osmesa (headless): a window platform needs a display.
@@ -453,6 +468,14 @@ void checkRequest(const RenderRequest& req, Spelling spelling) {
       throw InputError(settingMessage(s, spelling, textOf(s, v), p.what));
     }
   }
+  try {
+    if (!req.driver.empty() && !isCurrentDriver(req.driver))
+      throw InputError("this process runs driver '" + currentDriver() +
+                       "' and one process loads one driver: give --driver " + req.driver +
+                       " on the command line");
+  } catch (const InputError& e) {
+    throw InputError(settingMessage(*findSetting("driver"), spelling, req.driver, e.what()));
+  }
   if (!req.platform.empty()) {
     const std::vector<std::string> platforms = platformNames(req.backend);
     if (std::find(platforms.begin(), platforms.end(), req.platform) == platforms.end())
@@ -507,8 +530,12 @@ CliSettings::CliSettings(CLI::App& cmd, const std::vector<std::string>& keys,
                          const RenderRequest& defaults) {
   for (const std::string& k : keys)
     if (!findSetting(k)) throw std::logic_error("no setting '" + k + "'");
+  // The driver goes with the backend: every command that takes --backend takes --driver.
+  const bool withDriver = std::find(keys.begin(), keys.end(), "backend") != keys.end();
   for (const Setting& s : settingsTable()) {
-    if (!keys.empty() && std::find(keys.begin(), keys.end(), s.key) == keys.end()) continue;
+    if (!keys.empty() && std::find(keys.begin(), keys.end(), s.key) == keys.end() &&
+        !(withDriver && s.key == "driver"))
+      continue;
     Entry e{&s, nullptr, std::make_shared<std::string>(), std::make_shared<bool>(false)};
     if (s.type == SettingType::Flag) {
       e.option = cmd.add_flag(s.flag, *e.flag, s.help);

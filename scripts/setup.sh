@@ -50,6 +50,7 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
+if ((tests)); then scripts/drivers.sh; fi  # Mesa 25.0 beside the system's, for tests/test_drivers.cpp
 jobs=$(nproc 2>/dev/null || echo 2)
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DSB_WERROR=ON "$@" >/dev/null
 if ((tests)); then

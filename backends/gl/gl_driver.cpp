@@ -113,6 +113,8 @@ class GLDriver final : public Driver {
     info_.platform = platform_->name();
     info_.device = reinterpret_cast<const char*>(gl_.GetString(GL_RENDERER));
     info_.driver = reinterpret_cast<const char*>(gl_.GetString(GL_VERSION));
+    info_.apiVersion = std::to_string(major) + "." + std::to_string(minor);
+    info_.timestamps = true;  // glQueryCounter: core since 3.3
     // Timing: GPU timestamps (glQueryCounter at each pass's start and end, no finish
     // between passes) on GPUs; on llvmpipe the CPU clock around each pass, since its
     // timer queries miss vertex work. SB_GL_GPU_TIMING=1 / SB_GL_CPU_TIMING=1 force one.
@@ -137,6 +139,9 @@ class GLDriver final : public Driver {
       if (e && std::strcmp(e, "GL_ARB_fragment_shader_interlock") == 0)
         info_.fragmentShaderInterlock = true;
       if (e && std::strcmp(e, "GL_ARB_pipeline_statistics_query") == 0) statistics_ = true;
+      if (e &&
+          (std::strcmp(e, "GL_EXT_mesh_shader") == 0 || std::strcmp(e, "GL_NV_mesh_shader") == 0))
+        info_.meshShaders = true;
     }
     statistics_ = statistics_ || major * 10 + minor >= 46;  // core in 4.6
     info_.counters = statistics_ ? "ARB_pipeline_statistics_query, GL_SAMPLES_PASSED" : "";

@@ -261,6 +261,10 @@ void VulkanPlatform::pickPhysicalDevice() {
                        pick->props.limits.framebufferDepthSampleCounts) |
                       1u;
   info.device = pick->props.deviceName;
+  info.apiVersion = versionString(pick->props.apiVersion);
+  info.timestamps = timestampBits != 0;
+  info.rayQuery = hasDeviceExtension(physical, VK_KHR_RAY_QUERY_EXTENSION_NAME);
+  info.meshShaders = hasDeviceExtension(physical, VK_EXT_MESH_SHADER_EXTENSION_NAME);
   if (drv.driverName[0] != '\0') {
     info.driver = std::string(drv.driverName) + " " + drv.driverInfo;
   } else {

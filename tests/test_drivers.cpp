@@ -1,0 +1,120 @@
+// --driver: a named driver (drivers/mesa-25.0, from scripts/drivers.sh) is what renders
+// and what the result JSON names; a driver that is not there is bad input (exit 2).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "tests/test_util.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using sbtest::runCli;
+
+constexpr const char* kTiny = "--scene straight:strands=20,points=4 --size 16x16 --repeat 1";
+
+// CI runs scripts/setup.sh --tests, which fetches the folder: "is not installed" makes the
+// skip a failure there (tests/main.cpp).
+std::string mesa25Missing() {
+  if (fs::exists(fs::path(SB_SOURCE_DIR) / "drivers/mesa-25.0/complete")) return "";
+  return "drivers/mesa-25.0 is not installed (scripts/drivers.sh fetches it; scripts/setup.sh "
+         "--tests runs it)";
+}
+
+nlohmann::json renderJson(const std::string& args) {
+  const sbtest::CliResult r = runCli(std::string("render ") + kTiny + " --json " + args);
+  EXPECT_EQ(r.status, 0) << args << "\n" << r.err;
+  if (r.status != 0) return {};
+  return nlohmann::json::parse(r.out);
+}
+
+TEST(Drivers, UnknownNameIsBadInputNamingTheScript) {
+  const sbtest::CliResult r = runCli(std::string("render ") + kTiny + " --driver no-such-driver");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("unknown driver 'no-such-driver'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("scripts/drivers.sh"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out, "");
+}
+
+TEST(Drivers, MissingFolderIsBadInput) {
+  const auto dir = sbtest::tempDir("driver");  // a folder, but no driver in it
+  for (const std::string& args :
+       {"check --driver=" + dir.string(), "render --driver " + (dir / "absent").string()}) {
+    const sbtest::CliResult r = runCli(args);
+    EXPECT_EQ(r.status, 2) << args;
+    EXPECT_NE(r.err.find("scripts/drivers.sh"), std::string::npos) << args << "\n" << r.err;
+  }
+  fs::remove_all(dir);
+}
+
+TEST(Drivers, SystemIsMesa22) {
+  for (const std::string backend : {"gl", "vulkan"}) {
+    const auto j = renderJson("--backend " + backend);
+    if (j.is_null()) continue;
+    EXPECT_EQ(j["driver_name"], "system") << backend;
+    EXPECT_NE(j["driver"].get<std::string>().find("Mesa 22.3.6"), std::string::npos) << j["driver"];
+  }
+}
+
+TEST(Drivers, Mesa25RendersAndIsNamed) {
+  if (const std::string why = mesa25Missing(); !why.empty()) GTEST_SKIP() << why;
+  for (const std::string backend : {"gl --platform egl", "gl --platform osmesa", "vulkan"}) {
+    const auto j = renderJson("--driver mesa-25.0 --backend " + backend);
+    if (j.is_null()) continue;
+    EXPECT_EQ(j["driver_name"], "mesa-25.0") << backend;
+    EXPECT_NE(j["driver"].get<std::string>().find("Mesa 25.0.7"), std::string::npos)
+        << backend << ": " << j["driver"];
+    EXPECT_NE(j["device"].get<std::string>().find("llvmpipe"), std::string::npos) << j["device"];
+  }
+  // By path, too: the same driver, named as given.
+  const std::string path = (fs::path(SB_SOURCE_DIR) / "drivers/mesa-25.0").string();
+  const auto j = renderJson("--driver " + path + " --backend vulkan");
+  if (!j.is_null()) {
+    EXPECT_EQ(j["driver_name"], path);
+    EXPECT_NE(j["driver"].get<std::string>().find("Mesa 25.0.7"), std::string::npos);
+  }
+}
+
+// A suite case cannot switch drivers inside the process: the sweep says which flag does.
+TEST(Drivers, ASuiteCaseNamesOnlyTheProcesssDriver) {
+  if (const std::string why = mesa25Missing(); !why.empty()) GTEST_SKIP() << why;
+  const auto dir = sbtest::tempDir("driver-suite");
+  const nlohmann::json suite = {
+      {"name", "t"},
+      {"defaults",
+       {{"backends", {"gl"}}, {"scene", "straight:strands=20,points=4"}, {"size", "16x16"}}},
+      {"groups", {{{"name", "g"}, {"driver", "mesa-25.0"}}}}};
+  std::ofstream(dir / "suite.json") << suite.dump(2);
+  const sbtest::CliResult r =
+      runCli("sweep " + (dir / "suite.json").string() + " --out " + (dir / "o").string());
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("\"driver\""), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("give --driver mesa-25.0"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "o"));
+  fs::remove_all(dir);
+}
+
+TEST(Drivers, VersionProbesEachDriver) {
+  if (const std::string why = mesa25Missing(); !why.empty()) GTEST_SKIP() << why;
+  const sbtest::CliResult r = runCli("--version");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::size_t system = r.out.find("\nsystem");
+  const std::size_t mesa25 = r.out.find("\nmesa-25.0:");
+  ASSERT_NE(system, std::string::npos) << r.out;
+  ASSERT_NE(mesa25, std::string::npos) << r.out;
+  ASSERT_LT(system, mesa25) << r.out;
+  const std::string systemPart = r.out.substr(system, mesa25 - system);
+  const std::string mesa25Part = r.out.substr(mesa25);
+  EXPECT_NE(systemPart.find("Mesa 22.3.6"), std::string::npos) << r.out;
+  EXPECT_EQ(systemPart.find("25.0.7"), std::string::npos) << r.out;
+  EXPECT_NE(mesa25Part.find("Mesa 25.0.7"), std::string::npos) << r.out;
+  EXPECT_EQ(mesa25Part.find("22.3.6"), std::string::npos) << r.out;
+  for (const char* cap : {"ray query: ", "mesh shaders: ", "fragment shader interlock: ",
+                          "pipeline statistics: ", "timestamps: "})
+    EXPECT_NE(mesa25Part.find(cap), std::string::npos) << cap << "\n" << r.out;
+}
+
+}  // namespace
