@@ -91,14 +91,14 @@ TEST_P(ViewOverlayTest, OverlayChangesOnlyTheTopLeftBoxOfThePresentedImage) {
   ASSERT_TRUE(d.any()) << "the overlay changed nothing";
   std::cout << "[ overlay ] " << backend << ": box " << d.x0 << "," << d.y0 << " to " << d.x1 << ","
             << d.y1 << " of 400x300, " << d.count << " pixels differ\n";
-  EXPECT_LE(d.x0, 8);
-  EXPECT_LE(d.y0, 8);
+  // The glyphs start at the margin and padding (10 pixels at 1x); the dark box
+  // around them changes nothing where the picture is black (its background).
+  EXPECT_LE(d.x0, 12);
+  EXPECT_LE(d.y0, 12);
   EXPECT_GE(d.x1, 100);  // the text's lines, not a speck
   EXPECT_GE(d.y1, 60);
   EXPECT_LT(d.x1, 400 * 3 / 4);
   EXPECT_LT(d.y1, 300 * 3 / 4);
-  // The dark box changes most of its pixels, not only the glyphs'.
-  EXPECT_GT(double(d.count), 0.5 * (d.x1 - d.x0) * (d.y1 - d.y0));
   // The render itself is the technique's: the same image the overlay was off for.
   const sb::Image renderOff = image("off.png");
   EXPECT_FALSE(differences(renderOff, render).any());
@@ -113,21 +113,25 @@ TEST_P(ViewOverlayTest, OverlayChangesOnlyTheTopLeftBoxOfThePresentedImage) {
   const nlohmann::json ref = json("reference");
   EXPECT_EQ(ref.at("shown"), "reference");
   const auto text = ref.at("overlay_text").get<std::vector<std::string>>();
-  ASSERT_GE(text.size(), 2u);
+  ASSERT_GE(text.size(), 4u);
   EXPECT_NE(text[0].find("REFERENCE shown"), std::string::npos) << text[0];
-  EXPECT_NE(text[1].find("the technique's"), std::string::npos) << text[1];
+  EXPECT_EQ(text[1],
+            "ref shadow " + ref.at("report").at("reference").at("shadow").get<std::string>());
+  EXPECT_EQ(text[2], "ref oit " + ref.at("report").at("reference").at("oit").get<std::string>());
+  EXPECT_NE(text[3].find("the technique's"), std::string::npos) << text[3];
   EXPECT_TRUE(std::any_of(text.begin(), text.end(), [](const std::string& t) {
     return t.rfind("PSNR ", 0) == 0;
   })) << "the PSNR is known once the reference is";
   const Differences refBox = differences(image("reference.window.png"), image("reference.png"));
-  EXPECT_LE(refBox.x0, 8);
-  EXPECT_GT(refBox.y1, d.y1) << "two more lines";
+  EXPECT_LE(refBox.x0, 12);
+  EXPECT_GT(refBox.y1, d.y1) << "more lines";
+  EXPECT_LT(refBox.x1, 400) << "the reference's lines fit a 400-pixel window";
 
   // A large window: the text at twice the size, still in the corner.
   const Differences large = differences(image("large.window.png"), image("large.png"));
   ASSERT_TRUE(large.any());
-  EXPECT_LE(large.x0, 16);
-  EXPECT_LE(large.y0, 16);
+  EXPECT_LE(large.x0, 24);
+  EXPECT_LE(large.y0, 24);
   EXPECT_GE(large.x1 - large.x0, 1.6 * (d.x1 - d.x0)) << "2x text in a 960x720 window";
   EXPECT_LT(large.x1, 960 * 3 / 4);
   fs::remove_all(dir);
