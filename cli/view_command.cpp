@@ -572,7 +572,7 @@ class Viewer {
       l.push_back({"PSNR", result_.imageError->identical()
                                ? std::string("identical to the reference")
                                : number(result_.imageError->psnr, "dB") + " vs the reference"});
-    l.push_back({"", "O hides this", dim});
+    l.push_back({"", "press o to hide", dim});  // lower case: stb draws O as 0
     return l;
   }
 
