@@ -3,7 +3,9 @@
 // the keyboard, a compare mode (technique | reference | error heatmap, the
 // reference rendered on demand), and screenshots that carry the `render`
 // command line and suite case reproducing them. `--script FILE` plays a
-// timed list of actions through the same handlers, for demos and tests.
+// timed list of actions through the same handlers, for demos and tests. The
+// state (techniques, times, memory, PSNR) is drawn over the image in the
+// window (cli/view_overlay.h, key O) and written in the title.
 //
 // Every frame is rendered by runRender on the window's device (so what is
 // shown is exactly what `render` computes) and the image chosen by the mode
@@ -12,6 +14,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -25,6 +28,7 @@
 
 #include "backends/window.h"
 #include "cli/commands.h"
+#include "cli/view_overlay.h"
 #include "harness/render.h"
 #include "harness/settings.h"
 #include "imaging/image.h"
@@ -54,8 +58,8 @@ const char* kScriptHelp =
     "[ctrl]; scroll STEPS; resize W H; screenshot NAME; quit";
 
 // The keys Viewer::key acts on: a script's key is one of them (a typo would do nothing).
-const std::vector<std::string> kScriptKeys = {"S", "T", "Up",  "Down", "Right",  "Left", "C",
-                                              "R", "P", "F12", "H",    "Escape", "Q"};
+const std::vector<std::string> kScriptKeys = {"S", "T", "Up", "Down", "Right", "Left",   "C",
+                                              "O", "R", "P",  "F12",  "H",     "Escape", "Q"};
 
 std::vector<ScriptAction> parseScript(const std::string& path) {
   std::ifstream in(path);
@@ -266,6 +270,7 @@ class Viewer {
       // The shown texture goes first: the render's memory report holds only its own.
       dev_->destroy(display_);
       display_ = {};
+      overlay_.release(*dev_);
       RenderRequest r = req_;
       r.reference = mode_ != Mode::Technique || referenceWanted_;
       result_ = runRender(r, &cache_, dev_.get());
@@ -275,16 +280,29 @@ class Viewer {
     if (shownDirty_) {
       shown_ = shownImage();
       upload(shown_);
+      ++shownVersion_;
       shownDirty_ = false;
     }
-    dev_->present(display_);
+    presentShown(nullptr);
     window_->setTitle(title());
+  }
+
+  // Shows the mode's image, with the overlay over it when it is on; with
+  // `capture`, reads back what the window shows. False while minimized.
+  bool presentShown(PresentedImage* capture) {
+    const Texture t =
+        overlayOn_ ? overlay_.compose(*dev_, display_, shownVersion_, overlayLines()) : display_;
+    return dev_->present(t, capture);
   }
 
   void screenshot(const std::string& name) {
     update();
     const fs::path png = fs::path(shotDir_) / (name + ".png");
     const fs::path json = fs::path(shotDir_) / (name + ".json");
+    // The window as shown (the overlay included, when on), beside the image itself.
+    const fs::path windowPng = fs::path(shotDir_) / (name + ".window.png");
+    PresentedImage window;
+    const bool presented = presentShown(&window) && !window.rgba8.empty();
     RenderRequest r = req_;
     r.platform.clear();
     r.reference = mode_ != Mode::Technique;
@@ -313,10 +331,24 @@ class Viewer {
                   {"defaults", suiteDefaults},
                   {"groups", {{{"name", name}}}}};
     j["title"] = title();
+    j["overlay"] = overlayOn_;
+    if (overlayOn_) {  // its text, for scripts that check what the window said
+      std::vector<std::string> text;
+      for (const auto& l : overlayLines())
+        text.push_back(l.label.empty() ? l.value : l.label + " " + l.value);
+      j["overlay_text"] = text;
+    }
+    if (presented) j["window_image"] = windowPng.string();
     j["resident_bytes"] = residentBytes();
     j["report"] = renderJson(result_);
     fs::create_directories(shotDir_);
     writeImage(shown_, png.string());
+    if (presented) {
+      Image shownWindow =
+          imageFromRows(window.rgba8, int(window.width), int(window.height), PixelType::UNorm8, 4);
+      for (std::size_t i = 3; i < shownWindow.pixels.size(); i += 4) shownWindow.pixels[i] = 1.0f;
+      writeImage(shownWindow, windowPng.string());
+    }
     const fs::path tmp = json.string() + ".tmp";
     {
       std::ofstream f(tmp);
@@ -345,6 +377,10 @@ class Viewer {
         dirty_ = true;
       }
       shownDirty_ = true;
+      return;
+    } else if (e.key == "O") {
+      overlayOn_ = !overlayOn_;
+      std::cout << "view: overlay " << (overlayOn_ ? "on" : "off") << "\n";
       return;
     } else if (e.key == "R") {
       resetView();
@@ -389,8 +425,9 @@ class Viewer {
       "keys: S / shift+S next / previous shadow technique; T / shift+T next / previous "
       "transparency technique; Up / Down the shadow technique's main option; Right / Left the "
       "transparency technique's; C compare mode (technique, reference, error heatmap; shift+C "
-      "back); P or F12 screenshot (PNG + JSON with the render command); R reset camera and "
-      "light; H this help; Q or Escape quit. Mouse: left drag orbit, middle (or ctrl+left) drag "
+      "back); O overlay (the state over the image) on / off; P or F12 screenshot (PNG + JSON "
+      "with the render command); R reset camera and light; H this help; Q or Escape quit. Mouse: "
+      "left drag orbit, middle (or ctrl+left) drag "
       "pan, wheel zoom, right (or shift+left) drag moves the light.";
 
  private:
@@ -482,20 +519,72 @@ class Viewer {
     dev_->writeTexture(display_, bytes);
   }
 
+  // The timed frame's slowest pass (null before any render).
+  const PassTimes* slowestPass() const {
+    const PassTimes* slowest = nullptr;
+    for (const auto& p : result_.passes)
+      if (!p.ms.empty() && (!slowest || p.ms.front() > slowest->ms.front())) slowest = &p;
+    return slowest;
+  }
+
+  // The render's device memory (the viewer's own textures not counted).
+  std::size_t renderBytes() const {
+    std::size_t bytes = 0;
+    for (const auto& r : result_.resources)
+      if (r.owner != "view") bytes += r.bytes;
+    return bytes;
+  }
+
+  // What the overlay says: the title's state, a line each. Times and memory
+  // are always the technique's run (the reference is rendered untimed), so
+  // when the reference or the error is shown the overlay says so in amber.
+  std::vector<OverlayLine> overlayLines() const {
+    const std::array<uint8_t, 3> amber{255, 196, 64}, dim{150, 150, 150};
+    auto number = [](double v, const char* unit) {
+      char text[48];
+      std::snprintf(text, sizeof text, "%.2f %s", v, unit);
+      return std::string(text);
+    };
+    std::vector<OverlayLine> l;
+    if (mode_ == Mode::Technique) {
+      l.push_back({"", result_.device.backend + " | technique"});
+    } else {
+      // Short lines (a spec each): a 400-pixel window holds them at 1x.
+      l.push_back({"",
+                   result_.device.backend + " | " +
+                       (mode_ == Mode::Reference ? "REFERENCE shown (untimed)"
+                                                 : "ERROR heatmap: technique vs reference"),
+                   amber});
+      if (result_.reference) {
+        l.push_back({"ref shadow", result_.reference->first, amber});
+        l.push_back({"ref oit", result_.reference->second, amber});
+      }
+      l.push_back({"", "below: the technique's specs, times, memory", amber});
+    }
+    l.push_back({"shadow", result_.shadow});
+    l.push_back({"oit", result_.oit});
+    l.push_back({"shading", result_.shading});
+    if (!result_.frameMs.empty()) l.push_back({"frame", number(result_.frameMs.front(), "ms")});
+    if (const PassTimes* slowest = slowestPass())
+      l.push_back({"slowest", slowest->name + "  " + number(slowest->ms.front(), "ms")});
+    l.push_back({"memory", number(double(renderBytes()) / (1 << 20), "MiB")});
+    if (result_.imageError)
+      l.push_back({"PSNR", result_.imageError->identical()
+                               ? std::string("identical to the reference")
+                               : number(result_.imageError->psnr, "dB") + " vs the reference"});
+    l.push_back({"", "press o to hide", dim});  // lower case: stb draws O as 0
+    return l;
+  }
+
   std::string title() const {
     std::ostringstream t;
     t.precision(3);
     t << "strandbench view | " << result_.device.backend << " | shadow " << result_.shadow
       << " | oit " << result_.oit << " | " << modeName(mode_);
     if (!result_.frameMs.empty()) t << " | frame " << result_.frameMs.front() << " ms";
-    const PassTimes* slowest = nullptr;
-    for (const auto& p : result_.passes)
-      if (!slowest || p.ms.front() > slowest->ms.front()) slowest = &p;
-    if (slowest) t << " | slowest " << slowest->name << " " << slowest->ms.front() << " ms";
-    std::size_t bytes = 0;
-    for (const auto& r : result_.resources)
-      if (r.owner != "view") bytes += r.bytes;
-    t << " | " << double(bytes) / (1 << 20) << " MiB";
+    if (const PassTimes* slowest = slowestPass())
+      t << " | slowest " << slowest->name << " " << slowest->ms.front() << " ms";
+    t << " | " << double(renderBytes()) / (1 << 20) << " MiB";
     if (result_.imageError) {
       if (result_.imageError->identical())
         t << " | identical to reference";
@@ -513,6 +602,9 @@ class Viewer {
   RenderResult result_;
   Image shown_;
   Texture display_;
+  uint64_t shownVersion_ = 0;  // bumped at each upload into display_: the overlay composes again
+  ViewOverlay overlay_;
+  bool overlayOn_ = true;
   Mode mode_ = Mode::Technique;
   bool referenceWanted_ = false;
   bool dirty_ = true, shownDirty_ = true;

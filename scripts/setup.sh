@@ -21,14 +21,14 @@ fi
 # shader compiler and the libraries it links (GoogleTest: the build folder is configured
 # with the tests, though the main command does not build them). glslang-tools and
 # openimageio-tools only because glslang's and OpenImageIO's CMake configs import their
-# programs: configure fails without them.
+# programs: configure fails without them. libstb-dev: stb_easy_font.h, the viewer's overlay text.
 packages=(
   build-essential cmake pkg-config git
   libegl-dev libegl-mesa0 libgl-dev libgl1-mesa-dri libosmesa6
   libvulkan-dev mesa-vulkan-drivers
   glslang-dev glslang-tools libglfw3-dev libglm-dev
   libopenimageio-dev openimageio-tools libcli11-dev nlohmann-json3-dev libtinyobjloader-dev
-  libgtest-dev fonts-dejavu-core
+  libgtest-dev fonts-dejavu-core libstb-dev
 )
 if ((tests)); then
   packages+=(

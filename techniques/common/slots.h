@@ -74,4 +74,8 @@
 // the renderer's sum of the lights (a full-screen pass): an extra light's colour
 #define SB_SLOT_LIGHTS_SUM_COLOR 0
 
+// the viewer's overlay (a full-screen pass, cli/view_overlay.cpp): the image shown and the text
+#define SB_SLOT_OVERLAY_IMAGE 0
+#define SB_SLOT_OVERLAY_TEXT 1
+
 #endif  // SB_SLOTS_H
