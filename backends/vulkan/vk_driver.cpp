@@ -57,6 +57,7 @@ class VulkanDriver final : public Driver {
     cpuTiming_ = p.cpuTiming;
     statistics_ = p.statistics;
     preciseOcclusion_ = p.preciseOcclusion;
+    uniformsAsStorage_ = p.uniformsAsStorage;
     try {
       createCommandObjects();
       if (platform_->surface != VK_NULL_HANDLE) {
@@ -155,10 +156,13 @@ class VulkanDriver final : public Driver {
     // Compile first: errors throw before any Vulkan object exists.
     std::vector<uint32_t> csSpv, vsSpv, fsSpv;
     if (compute) {
-      csSpv = compileVulkanSpirv(*desc.compute, ShaderStage::Compute, desc.technique);
+      csSpv = compileVulkanSpirv(*desc.compute, ShaderStage::Compute, desc.technique,
+                                 uniformsAsStorage_);
     } else {
-      vsSpv = compileVulkanSpirv(*desc.vertex, ShaderStage::Vertex, desc.technique);
-      fsSpv = compileVulkanSpirv(*desc.fragment, ShaderStage::Fragment, desc.technique);
+      vsSpv =
+          compileVulkanSpirv(*desc.vertex, ShaderStage::Vertex, desc.technique, uniformsAsStorage_);
+      fsSpv = compileVulkanSpirv(*desc.fragment, ShaderStage::Fragment, desc.technique,
+                                 uniformsAsStorage_);
     }
 
     auto owned = std::make_unique<PipelineRes>();
@@ -171,7 +175,7 @@ class VulkanDriver final : public Driver {
     try {
       std::vector<VkDescriptorSetLayoutBinding> lb;
       for (const BindingSlot& s : desc.bindings) {
-        lb.push_back({s.binding, toVk(s.kind), 1, VK_SHADER_STAGE_ALL, nullptr});
+        lb.push_back({s.binding, descriptorType(s.kind), 1, VK_SHADER_STAGE_ALL, nullptr});
       }
       VkDescriptorSetLayoutCreateInfo dl{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
       dl.bindingCount = static_cast<uint32_t>(lb.size());
@@ -617,7 +621,7 @@ class VulkanDriver final : public Driver {
     for (;;) {
       if (descPool_ == descPools_.size()) {
         const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1024},
-                                              {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2048},
+                                              {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3072},
                                               {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1024}};
         VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
         pi.maxSets = 512;
@@ -641,6 +645,14 @@ class VulkanDriver final : public Driver {
     }
   }
 
+  // A binding's descriptor type: uniform blocks are storage buffers where the
+  // platform says so (VulkanPlatform::uniformsAsStorage).
+  VkDescriptorType descriptorType(BindingKind kind) const {
+    return kind == BindingKind::UniformBuffer && uniformsAsStorage_
+               ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER
+               : toVk(kind);
+  }
+
   // A fresh descriptor set for the bindings, which the front end has checked
   // and ordered as the pipeline declares them.
   VkDescriptorSet makeSet(const PipelineRes& p, const std::vector<DriverBinding>& bindings) {
@@ -654,7 +666,7 @@ class VulkanDriver final : public Driver {
       VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
       w.dstBinding = b.binding;
       w.descriptorCount = 1;
-      w.descriptorType = toVk(b.kind);
+      w.descriptorType = descriptorType(b.kind);
       if (b.kind == BindingKind::SampledTexture || b.kind == BindingKind::SampledTextureArray) {
         const auto& t = static_cast<const TextureRes&>(*b.object);
         const VkImageView v = b.kind == BindingKind::SampledTexture ? t.view : t.arrayView;
@@ -663,7 +675,7 @@ class VulkanDriver final : public Driver {
         w.pImageInfo = &imgInfos.back();
       } else {
         const auto& r = static_cast<const BufferRes&>(*b.object);
-        const VkDeviceSize limit = b.kind == BindingKind::UniformBuffer
+        const VkDeviceSize limit = descriptorType(b.kind) == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
                                        ? limits_.maxUniformBufferRange
                                        : limits_.maxStorageBufferRange;
         bufInfos.push_back({r.buffer, 0, std::min<VkDeviceSize>(r.size, limit)});
@@ -700,6 +712,7 @@ class VulkanDriver final : public Driver {
   std::size_t descPool_ = 0;  // first pool that may still have room this frame
   std::vector<VkQueryPool> queryPools_;
   bool statistics_ = false, preciseOcclusion_ = false;
+  bool uniformsAsStorage_ = false;
   std::vector<VkQueryPool> counterPools_;  // statistics, occlusion, statistics, ...
   std::vector<bool> counted_;              // this frame's passes: render pass or compute
   uint32_t queryCount_ = 0;

@@ -31,9 +31,12 @@ EShLanguage toLanguage(ShaderStage stage) {
 }  // namespace
 
 std::vector<uint32_t> compileVulkanSpirv(const ShaderCode& code, ShaderStage stage,
-                                         const std::string& technique) {
+                                         const std::string& technique, bool uniformsAsStorage) {
   std::call_once(g_glslangInit, [] { glslang::InitializeProcess(); });
-  const std::string source = completeShaderSource(code, ShaderApi::Vulkan);
+  std::string source = completeShaderSource(code, ShaderApi::Vulkan);
+  // After the #version line, which must come first; before "#line 1 0", so
+  // line numbers in errors are unchanged.
+  if (uniformsAsStorage) source.insert(source.find('\n') + 1, "#define SB_UNIFORMS_AS_STORAGE 1\n");
   const auto key = std::make_pair(static_cast<int>(stage), source);
   {
     std::lock_guard<std::mutex> lock(g_cacheMutex);

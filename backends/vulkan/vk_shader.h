@@ -13,7 +13,11 @@ namespace sb {
 // Compiles code (completed with the Vulkan preamble) for one stage. Throws
 // DeviceError with describeCompileError()'s message on a compile or link error.
 // Results are cached per process by stage and complete source text.
+// uniformsAsStorage: the uniform blocks (SB_UNIFORM_BLOCK) become read-only
+// storage blocks of the same std140 layout, bound as storage buffers (see
+// VulkanPlatform::uniformsAsStorage for why).
 std::vector<uint32_t> compileVulkanSpirv(const ShaderCode& code, ShaderStage stage,
-                                         const std::string& technique);
+                                         const std::string& technique,
+                                         bool uniformsAsStorage = false);
 
 }  // namespace sb
