@@ -447,6 +447,10 @@ void Device::destroyGroup(uint32_t group) noexcept {
   releaseGroup(pipelines_);
   releaseGroup(textures_);
   releaseGroup(buffers_);
+  try {
+    driver_->finishReleases();
+  } catch (...) {  // what it deferred is freed later instead
+  }
 #if defined(__GLIBC__)
   // What the drivers freed with a renderer (their shader compilers' and JITs'
   // many small blocks, across the arenas of their threads) glibc keeps, not

@@ -142,6 +142,9 @@ TEST(UniformBlocks, AsStorageTheBlockIsAStorageBuffer) {
   EXPECT_GT(variablesOf(ubo, kUniform), 0);
   EXPECT_EQ(variablesOf(ssbo, kUniform), 0);
   EXPECT_GT(variablesOf(ssbo, kStorageBuffer), variablesOf(ubo, kStorageBuffer));
+  // The driver binds that slot with a storage buffer descriptor, and only then.
+  EXPECT_EQ(sb::storageBufferBindings(ssbo).count(SB_SLOT_OSM_PARAMS), 1u);
+  EXPECT_EQ(sb::storageBufferBindings(ubo).count(SB_SLOT_OSM_PARAMS), 0u);
 }
 
 }  // namespace

@@ -26,6 +26,7 @@
 #include <array>
 #include <chrono>
 #include <cstring>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -167,6 +168,13 @@ class VulkanDriver final : public Driver {
 
     auto owned = std::make_unique<PipelineRes>();
     PipelineRes& p = *owned;
+    for (const auto* spv : {&csSpv, &vsSpv, &fsSpv}) {
+      const std::set<uint32_t> storage = storageBufferBindings(*spv);
+      for (const BindingSlot& s : desc.bindings) {
+        if (s.kind == BindingKind::UniformBuffer && storage.count(s.binding) != 0)
+          p.uniformsAsStorage.insert(s.binding);
+      }
+    }
     std::vector<VkShaderModule> modules;
     auto destroyModules = [&] {
       for (VkShaderModule m : modules) vkDestroyShaderModule(device_, m, nullptr);
@@ -175,7 +183,8 @@ class VulkanDriver final : public Driver {
     try {
       std::vector<VkDescriptorSetLayoutBinding> lb;
       for (const BindingSlot& s : desc.bindings) {
-        lb.push_back({s.binding, descriptorType(s.kind), 1, VK_SHADER_STAGE_ALL, nullptr});
+        lb.push_back(
+            {s.binding, descriptorType(p, s.binding, s.kind), 1, VK_SHADER_STAGE_ALL, nullptr});
       }
       VkDescriptorSetLayoutCreateInfo dl{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
       dl.bindingCount = static_cast<uint32_t>(lb.size());
@@ -223,8 +232,21 @@ class VulkanDriver final : public Driver {
     if (inFrame_) {
       dead_.push_back(std::move(object));  // recorded work may still use it
     } else {
+      pipelinesDestroyed_ = pipelinesDestroyed_ || dynamic_cast<PipelineRes*>(object.get());
       resources_.destroyObject(*object);
     }
+  }
+
+  void finishReleases() override {
+    if (inFrame_ || !pipelinesDestroyed_ || !platform_->cpuDevice) return;
+    pipelinesDestroyed_ = false;
+    // lavapipe frees a destroyed pipeline (its shaders' JIT code and NIR) only
+    // at the end of its next submission, on its submit thread, after the
+    // fence is signalled; a second submission, processed in order, waits for
+    // that. Without them the trim after a group missed a renderer's pipelines
+    // (the view session's resident memory 24 MiB above what it held).
+    resources_.immediate([](VkCommandBuffer) {});
+    resources_.immediate([](VkCommandBuffer) {});
   }
 
   void beginFrame() override {
@@ -645,10 +667,10 @@ class VulkanDriver final : public Driver {
     }
   }
 
-  // A binding's descriptor type: uniform blocks are storage buffers where the
-  // platform says so (VulkanPlatform::uniformsAsStorage).
-  VkDescriptorType descriptorType(BindingKind kind) const {
-    return kind == BindingKind::UniformBuffer && uniformsAsStorage_
+  // A binding's descriptor type: a uniform block the shaders read as a storage
+  // buffer (VulkanPlatform::uniformsAsStorage) takes a storage buffer.
+  static VkDescriptorType descriptorType(const PipelineRes& p, uint32_t binding, BindingKind kind) {
+    return kind == BindingKind::UniformBuffer && p.uniformsAsStorage.count(binding) != 0
                ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER
                : toVk(kind);
   }
@@ -666,7 +688,7 @@ class VulkanDriver final : public Driver {
       VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
       w.dstBinding = b.binding;
       w.descriptorCount = 1;
-      w.descriptorType = descriptorType(b.kind);
+      w.descriptorType = descriptorType(p, b.binding, b.kind);
       if (b.kind == BindingKind::SampledTexture || b.kind == BindingKind::SampledTextureArray) {
         const auto& t = static_cast<const TextureRes&>(*b.object);
         const VkImageView v = b.kind == BindingKind::SampledTexture ? t.view : t.arrayView;
@@ -675,7 +697,7 @@ class VulkanDriver final : public Driver {
         w.pImageInfo = &imgInfos.back();
       } else {
         const auto& r = static_cast<const BufferRes&>(*b.object);
-        const VkDeviceSize limit = descriptorType(b.kind) == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
+        const VkDeviceSize limit = w.descriptorType == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
                                        ? limits_.maxUniformBufferRange
                                        : limits_.maxStorageBufferRange;
         bufInfos.push_back({r.buffer, 0, std::min<VkDeviceSize>(r.size, limit)});
@@ -713,6 +735,7 @@ class VulkanDriver final : public Driver {
   std::vector<VkQueryPool> queryPools_;
   bool statistics_ = false, preciseOcclusion_ = false;
   bool uniformsAsStorage_ = false;
+  bool pipelinesDestroyed_ = false;        // since the last finishReleases()
   std::vector<VkQueryPool> counterPools_;  // statistics, occlusion, statistics, ...
   std::vector<bool> counted_;              // this frame's passes: render pass or compute
   uint32_t queryCount_ = 0;

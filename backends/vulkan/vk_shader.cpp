@@ -78,4 +78,26 @@ std::vector<uint32_t> compileVulkanSpirv(const ShaderCode& code, ShaderStage sta
   return spirv;
 }
 
+std::set<uint32_t> storageBufferBindings(const std::vector<uint32_t>& spirv) {
+  constexpr uint32_t kOpDecorate = 71, kOpVariable = 59, kBinding = 33, kStorageBuffer = 12;
+  std::map<uint32_t, uint32_t> bindingOf;  // id -> binding
+  std::set<uint32_t> storageIds;
+  // Instructions follow the 5-word header; each starts with (word count << 16) | opcode.
+  for (std::size_t i = 5; i < spirv.size();) {
+    const uint32_t words = spirv[i] >> 16, op = spirv[i] & 0xffffu;
+    if (words == 0 || i + words > spirv.size()) break;
+    if (op == kOpDecorate && words >= 4 && spirv[i + 2] == kBinding) {
+      bindingOf[spirv[i + 1]] = spirv[i + 3];
+    } else if (op == kOpVariable && words >= 4 && spirv[i + 3] == kStorageBuffer) {
+      storageIds.insert(spirv[i + 2]);
+    }
+    i += words;
+  }
+  std::set<uint32_t> out;
+  for (uint32_t id : storageIds) {
+    if (auto it = bindingOf.find(id); it != bindingOf.end()) out.insert(it->second);
+  }
+  return out;
+}
+
 }  // namespace sb

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -19,5 +20,10 @@ namespace sb {
 std::vector<uint32_t> compileVulkanSpirv(const ShaderCode& code, ShaderStage stage,
                                          const std::string& technique,
                                          bool uniformsAsStorage = false);
+
+// The bindings of a module's StorageBuffer variables: a uniform block read as
+// a storage buffer (uniformsAsStorage) needs a storage buffer descriptor, a
+// block the shader declares `uniform` itself a uniform buffer one.
+std::set<uint32_t> storageBufferBindings(const std::vector<uint32_t>& spirv);
 
 }  // namespace sb
