@@ -7,6 +7,10 @@
 #include <set>
 #include <tuple>
 
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
 #include "backends/driver.h"
 #include "backends/driver_env.h"
 
@@ -443,6 +447,18 @@ void Device::destroyGroup(uint32_t group) noexcept {
   releaseGroup(pipelines_);
   releaseGroup(textures_);
   releaseGroup(buffers_);
+  try {
+    driver_->finishReleases();
+  } catch (...) {  // what it deferred is freed later instead
+  }
+#if defined(__GLIBC__)
+  // What the drivers freed with a renderer (their shader compilers' and JITs'
+  // many small blocks, across the arenas of their threads) glibc keeps, not
+  // the OS: 5-15% of the viewer's resident memory after 22 technique switches
+  // on a tiny scene, gone when trimmed. Given back, a long session holds what
+  // it uses (a few milliseconds a renderer).
+  malloc_trim(0);
+#endif
 }
 
 void Device::beginFrame() {

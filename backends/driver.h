@@ -107,6 +107,9 @@ class Driver {
   virtual std::unique_ptr<DriverObject> createPipeline(const PipelineDesc& desc) = 0;
   // Frees the object now, or once the recorded work of the frame is done.
   virtual void release(std::unique_ptr<DriverObject> object) = 0;
+  // After releases outside a frame: whatever the driver below defers freeing
+  // is freed before this returns (Device::destroyGroup then trims the heap).
+  virtual void finishReleases() {}
 
   // Outside passes; inside a frame they are ordered with the recorded work.
   virtual void updateBuffer(DriverObject& buffer, const BufferDesc& desc, const void* data,

@@ -120,4 +120,31 @@ TEST(UniformBlocks, TheGlslSideIsTheStd140BlockAndCompiles) {
   EXPECT_FALSE(sb::compileVulkanSpirv(comp, sb::ShaderStage::Compute, "uniform_blocks").empty());
 }
 
+// Variables of a storage class in a SPIR-V module (OpVariable's third operand).
+int variablesOf(const std::vector<uint32_t>& spv, uint32_t storageClass) {
+  int n = 0;
+  for (std::size_t i = 5; i < spv.size() && (spv[i] >> 16) > 0; i += spv[i] >> 16) {
+    if ((spv[i] & 0xffffu) == 59u && (spv[i] >> 16) >= 4 && spv[i + 3] == storageClass) ++n;
+  }
+  return n;
+}
+
+// On lavapipe the Vulkan backend reads uniform blocks through storage buffers
+// (VulkanPlatform::uniformsAsStorage): the same block compiles to a
+// StorageBuffer variable and no Uniform one.
+TEST(UniformBlocks, AsStorageTheBlockIsAStorageBuffer) {
+  constexpr uint32_t kUniform = 2, kStorageBuffer = 12;
+  const sb::ShaderCode code = sb::loadShader("techniques/osm/map.frag");
+  const std::vector<uint32_t> ubo =
+      sb::compileVulkanSpirv(code, sb::ShaderStage::Fragment, "uniform_blocks");
+  const std::vector<uint32_t> ssbo =
+      sb::compileVulkanSpirv(code, sb::ShaderStage::Fragment, "uniform_blocks", true);
+  EXPECT_GT(variablesOf(ubo, kUniform), 0);
+  EXPECT_EQ(variablesOf(ssbo, kUniform), 0);
+  EXPECT_GT(variablesOf(ssbo, kStorageBuffer), variablesOf(ubo, kStorageBuffer));
+  // The driver binds that slot with a storage buffer descriptor, and only then.
+  EXPECT_EQ(sb::storageBufferBindings(ssbo).count(SB_SLOT_OSM_PARAMS), 1u);
+  EXPECT_EQ(sb::storageBufferBindings(ubo).count(SB_SLOT_OSM_PARAMS), 0u);
+}
+
 }  // namespace

@@ -2,8 +2,8 @@
 // resources and pipelines go with it): after 50 switches on a tiny scene the
 // device holds what a fresh headless run of the final settings holds, and the
 // process's resident memory is within 10% of what it was after one warm cycle
-// through every technique (the caches of the drivers filled): on GL; on
-// Vulkan a smaller growth per rebuild remains (see the test).
+// through every technique (the caches of the drivers filled), on GL and on
+// Vulkan.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -79,17 +79,14 @@ TEST_P(ViewMemoryTest, FiftyTechniqueSwitchesLeaveWhatAFreshRunHolds) {
             << " MiB after the warm cycle (" << shadows + oits << " switches), "
             << lastBytes / (1 << 20) << " MiB after " << kSwitches << "; device "
             << freshMemory.at("total_bytes") << " bytes; " << seconds << " s\n";
-  if (backend == "gl") {
-    EXPECT_LE(lastBytes, warmBytes * 1.10);
-  } else {
-    // Vulkan (lavapipe) still grows with the device's accounting flat: about
-    // 1.3 MiB per renderer rebuilt with the same techniques, 5.2 MiB per switch
-    // to a pair of techniques not seen before (measured here): a cost below
-    // the Device front end, not yet found. Bounded so that the renderer's
-    // leak fails (it grew 27 MiB a switch here).
-    const double perSwitch = (lastBytes - warmBytes) / double(kSwitches - shadows - oits);
-    EXPECT_LE(perSwitch, 10.0 * (1 << 20)) << "resident growth per switch after the warm cycle";
-  }
+  // Both APIs. The Vulkan growth (1.3 MiB a rebuild, 4-5 MiB a switch to an
+  // unseen pair) was lavapipe's leak of the shader variants it inlines uniform
+  // buffer values into, gone with uniforms read as storage buffers there
+  // (VulkanPlatform::uniformsAsStorage), and freed memory glibc kept, given
+  // back after each renderer's group (Device::destroyGroup). Measured on a
+  // session like this one: Vulkan 352 -> 433 MiB before, 226 -> 231 MiB
+  // after; GL 218 -> 220-230 MiB.
+  EXPECT_LE(lastBytes, warmBytes * 1.10);
   fs::remove_all(dir);
 }
 

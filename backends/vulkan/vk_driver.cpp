@@ -26,6 +26,7 @@
 #include <array>
 #include <chrono>
 #include <cstring>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -57,6 +58,7 @@ class VulkanDriver final : public Driver {
     cpuTiming_ = p.cpuTiming;
     statistics_ = p.statistics;
     preciseOcclusion_ = p.preciseOcclusion;
+    uniformsAsStorage_ = p.uniformsAsStorage;
     try {
       createCommandObjects();
       if (platform_->surface != VK_NULL_HANDLE) {
@@ -155,14 +157,24 @@ class VulkanDriver final : public Driver {
     // Compile first: errors throw before any Vulkan object exists.
     std::vector<uint32_t> csSpv, vsSpv, fsSpv;
     if (compute) {
-      csSpv = compileVulkanSpirv(*desc.compute, ShaderStage::Compute, desc.technique);
+      csSpv = compileVulkanSpirv(*desc.compute, ShaderStage::Compute, desc.technique,
+                                 uniformsAsStorage_);
     } else {
-      vsSpv = compileVulkanSpirv(*desc.vertex, ShaderStage::Vertex, desc.technique);
-      fsSpv = compileVulkanSpirv(*desc.fragment, ShaderStage::Fragment, desc.technique);
+      vsSpv =
+          compileVulkanSpirv(*desc.vertex, ShaderStage::Vertex, desc.technique, uniformsAsStorage_);
+      fsSpv = compileVulkanSpirv(*desc.fragment, ShaderStage::Fragment, desc.technique,
+                                 uniformsAsStorage_);
     }
 
     auto owned = std::make_unique<PipelineRes>();
     PipelineRes& p = *owned;
+    for (const auto* spv : {&csSpv, &vsSpv, &fsSpv}) {
+      const std::set<uint32_t> storage = storageBufferBindings(*spv);
+      for (const BindingSlot& s : desc.bindings) {
+        if (s.kind == BindingKind::UniformBuffer && storage.count(s.binding) != 0)
+          p.uniformsAsStorage.insert(s.binding);
+      }
+    }
     std::vector<VkShaderModule> modules;
     auto destroyModules = [&] {
       for (VkShaderModule m : modules) vkDestroyShaderModule(device_, m, nullptr);
@@ -171,7 +183,8 @@ class VulkanDriver final : public Driver {
     try {
       std::vector<VkDescriptorSetLayoutBinding> lb;
       for (const BindingSlot& s : desc.bindings) {
-        lb.push_back({s.binding, toVk(s.kind), 1, VK_SHADER_STAGE_ALL, nullptr});
+        lb.push_back(
+            {s.binding, descriptorType(p, s.binding, s.kind), 1, VK_SHADER_STAGE_ALL, nullptr});
       }
       VkDescriptorSetLayoutCreateInfo dl{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
       dl.bindingCount = static_cast<uint32_t>(lb.size());
@@ -219,8 +232,21 @@ class VulkanDriver final : public Driver {
     if (inFrame_) {
       dead_.push_back(std::move(object));  // recorded work may still use it
     } else {
+      pipelinesDestroyed_ = pipelinesDestroyed_ || dynamic_cast<PipelineRes*>(object.get());
       resources_.destroyObject(*object);
     }
+  }
+
+  void finishReleases() override {
+    if (inFrame_ || !pipelinesDestroyed_ || !platform_->cpuDevice) return;
+    pipelinesDestroyed_ = false;
+    // lavapipe frees a destroyed pipeline (its shaders' JIT code and NIR) only
+    // at the end of its next submission, on its submit thread, after the
+    // fence is signalled; a second submission, processed in order, waits for
+    // that. Without them the trim after a group missed a renderer's pipelines
+    // (the view session's resident memory 24 MiB above what it held).
+    resources_.immediate([](VkCommandBuffer) {});
+    resources_.immediate([](VkCommandBuffer) {});
   }
 
   void beginFrame() override {
@@ -610,7 +636,7 @@ class VulkanDriver final : public Driver {
     for (;;) {
       if (descPool_ == descPools_.size()) {
         const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1024},
-                                              {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2048},
+                                              {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3072},
                                               {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1024}};
         VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
         pi.maxSets = 512;
@@ -634,6 +660,14 @@ class VulkanDriver final : public Driver {
     }
   }
 
+  // A binding's descriptor type: a uniform block the shaders read as a storage
+  // buffer (VulkanPlatform::uniformsAsStorage) takes a storage buffer.
+  static VkDescriptorType descriptorType(const PipelineRes& p, uint32_t binding, BindingKind kind) {
+    return kind == BindingKind::UniformBuffer && p.uniformsAsStorage.count(binding) != 0
+               ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER
+               : toVk(kind);
+  }
+
   // A fresh descriptor set for the bindings, which the front end has checked
   // and ordered as the pipeline declares them.
   VkDescriptorSet makeSet(const PipelineRes& p, const std::vector<DriverBinding>& bindings) {
@@ -647,7 +681,7 @@ class VulkanDriver final : public Driver {
       VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
       w.dstBinding = b.binding;
       w.descriptorCount = 1;
-      w.descriptorType = toVk(b.kind);
+      w.descriptorType = descriptorType(p, b.binding, b.kind);
       if (b.kind == BindingKind::SampledTexture || b.kind == BindingKind::SampledTextureArray) {
         const auto& t = static_cast<const TextureRes&>(*b.object);
         const VkImageView v = b.kind == BindingKind::SampledTexture ? t.view : t.arrayView;
@@ -656,7 +690,7 @@ class VulkanDriver final : public Driver {
         w.pImageInfo = &imgInfos.back();
       } else {
         const auto& r = static_cast<const BufferRes&>(*b.object);
-        const VkDeviceSize limit = b.kind == BindingKind::UniformBuffer
+        const VkDeviceSize limit = w.descriptorType == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
                                        ? limits_.maxUniformBufferRange
                                        : limits_.maxStorageBufferRange;
         bufInfos.push_back({r.buffer, 0, std::min<VkDeviceSize>(r.size, limit)});
@@ -693,6 +727,8 @@ class VulkanDriver final : public Driver {
   std::size_t descPool_ = 0;  // first pool that may still have room this frame
   std::vector<VkQueryPool> queryPools_;
   bool statistics_ = false, preciseOcclusion_ = false;
+  bool uniformsAsStorage_ = false;
+  bool pipelinesDestroyed_ = false;        // since the last finishReleases()
   std::vector<VkQueryPool> counterPools_;  // statistics, occlusion, statistics, ...
   std::vector<bool> counted_;              // this frame's passes: render pass or compute
   uint32_t queryCount_ = 0;

@@ -250,6 +250,8 @@ void VulkanPlatform::pickPhysicalDevice() {
   VkPhysicalDeviceDriverProperties drv{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
   VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &drv};
   vkGetPhysicalDeviceProperties2(physical, &p2);
+  uniformsAsStorage =
+      drv.driverID == VK_DRIVER_ID_MESA_LLVMPIPE && !envFlag("SB_VULKAN_UNIFORM_BUFFERS");
   info.backend = "vulkan";
   info.timing = cpuTiming ? "cpu clock per pass (submit and wait)" : "gpu timestamps";
   info.platform = surface != VK_NULL_HANDLE ? "window" : "headless";

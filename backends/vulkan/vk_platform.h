@@ -50,6 +50,15 @@ class VulkanPlatform {
   bool bresenham = false;     // Bresenham lines (VK_EXT_line_rasterization)
   bool memoryBudget = false;  // VK_EXT_memory_budget (queried, not enabled: no device state)
   bool cpuDevice = false;     // VK_PHYSICAL_DEVICE_TYPE_CPU: its memory is the host's
+  // Uniform blocks are read through storage buffers (same std140 layout): on
+  // lavapipe (Mesa 22.3), a shader that reads a uniform buffer in a loop bound
+  // or branch is recompiled with the values inlined whenever its pipeline or
+  // uniform buffers are bound (every draw here), and the compiled variants are
+  // never freed (lvp_execute.c, update_inline_shader_state): 1-8 MiB a frame,
+  // for the process's life. Storage buffers are not inlined.
+  // SB_VULKAN_UNIFORM_BUFFERS=1 keeps uniform buffers (to measure the
+  // difference).
+  bool uniformsAsStorage = false;
   // Work counters: pipeline statistics queries, reset from the host
   // (pipelineStatisticsQuery and hostQueryReset), precise occlusion queries.
   bool statistics = false;

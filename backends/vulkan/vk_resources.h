@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,9 @@ struct TextureRes : DriverObject {
 };
 
 struct PipelineRes : DriverObject {
+  // Uniform buffer bindings the shaders read as storage buffers
+  // (VulkanPlatform::uniformsAsStorage): bound with storage buffer descriptors.
+  std::set<uint32_t> uniformsAsStorage;
   VkPipeline pipeline = VK_NULL_HANDLE;
   VkPipelineLayout layout = VK_NULL_HANDLE;
   VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;

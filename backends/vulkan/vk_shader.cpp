@@ -31,9 +31,12 @@ EShLanguage toLanguage(ShaderStage stage) {
 }  // namespace
 
 std::vector<uint32_t> compileVulkanSpirv(const ShaderCode& code, ShaderStage stage,
-                                         const std::string& technique) {
+                                         const std::string& technique, bool uniformsAsStorage) {
   std::call_once(g_glslangInit, [] { glslang::InitializeProcess(); });
-  const std::string source = completeShaderSource(code, ShaderApi::Vulkan);
+  std::string source = completeShaderSource(code, ShaderApi::Vulkan);
+  // After the #version line, which must come first; before "#line 1 0", so
+  // line numbers in errors are unchanged.
+  if (uniformsAsStorage) source.insert(source.find('\n') + 1, "#define SB_UNIFORMS_AS_STORAGE 1\n");
   const auto key = std::make_pair(static_cast<int>(stage), source);
   {
     std::lock_guard<std::mutex> lock(g_cacheMutex);
@@ -73,6 +76,28 @@ std::vector<uint32_t> compileVulkanSpirv(const ShaderCode& code, ShaderStage sta
   std::lock_guard<std::mutex> lock(g_cacheMutex);
   g_spirvCache.emplace(key, spirv);
   return spirv;
+}
+
+std::set<uint32_t> storageBufferBindings(const std::vector<uint32_t>& spirv) {
+  constexpr uint32_t kOpDecorate = 71, kOpVariable = 59, kBinding = 33, kStorageBuffer = 12;
+  std::map<uint32_t, uint32_t> bindingOf;  // id -> binding
+  std::set<uint32_t> storageIds;
+  // Instructions follow the 5-word header; each starts with (word count << 16) | opcode.
+  for (std::size_t i = 5; i < spirv.size();) {
+    const uint32_t words = spirv[i] >> 16, op = spirv[i] & 0xffffu;
+    if (words == 0 || i + words > spirv.size()) break;
+    if (op == kOpDecorate && words >= 4 && spirv[i + 2] == kBinding) {
+      bindingOf[spirv[i + 1]] = spirv[i + 3];
+    } else if (op == kOpVariable && words >= 4 && spirv[i + 3] == kStorageBuffer) {
+      storageIds.insert(spirv[i + 2]);
+    }
+    i += words;
+  }
+  std::set<uint32_t> out;
+  for (uint32_t id : storageIds) {
+    if (auto it = bindingOf.find(id); it != bindingOf.end()) out.insert(it->second);
+  }
+  return out;
 }
 
 }  // namespace sb

@@ -29,7 +29,13 @@
 #include "techniques/common/std140.h"
 #else
 // clang-format off
+#ifdef SB_UNIFORMS_AS_STORAGE
+// The Vulkan backend on lavapipe (backends/vulkan/vk_platform.h says why): the
+// same std140 block, read through a storage buffer.
+#define SB_UNIFORM_BLOCK(Name, slot) layout(std140, binding = slot) readonly buffer Name {
+#else
 #define SB_UNIFORM_BLOCK(Name, slot) layout(std140, binding = slot) uniform Name {
+#endif
 #define SB_FIELD(type, name) type name;
 #define SB_ARRAY(type, name, count) type name[count];
 #define SB_UNIFORM_BLOCK_END(Name) };
