@@ -138,6 +138,27 @@ const ErrorMetric kErrorMetrics[] = {
 
 // (a) Error against frame time per scene, size and backend, with the Pareto
 // frontier: one chart per error metric, chosen by radio buttons (CSS only, no
+// Each case's frame as its passes' median times, stacked: where a technique spends its
+// frame, at a glance, above the group's table of passes.
+std::string passBars(const Group& g) {
+  StackedBars b{g.name + ": frame time by pass", "ms (median per pass)", {}, {}};
+  const bool nameOit = anyTransparency(g.results);
+  for (const json* r : g.results) {
+    const json* passes = find(*r, {"passes"});
+    if (!passes || !passes->is_array()) continue;
+    StackedBars::Row row{shortTechniqueOf(*r, nameOit) + ", " + backendOf(*r), {}};
+    for (const json& p : *passes) {
+      const std::string name = text(find(p, {"name"}));
+      const auto at = std::find(b.parts.begin(), b.parts.end(), name) - b.parts.begin();
+      if (at == static_cast<long>(b.parts.size())) b.parts.push_back(name);
+      row.values.resize(b.parts.size(), NAN);
+      row.values[at] = number(find(p, {"ms", "median"})).value_or(NAN);
+    }
+    b.rows.push_back(std::move(row));
+  }
+  return b.rows.empty() ? "" : "<figure>" + svgStackedBars(b) + "</figure>\n";
+}
+
 // script); every point labelled with its technique, its frame time's spread
 // over the repetitions (min to max) as an error bar.
 std::string errorTimeCharts(const ReportData& d) {
@@ -503,6 +524,7 @@ std::string renderHtml(const ReportData& d, const fs::path& dir) {
   for (const Group& g : d.groups) {
     if (g.passes.rows.empty()) continue;
     anyPasses = true;
+    o << passBars(g);
     // Collapsed: a row per pass of every case would bury the rest of the page.
     o << "<details class=\"passes\"><summary>" << h(g.name.empty() ? "(no group)" : g.name) << " ("
       << g.passes.rows.size() << " passes of " << g.results.size() << " cases)</summary>\n";

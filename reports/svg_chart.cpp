@@ -197,6 +197,58 @@ std::vector<std::string> wrapCrowded(const std::vector<std::string>& items, int 
 
 }  // namespace
 
+std::string svgStackedBars(const StackedBars& b) {
+  constexpr int kLabelWidth = 230, kBarWidth = 360, kRowHeight = 16, kTop = 24;
+  double most = 0;
+  for (const auto& row : b.rows) {
+    double sum = 0;
+    for (double v : row.values)
+      if (std::isfinite(v) && v > 0) sum += v;
+    most = std::max(most, sum);
+  }
+  const Axis ax = makeAxis(0, most > 0 ? most : 1, false);
+  const int legendRows = static_cast<int>((b.parts.size() + 2) / 3);
+  const int plotBottom = kTop + kRowHeight * static_cast<int>(b.rows.size());
+  const int height = plotBottom + 36 + 14 * legendRows;
+  const int width = kLabelWidth + kBarWidth + 20;
+  auto xOf = [&](double v) { return kLabelWidth + kBarWidth * (v - ax.lo) / (ax.hi - ax.lo); };
+  std::ostringstream o;
+  o << "<svg class=\"stacked-bars\" width=\"" << width << "\" height=\"" << height
+    << "\" viewBox=\"0 0 " << width << " " << height
+    << "\" font-family=\"sans-serif\" font-size=\"10\">\n"
+    << "<text x=\"4\" y=\"14\" font-weight=\"bold\">" << htmlEscape(b.title) << "</text>\n";
+  for (double t : ax.ticks)
+    o << "<line x1=\"" << fmt(xOf(t)) << "\" y1=\"" << kTop << "\" x2=\"" << fmt(xOf(t))
+      << "\" y2=\"" << plotBottom << "\" stroke=\"#ddd\"/><text x=\"" << fmt(xOf(t)) << "\" y=\""
+      << plotBottom + 12 << "\" text-anchor=\"middle\">" << ax.label(t) << "</text>\n";
+  o << "<text x=\"" << kLabelWidth + kBarWidth / 2 << "\" y=\"" << plotBottom + 26
+    << "\" text-anchor=\"middle\">" << htmlEscape(b.valueLabel) << "</text>\n";
+  for (std::size_t r = 0; r < b.rows.size(); ++r) {
+    const auto& row = b.rows[r];
+    const int y = kTop + kRowHeight * static_cast<int>(r);
+    o << "<text x=\"" << kLabelWidth - 4 << "\" y=\"" << y + 11 << "\" text-anchor=\"end\">"
+      << htmlEscape(row.label) << "</text>\n";
+    double at = 0;
+    for (std::size_t p = 0; p < row.values.size() && p < b.parts.size(); ++p) {
+      const double v = row.values[p];
+      if (!std::isfinite(v) || v <= 0) continue;
+      o << "<rect x=\"" << fmt(xOf(at)) << "\" y=\"" << y + 2 << "\" width=\""
+        << fmt(xOf(at + v) - xOf(at)) << "\" height=\"" << kRowHeight - 4 << "\" fill=\""
+        << kPalette[p % kPaletteSize] << "\"><title>" << htmlEscape(row.label) << "\n"
+        << htmlEscape(b.parts[p]) << ": " << g3(v) << "</title></rect>\n";
+      at += v;
+    }
+  }
+  for (std::size_t p = 0; p < b.parts.size(); ++p) {
+    const int x = 4 + 200 * static_cast<int>(p % 3), y = plotBottom + 36 + 14 * int(p / 3);
+    o << "<rect x=\"" << x << "\" y=\"" << y - 8 << "\" width=\"10\" height=\"10\" fill=\""
+      << kPalette[p % kPaletteSize] << "\"/><text x=\"" << x + 14 << "\" y=\"" << y << "\">"
+      << htmlEscape(b.parts[p]) << "</text>\n";
+  }
+  o << "</svg>";
+  return o.str();
+}
+
 std::string htmlEscape(const std::string& s) {
   std::string out;
   out.reserve(s.size());

@@ -55,6 +55,20 @@ inline constexpr double kLogAxisRange = 10;
 inline constexpr double kLabelFontSize = 9;
 std::string svgChart(const Chart& chart);
 
+// Horizontal bars, one per row, each split into its parts (e.g. a case's frame time
+// into its passes' times), every part in its own colour with a legend; a part's
+// tooltip gives its row, name and value. Rows share one linear value axis.
+struct StackedBars {
+  std::string title, valueLabel;
+  std::vector<std::string> parts;  // the legend, in drawing order
+  struct Row {
+    std::string label;
+    std::vector<double> values;  // per part; non-finite or <= 0: absent
+  };
+  std::vector<Row> rows;
+};
+std::string svgStackedBars(const StackedBars& bars);
+
 // The points of `points` on the Pareto frontier for minimum x and minimum y
 // (no other point is at least as good in both and better in one), by ascending x.
 std::vector<ChartPoint> paretoFrontier(std::vector<ChartPoint> points);

@@ -503,6 +503,27 @@ TEST(SvgChart, LogAxisAboveTenfoldRange) {
   EXPECT_EQ(chart(4, 20).find("(log)"), std::string::npos);  // 5x: linear
 }
 
+// Stacked bars: each part as wide as its value on the shared axis, in its own colour,
+// named in the legend and its tooltip; absent parts drawn as nothing.
+TEST(SvgChart, StackedBarsWidthsFollowTheValues) {
+  sb::StackedBars b{"frame by pass", "ms", {"depth", "shade"}, {}};
+  b.rows.push_back({"one", {1, 3}});
+  b.rows.push_back({"two", {2, NAN}});
+  const std::string svg = sb::svgStackedBars(b);
+  std::vector<double> widths;
+  for (std::size_t at = svg.find("<rect x="); at != std::string::npos;
+       at = svg.find("<rect x=", at + 1)) {
+    const std::size_t end = svg.find('>', at);
+    if (svg[end - 1] == '/') continue;  // a legend swatch (self-closing): bars have a title
+    widths.push_back(std::stod(svg.substr(svg.find("width=\"", at) + 7)));
+  }
+  ASSERT_EQ(widths.size(), 3u) << svg;  // the missing part is not drawn
+  EXPECT_NEAR(widths[1], 3 * widths[0], 1e-6);
+  EXPECT_NEAR(widths[2], 2 * widths[0], 1e-6);
+  EXPECT_NE(svg.find("depth: 1</title>"), std::string::npos);
+  EXPECT_NE(svg.find(">shade</text>"), std::string::npos);  // legend
+}
+
 // Charts shown side by side share their axes by covering each other's range: a chart
 // of values 4 to 20 given the range 4 to 60 draws the same axes as one of 4 to 60.
 TEST(SvgChart, SharedRangeGivesTheSameAxes) {
