@@ -15,16 +15,25 @@ void registerCheckCommands(CLI::App& app) {
     auto filter = std::make_shared<std::string>();
     auto baselines = std::make_shared<std::string>(defaultBaselinesDir().string());
     auto out = std::make_shared<std::string>("out/check");
+    auto expectations = std::make_shared<std::string>();
+    auto retries = std::make_shared<int>(2);
     cmd->add_option("--filter", *filter, "only the cases whose name matches this regex");
     cmd->add_option("--baselines", *baselines, "baselines folder (holds manifest.json)")
         ->capture_default_str();
     cmd->add_option("--out", *out, "where failures are written (actual, expected, diff, JSON)")
         ->capture_default_str();
+    cmd->add_option("--expectations", *expectations,
+                    "the driver's expected failures, flakes and skips (default: "
+                    "BASELINES/expectations/DRIVER.json where it exists; none: none)");
+    cmd->add_option("--retries", *retries,
+                    "re-runs of a case with an unexpected failure: one that passes on a re-run "
+                    "is a flake")
+        ->capture_default_str();
     addDriverOption(*cmd);
     cmd->callback([=] {
       runGuarded("check", [&] {
         checkOutputFolder("--out", *out);  // written only on failure, but checked up front
-        return runCheck(*baselines, *out, *filter, std::cout);
+        return runCheck({*baselines, *out, *filter, *expectations, *retries}, std::cout);
       });
     });
   }

@@ -21,7 +21,9 @@
 #include <sstream>
 #include <string_view>
 
+#include "backends/driver_env.h"
 #include "harness/checks.h"
+#include "harness/expectations.h"
 #include "harness/json_keys.h"
 #include "harness/settings.h"
 #include "harness/stop.h"
@@ -117,7 +119,39 @@ auto fsGuard(F&& body) -> decltype(body()) {
 
 struct Counts {
   int passed = 0, failed = 0, missing = 0;
+  int expectedFailures = 0, flakes = 0, skipped = 0, unexpectedPasses = 0;
 };
+
+// One comparison of a case: a backend's image against its baseline, or a further backend's
+// against the first's ("gl-vs-vulkan").
+struct Outcome {
+  std::string label;
+  Verdict verdict;         // failures empty: passed
+  bool missing = false;    // no baseline file
+  bool comparison = true;  // false: a failure that is not a comparison (invariant, unreadable)
+  Image actual;
+  std::optional<Image> expected;
+  std::string expectedName, actualName;
+  fs::path baselineFile;
+  bool ok() const { return !missing && verdict.ok(); }
+};
+
+// What the expectations and the re-runs make of an outcome.
+enum class Class { Passed, Failed, Missing, ExpectedFailure, KnownFlake, NewFlake, UnexpectedPass };
+
+// An expectation's reason on the console: its first clause (the whole is in the file and
+// in the comparison's JSON).
+std::string brief(const std::string& reason) {
+  std::string s = reason.substr(0, reason.find(": "));
+  if (s.size() > 100) s = s.substr(0, 97) + "...";
+  return s;
+}
+
+std::string reasonsText(const Verdict& v) {
+  std::string reasons;
+  for (const auto& f : v.failures) reasons += (reasons.empty() ? "" : "; ") + f;
+  return reasons;
+}
 
 class Checker {
  public:
@@ -125,42 +159,57 @@ class Checker {
   Checker(fs::path outDir, fs::path baselines, std::ostream& out)
       : outDir_(std::move(outDir)), baselines_(std::move(baselines)), out_(out) {}
 
-  // Compares actual with expected and prints one line; writes the failure files.
-  void compare(const BaselineCase& c, const std::string& label, const Image& actual,
-               const Image& expected, const std::string& expectedName,
-               const std::string& actualName) {
-    clearStale(c.name, label);
-    Verdict v;
-    if (actual.width != expected.width || actual.height != expected.height) {
-      v.failures.push_back("size " + sizeText(actual) + " but " + expectedName + " is " +
-                           sizeText(expected));
-    } else {
-      v = judge(actual, expected, c.tolerance);
+  // Prints one line for the outcome as classified; writes the files of anything that
+  // did not pass (the actual image, the expected one, the heatmap, the numbers).
+  void report(const BaselineCase& c, const Outcome& o, Class k, const std::string& note) {
+    clearStale(c.name, o.label);
+    const ImageError& e = o.verdict.error;
+    const std::string stem = (outDir_ / (c.name + "." + o.label)).string();
+    const std::string suffix = note.empty() ? "" : " (" + note + ")";
+    switch (k) {
+      case Class::Passed:
+      case Class::UnexpectedPass:
+        if (k == Class::Passed) {
+          ++counts.passed;
+          out_ << "OK ";
+        } else {
+          ++counts.unexpectedPasses;
+          out_ << "UNEXPECTED PASS ";
+        }
+        out_ << c.name << " " << o.label << ": max_abs " << fmt(e.maxAbs) << ", failing "
+             << fmt(e.fractionOver) << ", psnr " << fmt(e.psnr) << " dB, ssim " << fmt(e.ssim, 6);
+        if (o.verdict.flip) out_ << ", flip " << fmt(o.verdict.flip->mean);
+        out_ << suffix << "\n";
+        return;
+      case Class::Missing:
+        missing(c, o);
+        return;
+      case Class::Failed:
+        ++counts.failed;
+        out_ << "FAILED ";
+        break;
+      case Class::ExpectedFailure:
+        ++counts.expectedFailures;
+        out_ << "EXPECTED FAIL ";
+        break;
+      case Class::KnownFlake:
+      case Class::NewFlake:
+        ++counts.flakes;
+        out_ << "FLAKE ";
+        break;
     }
-    const ImageError& e = v.error;
-    if (v.ok()) {
-      ++counts.passed;
-      out_ << "OK " << c.name << " " << label << ": max_abs " << fmt(e.maxAbs) << ", failing "
-           << fmt(e.fractionOver) << ", psnr " << fmt(e.psnr) << " dB, ssim " << fmt(e.ssim, 6);
-      if (v.flip) out_ << ", flip " << fmt(v.flip->mean);
-      out_ << "\n";
-      return;
-    }
-    ++counts.failed;
-    std::string reasons;
-    for (const auto& f : v.failures) reasons += (reasons.empty() ? "" : "; ") + f;
-    const std::string stem = (outDir_ / (c.name + "." + label)).string();
-    out_ << "FAILED " << c.name << " " << label << ": " << reasons;
-    if (e.width > 0) out_ << " (ssim " << fmt(e.ssim, 6) << ")";
-    out_ << " -> " << stem << ".*\n";
-    writeFailure(c, label, actual, &expected, v, expectedName, actualName);
+    out_ << c.name << " " << o.label << ": " << reasonsText(o.verdict);
+    if (e.width > 0 && o.comparison) out_ << " (ssim " << fmt(e.ssim, 6) << ")";
+    out_ << suffix << " -> " << stem << ".*\n";
+    writeFailure(c, o, k);
   }
 
-  void missing(const BaselineCase& c, const std::string& backend, const Image& actual,
-               const fs::path& file) {
-    clearStale(c.name, backend);
+  Counts counts;
+
+ private:
+  void missing(const BaselineCase& c, const Outcome& o) {
     ++counts.missing;
-    const std::string stem = (outDir_ / (c.name + "." + backend)).string();
+    const std::string stem = (outDir_ / (c.name + "." + o.label)).string();
     // The hint, followed as printed, blesses this case in this folder (a bare
     // `strandbench bless` would re-render every case of the repository's baselines).
     std::string pattern;  // the name, matched whole, its regex characters escaped
@@ -168,30 +217,13 @@ class Checker {
       if (std::string_view(".^$|()[]{}*+?\\").find(ch) != std::string_view::npos) pattern += '\\';
       pattern += ch;
     }
-    out_ << "MISSING " << c.name << " " << backend << ": no baseline " << file.string()
+    out_ << "MISSING " << c.name << " " << o.label << ": no baseline " << o.baselineFile.string()
          << " (actual -> " << stem << ".actual.png; run `strandbench bless --baselines "
          << shellQuoted(baselines_.string()) << " --filter " << shellQuoted("^" + pattern + "$")
          << "`)\n";
-    Verdict v;
-    v.failures.push_back("missing baseline " + file.string());
-    writeFailure(c, backend, actual, nullptr, v, file.string(), "rendered on " + backend);
+    writeFailure(c, o, Class::Missing);
   }
 
-  // A failure that is not a comparison: an unreadable baseline, a broken invariant.
-  void failed(const BaselineCase& c, const std::string& backend, const Image& actual,
-              const std::string& message) {
-    clearStale(c.name, backend);
-    ++counts.failed;
-    const std::string stem = (outDir_ / (c.name + "." + backend)).string();
-    out_ << "FAILED " << c.name << " " << backend << ": " << message << " -> " << stem << ".*\n";
-    Verdict v;
-    v.failures.push_back(message);
-    writeFailure(c, backend, actual, nullptr, v, "", "rendered on " + backend);
-  }
-
-  Counts counts;
-
- private:
   void clearStale(const std::string& name, const std::string& label) {
     for (const char* suffix : {".actual.png", ".expected.png", ".diff.png", ".json"}) {
       std::error_code ec;
@@ -199,37 +231,42 @@ class Checker {
     }
   }
 
-  void writeFailure(const BaselineCase& c, const std::string& label, const Image& actual,
-                    const Image* expected, const Verdict& v, const std::string& expectedName,
-                    const std::string& actualName) {
+  void writeFailure(const BaselineCase& c, const Outcome& o, Class k) {
+    static const char* const kNames[] = {"passed",           "failed",      "missing",
+                                         "expected failure", "known flake", "flake",
+                                         "unexpected pass"};
     fs::create_directories(outDir_);
-    const std::string stem = (outDir_ / (c.name + "." + label)).string();
-    writeImage(actual, stem + ".actual.png", ImageBitDepth::U16);
+    const std::string stem = (outDir_ / (c.name + "." + o.label)).string();
+    writeImage(o.actual, stem + ".actual.png", ImageBitDepth::U16);
     const RenderRequest& r = c.request;
+    std::vector<std::string> failures = o.verdict.failures;
+    if (o.missing) failures = {"missing baseline " + o.baselineFile.string()};
     json j{{"case", c.name},
-           {"label", label},
+           {"label", o.label},
+           {"outcome", kNames[static_cast<int>(k)]},
            {"scene", r.scene},
            {"shadow", r.shadow},
            {"oit", r.oit},
            {"size", std::to_string(r.width) + "x" + std::to_string(r.height)},
            {"primitive", r.primitive},
-           {"expected", expectedName},
-           {"actual", actualName},
+           {"expected", o.expectedName},
+           {"actual", o.actualName},
            {"tolerance", toleranceJson(c.tolerance)},
-           {"failures", v.failures},
+           {"failures", failures},
            {"files", {{"actual", stem + ".actual.png"}}}};
-    if (expected) {
-      writeImage(*expected, stem + ".expected.png", ImageBitDepth::U16);
+    if (o.expected) {
+      const Image& expected = *o.expected;
+      writeImage(expected, stem + ".expected.png", ImageBitDepth::U16);
       j["files"]["expected"] = stem + ".expected.png";
-      if (expected->width == actual.width && expected->height == actual.height) {
-        const double m = v.error.maxAbs;
+      if (expected.width == o.actual.width && expected.height == o.actual.height) {
+        const double m = o.verdict.error.maxAbs;
         const double scale = std::isfinite(m) && m > 0.0 ? m : 1.0;
-        writeImage(diffHeatmap(actual, *expected, scale), stem + ".diff.png");
+        writeImage(diffHeatmap(o.actual, expected, scale), stem + ".diff.png");
         j["files"]["diff"] = stem + ".diff.png";
         j["heatmap_scale"] = scale;
-        j["metrics"] = toJson(v.error);
+        j["metrics"] = toJson(o.verdict.error);
         j["metrics"]["failing_threshold"] = c.tolerance.failingThreshold;
-        if (v.flip) j["metrics"]["flip"] = toJson(*v.flip);
+        if (o.verdict.flip) j["metrics"]["flip"] = toJson(*o.verdict.flip);
       }
     }
     std::ofstream f(stem + ".json");
@@ -239,6 +276,47 @@ class Checker {
 
   fs::path outDir_, baselines_;
   std::ostream& out_;
+};
+
+// The most specific baseline image of a case on a backend: "<case>.<backend>.<driver>.png"
+// where the driver has its own, else the backend's "<case>.<backend>.png".
+fs::path baselineFile(const fs::path& dir, const std::string& caseName, const std::string& backend,
+                      const std::string& driver) {
+  const fs::path own = dir / (caseName + "." + backend + "." + driverKey(driver) + ".png");
+  if (fs::exists(own)) return own;
+  return dir / baselineFileName(caseName, backend);
+}
+
+// The tolerance of a case on a driver: the driver's own where the manifest gives one.
+const Tolerance& caseTolerance(const BaselineCase& c, const std::string& driver) {
+  const auto it = c.driverTolerances.find(driverKey(driver));
+  return it == c.driverTolerances.end() ? c.tolerance : it->second;
+}
+
+// SB_CHECK_TEST_DIFFER=CASE:N, a test hook: the first N renders of CASE in this check get
+// a bright 4x4 block, so that a test can make a case differ on its first run only (a flake)
+// or on every run (a failure).
+struct DifferHook {
+  std::string caseName;
+  long renders = 0;
+  long seen = 0;
+  DifferHook() {
+    const char* v = std::getenv("SB_CHECK_TEST_DIFFER");
+    if (!v || !*v) return;
+    const std::string s = v;
+    const auto colon = s.rfind(':');
+    char* end = nullptr;
+    if (colon != std::string::npos) renders = std::strtol(s.c_str() + colon + 1, &end, 10);
+    if (colon == std::string::npos || colon == 0 || !end || *end != '\0' || renders < 0)
+      throw InputError("SB_CHECK_TEST_DIFFER=" + s + ": expected CASE:N");
+    caseName = s.substr(0, colon);
+  }
+  void apply(const std::string& name, Image& img) {
+    if (name != caseName || seen++ >= renders) return;
+    for (int y = 0; y < std::min(4, img.height); ++y)
+      for (int x = 0; x < std::min(4, img.width); ++x)
+        for (int ch = 0; ch < 3; ++ch) img.pixels[img.index(x, y, ch)] = 1.0f;
+  }
 };
 
 long abortAfterFromEnv() {
@@ -325,52 +403,158 @@ Verdict judge(const Image& actual, const Image& expected, const Tolerance& t) {
   return v;
 }
 
-int runCheck(const fs::path& baselines, const fs::path& outDir, const std::string& filter,
-             std::ostream& out) {
+namespace {
+
+// Renders a case on its backends (those not skipped) and makes its comparisons.
+std::vector<Outcome> runComparisons(const Manifest& m, const BaselineCase& c, const fs::path& dir,
+                                    const std::string& driver, const Expectations& x,
+                                    RenderCache& cache, DifferHook& hook, int& renders) {
+  const Tolerance& tolerance = caseTolerance(c, driver);
+  std::vector<Outcome> outcomes;
+  std::vector<std::pair<std::string, Image>> images;  // (backend, image)
+  for (const std::string& backend : c.backends) {
+    if (Expectations::find(x.skips, c.name, backend)) continue;
+    const RenderResult result = renderCase(m, c, backend, cache);
+    Image actual = result.image;
+    hook.apply(c.name, actual);
+    actual = quantize16(actual);
+    ++renders;
+    Outcome o;
+    o.label = backend;
+    o.actual = actual;
+    o.actualName = "rendered on " + backend;
+    if (result.invariants && !result.invariants->empty()) {
+      std::string what;
+      for (const auto& f : *result.invariants)
+        what += (what.empty() ? "" : "; ") + f.pass + ": " + f.what;
+      o.comparison = false;
+      o.verdict.failures.push_back("invariant failed: " + what);
+    } else {
+      o.baselineFile = baselineFile(dir, c.name, backend, driver);
+      o.expectedName = o.baselineFile.string();
+      if (!fs::exists(o.baselineFile)) {
+        o.missing = true;
+      } else {
+        try {
+          o.expected = readImage(o.baselineFile.string());
+        } catch (const InputError& e) {
+          o.comparison = false;
+          o.verdict.failures.push_back(std::string("unreadable baseline: ") + e.what());
+        }
+      }
+      if (o.expected) {
+        if (o.expected->width != actual.width || o.expected->height != actual.height)
+          o.verdict.failures.push_back("size " + sizeText(actual) + " but " + o.expectedName +
+                                       " is " + sizeText(*o.expected));
+        else
+          o.verdict = judge(actual, *o.expected, tolerance);
+      }
+    }
+    outcomes.push_back(std::move(o));
+    images.emplace_back(backend, actual);
+  }
+  // Each further backend against the first (GL against Vulkan), same tolerance.
+  for (std::size_t i = 1; i < images.size(); ++i) {
+    Outcome o;
+    o.label = images[0].first + "-vs-" + images[i].first;
+    if (images[0].first != c.backends[0] || Expectations::find(x.skips, c.name, o.label)) continue;
+    o.actual = images[i].second;
+    o.expected = images[0].second;
+    o.expectedName = "rendered on " + images[0].first;
+    o.actualName = "rendered on " + images[i].first;
+    o.verdict = judge(o.actual, *o.expected, tolerance);
+    outcomes.push_back(std::move(o));
+  }
+  return outcomes;
+}
+
+}  // namespace
+
+int runCheck(const CheckOptions& opt, std::ostream& out) {
   return fsGuard([&] {
-    const fs::path dir = folderPath(baselines);
+    const fs::path dir = folderPath(opt.baselines);
     checkBaselinesFolder(dir);
     const Manifest m = loadManifest(dir / "manifest.json");
-    const std::vector<BaselineCase> cases = selectCases(m, filter);
+    const std::vector<BaselineCase> cases = selectCases(m, opt.filter);
+    if (opt.retries < 0) throw InputError("--retries: a count >= 0");
+    const std::string driver = currentDriver();
+    Expectations x;
+    if (opt.expectations != "none") {
+      const fs::path file =
+          opt.expectations.empty() ? expectationsFile(dir, driver) : fs::path(opt.expectations);
+      if (!opt.expectations.empty() || fs::exists(file)) {
+        x = loadExpectations(file, m);
+        if (x.driver != driverKey(driver))
+          throw InputError(file.string() + ": describes driver '" + x.driver +
+                           "' but this check runs '" + driverKey(driver) + "'");
+      }
+    }
+    DifferHook hook;
     RenderCache cache;
     checkCases(m, cases, cache);
     const auto t0 = std::chrono::steady_clock::now();
-    Checker checker(outDir, dir, out);
+    Checker checker(opt.outDir, dir, out);
+    if (!x.file.empty())
+      out << "driver " << driverKey(driver) << ", expectations " << x.file.string() << " ("
+          << x.failures.size() << " failures, " << x.flakes.size() << " flakes, " << x.skips.size()
+          << " skips)\n";
     int renders = 0;
     for (const BaselineCase& c : cases) {
-      std::vector<Image> images;
-      for (const std::string& backend : c.backends) {
-        const RenderResult result = renderCase(m, c, backend, cache);
-        const Image actual = quantize16(result.image);
-        ++renders;
-        if (result.invariants && !result.invariants->empty()) {
-          std::string what;
-          for (const auto& f : *result.invariants)
-            what += (what.empty() ? "" : "; ") + f.pass + ": " + f.what;
-          checker.failed(c, backend, actual, "invariant failed: " + what);
-          images.push_back(actual);
-          continue;
-        }
-        const fs::path file = dir / baselineFileName(c.name, backend);
-        if (!fs::exists(file)) {
-          checker.missing(c, backend, actual, file);
-        } else {
-          std::optional<Image> expected;
-          try {
-            expected = readImage(file.string());
-          } catch (const InputError& e) {
-            checker.failed(c, backend, actual, std::string("unreadable baseline: ") + e.what());
-          }
-          if (expected)
-            checker.compare(c, backend, actual, *expected, file.string(), "rendered on " + backend);
-        }
-        images.push_back(actual);
+      if (const Expectation* s = Expectations::find(x.skips, c.name, "");
+          s && s->comparison.empty()) {
+        ++checker.counts.skipped;
+        out << "SKIP " << c.name << ": " << s->reason << "\n";
+        continue;
       }
-      // Each further backend against the first (GL against Vulkan), same tolerance.
-      for (std::size_t i = 1; i < images.size(); ++i) {
-        const std::string label = c.backends[0] + "-vs-" + c.backends[i];
-        checker.compare(c, label, images[i], images[0], "rendered on " + c.backends[0],
-                        "rendered on " + c.backends[i]);
+      for (const std::string& backend : c.backends)
+        if (const Expectation* s = Expectations::find(x.skips, c.name, backend)) {
+          ++checker.counts.skipped;
+          out << "SKIP " << c.name << " " << backend << ": " << s->reason << "\n";
+        }
+      const std::vector<Outcome> first = runComparisons(m, c, dir, driver, x, cache, hook, renders);
+      // A failure nobody expected is re-run, the whole case on a fresh device each time: a
+      // comparison that passes on a re-run is a flake, one that fails every time a failure.
+      std::set<std::string> pending;
+      for (const Outcome& o : first)
+        if (!o.ok() && !o.missing && !Expectations::find(x.failures, c.name, o.label) &&
+            !Expectations::find(x.flakes, c.name, o.label))
+          pending.insert(o.label);
+      std::map<std::string, int> passedOnRun;
+      int runs = 1;
+      for (int r = 0; r < opt.retries && !pending.empty(); ++r) {
+        ++runs;
+        for (const Outcome& o : runComparisons(m, c, dir, driver, x, cache, hook, renders))
+          if (pending.count(o.label) && o.ok()) {
+            passedOnRun[o.label] = runs;
+            pending.erase(o.label);
+          }
+      }
+      for (const Outcome& o : first) {
+        const Expectation* fails = Expectations::find(x.failures, c.name, o.label);
+        const Expectation* flaky = Expectations::find(x.flakes, c.name, o.label);
+        if (o.missing) {
+          checker.report(c, o, Class::Missing, "");
+        } else if (o.ok()) {
+          if (fails)
+            checker.report(c, o, Class::UnexpectedPass,
+                           "expected to fail: " + brief(fails->reason) + "; remove it from " +
+                               x.file.string());
+          else
+            checker.report(c, o, Class::Passed,
+                           flaky ? "known flake: " + brief(flaky->reason) : "");
+        } else if (fails) {
+          checker.report(c, o, Class::ExpectedFailure, "expected: " + brief(fails->reason));
+        } else if (flaky) {
+          checker.report(c, o, Class::KnownFlake, "known flake: " + brief(flaky->reason));
+        } else if (passedOnRun.count(o.label)) {
+          checker.report(c, o, Class::NewFlake,
+                         "failed on run 1, passed on run " + std::to_string(passedOnRun[o.label]) +
+                             "; list it under \"flakes\" in " +
+                             expectationsFile(dir, driver).string() + " if it recurs");
+        } else {
+          checker.report(c, o, Class::Failed,
+                         runs > 1 ? "failed on all " + std::to_string(runs) + " runs" : "");
+        }
       }
       out.flush();
     }
@@ -379,8 +563,13 @@ int runCheck(const fs::path& baselines, const fs::path& outDir, const std::strin
     const Counts& n = checker.counts;
     out << "check: " << cases.size() << " cases, " << renders << " renders in " << fmt(seconds)
         << " s\n";
-    out << n.passed << " passed, " << n.failed << " failed, " << n.missing << " missing\n";
-    return n.failed + n.missing > 0 ? 1 : 0;
+    out << n.passed << " passed, " << n.failed << " failed, " << n.missing << " missing";
+    for (const auto& [count, what] :
+         {std::pair{n.expectedFailures, "expected failures"}, std::pair{n.flakes, "flakes"},
+          std::pair{n.skipped, "skipped"}, std::pair{n.unexpectedPasses, "unexpected passes"}})
+      if (count > 0 || !x.file.empty()) out << ", " << count << " " << what;
+    out << "\n";
+    return n.failed + n.missing + n.unexpectedPasses > 0 ? 1 : 0;
   });
 }
 

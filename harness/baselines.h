@@ -38,6 +38,7 @@
 #include <filesystem>
 #include <iosfwd>
 #include <limits>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -61,6 +62,8 @@ struct BaselineCase {
   RenderRequest request;  // every setting but the backend
   std::vector<std::string> backends = backendNames();
   Tolerance tolerance;
+  // "driver_tolerances": a driver's own tolerance (by driverKey), over `tolerance`.
+  std::map<std::string, Tolerance> driverTolerances;
 };
 
 struct Manifest {
@@ -97,13 +100,26 @@ struct Verdict {
 // Throws InputError when the sizes differ.
 Verdict judge(const Image& actual, const Image& expected, const Tolerance& t);
 
-// `strandbench check`: renders the selected cases on each of their backends,
-// compares each with "<baselines>/<case>.<backend>.png" and the backends with the
-// first one; prints a line per comparison and "N passed, N failed, N missing";
-// writes actual, expected, diff heatmap and JSON numbers of each failure to `outDir`.
-// Returns 0 when everything passed, 1 otherwise. Throws InputError / DeviceError.
-int runCheck(const std::filesystem::path& baselines, const std::filesystem::path& outDir,
-             const std::string& filter, std::ostream& out);
+// `strandbench check`.
+struct CheckOptions {
+  std::filesystem::path baselines, outDir;
+  std::string filter;
+  // The expectations file: empty for <baselines>/expectations/<driver>.json where it
+  // exists (harness/expectations.h), "none" for none.
+  std::string expectations;
+  int retries = 2;  // re-runs of a case with a failure nobody expected
+};
+// Renders the selected cases on each of their backends (on this process's driver),
+// compares each with its most specific baseline ("<case>.<backend>.<driver>.png", else
+// "<case>.<backend>.png") and the backends with the first one, under the case's
+// tolerance for the driver; classifies each comparison with the driver's expectations and
+// re-runs: OK, FAILED (every run), FLAKE (failed, then passed on a re-run; or a listed
+// flake that failed), EXPECTED FAIL, UNEXPECTED PASS (listed as failing, passed), SKIP,
+// MISSING. Prints a line per comparison and the counts; writes actual, expected, diff
+// heatmap and JSON numbers of each comparison that did not pass to `outDir`.
+// Returns 1 when anything failed, is missing or passed unexpectedly, else 0.
+// Throws InputError / DeviceError.
+int runCheck(const CheckOptions& options, std::ostream& out);
 
 // `strandbench bless`: copies `baselines` to a staging folder beside it, renders
 // the selected cases into it, and swaps it in with renameat2(RENAME_EXCHANGE)

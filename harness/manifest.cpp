@@ -55,6 +55,7 @@ std::vector<std::string> caseKeys(int format) {
     keys.push_back("backends");
   }
   keys.push_back("tolerance");
+  if (format != 1) keys.push_back("driver_tolerances");
   return keys;
 }
 const std::vector<std::string> kToleranceKeys = {
@@ -84,6 +85,8 @@ struct PartialCase {
   bool hasScene = false, hasSize = false;
   std::optional<std::vector<std::string>> backends;
   PartialTolerance tolerance;
+  // A driver's tolerance (by driverKey): fields over the case's tolerance.
+  std::map<std::string, PartialTolerance> driverTolerances;
 
   // A check renders one frame with no warm-up unless a case says otherwise.
   static RenderRequest manifestBase() {
@@ -278,6 +281,23 @@ class ManifestReader {
         fail(where, "\"tolerance\" must be the name of one in \"tolerances\" or an object");
       }
     }
+    if (obj.contains("driver_tolerances")) {
+      const json& d = obj["driver_tolerances"];
+      if (!d.is_object())
+        fail(where, "\"driver_tolerances\" must be an object: driver name -> tolerance");
+      for (const auto& [driver, t] : d.items()) {
+        const std::string at = where + ".driver_tolerances." + driver;
+        if (t.is_string()) {
+          auto it = presets_.find(t.get<std::string>());
+          if (it == presets_.end()) fail(at, "unknown tolerance '" + t.get<std::string>() + "'");
+          p.driverTolerances[driver] = it->second;
+        } else if (t.is_object()) {
+          p.driverTolerances[driver] = tolerance(t, at);
+        } else {
+          fail(at, "must be the name of one in \"tolerances\" or an object");
+        }
+      }
+    }
   }
 
   BaselineCase finish(const PartialCase& p, const std::string& where) const {
@@ -298,9 +318,16 @@ class ManifestReader {
         fail(where, e.what());
       }
     }
-    c.tolerance = {*p.tolerance.maxAbs, *p.tolerance.maxFailingFraction,
-                   *p.tolerance.failingThreshold, *p.tolerance.minPsnr,
-                   p.tolerance.maxFlipMean.value_or(kInf)};
+    auto whole = [](const PartialTolerance& t) {
+      return Tolerance{*t.maxAbs, *t.maxFailingFraction, *t.failingThreshold, *t.minPsnr,
+                       t.maxFlipMean.value_or(kInf)};
+    };
+    c.tolerance = whole(p.tolerance);
+    for (const auto& [driver, t] : p.driverTolerances) {
+      PartialTolerance own = p.tolerance;
+      own.overlay(t);
+      c.driverTolerances[driver] = whole(own);
+    }
     return c;
   }
 

@@ -514,3 +514,171 @@ TEST(Bless, SwapDirectoriesExchangesBothFolders) {
   EXPECT_THROW(sb::swapDirectories(root / "missing", root / "b", root / "aside"), sb::InputError);
   fs::remove_all(root);
 }
+
+// ------------------------------------------------------------------ expectations and re-runs
+
+namespace {
+
+// The expectations file of the sandbox for this process's driver (the system's).
+void writeExpectations(const Sandbox& s, const nlohmann::json& j) {
+  fs::create_directories(s.baselines / "expectations");
+  std::ofstream(s.baselines / "expectations" / "system.json") << j.dump(2) << "\n";
+}
+
+nlohmann::json expectation(const std::string& comparison, const std::string& reason) {
+  return {{"case", kCase}, {"comparison", comparison}, {"reason", reason}};
+}
+
+}  // namespace
+
+// A case that differs on its first run only is re-run and called a flake (exit 0); one
+// that differs on every run is a failure; with no re-runs the first kind fails too.
+TEST(CheckExpectations, FirstRunOnlyDifferenceIsAFlakeAStableOneAFailure) {
+  Sandbox s;
+  const std::string once = "SB_CHECK_TEST_DIFFER=" + kCase + ":1";
+  const auto flake = runCli("check --baselines " + s.baselines.string() + " --out " +
+                                s.out.string() + " " + filterArg(kCase),
+                            once);
+  EXPECT_EQ(flake.status, 0) << flake.out << flake.err;
+  EXPECT_TRUE(hasLine(flake.out, "FLAKE " + kCase + " gl:")) << flake.out;
+  EXPECT_NE(flake.out.find("failed on run 1, passed on run 2"), std::string::npos) << flake.out;
+  EXPECT_TRUE(hasLine(flake.out, "OK " + kCase + " vulkan:")) << flake.out;
+  EXPECT_NE(flake.out.find("1 passed, 0 failed, 0 missing, 2 flakes"), std::string::npos)
+      << flake.out;
+  const auto j = nlohmann::json::parse(readFile(s.out / (kCase + ".gl.json")));
+  EXPECT_EQ(j["outcome"], "flake");
+
+  const auto stable = runCli("check --baselines " + s.baselines.string() + " --out " +
+                                 s.out.string() + " " + filterArg(kCase),
+                             "SB_CHECK_TEST_DIFFER=" + kCase + ":1000");
+  EXPECT_EQ(stable.status, 1) << stable.out << stable.err;
+  EXPECT_TRUE(hasLine(stable.out, "FAILED " + kCase + " gl:")) << stable.out;
+  EXPECT_NE(stable.out.find("failed on all 3 runs"), std::string::npos) << stable.out;
+  EXPECT_EQ(nlohmann::json::parse(readFile(s.out / (kCase + ".gl.json")))["outcome"], "failed");
+
+  const auto noRetry = runCli("check --retries 0 --baselines " + s.baselines.string() + " --out " +
+                                  s.out.string() + " " + filterArg(kCase),
+                              once);
+  EXPECT_EQ(noRetry.status, 1) << noRetry.out << noRetry.err;
+  EXPECT_TRUE(hasLine(noRetry.out, "FAILED " + kCase + " gl:")) << noRetry.out;
+}
+
+// A listed failure that fails passes the check; removed from the list it fails it; a
+// listed failure that passes is an unexpected pass (exit 1); a listed flake may fail; a
+// skipped backend is not rendered.
+TEST(CheckExpectations, ListedFailuresFlakesAndSkips) {
+  Sandbox s;
+  perturb(s.image(kCase, "gl"), [](const sb::Image& img) {
+    sb::Image out = img;
+    for (float& v : out.pixels) v = std::min(1.0f, v * 1.02f);
+    return out;
+  });
+  writeExpectations(s,
+                    {{"driver", "system"}, {"failures", {expectation("gl", "brighter: a test")}}});
+  auto r = s.check(filterArg(kCase));
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_TRUE(hasLine(r.out, "EXPECTED FAIL " + kCase + " gl:")) << r.out;
+  EXPECT_NE(r.out.find("(expected: brighter) ->"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("1 expected failures"), std::string::npos) << r.out;
+
+  writeExpectations(s, {{"driver", "system"}, {"failures", nlohmann::json::array()}});
+  r = s.check(filterArg(kCase));
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_TRUE(hasLine(r.out, "FAILED " + kCase + " gl:")) << r.out;
+
+  writeExpectations(s, {{"driver", "system"}, {"flakes", {expectation("gl", "a known flake")}}});
+  r = s.check(filterArg(kCase));
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_TRUE(hasLine(r.out, "FLAKE " + kCase + " gl:")) << r.out;
+  EXPECT_NE(r.out.find("known flake: a known flake"), std::string::npos) << r.out;
+
+  writeExpectations(s, {{"driver", "system"},
+                        {"failures", {expectation("vulkan", "listed, but it passes")}},
+                        {"skips", {expectation("gl", "not on this driver")}}});
+  r = s.check(filterArg(kCase));
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_TRUE(hasLine(r.out, "SKIP " + kCase + " gl: not on this driver")) << r.out;
+  EXPECT_TRUE(hasLine(r.out, "UNEXPECTED PASS " + kCase + " vulkan:")) << r.out;
+  EXPECT_NE(r.out.find("check: 1 cases, 1 renders"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("1 skipped, 1 unexpected passes"), std::string::npos) << r.out;
+}
+
+// The most specific baseline wins: "<case>.<backend>.<driver>.png" over the backend's, and
+// "driver_tolerances" over the case's tolerance.
+TEST(CheckExpectations, DriverImagesAndTolerancesAreMoreSpecific) {
+  Sandbox s;
+  const fs::path own = s.baselines / (kCase + ".gl.system.png");
+  fs::copy_file(s.image(kCase, "gl"), own);
+  perturb(own, [](const sb::Image& img) {
+    sb::Image out = img;
+    for (float& v : out.pixels) v = std::min(1.0f, v * 1.02f);
+    return out;
+  });
+  auto r = s.check(filterArg(kCase));
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_TRUE(hasLine(r.out, "FAILED " + kCase + " gl:")) << r.out;
+  EXPECT_EQ(nlohmann::json::parse(readFile(s.out / (kCase + ".gl.json")))["expected"],
+            own.string());
+
+  nlohmann::json m = committedManifest();
+  for (auto& c : m["cases"])
+    if (c["name"] == kCase)
+      c["driver_tolerances"] = {{"system",
+                                 {{"max_abs", 0.05},
+                                  {"max_failing_fraction", 1.0},
+                                  {"min_psnr", 20},
+                                  {"max_flip_mean", 0.1}}}};
+  s.writeManifest(m);
+  r = s.check(filterArg(kCase));
+  EXPECT_EQ(r.status, 0) << r.out;
+  fs::remove(own);
+  m["cases"][0]["driver_tolerances"] = {{"system", "no-such"}};
+  s.writeManifest(m);
+  r = s.check(filterArg(kCase));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("unknown tolerance 'no-such'"), std::string::npos) << r.err;
+}
+
+TEST(CheckExpectations, BadFilesAreRefusedNamingTheEntry) {
+  Sandbox s;
+  const std::vector<std::pair<nlohmann::json, std::string>> bad = {
+      {{{"failures", nlohmann::json::array()}}, "\"driver\" (a string"},
+      {{{"driver", "mesa-25.0"}}, "describes driver 'mesa-25.0' but this check runs 'system'"},
+      {{{"driver", "system"}, {"failures", {{{"case", "no-such"}, {"reason", "r"}}}}},
+       "failures[0]: no case 'no-such'"},
+      {{{"driver", "system"}, {"flakes", {expectation("metal", "r")}}},
+       "unknown comparison 'metal'"},
+      {{{"driver", "system"}, {"skips", {{{"case", kCase}}}}}, "skips[0]: \"reason\" is required"},
+      {{{"driver", "system"},
+        {"failures", {expectation("gl", "r")}},
+        {"flakes", {{{"case", kCase}, {"reason", "r"}}}}},
+       "comparison gl is listed twice"},
+  };
+  for (const auto& [j, needle] : bad) {
+    writeExpectations(s, j);
+    const auto r = s.check(filterArg(kCase));
+    EXPECT_EQ(r.status, 2) << j.dump();
+    EXPECT_NE(r.err.find(needle), std::string::npos) << j.dump() << "\n" << r.err;
+  }
+  const auto r = s.check("--expectations " + (s.root / "none.json").string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("no such expectations file"), std::string::npos) << r.err;
+}
+
+// Mesa 25.0.7 against the baselines of the system's Mesa: the committed expectations make
+// `check` pass; without one of them it fails.
+TEST(CheckExpectations, Mesa25PassesWithItsExpectationsAndFailsWithoutOne) {
+  if (const std::string why = sbtest::mesa25Missing(); !why.empty()) GTEST_SKIP() << why;
+  Sandbox s;
+  const std::string filter = "--filter '^(fur-lines-shadowmap|curly-lines-mboit-trig)$'";
+  auto r = s.check("--driver mesa-25.0 " + filter);
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("4 expected failures, 0 flakes"), std::string::npos) << r.out;
+  const fs::path file = s.baselines / "expectations" / "mesa-25.0.json";
+  auto j = nlohmann::json::parse(readFile(file));
+  j["failures"].erase(0);
+  std::ofstream(file) << j.dump(2);
+  r = s.check("--driver mesa-25.0 " + filter);
+  EXPECT_EQ(r.status, 1) << r.out << r.err;
+  EXPECT_TRUE(hasLine(r.out, "FAILED fur-lines-shadowmap gl:")) << r.out;
+}

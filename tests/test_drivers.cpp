@@ -16,14 +16,6 @@ using sbtest::runCli;
 
 constexpr const char* kTiny = "--scene straight:strands=20,points=4 --size 16x16 --repeat 1";
 
-// CI runs scripts/setup.sh --tests, which fetches the folder: "is not installed" makes the
-// skip a failure there (tests/main.cpp).
-std::string mesa25Missing() {
-  if (fs::exists(fs::path(SB_SOURCE_DIR) / "drivers/mesa-25.0/complete")) return "";
-  return "drivers/mesa-25.0 is not installed (scripts/drivers.sh fetches it; scripts/setup.sh "
-         "--tests runs it)";
-}
-
 nlohmann::json renderJson(const std::string& args) {
   const sbtest::CliResult r = runCli(std::string("render ") + kTiny + " --json " + args);
   EXPECT_EQ(r.status, 0) << args << "\n" << r.err;
@@ -60,7 +52,7 @@ TEST(Drivers, SystemIsMesa22) {
 }
 
 TEST(Drivers, Mesa25RendersAndIsNamed) {
-  if (const std::string why = mesa25Missing(); !why.empty()) GTEST_SKIP() << why;
+  if (const std::string why = sbtest::mesa25Missing(); !why.empty()) GTEST_SKIP() << why;
   for (const std::string backend : {"gl --platform egl", "gl --platform osmesa", "vulkan"}) {
     const auto j = renderJson("--driver mesa-25.0 --backend " + backend);
     if (j.is_null()) continue;
@@ -80,7 +72,7 @@ TEST(Drivers, Mesa25RendersAndIsNamed) {
 
 // A suite case cannot switch drivers inside the process: the sweep says which flag does.
 TEST(Drivers, ASuiteCaseNamesOnlyTheProcesssDriver) {
-  if (const std::string why = mesa25Missing(); !why.empty()) GTEST_SKIP() << why;
+  if (const std::string why = sbtest::mesa25Missing(); !why.empty()) GTEST_SKIP() << why;
   const auto dir = sbtest::tempDir("driver-suite");
   const nlohmann::json suite = {
       {"name", "t"},
@@ -98,7 +90,7 @@ TEST(Drivers, ASuiteCaseNamesOnlyTheProcesssDriver) {
 }
 
 TEST(Drivers, VersionProbesEachDriver) {
-  if (const std::string why = mesa25Missing(); !why.empty()) GTEST_SKIP() << why;
+  if (const std::string why = sbtest::mesa25Missing(); !why.empty()) GTEST_SKIP() << why;
   const sbtest::CliResult r = runCli("--version");
   ASSERT_EQ(r.status, 0) << r.err;
   const std::size_t system = r.out.find("\nsystem");

@@ -86,4 +86,14 @@ inline CliResult runCli(const std::string& args, const std::string& env = "") {
   return r;
 }
 
+// Why drivers/mesa-25.0 (Mesa 25.0.7 beside the system's) cannot be used, or "". CI runs
+// scripts/setup.sh --tests, which fetches it: "is not installed" makes the skip a failure
+// there (tests/main.cpp).
+inline std::string mesa25Missing() {
+  if (std::filesystem::exists(std::filesystem::path(SB_SOURCE_DIR) / "drivers/mesa-25.0/complete"))
+    return "";
+  return "drivers/mesa-25.0 is not installed (scripts/drivers.sh fetches it; scripts/setup.sh "
+         "--tests runs it)";
+}
+
 }  // namespace sbtest
