@@ -318,6 +318,7 @@ Validated validate(const RenderRequest& req, RenderCache* cache) {
   makeOitTechnique(v.oit);
   v.settings = makeRenderSettings(req, *v.scene);
   if (req.probe) v.settings.probePoints = probeRay(v.settings.light, *req.probe, v.probeDepths);
+  checkMoreReferences(req, v.settings, referenceShadowSpec(v.shadow));
   return v;
 }
 

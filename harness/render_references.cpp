@@ -39,6 +39,41 @@ Image boxFilter(const Image& image, int samples) {
   return out;
 }
 
+namespace {
+
+// The samples and light map side of the aa reference at `samples`; InputError
+// when a side is over kMaxSide.
+struct AaSides {
+  uint64_t width, height, lightSize;
+};
+AaSides aaSides(const RenderSettings& settings, const Spec& refShadow, int samples) {
+  const uint64_t s = static_cast<uint64_t>(samples);
+  // The exact shadow's light map at `samples` times its side: samples x samples
+  // per texel of the aliased reference's map, so light and eye are sampled alike.
+  const AaSides a{
+      settings.width * s, settings.height * s,
+      uint64_t(
+          readerFor(findTechnique(Family::Shadow, refShadow.name), refShadow).integer("size")) *
+          s};
+  if (a.width > kMaxSide || a.height > kMaxSide || a.lightSize > kMaxSide)
+    throw InputError("reference '" + ReferenceSpec{"aa", samples}.str() + "' renders " +
+                     sizeText(a.width, a.height) + " samples with a light map of " +
+                     sizeText(a.lightSize, a.lightSize) + " texels: over the largest side, " +
+                     std::to_string(kMaxSide) +
+                     "; give a smaller --size, a smaller map size= or fewer samples=");
+  return a;
+}
+
+}  // namespace
+
+void checkMoreReferences(const RenderRequest& req, const RenderSettings& settings,
+                         const Spec& refShadow) {
+  for (const std::string& text : req.references) {
+    const ReferenceSpec spec = parseReferenceSpec(text);
+    if (spec.name == "aa") aaSides(settings, refShadow, spec.samples);
+  }
+}
+
 RenderResult::MoreReference renderAaReference(const RenderRequest& req, const Scene& scene,
                                               const RenderSettings& settings, const Spec& refShadow,
                                               int samples) {
@@ -47,17 +82,8 @@ RenderResult::MoreReference renderAaReference(const RenderRequest& req, const Sc
   m.name = "aa";
   m.samples = samples;
   m.spec = ReferenceSpec{"aa", samples}.str();
-  const uint64_t s = static_cast<uint64_t>(samples);
-  const uint64_t w = settings.width * s, h = settings.height * s;
-  // The exact shadow's light map at `samples` times its side: samples x samples
-  // per texel of the aliased reference's map, so light and eye are sampled alike.
-  const uint64_t size =
-      readerFor(findTechnique(Family::Shadow, refShadow.name), refShadow).integer("size") * s;
-  if (w > kMaxSide || h > kMaxSide || size > kMaxSide)
-    throw InputError("reference '" + m.spec + "' renders " + sizeText(w, h) +
-                     " samples with a light map of " + sizeText(size, size) +
-                     " texels: over the largest side, " + std::to_string(kMaxSide) +
-                     "; give a smaller --size, a smaller map size= or fewer samples=");
+  const AaSides sides = aaSides(settings, refShadow, samples);
+  const uint64_t w = sides.width, h = sides.height, size = sides.lightSize;
   RenderSettings hi = settings;
   hi.width = static_cast<uint32_t>(w);
   hi.height = static_cast<uint32_t>(h);

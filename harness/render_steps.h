@@ -41,6 +41,10 @@ RenderCache::Reference renderReference(Device& dev, const Scene& scene,
 std::vector<RenderResult::MoreReference> moreReferences(
     const RenderRequest& req, const Scene& scene, const RenderSettings& settings,
     const Spec& refShadow, const RenderResult& out, RenderCache* cache);
+// Refuses (InputError) a further reference that cannot be made at any memory:
+// a side over 16384. Before any work.
+void checkMoreReferences(const RenderRequest& req, const RenderSettings& settings,
+                         const Spec& refShadow);
 // The anti-aliased exact reference: `settings` at samples x samples per pixel
 // and per light texel, strands with their true width, box-filtered.
 RenderResult::MoreReference renderAaReference(const RenderRequest& req, const Scene& scene,

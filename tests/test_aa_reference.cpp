@@ -19,6 +19,7 @@
 
 namespace {
 
+namespace fs = std::filesystem;
 using sbtest::runCli;
 
 // A small render with the aa reference at `samples` (light maps of 64 texels:
@@ -199,7 +200,6 @@ TEST(AaReferenceCli, RenderGivesBothErrorsAndRefusesBadSpecs) {
 TEST(AaReferenceCli, ASuiteAsksForItAndTheReportsShowIt) {
   // The suite key "reference" takes the specs; the aa reference is rendered
   // once for the two cases that share scene, view and light map size.
-  namespace fs = std::filesystem;
   const fs::path dir = sbtest::tempDir("aa-sweep");
   std::ofstream(dir / "s.json") << R"({
     "name": "aa",
@@ -226,6 +226,43 @@ TEST(AaReferenceCli, ASuiteAsksForItAndTheReportsShowIt) {
             std::string::npos)
       << csv.substr(0, csv.find('\n'));
   EXPECT_NE(sbtest::readFile(dir / "out" / "report.md").find("Image RMSE (aa)"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kAsan = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr bool kAsan = true;
+#else
+constexpr bool kAsan = false;
+#endif
+#else
+constexpr bool kAsan = false;
+#endif
+
+TEST(AaReferenceCli, OverTheBudgetOrTheLargestSideItIsRefused) {
+  // A side over 16384 before any work; over the host budget (an address-space
+  // limit of 2.2 GB, as tests/test_large_runs.cpp) before its resources are made.
+  const auto side = runCli(
+      "render --scene straight:strands=20,points=4 --shadow exact:size=64 --size 4096x4096 "
+      "--warmup 0 --reference --reference aa:samples=8");
+  EXPECT_EQ(side.status, 2) << side.err;
+  EXPECT_NE(side.err.find("32768x32768 samples"), std::string::npos) << side.err;
+  if (kAsan) GTEST_SKIP() << "AddressSanitizer cannot run under an address-space limit";
+  const fs::path dir = sbtest::tempDir("aa-budget");
+  const std::string cmd =
+      "(ulimit -v 2200000 && exec " SB_CLI
+      " render --scene straight:strands=200,points=8 --shadow exact:size=1024 --size 256x256 "
+      "--warmup 0 --reference --reference aa:samples=8 --out " +
+      (dir / "x.png").string() + ") >/dev/null 2>" + (dir / "err").string();
+  const int raw = std::system(cmd.c_str());
+  const std::string err = sbtest::readFile(dir / "err");
+  EXPECT_EQ(WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, 2) << err;
+  EXPECT_NE(err.find("the anti-aliased reference (aa:samples=8"), std::string::npos) << err;
+  EXPECT_NE(err.find("over the device's budget"), std::string::npos) << err;
+  EXPECT_NE(err.find("fewer samples="), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(dir / "x.png"));
   fs::remove_all(dir);
 }
 
