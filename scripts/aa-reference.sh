@@ -3,7 +3,7 @@
 # reference"): one scene rendered with `--reference --reference aa:samples=S` for S = 1, 2, 4,
 # 8 on GL; per S its cost (wall time, frame time, resources, host memory), the error of the
 # technique and of the aliased reference against it, and its own convergence (the error
-# between S and 2S). Writes docs/aa-reference-measured.md (or the file given), headed by the
+# between S and 2S), and the technique with --msaa 4 against both references. Writes docs/aa-reference-measured.md (or the file given), headed by the
 # command, commit, date and load, and the rows between the markers of docs/ground-truth.md.
 # Usage: scripts/aa-reference.sh [OUT.md]     Needs build/strandbench (scripts/setup.sh).
 set -euo pipefail
@@ -20,6 +20,8 @@ for s in 1 2 4 8; do
   "$cli" "${run[@]}" --reference "aa:samples=$s" --json --out "$tmp/image.png" \
     --reference-out "$tmp/ref-$s.exr" > "$tmp/s$s.json"
 done
+# The same technique anti-aliased (--msaa 4, what the device has beside 1) against both.
+"$cli" "${run[@]}" --reference aa:samples=8 --msaa 4 --json > "$tmp/msaa4.json"
 # The convergence: the aa reference at S against the one at 2S, as float images (EXR: no
 # 8-bit rounding; FLIP is then HDR-FLIP).
 for s in 1 2 4; do
@@ -50,6 +52,13 @@ for s in (1, 2, 4, 8):
     rows.append(f"| {s} | {ref['size'][0]}x{ref['size'][1]} | {ref['light_map_size']}^2 | "
                 f"{ref['wall_ms'] / 1000:.2f} | {ref['frame_ms']:.0f} | {ref['bytes'] / 2**20:.1f} | "
                 f"{ref['host_bytes'] / 2**20:.1f} | {a['rmse']:.5f} / {a['flip']['mean']:.4f} | {conv} |")
+msaa = json.load(open(os.path.join(tmp, "msaa4.json")))
+msaa_rows = ["| technique | error.image RMSE / FLIP (aliased) | error.aa RMSE / FLIP (aa, S = 8) |",
+             "|---|---|---|"]
+for name, j in (("`--msaa 1`", r[8]), ("`--msaa 4`", msaa)):
+    e = j["error"]
+    msaa_rows.append(f"| {j['shadow']} + {j['oit']}, {name} | {e['image']['rmse']:.5f} / "
+                     f"{e['image']['flip']['mean']:.4f} | {e['aa']['rmse']:.5f} / {e['aa']['flip']['mean']:.4f} |")
 img = r[1]["error"]["image"]
 summary = (f"The technique against the aliased reference (`error.image`): RMSE {img['rmse']:.5f}, "
            f"FLIP {img['flip']['mean']:.4f}; the aliased reference against aa at S = 8: RMSE "
@@ -65,13 +74,15 @@ lines = ["# The anti-aliased reference, measured", "",
          "pipelines, frame, read back, filter) and its frame's passes, its resources (on a device "
          "of its own) and its host memory (the read back), the technique's error against it, and "
          "its own convergence: the aa reference at S against the one at 2S (float images, "
-         "HDR-FLIP; the technique's FLIP is LDR-FLIP as `render` reports it).", ""] + rows + ["", summary, ""]
+         "HDR-FLIP; the technique's FLIP is LDR-FLIP as `render` reports it).", ""] + rows + ["", summary, "",
+         "The technique rendered with and without multisampling, against both references:", ""] + msaa_rows + [""]
 open(out, "w").write("\n".join(lines))
 # The same rows in docs/ground-truth.md, between its markers.
 gt = "docs/ground-truth.md"
 text = open(gt).read()
 block = ("<!-- aa-reference:begin (written by scripts/aa-reference.sh; do not edit) -->\n" + header +
-         "\n\n" + "\n".join(rows) + "\n\n" + summary + "\n<!-- aa-reference:end -->")
+         "\n\n" + "\n".join(rows) + "\n\n" + summary + "\n\n" + "\n".join(msaa_rows) +
+         "\n<!-- aa-reference:end -->")
 text, n = re.subn(r"<!-- aa-reference:begin.*?<!-- aa-reference:end -->", lambda m: block, text,
                   flags=re.S)
 if n != 1:
