@@ -3,8 +3,9 @@
 # reference"): one scene rendered with `--reference --reference aa:samples=S` for S = 1, 2, 4,
 # 8 on GL; per S its cost (wall time, frame time, resources, host memory), the error of the
 # technique and of the aliased reference against it, and its own convergence (the error
-# between S and 2S), and the technique with --msaa 4 against both references. Writes docs/aa-reference-measured.md (or the file given), headed by the
-# command, commit, date and load, and the rows between the markers of docs/ground-truth.md.
+# between S and 2S); and the technique with --msaa 4 against both references. Writes
+# docs/aa-reference-measured.md (or the file given), headed by the command, commit, date and
+# load, and the rows between the markers of docs/ground-truth.md.
 # Usage: scripts/aa-reference.sh [OUT.md]     Needs build/strandbench (scripts/setup.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
