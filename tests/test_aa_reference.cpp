@@ -226,6 +226,13 @@ TEST(AaReferenceCli, ASuiteAsksForItAndTheReportsShowIt) {
             std::string::npos)
       << csv.substr(0, csv.find('\n'));
   EXPECT_NE(sbtest::readFile(dir / "out" / "report.md").find("Image RMSE (aa)"), std::string::npos);
+  // Its image beside the case's reference: images/<stem>.aa.png, shown in report.html.
+  for (const auto& r : doc["results"]) {
+    const std::string image = r["images"]["image"];
+    EXPECT_EQ(r["images"]["aa"], image.substr(0, image.size() - 4) + ".aa.png");
+    EXPECT_TRUE(fs::exists(dir / "out" / r["images"]["aa"].get<std::string>()));
+  }
+  EXPECT_NE(sbtest::readFile(dir / "out" / "report.html").find("alt=\"aa\""), std::string::npos);
   fs::remove_all(dir);
 }
 
