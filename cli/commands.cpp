@@ -161,7 +161,10 @@ void registerRender(CLI::App& app) {
   cmd->add_option("--trace", *trace,
                   "write the timed frames' passes as a Chrome/Perfetto trace (.json; open in "
                   "ui.perfetto.dev or chrome://tracing)");
-  cmd->add_option("--reference-out", *referenceOut, "with --reference: write the reference image");
+  cmd->add_option("--reference-out", *referenceOut,
+                  "with --reference: write the reference image; each further reference "
+                  "(--reference aa:samples=4) beside it, its name before the extension "
+                  "(exact.png: exact.aa.png)");
   cmd->add_option("--strip", *strip,
                   "with --animate: write up to four frames side by side, the technique's above "
                   "the reference's");
@@ -212,6 +215,13 @@ void registerRender(CLI::App& app) {
       try {
         write(*out, [&]() -> const Image& { return result.image; });
         write(*referenceOut, [&]() -> const Image& { return result.referenceImage; });
+        for (const RenderResult::MoreReference& m : result.moreReferences)
+          if (!referenceOut->empty()) {
+            const fs::path p(*referenceOut);
+            write((p.parent_path() / (p.stem().string() + "." + m.name + p.extension().string()))
+                      .string(),
+                  [&]() -> const Image& { return m.referenceImage; });
+          }
         write(*heatmap, [&] { return diffHeatmap(result.image, result.referenceImage, 0.25); });
         write(*flipMap, [&] { return flipErrorImage(*result.flip); });
         write(*strip, [&] { return animationStrip(*result.animation); });

@@ -64,6 +64,11 @@ void printRenderSummary(std::ostream& out, const RenderRequest& req, const Rende
       out << "    visibility: RMSE " << sig3(r.visibilityError->rmse) << ", max "
           << sig3(r.visibilityError->max) << " (" << r.visibilityError->pixels << " pixels)\n";
   }
+  for (const RenderResult::MoreReference& m : r.moreReferences)
+    out << "  error against reference " << m.spec << " (" << m.width << "x" << m.height
+        << " samples, " << sig3(m.wallMs / 1000.0) << " s, " << sig3(double(m.bytes) / (1 << 20))
+        << " MiB" << (m.cached ? ", cached" : "")
+        << "):\n    image: " << imageErrorText(m.image, m.flip) << "\n";
   if (r.animation) {
     out << "  animation " << settingText(req, *findSetting("animate")) << ": flicker visibility "
         << sig3(r.animation->visibilityFlicker);

@@ -192,6 +192,18 @@ std::vector<std::string> renderArgs(const RenderRequest& r) {
       if (v.get<bool>()) args.push_back(s->flag);
       continue;
     }
+    if (s->type == SettingType::References) {
+      // Bare for the default reference, once more with each further one's spec.
+      if (v.is_boolean()) {
+        if (v.get<bool>()) args.push_back(s->flag);
+        continue;
+      }
+      for (const auto& spec : v) {
+        args.push_back(s->flag);
+        if (spec != "exact") args.push_back(spec.get<std::string>());
+      }
+      continue;
+    }
     args.push_back(s->flag);
     args.push_back(settingText(r, *s));
   }

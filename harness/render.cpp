@@ -318,6 +318,7 @@ Validated validate(const RenderRequest& req, RenderCache* cache) {
   makeOitTechnique(v.oit);
   v.settings = makeRenderSettings(req, *v.scene);
   if (req.probe) v.settings.probePoints = probeRay(v.settings.light, *req.probe, v.probeDepths);
+  checkMoreReferences(req, v.settings, referenceShadowSpec(v.shadow));
   return v;
 }
 
@@ -522,6 +523,12 @@ void measures(const RenderRequest& req, const Validated& v, Plan& p, Device& dev
       out.visibilityError = visibilityError(out.visibility, ref->visibility);
       if (ref->eye) out.errorByEyeLayers = errorByLayers(out, *ref->eye, ref->visibility);
       out.own = ownError(req, dev, scene, v.settings, v.shadow, v.oit, refShadow, out, cache);
+      if (req.image) {
+        if (!req.references.empty()) progress.phase("further references");
+        out.moreReferences = moreReferences(req, scene, v.settings, refShadow, out, cache);
+        for (const auto& m : out.moreReferences)
+          for (const std::string& w : m.warnings) out.warnings.push_back(w);
+      }
       if (req.animate)
         out.animation = runAnimation(req, scene, v.settings, v.shadow, v.oit, refShadow, out, *ref);
     }

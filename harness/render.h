@@ -73,7 +73,10 @@ struct RenderRequest {
   std::string oit = defaultTechnique(Family::Transparency).name;
   std::string shading = defaultTechnique(Family::Shading).name;
   bool reference = false;  // also render the reference and report errors against it
-  bool image = true;       // false: no final shading; only the visibility error (needs reference)
+  // More references beside it (harness/reference_spec.h: "aa:samples=4"), each
+  // name once; the error against each is error.<name>. Needs reference.
+  std::vector<std::string> references;
+  bool image = true;  // false: no final shading; only the visibility error (needs reference)
   std::optional<ProbeSpec> probe;  // also report visibility along a light ray
   bool invariants = false;         // check the outputs and maps (harness/invariants.h)
   bool runToRun = true;            // sweeps with invariants: the case twice, outputs identical
@@ -200,7 +203,25 @@ struct RenderResult {
   std::optional<VisibilityError> visibilityError;  // with a reference
   std::optional<OwnError> own;                     // with a reference
   std::vector<LayerBucket> errorByEyeLayers;       // with a reference: 0, 1, 2-3, 4-7, ...
-  std::optional<AnimationResult> animation;        // with animate
+  // The error against each further reference (RenderRequest::references), in
+  // their order: error.<name> in JSON, the same fields as error.image.
+  struct MoreReference {
+    std::string name, spec;          // "aa", "aa:samples=4"
+    int samples = 1;                 // aa: per pixel along each axis
+    uint32_t width = 0, height = 0;  // the samples rendered (image size times samples)
+    uint32_t lightSize = 0;          // its exact shadow's light map (size times samples)
+    double frameMs = 0;              // its frame's passes
+    double wallMs = 0;          // all of it: device, counting, pipelines, frame, read back, filter
+    std::size_t bytes = 0;      // its resources (on a device of its own)
+    std::size_t hostBytes = 0;  // the host memory of its read back and filter
+    bool cached = false;        // taken from the sweep's cache (the cost is the first render's)
+    std::vector<std::string> warnings;  // its techniques' (a fragment list overflow)
+    ImageError image;                   // of the image against it
+    FlipResult flip;
+    Image referenceImage;  // the filtered reference, the image's size
+  };
+  std::vector<MoreReference> moreReferences;
+  std::optional<AnimationResult> animation;  // with animate
   std::optional<ProbeResult> probe;
   std::optional<std::vector<InvariantFailure>> invariants;  // when requested
   std::optional<DepthComplexity> eyeComplexity, lightComplexity;
@@ -271,6 +292,9 @@ struct RenderCache {
   std::map<std::string, Image> ownReferences;
   std::map<std::string, std::shared_ptr<const Scene>> scenes;
   std::map<std::string, Reference> references;
+  // Further references (RenderRequest::references) by referenceKey and spec:
+  // the image and the cost, without the errors.
+  std::map<std::string, RenderResult::MoreReference> moreReferences;
   int referenceRenders = 0;  // how many references were rendered (not taken from the cache)
 };
 

@@ -37,6 +37,21 @@ nlohmann::json errorJson(const RenderResult& r) {
     if (o.visibility) own["visibility"] = visibilityJson(*o.visibility);
     error["own"] = own;
   }
+  // Each further reference under its name, with error.image's fields and its cost.
+  for (const RenderResult::MoreReference& m : r.moreReferences) {
+    nlohmann::json e = toJson(m.image);
+    e["flip"] = toJson(m.flip);
+    e["reference"] = {{"spec", m.spec},
+                      {"samples", m.samples},
+                      {"size", {m.width, m.height}},
+                      {"light_map_size", m.lightSize},
+                      {"frame_ms", m.frameMs},
+                      {"wall_ms", m.wallMs},
+                      {"bytes", m.bytes},
+                      {"host_bytes", m.hostBytes},
+                      {"cached", m.cached}};
+    error[m.name] = e;
+  }
   if (!r.errorByEyeLayers.empty()) {
     nlohmann::json buckets = nlohmann::json::array();
     for (const LayerBucket& b : r.errorByEyeLayers) {

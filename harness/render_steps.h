@@ -36,6 +36,22 @@ void checkMemory(const std::vector<ResourceBytes>& planned, const std::vector<Re
 RenderCache::Reference renderReference(Device& dev, const Scene& scene,
                                        const RenderSettings& settings, const Spec& refShadow,
                                        const RenderRequest& req);
+// The further references of a request (RenderRequest::references), each on a
+// device of its own, compared with out.image; cached per sweep.
+std::vector<RenderResult::MoreReference> moreReferences(
+    const RenderRequest& req, const Scene& scene, const RenderSettings& settings,
+    const Spec& refShadow, const RenderResult& out, RenderCache* cache);
+// Refuses (InputError) a further reference that cannot be made at any memory:
+// a side over 16384. Before any work.
+void checkMoreReferences(const RenderRequest& req, const RenderSettings& settings,
+                         const Spec& refShadow);
+// The anti-aliased exact reference: `settings` at samples x samples per pixel
+// and per light texel, strands with their true width, box-filtered.
+RenderResult::MoreReference renderAaReference(const RenderRequest& req, const Scene& scene,
+                                              const RenderSettings& settings, const Spec& refShadow,
+                                              int samples);
+// The mean of each samples x samples block (the image's size divided by samples).
+Image boxFilter(const Image& image, int samples);
 VisibilityError visibilityError(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b);
 // Buckets 0, 1, 2-3, 4-7, ... of eye layers; errors averaged per bucket.
 std::vector<LayerBucket> errorByLayers(const RenderResult& out, const DepthComplexity& eye,

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "harness/json_keys.h"
+#include "harness/reference_spec.h"
 #include "scenes/options.h"
 
 namespace sb::setting_values {
@@ -258,6 +259,38 @@ ojson lightFromJson(const ojson& v) {
                    v.contains("intensity") ? v["intensity"].get<double>() : 1.0);
 }
 
+// References: true (the default, exact), false (none), or the list of specs,
+// "exact" first, each name once ("exact;aa:samples=4" as text).
+ojson referencesFrom(const std::vector<std::string>& specs) {
+  ojson list = ojson::array({"exact"});
+  std::vector<std::string> names = {"exact"};
+  for (const std::string& text : specs) {
+    ReferenceSpec r;
+    try {
+      r = parseReferenceSpec(text.empty() ? "exact" : text);
+    } catch (const InputError& e) {
+      throw Problem{e.what()};
+    }
+    if (r.name == "exact") continue;  // always rendered
+    if (std::find(names.begin(), names.end(), r.name) != names.end())
+      throw Problem{"two '" + r.name +
+                    "' references: give each reference once (its error is error." + r.name + ")"};
+    names.push_back(r.name);
+    list.push_back(r.str());
+  }
+  if (list.size() == 1) return true;
+  return list;
+}
+
+ojson referencesFromText(const std::string& t) {
+  if (t == "true" || t.empty()) return true;
+  if (t == "false") return false;
+  std::vector<std::string> specs;
+  std::stringstream in(t);
+  for (std::string p; std::getline(in, p, ';');) specs.push_back(p);
+  return referencesFrom(specs);
+}
+
 }  // namespace
 
 ojson fromText(const Setting& s, const std::string& t) {
@@ -298,6 +331,8 @@ ojson fromText(const Setting& s, const std::string& t) {
       return animationFromText(t);
     case SettingType::Lights:
       return lightsFromText(t);
+    case SettingType::References:
+      return referencesFromText(t);
   }
   return nullptr;
 }
@@ -342,6 +377,19 @@ ojson fromJson(const Setting& s, const ojson& v) {
       throw Problem{
           "expected \"KIND:frames=N,degrees=D\" or {\"kind\": ..., \"frames\": N, "
           "\"degrees\": D}"};
+    case SettingType::References: {
+      if (v.is_boolean()) return v;
+      if (v.is_string()) return fromText(s, v.get<std::string>());
+      const char* expected =
+          "expected true, false, a reference spec (\"aa:samples=4\") or a list of them";
+      if (!v.is_array() || v.empty()) throw Problem{expected};
+      std::vector<std::string> specs;
+      for (const ojson& e : v) {
+        if (!e.is_string()) throw Problem{expected};
+        specs.push_back(e.get<std::string>());
+      }
+      return referencesFrom(specs);
+    }
     case SettingType::Lights: {
       if (v.is_string()) return fromText(s, v.get<std::string>());
       if (!v.is_array()) throw Problem{"expected a list of lights or \"TYPE:X,Y,Z;...\""};
@@ -390,6 +438,12 @@ std::string textOf(const Setting& s, const ojson& v) {
              vec3(l[type == "point" ? "position" : "direction"]) + ":" + vec3(l["color"]) + ":" +
              numberText(l["intensity"].get<double>());
       }
+      return t;
+    }
+    case SettingType::References: {
+      if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
+      std::string t;
+      for (const ojson& r : v) t += (t.empty() ? "" : ";") + r.get<std::string>();
       return t;
     }
   }
@@ -495,6 +549,13 @@ void checkValue(const Setting& s, const ojson& v) {
       }
       return;
     }
+    case SettingType::References:
+      if (v.is_array()) {
+        std::vector<std::string> specs;
+        for (const ojson& r : v) specs.push_back(r.get<std::string>());
+        referencesFrom(specs);  // names and options in range
+      }
+      return;
     case SettingType::Spec:
     case SettingType::String:
     case SettingType::Flag:

@@ -12,6 +12,7 @@
 
 #include "backends/driver_env.h"
 #include "harness/json_keys.h"
+#include "harness/reference_spec.h"
 #include "harness/setting_values.h"
 #include "harness/technique_list.h"
 #include "scenes/options.h"
@@ -23,6 +24,18 @@ namespace {
 using namespace setting_values;
 
 // ------------------------------------------------------------------ the table
+
+// "exact or aa:samples=1..8": the references and their options.
+std::string referenceNames() {
+  std::vector<std::string> names;
+  for (const ReferenceKind& k : referenceCatalog()) {
+    std::string n = k.name;
+    for (const OptionInfo& o : k.options)
+      n += (n == k.name ? ":" : ",") + o.name + "=" + numberText(o.min) + ".." + numberText(o.max);
+    names.push_back(n);
+  }
+  return joinOr(names);
+}
 
 // Accessors of common field kinds.
 template <typename T>
@@ -186,11 +199,34 @@ std::vector<Setting> buildTable() {
                         "untimed frames before the timed ones", "2", "-1"),
                    kAtLeast0)),
         &RenderRequest::warmup);
-  plain(add(make("reference", "--reference", T::Flag, "false",
-                 "also render the reference (exact shadows and transparency) and report the "
-                 "error against it",
-                 "true", "maybe")),
-        &RenderRequest::reference);
+  {
+    // A flag that may take a reference spec, given more than once: bare, the
+    // default (exact) reference; `--reference aa:samples=4` adds the anti-aliased
+    // one (harness/reference_spec.h), and the default is rendered with it.
+    Setting& s = add(make(
+        "reference", "--reference", T::References, "false",
+        "also render the reference (exact shadows and transparency) and report the error against "
+        "it; --reference SPEC (more than once) adds another reference, its error under "
+        "error.<name>: " +
+            referenceNames() + " (the default reference is always rendered with them)",
+        "aa:samples=2", "aa:samples=9"));
+    s.get = [](const RenderRequest& r) -> ojson {
+      if (r.references.empty()) return r.reference;
+      ojson list = ojson::array({"exact"});
+      for (const std::string& spec : r.references) list.push_back(spec);
+      return list;
+    };
+    s.set = [](RenderRequest& r, const ojson& v) {
+      r.references.clear();
+      if (v.is_boolean()) {
+        r.reference = v.get<bool>();
+        return;
+      }
+      r.reference = true;
+      for (const ojson& spec : v)
+        if (spec.get<std::string>() != "exact") r.references.push_back(spec.get<std::string>());
+    };
+  }
   plain(add(make("image", "--no-image", T::Flag, "true",
                  "shade the image; false (--no-image): only the visibility error (needs the "
                  "reference)",
@@ -351,8 +387,9 @@ constexpr TypeNames kTypeNames[] = {
     {"probe", "X,Y[,MAP[,SAMPLES]]"},
     {"animation", "KIND[:frames=N,degrees=D]"},
     {"lights", "TYPE:X,Y,Z[:R,G,B[:I]];..."},
+    {"references", "[SPEC]"},
 };
-static_assert(std::size(kTypeNames) == static_cast<std::size_t>(SettingType::Lights) + 1);
+static_assert(std::size(kTypeNames) == static_cast<std::size_t>(SettingType::References) + 1);
 const TypeNames& typeNames(SettingType t) { return kTypeNames[static_cast<std::size_t>(t)]; }
 }  // namespace
 
@@ -385,6 +422,8 @@ std::string Setting::rangeText() const {
              "; degrees [-360, 360]";
     case SettingType::Lights:
       return "0.." + std::to_string(kMaxExtraLights) + " lights, directional or point";
+    case SettingType::References:
+      return "true, false or specs: " + referenceNames();
     case SettingType::Spec:
       return key == "scene" ? "a scene of `strandbench list`" : "a technique of `strandbench list`";
     case SettingType::String:
@@ -493,6 +532,10 @@ void checkRequest(const RenderRequest& req, Spelling spelling) {
   if (!req.image && !req.reference)
     throw InputError(flag("image", false) + " measures only the visibility error: it needs " +
                      flag("reference", true));
+  if (!req.references.empty() && !req.image)
+    throw InputError(settingMessage(
+        *findSetting("reference"), spelling, settingText(req, *findSetting("reference")),
+        "the further references are images: drop " + flag("image", false)));
   if (req.animate && !req.reference)
     throw InputError(settingLabel(*findSetting("animate"), spelling) +
                      " compares every frame with the reference: it needs " +
@@ -536,9 +579,16 @@ CliSettings::CliSettings(CLI::App& cmd, const std::vector<std::string>& keys,
     if (!keys.empty() && std::find(keys.begin(), keys.end(), s.key) == keys.end() &&
         !(withDriver && s.key == "driver"))
       continue;
-    Entry e{&s, nullptr, std::make_shared<std::string>(), std::make_shared<bool>(false)};
+    Entry e{&s, nullptr, std::make_shared<std::string>(), std::make_shared<bool>(false),
+            std::make_shared<std::vector<std::string>>()};
     if (s.type == SettingType::Flag) {
       e.option = cmd.add_flag(s.flag, *e.flag, s.help);
+    } else if (s.type == SettingType::References) {
+      // Bare (an empty value) or with a spec, as often as wanted.
+      e.option = cmd.add_option(s.flag, *e.texts, s.help + " (" + s.rangeText() + ")")
+                     ->expected(0, 1)
+                     ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+      e.option->type_name(typeNames(s.type).cli);
     } else {
       const std::string shownDefault = settingText(defaults, s);
       const std::string range = s.rangeText();
@@ -558,6 +608,15 @@ void CliSettings::apply(RenderRequest& req) const {
     if (s.type == SettingType::Flag) {
       const bool clears = s.flag.rfind("--no-", 0) == 0;
       s.set(req, *e.flag != clears);
+    } else if (s.type == SettingType::References) {
+      // Each occurrence checked alone (its message names it), then all together.
+      std::string all;
+      for (const std::string& t : *e.texts) {
+        RenderRequest scratch = req;
+        setFromText(scratch, s, t.empty() ? "exact" : t);
+        all += (all.empty() ? "" : ";") + (t.empty() ? std::string("exact") : t);
+      }
+      setFromText(req, s, all);
     } else {
       setFromText(req, s, *e.text);
     }

@@ -22,16 +22,19 @@ namespace sb {
 enum class SettingType {
   Spec,  // NAME:key=value,... (scene and technique specs)
   String,
-  Enum,       // one of `choices`
-  Int,        // in [min, max]
-  Float,      // finite, in the range of min / max (open or closed ends)
-  Vec3,       // "x,y,z"; in JSON also [x, y, z]
-  Flag,       // a CLI flag; a JSON bool
-  Size,       // "WxH"; in JSON also a number N for NxN
-  Probe,      // "X,Y[,MAP_SIZE[,SAMPLES]]"; in JSON also {"texel": [x, y], "map_size", "samples"}
-  Animation,  // "KIND[:frames=N,degrees=D]"; in JSON also {"kind", "frames", "degrees"}
-  Lights,     // "TYPE:X,Y,Z[:R,G,B[:INTENSITY]];..."; in JSON also a list of those or of
-              // {"type", "position" | "direction", "color", "intensity"}
+  Enum,        // one of `choices`
+  Int,         // in [min, max]
+  Float,       // finite, in the range of min / max (open or closed ends)
+  Vec3,        // "x,y,z"; in JSON also [x, y, z]
+  Flag,        // a CLI flag; a JSON bool
+  Size,        // "WxH"; in JSON also a number N for NxN
+  Probe,       // "X,Y[,MAP_SIZE[,SAMPLES]]"; in JSON also {"texel": [x, y], "map_size", "samples"}
+  Animation,   // "KIND[:frames=N,degrees=D]"; in JSON also {"kind", "frames", "degrees"}
+  Lights,      // "TYPE:X,Y,Z[:R,G,B[:INTENSITY]];..."; in JSON also a list of those or of
+               // {"type", "position" | "direction", "color", "intensity"}
+  References,  // the references compared with: "true" (the default, exact), "false", or specs
+               // "exact;aa:samples=4"; on the CLI a flag that may take a spec, given more
+               // than once; in JSON also true, false, a spec or a list of specs
 };
 
 struct Setting {
@@ -108,6 +111,7 @@ class CliSettings {
     CLI::Option* option;
     std::shared_ptr<std::string> text;
     std::shared_ptr<bool> flag;
+    std::shared_ptr<std::vector<std::string>> texts;  // References: one per occurrence
   };
   std::vector<Entry> entries_;
 };

@@ -95,6 +95,11 @@ CaseRun runCase(const fs::path& dir, const SweepCase& c, const RenderRequest& re
       images["reference"] = base + ".reference.png";
       images["heatmap"] = base + ".heatmap.png";
       images["flip"] = base + ".flip.png";
+      // Each further reference beside it (images/<stem>.aa.png).
+      for (const RenderResult::MoreReference& m : out.moreReferences) {
+        writeImage(m.referenceImage, (dir / (base + "." + m.name + ".png")).string());
+        images[m.name] = base + "." + m.name + ".png";
+      }
     }
     if (out.animation) {
       writeImage(animationStrip(*out.animation), (dir / (base + ".animation.png")).string());
@@ -418,6 +423,7 @@ int runSweep(const SweepOptions& o) {
               // Written; the rounds to come need only the timings.
               runs[i].out.image = {};
               runs[i].out.referenceImage = {};
+              for (auto& m : runs[i].out.moreReferences) m.referenceImage = {};
             } else {
               appendFrames(runs[i].out, runRender(timingRequest(c.request), &cache));
             }

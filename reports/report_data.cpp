@@ -304,6 +304,10 @@ Group buildGroup(const std::string& name, const json* jgroup,
                         "PSNR dB (total)", "FLIP mean (total)", "Visibility RMSE", "Own error of",
                         "Image RMSE (own)", "FLIP mean (own)"})
     g.table.header.push_back(h);
+  // Against each further reference (error.aa): its image RMSE and FLIP mean.
+  const std::vector<std::string> more = moreReferenceNames(g.results);
+  for (const std::string& ref : more)
+    for (const char* h : {"Image RMSE (", "FLIP mean ("}) g.table.header.push_back(h + ref + ")");
   const bool animated = std::any_of(g.results.begin(), g.results.end(),
                                     [](const json* r) { return find(*r, {"animation"}); });
   if (animated)
@@ -342,6 +346,10 @@ Group buildGroup(const std::string& name, const json* jgroup,
     cells.push_back({orDefault(text(find(*r, {"error", "own", "technique"})), kNone)});
     cells.push_back(num(number(find(*r, {"error", "own", "image", "rmse"}))));
     cells.push_back(num(number(find(*r, {"error", "own", "image", "flip", "mean"}))));
+    for (const std::string& ref : more) {
+      cells.push_back(num(number(find(*r, {"error", ref, "rmse"}))));
+      cells.push_back(num(number(find(*r, {"error", ref, "flip", "mean"}))));
+    }
     if (animated) {
       cells.push_back(num(number(find(*r, {"animation", "flicker", "image"}))));
       cells.push_back(num(number(find(*r, {"animation", "flicker", "visibility"}))));
@@ -694,6 +702,19 @@ ReportData buildReport(const json& doc) {
       for (const json& w : *ws) d.warnings.push_back({caseId(*r), text(&w)});
   }
   return d;
+}
+
+std::vector<std::string> moreReferenceNames(const std::vector<const json*>& results) {
+  std::vector<std::string> names;
+  for (const json* r : results) {
+    const json* error = find(*r, {"error"});
+    if (!error || !error->is_object()) continue;
+    for (const auto& [name, e] : error->items())
+      if (e.is_object() && find(e, {"reference", "spec"}) &&
+          std::find(names.begin(), names.end(), name) == names.end())
+        names.push_back(name);
+  }
+  return names;
 }
 
 }  // namespace sb::report

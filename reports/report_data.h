@@ -157,6 +157,9 @@ Table costCasesTable(const CostModel& m);
 // Throws InputError when `doc` is not a JSON object; anything missing inside it
 // is shown as absent.
 ReportData buildReport(const json& doc);
+// The names of the further references the results were compared with
+// (error.<name> with a reference spec: "aa"), in the order first met.
+std::vector<std::string> moreReferenceNames(const std::vector<const json*>& results);
 
 // Whether result r is of `group` and its case.params hold every key and value of `match`
 // (an object; null or absent matches all): a paper table row's and a figure cell's match.

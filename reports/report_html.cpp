@@ -380,10 +380,14 @@ std::string imageGrid(const Group& g, const fs::path& dir) {
     if (!images || !images->is_object() || images->empty()) continue;
     o << "<figure>";
     std::string kinds;
-    for (const char* kind : {"image", "reference", "heatmap", "flip"}) {
+    // The further references' images (aa) after the four of every case.
+    std::vector<std::string> all = {"image", "reference", "heatmap", "flip"};
+    for (const std::string& name : moreReferenceNames({r}))
+      if (find(*images, {name})) all.push_back(name);
+    for (const std::string& kind : all) {
       if (const json* rel = find(*images, {kind}); rel && rel->is_string()) {
         o << embeddedImage(dir, rel->get<std::string>(), kind);
-        kinds += (kinds.empty() ? "" : " / ") + std::string(kind);
+        kinds += (kinds.empty() ? "" : " / ") + kind;
       }
     }
     std::string caption = caseId(*r);

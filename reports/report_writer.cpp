@@ -70,6 +70,19 @@ std::string renderCsv(const ReportData& d) {
        "flicker_image,flicker_visibility,failed";
   // The frame's work counters last, so the columns before them keep their places.
   for (const WorkColumn& c : kWorkColumns) o << "," << c.key;
+  // Each further reference's error and cost after them (error.aa: aa_image_rmse, ...),
+  // only when a result has one.
+  const std::vector<std::string> more = moreReferenceNames(d.results);
+  const std::vector<std::pair<std::string, std::vector<std::string_view>>> moreColumns = {
+      {"image_rmse", {"rmse"}},
+      {"image_psnr", {"psnr"}},
+      {"image_ssim", {"ssim"}},
+      {"image_flip_mean", {"flip", "mean"}},
+      {"reference_spec", {"reference", "spec"}},
+      {"reference_wall_ms", {"reference", "wall_ms"}},
+      {"reference_bytes", {"reference", "bytes"}}};
+  for (const std::string& name : more)
+    for (const auto& [column, path] : moreColumns) o << "," << name << "_" << column;
   o << "\n";
   for (const json* r : d.results) {
     // Numbers in full precision; null (NaN, Inf) and missing values as empty cells.
@@ -114,6 +127,17 @@ std::string renderCsv(const ReportData& d) {
     };
     std::vector<std::string> row = fields;
     for (const WorkColumn& c : kWorkColumns) row.push_back(n({"frame_work", c.key}));
+    for (const std::string& name : more) {
+      const json* e = find(*r, {"error", name});
+      for (const auto& [column, path] : moreColumns) {
+        const json* v = nullptr;
+        if (e) {
+          v = e;
+          for (std::string_view k : path) v = v && v->is_object() ? find(*v, {k}) : nullptr;
+        }
+        row.push_back(!v ? std::string() : v->is_number() || v->is_string() ? text(v) : "");
+      }
+    }
     for (std::size_t i = 0; i < row.size(); ++i) o << (i ? "," : "") << csvField(row[i]);
     o << "\n";
   }

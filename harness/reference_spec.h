@@ -1,0 +1,38 @@
+// The references a render is compared with (`--reference [SPEC]`, the suite key
+// "reference"): a name and key=value options, parsed as technique specs are
+// (Spec::parse, OptionReader). `exact` is the aliased exact reference (exact
+// shadows and transparency at one sample per pixel), the default and always
+// rendered when any reference is asked for; `aa:samples=S` the same techniques
+// at S x S samples per pixel, box-filtered (harness/render_steps.h,
+// renderAaReference). A later reference adds itself to referenceCatalog().
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "scenes/scene.h"
+
+namespace sb {
+
+struct ReferenceKind {
+  std::string name;
+  std::string help;
+  std::vector<OptionInfo> options;
+};
+
+// Every reference, the default (exact) first.
+const std::vector<ReferenceKind>& referenceCatalog();
+
+struct ReferenceSpec {
+  std::string name = "exact";
+  int samples = 1;  // aa: samples per pixel along each axis (S x S per pixel)
+  // Canonical text: "exact", "aa:samples=4".
+  std::string str() const;
+  bool operator==(const ReferenceSpec&) const = default;
+};
+
+// Throws InputError ("reference 'aa': option samples=9 is out of range [1, 8]")
+// for a malformed spec, an unknown name, an unknown option or a value out of range.
+ReferenceSpec parseReferenceSpec(const std::string& text);
+
+}  // namespace sb
