@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "techniques/common/unit.h"
 #include "test_util.h"
 
 namespace {
@@ -67,6 +68,24 @@ TEST(Msaa, PerPixelTechniquesAndMissingCountsAreRefused) {
   const CliResult bad = runCli(kArgs + " --msaa 3");
   EXPECT_EQ(bad.status, 2);
   EXPECT_NE(bad.err.find("msaa"), std::string::npos) << bad.err;
+}
+
+// Every registered transparency technique, from the registry: either it renders with --msaa 4,
+// or it states why not in its descriptor (Capabilities::msaaRefusal) and the refusal prints it.
+TEST(Msaa, EveryTransparencyTakesItOrSaysWhyNot) {
+  for (const sb::TechniqueDescriptor* d : sb::techniques(sb::Family::Transparency)) {
+    SCOPED_TRACE(d->name);
+    const CliResult r = runCli(kArgs + " --oit " + d->name + " --msaa 4");
+    if (d->caps.multisampling) {
+      EXPECT_TRUE(d->caps.msaaRefusal.empty()) << "multisampled, yet states a refusal";
+      EXPECT_EQ(r.status, 0) << r.err;
+      continue;
+    }
+    EXPECT_FALSE(d->caps.msaaRefusal.empty()) << "refuses --msaa without a stated reason";
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_NE(r.err.find("'" + d->name + "'"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(d->caps.msaaRefusal), std::string::npos) << r.err;
+  }
 }
 
 }  // namespace
