@@ -16,7 +16,7 @@ namespace {
 constexpr uint32_t kCursor = SB_SLOT_CRASTER_CURSOR, kLayout = SB_SLOT_CRASTER_LAYOUT,
                    kFragments = SB_SLOT_CRASTER_FRAGMENTS, kShaded = SB_SLOT_CRASTER_SHADED,
                    kOpaque = SB_SLOT_CRASTER_OPAQUE, kParams = SB_SLOT_CRASTER_PARAMS,
-                   kBuckets = SB_SLOT_CRASTER_BUCKETS;
+                   kBuckets = SB_SLOT_CRASTER_BUCKETS, kRanges = SB_SLOT_CRASTER_RANGES;
 constexpr std::size_t kFragmentBytes = 16;
 // The status words at the head of the cursor buffer (compute_raster.glsl).
 enum Status : uint32_t {
@@ -93,6 +93,8 @@ void ComputeRasterOit::setup(Device& dev, const GpuScene& scene, const RenderSet
                                  std::max<uint64_t>(pool_, 1) * kFragmentBytes});
   buckets_ = dev.createBuffer({name() + ".buckets", "oit", BufferUsage::Storage,
                                std::max<uint64_t>(pool_, 1) * kFragmentBytes});
+  ranges_ = dev.createBuffer(
+      {name() + ".ranges", "oit", BufferUsage::Storage, std::size_t(s.width) * s.height * 8});
   if (o_.perPoint)
     shaded_ = dev.createBuffer({name() + ".shaded", "oit", BufferUsage::Storage,
                                 std::max<std::size_t>(scene.segmentCount, 1) * 2 * 16});
@@ -121,6 +123,13 @@ void ComputeRasterOit::setup(Device& dev, const GpuScene& scene, const RenderSet
                      shading.hairDefines());
   // The shading's defines either way: the loader resolves <shadow> in the
   // per-fragment branch too, which the preprocessor then drops.
+  // The shading's defines in both: the loader resolves <shadow> in the
+  // per-fragment branch too, which the preprocessor then drops.
+  ShaderDefines bucket = shading.hairDefines();
+  bucket.defines.push_back({"SB_CRASTER_TILE", std::to_string(o_.tile)});
+  bucket.defines.push_back({"SB_CRASTER_BUCKET", "1"});
+  bucket_ = compute(bucketPass(), name() + ".bucket", name(),
+                    "techniques/compute_raster/resolve.comp", bucket);
   ShaderDefines resolve = shading.hairDefines();
   resolve.defines.push_back({"SB_CRASTER_TILE", std::to_string(o_.tile)});
   if (!o_.perPoint) resolve.defines.push_back({"SB_CRASTER_PER_FRAGMENT", "1"});
@@ -185,6 +194,16 @@ Pass ComputeRasterOit::rasterPass() const {
   return p;
 }
 
+Pass ComputeRasterOit::bucketPass() const {
+  return Pass(name() + ".bucket")
+      .uniform(kParams, params_)
+      .storage(kCursor, cursor_)
+      .readStorage(kLayout, layout_)
+      .storage(kFragments, fragments_)
+      .storage(kBuckets, buckets_)
+      .storage(kRanges, ranges_);
+}
+
 Pass ComputeRasterOit::resolvePass() const {
   Pass p(name() + ".resolve");
   if (o_.perPoint)
@@ -194,8 +213,9 @@ Pass ComputeRasterOit::resolvePass() const {
   return p.uniform(kParams, params_)
       .storage(kCursor, cursor_)
       .readStorage(kLayout, layout_)
-      .storage(kFragments, fragments_)
-      .storage(kBuckets, buckets_)
+      .readStorage(kFragments, fragments_)
+      .readStorage(kBuckets, buckets_)
+      .readStorage(kRanges, ranges_)
       .storage(AccumComposite::kAccumBinding, composite_.accum());
 }
 
@@ -203,6 +223,7 @@ void ComputeRasterOit::addPasses(FrameGraph& graph, Device& dev) {
   std::vector<Pass> passes;
   if (o_.perPoint) passes.push_back(shadePass());
   passes.push_back(rasterPass());
+  passes.push_back(bucketPass());
   passes.push_back(resolvePass());
   passes.push_back(composite_.pass());
   graph.add(name(), passes, [this, &dev] {
@@ -212,6 +233,7 @@ void ComputeRasterOit::addPasses(FrameGraph& graph, Device& dev) {
       if (o_.perPoint) shadePass().dispatch(dev, shade_, g.x, g.y);
       rasterPass().dispatch(dev, raster_, g.x, g.y);
     }
+    bucketPass().dispatch(dev, bucket_, tilesX_, tilesY_);
     resolvePass().dispatch(dev, resolve_, tilesX_, tilesY_);
     composite_.record(dev);
   });

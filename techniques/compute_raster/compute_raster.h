@@ -7,9 +7,10 @@
 //     giving each an analytic coverage from the strand's width (or a binary
 //     one, as the hardware draws the same strands), and appends the fragments
 //     in front of the opaque depth to their screen tile's list;
-//  3. resolve: one workgroup per tile buckets the tile's list by pixel (a
+//  3. bucket: one workgroup per tile buckets the tile's list by pixel (a
 //     counting sort in shared memory, into a second pool as large as the
-//     first) and each pixel takes its fragments front to back by (depth,
+//     first) and writes each pixel's range;
+//  4. resolve: each pixel takes its fragments front to back by (depth,
 //     segment), each time the nearest after the last, compositing them until
 //     what is left to see is under the termination threshold (early
 //     termination: the deeper fragments are never ordered).
@@ -67,6 +68,7 @@ class ComputeRasterOit : public OitTechnique {
   Pass shadePass() const;
   Pass countPass() const;  // prepare()'s: the raster pass counting only
   Pass rasterPass() const;
+  Pass bucketPass() const;
   Pass resolvePass() const;
   std::vector<uint32_t> status(Device& dev);
   uint32_t tiles() const { return tilesX_ * tilesY_; }
@@ -79,8 +81,8 @@ class ComputeRasterOit : public OitTechnique {
   AccumComposite composite_;
   uint32_t tilesX_ = 0, tilesY_ = 0;
   uint64_t pool_ = 0;
-  Buffer params_, cursor_, layout_, fragments_, buckets_, shaded_;
-  Pipeline count_, shade_, raster_, resolve_;
+  Buffer params_, cursor_, layout_, fragments_, buckets_, ranges_, shaded_;
+  Pipeline count_, shade_, raster_, bucket_, resolve_;
 };
 
 }  // namespace sb

@@ -10,6 +10,7 @@
 #define SB_SLOT_CRASTER_SHADED 21     // vec4 per segment end: shaded rgb, alpha (shading=point)
 #define SB_SLOT_CRASTER_OPAQUE 22     // the opaque depth (when a mesh was drawn)
 #define SB_SLOT_CRASTER_PARAMS 23     // CRasterParams
-#define SB_SLOT_CRASTER_BUCKETS 24    // the resolve's copy of each tile's list, bucketed by pixel
+#define SB_SLOT_CRASTER_BUCKETS 24    // each tile's list bucketed by pixel (the bucket pass's copy)
+#define SB_SLOT_CRASTER_RANGES 25     // uvec2 per pixel: its first entry in the buckets, its count
 
 #endif  // SB_COMPUTE_RASTER_SLOTS_H
