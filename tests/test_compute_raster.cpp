@@ -59,6 +59,22 @@ TEST(ComputeRaster, RendersTheSameOnBothApis) {
   fs::remove_all(dir);
 }
 
+TEST(ComputeRaster, ThicknessWidthCoversASliverOnBothApis) {
+  // width_from=thickness: the scene's 0.005-unit strands projected (a fraction of a pixel
+  // here), so the hair covers less than the 1-pixel lines: fewer fragments with coverage.
+  const fs::path dir = tempDir("craster-thick");
+  std::map<std::string, Result> runs;
+  for (const std::string backend : {"gl", "vulkan"})
+    runs[backend] = render("--oit compute_raster:width_from=thickness --backend " + backend +
+                           " --out " + (dir / (backend + ".png")).string());
+  // The projected width is computed on each API in its own float arithmetic: one 8-bit level.
+  EXPECT_LE(compare(dir / "gl.png", dir / "vulkan.png")["max_abs"].get<double>(), 5e-3);
+  const Result frame = render("--oit compute_raster");
+  EXPECT_GT(counter(runs["gl"], "fragments"), 100);
+  EXPECT_LT(counter(runs["gl"], "fragments"), counter(frame, "fragments"));
+  fs::remove_all(dir);
+}
+
 TEST(ComputeRaster, BinaryCoverageDrawsTheHardwaresFragments) {
   // coverage=binary draws the pixel centres the hardware's lines draw (up to
   // the diamond-exit rule at segment ends, a column), shaded per fragment and

@@ -37,6 +37,7 @@ ComputeRasterOit::Options ComputeRasterOit::readOptions(const OptionReader& o) {
   r.analytic = o.choice("coverage") == "analytic";
   r.perPoint = o.choice("shading") == "point";
   r.width = static_cast<float>(o.number("width"));
+  r.thickness = o.choice("width_from") == "thickness";
   r.lod = static_cast<float>(o.number("lod"));
   r.lodWiden = static_cast<float>(o.number("lod_widen"));
   r.terminate = static_cast<float>(o.number("terminate"));
@@ -69,7 +70,12 @@ void ComputeRasterOit::setup(Device& dev, const GpuScene& scene, const RenderSet
   p.crSize = glm::uvec4(s.width, s.height, 0, 0);
   p.crStrand = glm::vec4(st.width, o_.lod, st.opacityExponent, o_.terminate);
   p.crModel = glm::uvec4(o_.analytic ? 0u : 1u, s.primitive == Primitive::Lines ? 1u : 0u,
-                         scene.segmentCount, 0u);
+                         scene.segmentCount, o_.thickness ? 1u : 0u);
+  // Pixels per world unit at clip w = 1: half the viewport times the length of
+  // the view-projection's x row (the view is rigid: the projection's x scale).
+  const glm::mat4 vp = cameraView(s).viewProj;
+  const float xScale = glm::length(glm::vec3(vp[0][0], vp[1][0], vp[2][0]));
+  p.crWidth = glm::vec4(st.widen, 0.5f * float(s.width) * xScale, 0, 0);
   params_ = dev.createBuffer({name() + ".params", "frame", BufferUsage::Uniform, sizeof p}, &p);
   cursor_ = dev.createBuffer(
       {name() + ".cursor", "oit", BufferUsage::Storage, (kStatusWords + tiles()) * 4ull});

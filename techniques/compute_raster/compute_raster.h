@@ -41,6 +41,7 @@ class ComputeRasterOit : public OitTechnique {
     bool analytic = true;           // coverage=analytic (else binary)
     bool perPoint = true;           // shading=point (else fragment)
     float width = 0;                // strand width in pixels; 0: the frame's (lines 1, ribbons)
+    bool thickness = false;         // width_from=thickness: the scene's thickness, projected
     float lod = 1;                  // share of strands kept, (0, 1]
     float lodWiden = 2;             // most the kept strands are widened, >= 1
     float terminate = 1.0f / 1024;  // early-termination transmittance

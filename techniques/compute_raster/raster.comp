@@ -95,7 +95,11 @@ void main() {
   bool analytic = crModel.x == 0u;
   // The footprint's extent along the minor axis: a strip `width` across
   // (hardware lines: `width` along the minor axis, one pixel per column at 1).
-  float h = (analytic || crModel.y == 0u) ? width / cosv : width;
+  bool lines = crModel.y == 1u && crModel.w == 0u;
+  float h = (analytic || !lines) ? width / cosv : width;
+  // width=thickness: the strand's own thickness (world units, per point)
+  // projected at each column's depth, so a far strand covers a sliver.
+  float thick0 = points[first].w, thick1 = points[first + 1u].w;
   int majorSize = int(xMajor ? vp.x : vp.y), minorSize = int(xMajor ? vp.y : vp.x);
   // Pixel columns whose centre lies in [A.x, B.x): a shared end is drawn once
   // (the hardware's diamond-exit rule differs at the ends, by a column).
@@ -110,6 +114,12 @@ void main() {
     // Perspective-correct position along the segment (1/w is linear on screen).
     float tl = (s / wB) / ((1.0 - s) / wA + s / wB);
     float t = mix(tA, tB, tl);
+    if (crModel.w == 1u) {
+      // 1/w is linear on screen; the thickness is linear along the segment.
+      float w = 1.0 / mix(1.0 / wA, 1.0 / wB, s);
+      width = mix(thick0, thick1, t) * crWidth.x * crWidth.y / w;
+      h = width / cosv;
+    }
     float v = A.y + (uc - A.x) * slope;
     float lo = v - 0.5 * h, hi = v + 0.5 * h;
     int j0 = max(int(floor(lo)), 0), j1 = min(int(floor(hi)), minorSize - 1);

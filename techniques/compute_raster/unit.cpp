@@ -24,6 +24,10 @@ SB_TECHNIQUE(
                       "fragment shaded"),
           opt::number("width", "0", 0.0, 64.0,
                       "strand width in pixels; 0: the frame's (lines 1, --ribbon-width)"),
+          opt::choice("width_from", "frame", {"frame", "thickness"},
+                      "frame: width= pixels (or the frame's); thickness: the scene's strand "
+                      "thickness (world units) projected at each pixel's depth, so far or thin "
+                      "strands cover a sliver of a pixel"),
           opt::number("lod", "1", 0.0, 1.0,
                       "share of strands kept (by a hash of the root), (0, 1]; the kept ones "
                       "stand for the rest"),
