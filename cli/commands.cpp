@@ -238,6 +238,9 @@ void registerRender(CLI::App& app) {
       nlohmann::json report = renderJson(result);
       if (!out->empty()) report["image"] = *out;
       if (*json) {
+        // stdout is the JSON (its "warnings" too); a person sees them on stderr.
+        for (const auto& w : result.warnings)
+          std::cerr << "strandbench render: warning: " << w << "\n";
         std::cout << report.dump(2) << "\n";
         return 0;
       }

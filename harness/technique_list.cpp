@@ -101,7 +101,8 @@ nlohmann::json techniqueJson(const TechniqueDescriptor& d) {
                         {"interlock", d.caps.interlock},
                         {"emulated_timing", d.caps.emulatedTiming},
                         {"monotone", d.caps.monotone},
-                        {"exact", d.caps.exact}}}};
+                        {"exact", d.caps.exact},
+                        {"msaa_refusal", d.caps.msaaRefusal}}}};
   if (d.stepped)
     j["stepped"] = {{"option", d.stepped->option},
                     {"doubling", d.stepped->doubling},
@@ -117,6 +118,7 @@ void printTechnique(std::ostream& out, const TechniqueDescriptor& d, bool detail
         << "), folder: techniques/" << d.folder << "/\n";
     if (!d.paper.empty()) out << "    paper: " << d.paper << "\n";
     out << "    capabilities: " << capabilitiesText(d) << "\n";
+    if (!d.caps.msaaRefusal.empty()) out << "    --msaa: refused: " << d.caps.msaaRefusal << "\n";
     if (d.stepped)
       out << "    viewer steps: " << d.stepped->option << (d.stepped->doubling ? " x2" : " +1")
           << " in " << d.stepped->min << ".." << d.stepped->max << "\n";

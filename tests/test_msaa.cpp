@@ -1,12 +1,13 @@
 // --msaa N, the scene-wide anti-aliasing: the techniques that render into multisampled frame
-// targets (opaque hair, the blended wsum, wavg, wboit) give the same image on GL and Vulkan,
-// change only the pixels anti-aliasing changes (edges: the image differs from --msaa 1, but
-// little on average), and count every sample in their memory; the techniques that keep
+// targets (opaque hair, the blended wsum, wavg, wboit, fake transparency) give the same image on GL
+// and Vulkan, change only the pixels anti-aliasing changes (edges: the image differs from --msaa 1,
+// but little on average), and count every sample in their memory; the techniques that keep
 // per-pixel data refuse it with an input error, as does a count the device lacks.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
 
+#include "techniques/common/unit.h"
 #include "test_util.h"
 
 namespace {
@@ -58,6 +59,33 @@ TEST(Msaa, MultisampledTechniquesAntiAliasTheSameOnBothApis) {
   fs::remove_all(dir);
 }
 
+// Fake transparency's three opaque subsets draw into N-sample images, averaged before its
+// blend (premultiplied, so the averages are coverage and colour), and the blend runs per sample
+// over the multisampled opaque colour: the same on both APIs, the edges anti-aliased, every
+// sample counted (3 RGBA32F images and the subsets' depth, N samples each, plus the averages).
+TEST(Msaa, FakeTransparencyAntiAliasesTheSameOnBothApis) {
+  const fs::path dir = tempDir("msaa-fake");
+  std::map<std::string, fs::path> png;
+  std::map<std::string, json> out;
+  for (const std::string backend : {"gl", "vulkan"})
+    for (const int n : {1, 4}) {
+      const std::string key = backend + std::to_string(n);
+      png[key] = dir / ("fake-" + key + ".png");
+      out[key] = renderJson("--oit fake --backend " + backend + " --msaa " + std::to_string(n) +
+                            " --out " + png[key].string());
+    }
+  EXPECT_LE(compare(png["gl4"], png["vulkan4"])["max_abs"].get<double>(), 1e-3);
+  EXPECT_LE(compare(png["gl1"], png["vulkan1"])["max_abs"].get<double>(), 1e-3);
+  const json d = compare(png["gl1"], png["gl4"]);
+  EXPECT_GT(d["pixels_over"].get<int>(), 10) << "4 samples changed no edge";
+  EXPECT_LT(d["rmse"].get<double>(), 0.06);  // measured 0.0188
+  const double pixels = 48.0 * 48.0;
+  EXPECT_EQ(out["gl4"]["memory"]["oit_bytes"].get<double>() -
+                out["gl1"]["memory"]["oit_bytes"].get<double>(),
+            pixels * (3 * 4 * 16 + 3 * 4));
+  fs::remove_all(dir);
+}
+
 TEST(Msaa, PerPixelTechniquesAndMissingCountsAreRefused) {
   for (const std::string oit : {"abuffer", "peel", "occupancy", "kbuffer"}) {
     const CliResult r = runCli(kArgs + " --oit " + oit + " --msaa 4");
@@ -67,6 +95,24 @@ TEST(Msaa, PerPixelTechniquesAndMissingCountsAreRefused) {
   const CliResult bad = runCli(kArgs + " --msaa 3");
   EXPECT_EQ(bad.status, 2);
   EXPECT_NE(bad.err.find("msaa"), std::string::npos) << bad.err;
+}
+
+// Every registered transparency technique, from the registry: either it renders with --msaa 4,
+// or it states why not in its descriptor (Capabilities::msaaRefusal) and the refusal prints it.
+TEST(Msaa, EveryTransparencyTakesItOrSaysWhyNot) {
+  for (const sb::TechniqueDescriptor* d : sb::techniques(sb::Family::Transparency)) {
+    SCOPED_TRACE(d->name);
+    const CliResult r = runCli(kArgs + " --oit " + d->name + " --msaa 4");
+    if (d->caps.multisampling) {
+      EXPECT_TRUE(d->caps.msaaRefusal.empty()) << "multisampled, yet states a refusal";
+      EXPECT_EQ(r.status, 0) << r.err;
+      continue;
+    }
+    EXPECT_FALSE(d->caps.msaaRefusal.empty()) << "refuses --msaa without a stated reason";
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_NE(r.err.find("'" + d->name + "'"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(d->caps.msaaRefusal), std::string::npos) << r.err;
+  }
 }
 
 }  // namespace

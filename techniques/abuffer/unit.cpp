@@ -10,7 +10,10 @@ SB_TECHNIQUE({.name = "abuffer",
               .help = "ground truth cross-check: per-pixel fragment lists, sorted and composited",
               .options = {opt::integer("max_fragments", 50000000, 1, 1000000000,
                                        "most fragments stored (32 bytes each), 1..1000000000")},
-              .caps = {.exact = true},
+              .caps = {.exact = true,
+                       .msaaRefusal = "per-pixel fragment lists sorted and composited per pixel: "
+                                      "samples would multiply the lists' memory by N (or need a "
+                                      "coverage mask per fragment, not written); not supported"},
               .makeOit = [](const OptionReader& o) {
                 return std::make_unique<ABufferOit>(
                     static_cast<uint64_t>(o.integer("max_fragments")));

@@ -30,6 +30,11 @@ struct Capabilities {
   bool emulatedTiming = false;  // part of the timed work emulates that (reported)
   bool monotone = true;         // shadow: visibility never rises away from the light
   bool exact = false;           // a reference: exact up to rounding
+  // Transparency without multisampling: why it refuses --msaa N > 1, printed in
+  // the refusal (e.g. "per-pixel lists: samples would multiply their memory by
+  // N"). Every transparency technique that is not multisampling states one
+  // (TechniqueUnits.EveryTransparencyTakesMsaaOrSaysWhyNot).
+  std::string msaaRefusal;
 };
 
 // The option the viewer's arrow keys step (x2 and /2 when doubling, else +1 and

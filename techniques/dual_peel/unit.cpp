@@ -11,6 +11,9 @@ SB_TECHNIQUE(
      .help = "dual depth peeling (Bavoil & Myers 2008): the nearest and farthest layers per pass, "
              "ceil(layers/2) peel passes after one min/max depth pass",
      .options = {opt::layersCap()},
+     .caps = {.msaaRefusal = "its min/max depth and front/back accumulation targets are per-pixel, "
+                             "MAX-blended and sampled per pixel by the next pass: per-sample ones "
+                             "need sample-rate shading; not written"},
      .makeOit = [](const OptionReader& o) {
        return std::make_unique<DualPeelOit>(static_cast<uint32_t>(o.integer("layers")));
      }});

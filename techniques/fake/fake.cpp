@@ -41,8 +41,15 @@ void FakeTransparency::setup(Device& dev, const GpuScene& scene, const RenderSet
                                     subsets[k].data());
     images_[k] = dev.createTexture(
         {"fake.image" + std::to_string(k), "oit", Format::RGBA32F, s.width, s.height, false});
+    // --msaa N: each subset draws into N samples, averaged into its image at the
+    // end of its pass; the images are premultiplied (alpha 1 where hair was
+    // drawn, (0, 0, 0, 0) elsewhere), so the averages are its coverage and colour.
+    if (s.msaa > 1)
+      imagesMs_[k] = dev.createTexture({"fake.image" + std::to_string(k) + "_ms", "oit",
+                                        Format::RGBA32F, s.width, s.height, false, 1, s.msaa});
   }
-  depth_ = dev.createTexture({"fake.depth", "oit", Format::Depth32F, s.width, s.height, false});
+  depth_ = dev.createTexture(
+      {"fake.depth", "oit", Format::Depth32F, s.width, s.height, false, 1, s.msaa});
 
   // Each subset: opaque hair, shaded as --oit none shades it, depth-tested.
   const ShaderCode vert = Geometry::strandVertexShader(s);
@@ -79,10 +86,12 @@ void FakeTransparency::setup(Device& dev, const GpuScene& scene, const RenderSet
 Pass FakeTransparency::subsetPass(uint32_t k) const {
   Inputs in = shading_->hairInputs();
   in.replaceBuffer(bind::kSegments, segments_[k]);
-  return Pass("fake.subset" + std::to_string(k))
-      .color(images_[k], LoadOp::Clear, {0, 0, 0, 0})
-      .depth(depth_, LoadOp::Clear)
-      .inputs(in);
+  Pass p("fake.subset" + std::to_string(k));
+  if (imagesMs_[k])
+    p.color(imagesMs_[k], LoadOp::Clear, {0, 0, 0, 0}).resolveInto(images_[k]);
+  else
+    p.color(images_[k], LoadOp::Clear, {0, 0, 0, 0});
+  return p.depth(depth_, LoadOp::Clear).inputs(in);
 }
 
 // Nothing opaque drawn: the blend also clears the frame's depth to 1, as the
@@ -92,6 +101,7 @@ Pass FakeTransparency::blendPass() const {
   Pass p("fake.blend");
   p.color(targets_.color, targets_.opaqueDrawn ? LoadOp::Load : LoadOp::Clear,
           {bg.r, bg.g, bg.b, 1.0f});
+  if (targets_.resolved) p.resolveInto(targets_.resolved);  // --msaa: the samples averaged
   if (!targets_.opaqueDrawn) p.depth(targets_.depth, LoadOp::Clear);
   for (uint32_t k = 0; k < kSubsets; ++k) p.sample(kImage0 + k, images_[k]);
   return p;

@@ -40,6 +40,8 @@ class FakeTransparency : public OitTechnique {
   std::array<Buffer, kSubsets> segments_{};
   std::array<uint32_t, kSubsets> counts_{};
   std::array<Texture, kSubsets> images_{};
+  std::array<Texture, kSubsets>
+      imagesMs_{};  // --msaa N: the N-sample images, averaged into images_
   Texture depth_;
   Pipeline hairPipeline_, meshPipeline_, blendPipeline_;
 };

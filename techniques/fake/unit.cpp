@@ -10,4 +10,5 @@ SB_TECHNIQUE(
      .paper = "Yuksel & Keyser 2008, section 5",
      .help = "fake transparency (Yuksel & Keyser 2008, section 5): the strands in 3 interleaved "
              "subsets, each drawn opaque into its own image, the 3 images blended equally",
+     .caps = {.multisampling = true},
      .makeOit = [](const OptionReader&) { return std::make_unique<FakeTransparency>(); }});

@@ -105,12 +105,16 @@ Renderer::Renderer(Device& dev, const Scene& scene, const RenderSettings& settin
   // resolved into frame.color by the technique's last pass; techniques whose
   // per-pixel data is not multisampled are refused (InputError, before any work).
   const uint32_t n = settings.msaa;
-  if (n > 1 && !oit().multisampled())
-    throw InputError(
-        "--msaa " + std::to_string(n) + ": transparency technique '" + oit().name() +
-        "' keeps per-pixel data (fragment lists, layers, accumulation or occupancy-map "
-        "targets) that is not multisampled; it runs with --msaa 1 (multisampled: " +
-        multisampledNames() + "; a technique may have its own samples= option)");
+  if (n > 1 && !oit().multisampled()) {
+    const TechniqueDescriptor* d = tryFindTechnique(Family::Transparency, oit().name());
+    const std::string reason = d && !d->caps.msaaRefusal.empty()
+                                   ? d->caps.msaaRefusal
+                                   : "it keeps per-pixel data that is not multisampled";
+    throw InputError("--msaa " + std::to_string(n) + ": transparency technique '" + oit().name() +
+                     "' does not take multisampled targets: " + reason +
+                     "; it runs with --msaa 1 (multisampled: " + multisampledNames() +
+                     "; a technique may have its own samples= option)");
+  }
   // The visibility and probe outputs are the key light's.
   wantVisibility_ = outputs.count("visibility") > 0;
   wantProbe_ = outputs.count("probe") > 0;

@@ -15,6 +15,8 @@ SB_TECHNIQUE(
                  opt::integer("nodes", 0, 0, 1000000000,
                               "node pool entries (32 bytes each); 0: the counted fragments; a full "
                               "pool drops fragments (counted and reported), 0..1000000000")},
+     .caps = {.msaaRefusal = "per-pixel fragment lists (the A-buffer's) resolved per pixel: "
+                             "samples would multiply the lists' memory by N; not supported"},
      .makeOit = [](const OptionReader& o) {
        return std::make_unique<KBufferOit>(KBufferOit::readOptions(o));
      }});

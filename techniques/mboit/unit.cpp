@@ -14,6 +14,10 @@ SB_TECHNIQUE(
                  opt::choice(
                      "precision", "32", {"16", "32"},
                      "moment target bits: 16 (RGBA16F, the paper's 16-bit bias) | 32 (RGBA32F)")},
+     .caps =
+         {.msaaRefusal =
+              "its second pass reads the first pass's moments per pixel (sampler2D): multisampled "
+              "moments need per-sample reads of a multisampled target; not written"},
      .makeOit = [](const OptionReader& o) {
        return std::make_unique<MomentOit>(MomentOit::readOptions(o));
      }});

@@ -11,7 +11,11 @@ SB_TECHNIQUE(
      .help = "multi-layer alpha blending (Salvi & Vaidyanathan 2014); without fragment-shader "
              "interlock merged in primitive order in a resolve (timing marked emulated)",
      .options = {opt::integer("layers", 4, 1, MlabOit::kMaxLayers, "layers per pixel, 1..32")},
-     .caps = {.interlock = true, .emulatedTiming = true},
+     .caps = {.interlock = true,
+              .emulatedTiming = true,
+              .msaaRefusal =
+                  "per-pixel fragment lists (the A-buffer's, merged in primitive order per pixel): "
+                  "samples would multiply the lists' memory by N; not supported"},
      .makeOit = [](const OptionReader& o) {
        return std::make_unique<MlabOit>(static_cast<int>(o.integer("layers")));
      }});

@@ -23,6 +23,9 @@ SB_TECHNIQUE(
                  opt::choice("order", "corrected", {"corrected", "paper"},
                              "corrected (the fragment's own share taken out, spread within its "
                              "slice) | paper (the printed F_i / B_total * B_before)")},
+     .caps = {.msaaRefusal = "its occupancy bits, slab counts and depth range are per-pixel maps "
+                             "that order the fragments: samples would multiply them by N and split "
+                             "one pixel's order; not supported"},
      .makeOit = [](const OptionReader& o) {
        return std::make_unique<OccupancyOit>(OccupancyOit::readOptions(o));
      }});

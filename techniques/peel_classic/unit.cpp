@@ -11,6 +11,9 @@ SB_TECHNIQUE(
      .help = "depth peeling as the papers time it (Everitt 2001): one geometry pass per layer, "
              "depth ties lost and counted",
      .options = {opt::layersCap()},
+     .caps = {.msaaRefusal = "its second depth test samples the last layer's single-sampled R32F "
+                             "depth copy per pixel: a multisampled peel needs per-sample copies "
+                             "and sample-rate shading; not written"},
      .makeOit = [](const OptionReader& o) {
        return std::make_unique<ClassicPeelOit>(static_cast<uint32_t>(o.integer("layers")));
      }});

@@ -12,6 +12,8 @@ SB_TECHNIQUE(
              "order, the rest as a weighted average under the product of (1 - alpha)",
      .options = {opt::integer("k", 3, 1, ShortCutOit::kMaxK,
                               "nearest fragments blended in order per pixel, 1..16")},
+     .caps = {.msaaRefusal = "the k nearest depths of each pixel are atomic mins in per-pixel "
+                             "storage buffers: samples would multiply them by N; not supported"},
      .makeOit = [](const OptionReader& o) {
        return std::make_unique<ShortCutOit>(static_cast<int>(o.integer("k")));
      }});

@@ -14,6 +14,9 @@ SB_TECHNIQUE(
                               "samples per pixel S, 1..64 (one pass each, S depths per pixel)"),
                  opt::integer("seed", 1, 0, 4294967295LL,
                               "random seed of the coverage masks, 0..4294967295")},
+     .caps = {.msaaRefusal = "it is sample-based already: its S sample depths per pixel are a "
+                             "storage buffer (samples=), since Mesa's CPU drivers rasterize lines "
+                             "in a multisampled pass with one depth per pixel"},
      .makeOit = [](const OptionReader& o) {
        return std::make_unique<StochasticOit>(StochasticOit::readOptions(o));
      }});

@@ -1,0 +1,45 @@
+// --oit compute_raster: strands rasterized in compute shaders, as engines do.
+#include "techniques/common/unit.h"
+
+#include "techniques/compute_raster/compute_raster.h"
+
+SB_TECHNIQUE(
+    {.name = "compute_raster",
+     .family = Family::Transparency,
+     .folder = "compute_raster",
+     .paper = "Frostbite (Every Strand Counts), Unity Enemies, Unreal HairStrands",
+     .help = "compute strand rasterizer: segments walked into screen tiles' lists with analytic "
+             "coverage from the strand width, each tile bucketed by pixel and composited front to "
+             "back in depth order with early termination; LOD thins strands, widening the rest",
+     .options =
+         {opt::choice("tile", "8", {"8", "16"}, "tile side in pixels (one workgroup per tile)"),
+          opt::integer("fragments", 0, 0, 16777216,
+                       "list entries per tile (16 bytes each); 0: as many as a counting pass "
+                       "finds; a full list drops fragments (counted and warned), 0..16777216"),
+          opt::choice("coverage", "analytic", {"analytic", "binary"},
+                      "analytic: the strand's width inside each pixel (a box filter across "
+                      "it); binary: pixel centres inside it, as the hardware rasterizes"),
+          opt::choice("shading", "point", {"point", "fragment"},
+                      "point: each segment end shaded once, interpolated; fragment: every "
+                      "fragment shaded"),
+          opt::number("width", "0", 0.0, 64.0,
+                      "strand width in pixels; 0: the frame's (lines 1, --ribbon-width)"),
+          opt::choice("width_from", "frame", {"frame", "thickness"},
+                      "frame: width= pixels (or the frame's); thickness: the scene's strand "
+                      "thickness (world units) projected at each pixel's depth, so far or thin "
+                      "strands cover a sliver of a pixel"),
+          opt::number("lod", "1", 0.0, 1.0,
+                      "share of strands kept (by a hash of the root), (0, 1]; the kept ones "
+                      "stand for the rest"),
+          opt::number("lod_widen", "2", 1.0, 16.0,
+                      "most the kept strands are widened (the rest of the LOD's compensation "
+                      "goes to opacity), 1..16"),
+          opt::number("terminate", "0.0009765625", 0.0, 0.5,
+                      "a pixel stops compositing when the transmittance left is under this")},
+     .caps =
+         {.msaaRefusal =
+              "it rasterizes in compute with its own per-pixel coverage (coverage=analytic is its "
+              "anti-aliasing) and no hardware targets: the frame's samples would not be used"},
+     .makeOit = [](const OptionReader& o) {
+       return std::make_unique<ComputeRasterOit>(ComputeRasterOit::readOptions(o));
+     }});
