@@ -1,10 +1,13 @@
-// `strandbench sweep`, `merge` and `report` (harness/sweep.h does the work).
+// `strandbench sweep`, `merge`, `report` and `driver-ab` (harness/sweep.h and
+// harness/driver_ab.h do the work).
 #include <unistd.h>
 
 #include <cstdlib>
 #include <memory>
 
+#include "backends/driver_env.h"
 #include "cli/commands.h"
+#include "harness/driver_ab.h"
 #include "harness/sweep.h"
 
 namespace sb {
@@ -66,6 +69,32 @@ void registerSweepCommands(CLI::App& app) {
         std::cout
             << "wrote " << *dir << "/results.json (" << n
             << " results), results.csv, passes.csv, cost_model.json, report.md, report.html\n";
+        return 0;
+      });
+    });
+  }
+  {
+    auto* cmd = app.add_subcommand(
+        "driver-ab",
+        "sweep a suite on two drivers and write a triage page (OUT/ab.html): images, "
+        "difference heatmap and FLIP map, times and work counters side by side");
+    auto o = std::make_shared<DriverAbOptions>();
+    cmd->add_option("suite", o->suitePath, "suite file, e.g. suites/quick.json")->required();
+    cmd->add_option("--out", o->out, "output folder (OUT/a, OUT/b: the two sweeps)")->required();
+    cmd->add_option("--a", o->a, std::string("driver A; ") + kDriverHelp)->capture_default_str();
+    cmd->add_option("--b", o->b, "driver B (e.g. mesa-25.0)")->required();
+    cmd->add_option("--filter", o->filter, "run only cases whose id matches this regex");
+    cmd->add_flag("--resume", o->resume, "continue both sweeps of OUT");
+    cmd->callback([o] { runGuarded("driver-ab", [&] { return runDriverAb(*o); }); });
+  }
+  {
+    auto* page = app.add_subcommand("driver-ab-page", "rewrite OUT/ab.html of a driver A/B folder");
+    auto dir = std::make_shared<std::string>();
+    page->add_option("dir", *dir, "driver A/B folder")->required();
+    page->callback([dir] {
+      runGuarded("driver-ab-page", [&] {
+        std::cout << "wrote " << *dir << "/ab.html (" << writeDriverAbPage(*dir)
+                  << " cases paired)\n";
         return 0;
       });
     });
