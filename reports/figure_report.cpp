@@ -195,11 +195,12 @@ void checkFigureBlock(const json& suite, const std::string& where) {
     throw InputError(where +
                      ": \"figure\" (an object with title, rows, columns, cells) is required");
   for (const auto& [key, value] : f->items()) {
-    static const std::set<std::string> known = {"title",   "source", "group",  "rows",
-                                                "columns", "cells",  "models", "note"};
+    static const std::set<std::string> known = {"title", "source", "group", "rows",  "columns",
+                                                "cells", "models", "note",  "claims"};
     if (!known.contains(key))
       throw InputError(where + ": \"figure\" has an unknown key \"" + key +
-                       "\" (known: title, source, group, rows, columns, cells, models, note)");
+                       "\" (known: title, source, group, rows, columns, cells, models, note, "
+                       "claims)");
   }
   if (text(find(*f, {"title"})).empty())
     throw InputError(where + ": \"figure\".title (a string) is required");
@@ -236,6 +237,32 @@ void checkFigureBlock(const json& suite, const std::string& where) {
   }
 }
 
+std::optional<double> cellMetric(const FigureCell& c, const std::string& metric) {
+  if (metric == "banding") return c.banding;
+  const json* r = c.result;
+  if (!r || !c.note.empty()) return std::nullopt;
+  if (metric == "image_rmse") return at(r, {"error", "image", "rmse"});
+  if (metric == "flip_mean") return at(r, {"error", "image", "flip", "mean"});
+  if (metric == "visibility_rmse") return at(r, {"error", "visibility", "rmse"});
+  return std::nullopt;
+}
+
+std::string errorClaimVerdict(const FigureGrid& g, const FigureErrorClaim& c) {
+  auto cell = [&](int r, int col) -> const FigureCell* {
+    if (r < 0 || col < 0 || r >= int(g.cells.size()) || col >= int(g.cells[r].size()))
+      return nullptr;
+    return &g.cells[r][col];
+  };
+  const FigureCell* a = cell(c.row, c.column);
+  const FigureCell* b = cell(c.thanRow, c.thanColumn);
+  if (!a || !b) return "-";
+  const auto x = cellMetric(*a, c.metric), y = cellMetric(*b, c.metric);
+  if (!x || !y) return "-";
+  if (c.relation == "same")
+    return std::abs(*x - *y) <= c.tolerance * std::abs(*y) ? "holds" : "fails";
+  return *x < *y ? "holds" : "fails";
+}
+
 FigureGrid buildFigureGrid(const json& figure, const json& results, const std::string& name,
                            const std::string& backend) {
   FigureGrid g;
@@ -244,6 +271,23 @@ FigureGrid buildFigureGrid(const json& figure, const json& results, const std::s
   g.title = text(find(figure, {"title"}));
   g.source = text(find(figure, {"source"}));
   g.description = text(find(figure, {"note"}));
+  if (const json* cs = find(figure, {"claims"}); cs && cs->is_array())
+    for (const json& jc : *cs) {
+      FigureErrorClaim c;
+      c.text = text(find(jc, {"text"}));
+      c.metric = text(find(jc, {"metric"}));
+      c.relation = text(find(jc, {"relation"}));
+      if (const auto t = number(find(jc, {"tolerance"}))) c.tolerance = *t;
+      const json* a = find(jc, {"cell"});
+      const json* b = find(jc, {"than"});
+      if (a && a->is_array() && a->size() == 2 && b && b->is_array() && b->size() == 2) {
+        c.row = (*a)[0].get<int>();
+        c.column = (*a)[1].get<int>();
+        c.thanRow = (*b)[0].get<int>();
+        c.thanColumn = (*b)[1].get<int>();
+      }
+      g.errorClaims.push_back(std::move(c));
+    }
   for (const json& x : figure.value("rows", json::array())) g.rows.push_back(text(&x));
   for (const json& x : figure.value("columns", json::array())) g.columns.push_back(text(&x));
   const std::string figureGroup = text(find(figure, {"group"}));
@@ -367,6 +411,35 @@ std::string renderFigureMarkdown(const FigureGrid& g, const json& results,
     o << "Banding: the RMSE of the luminance error against the reference after a 7x7 box "
          "filter (imaging/metrics.h, bandingMeasure): stripes and steps, spatially coherent, "
          "survive the filter; per-pixel noise (what jitter trades them for) averages out.\n\n";
+  if (!g.errorClaims.empty()) {
+    o << "## The paper's claims on errors\n\n";
+    o << "Errors are deterministic (a run gives the same images again), so each claim holds or "
+         "fails on this run's images; \"same\" allows the relative tolerance shown.\n\n";
+    Table et;
+    et.header = {"Claim", "Metric", "Cell", "Value", "Against", "Value", "Relation", "Verdict"};
+    for (const FigureErrorClaim& c : g.errorClaims) {
+      auto label = [&](int r, int col) -> std::string {
+        if (r < 0 || col < 0 || r >= int(g.rows.size()) || col >= int(g.columns.size())) return "?";
+        return g.rows[r] + " / " + g.columns[col];
+      };
+      auto value = [&](int r, int col) -> std::optional<double> {
+        if (r < 0 || col < 0 || r >= int(g.cells.size()) || col >= int(g.cells[r].size()))
+          return std::nullopt;
+        return cellMetric(g.cells[r][col], c.metric);
+      };
+      et.rows.push_back(
+          {{c.text},
+           {c.metric},
+           {label(c.row, c.column)},
+           numCell(value(c.row, c.column)),
+           {label(c.thanRow, c.thanColumn)},
+           numCell(value(c.thanRow, c.thanColumn)),
+           {c.relation == "same" ? "same within " + formatSig(100 * c.tolerance, 2) + "%"
+                                 : std::string("below")},
+           {errorClaimVerdict(g, c)}});
+    }
+    mdTable(o, et);
+  }
   const std::vector<FigureClaim> claims = figureClaims(results);
   if (!claims.empty()) {
     o << "## The paper's claims, at 95%\n\n";

@@ -21,11 +21,30 @@ struct FigureCell {
   std::optional<double> banding;
 };
 
+// A claim of the paper about errors, read from the figure block's "claims":
+//   {"text": "...", "metric": "image_rmse" | "flip_mean" | "visibility_rmse" | "banding",
+//    "cell": [row, column], "than": [row, column], "relation": "below" | "same",
+//    "tolerance": 0.05}
+// "below": the cell's metric is below the other's; "same": within `tolerance` (relative) of
+// it. Errors are deterministic (the same run gives the same images), so the verdict is
+// holds or fails, "-" where a cell has no value.
+struct FigureErrorClaim {
+  std::string text, metric, relation;
+  int row = 0, column = 0, thanRow = 0, thanColumn = 0;
+  double tolerance = 0.05;
+};
+
 struct FigureGrid {
   std::string name, title, source, description, backend;
   std::vector<std::string> rows, columns;
   std::vector<std::vector<FigureCell>> cells;  // [row][column]
+  std::vector<FigureErrorClaim> errorClaims;
 };
+
+// A cell's value of an error metric (image_rmse, flip_mean, visibility_rmse, banding).
+std::optional<double> cellMetric(const FigureCell& c, const std::string& metric);
+// holds / fails / "-" for one error claim of the grid.
+std::string errorClaimVerdict(const FigureGrid& g, const FigureErrorClaim& c);
 
 // Checks a suite's "figure" block (title, rows, columns, cells: rows x columns, each cell
 // {"group", "match"} or null) against the suite's groups; throws InputError naming `where`

@@ -269,4 +269,29 @@ TEST(Figure, GridPicksEachCellsResultOnItsBackend) {
   EXPECT_TRUE(j["cells"][1][0]["case"].is_null());
 }
 
+TEST(Figure, ErrorClaimsHoldOrFailOnTheCellsValues) {
+  sb::report::FigureGrid g;
+  g.rows = {"r"};
+  g.columns = {"a", "b"};
+  const json ra = {{"error", {{"visibility", {{"rmse", 0.10}}}, {"image", {{"rmse", 0.0200}}}}}};
+  const json rb = {{"error", {{"visibility", {{"rmse", 0.13}}}, {"image", {{"rmse", 0.0209}}}}}};
+  sb::report::FigureCell a, b;
+  a.result = &ra;
+  b.result = &rb;
+  a.banding = 0.5;
+  g.cells = {{a, b}};
+  sb::report::FigureErrorClaim c{"a below b", "visibility_rmse", "below", 0, 0, 0, 1, 0.05};
+  EXPECT_EQ(sb::report::errorClaimVerdict(g, c), "holds");
+  std::swap(c.column, c.thanColumn);
+  EXPECT_EQ(sb::report::errorClaimVerdict(g, c), "fails");
+  // 0.0200 against 0.0209: 4.3% apart, within 5%, not within 4%.
+  sb::report::FigureErrorClaim same{"same", "image_rmse", "same", 0, 0, 0, 1, 0.05};
+  EXPECT_EQ(sb::report::errorClaimVerdict(g, same), "holds");
+  same.tolerance = 0.04;
+  EXPECT_EQ(sb::report::errorClaimVerdict(g, same), "fails");
+  // b has no banding: no verdict; a cell outside the grid: none either.
+  EXPECT_EQ(sb::report::errorClaimVerdict(g, {"x", "banding", "below", 0, 0, 0, 1, 0.05}), "-");
+  EXPECT_EQ(sb::report::errorClaimVerdict(g, {"x", "image_rmse", "below", 0, 0, 2, 1, 0.05}), "-");
+}
+
 }  // namespace
