@@ -363,6 +363,8 @@ std::string renderFigureMarkdown(const FigureGrid& g, const json& results,
   std::ostringstream o;
   o << "# " << md(g.title) << "\n\n";
   if (!g.source.empty()) o << "Source: " << md(g.source) << "\n\n";
+  if (const std::string about = text(find(results, {"suite", "description"})); !about.empty())
+    o << md(about) << "\n\n";
   if (!g.description.empty()) o << md(g.description) << "\n\n";
   o << contextLine(results, command) << " Backend " << g.backend << ".\n\n";
   o << "![" << md(g.title) << "](" << imageFile << ")\n\n";
