@@ -74,7 +74,7 @@ std::string contextLine(const json& results, const std::string& command) {
 }  // namespace
 
 std::string figureDigest(const std::string& body) {
-  std::uint64_t h = 1469598103934665603ull;
+  std::uint64_t h = 14695981039346656037ull;
   for (unsigned char ch : body) {
     h ^= ch;
     h *= 1099511628211ull;
