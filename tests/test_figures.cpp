@@ -94,7 +94,12 @@ std::vector<std::string> checkFigureFolder(const fs::path& dir, const json& file
                     static_cast<int>(r) * (L["cell_height"].get<int>() + L["margin"].get<int>());
       if (!varied(png, x, y, L["tile"].get<int>(), L["tile"].get<int>()))
         fail(where + "the image tile is flat");
-      if (md.find(cell["case"].get<std::string>()) == std::string::npos)
+      // Markdown escapes the case id's underscores (shadow.depth\_bits=8).
+      std::string escaped;
+      for (char ch : cell["case"].get<std::string>())
+        escaped += ch == '_' ? "\\_" : std::string(1, ch);
+      if (md.find(cell["case"].get<std::string>()) == std::string::npos &&
+          md.find(escaped) == std::string::npos)
         fail(where + "figure.md does not name the case");
     }
   }
