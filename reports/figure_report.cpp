@@ -134,7 +134,10 @@ std::vector<FigureClaim> figureClaims(const json& results) {
     const json* base = nullptr;
     for (const json& r : *rows)
       if (const json* b = find(r, {"baseline"}); b && *b == true) base = &r;
+    // A claim compares frame times: a baseline of another metric (one step) makes none.
     if (!base) continue;
+    if (const std::string m = text(find(*base, {"metric"})); !m.empty() && m != "frame_ms")
+      continue;
     const std::string tableGroup = text(find(t, {"group"}));
     auto groupOfRow = [&](const json& r) {
       const std::string g = text(find(r, {"group"}));
