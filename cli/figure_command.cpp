@@ -15,6 +15,7 @@
 #include "harness/figure.h"
 #include "harness/sweep.h"
 #include "imaging/image.h"
+#include "imaging/metrics.h"
 #include "imaging/oiio/oiio_api.h"
 #include "reports/figure_report.h"
 #include "reports/files.h"
@@ -211,8 +212,29 @@ nlohmann::json composeGrid(const report::FigureGrid& g, const fs::path& dir) {
 }
 
 std::string commandText(const FigureOptions& o, const std::string& out) {
-  return "strandbench figure " + o.name + (o.small ? " --small" : "") + " --backend " + o.backend +
-         " --out " + out;
+  return "strandbench figure " + o.name + (o.small ? " --small" : "") +
+         (o.minReps > 0 ? " --min-reps " + std::to_string(o.minReps) : "") + " --backend " +
+         o.backend + " --out " + out + (o.docs.empty() ? "" : " --docs " + o.docs);
+}
+
+// Each cell's banding measure against its reference, where both images are in `dir`.
+void addBanding(report::FigureGrid& g, const fs::path& dir) {
+  for (auto& row : g.cells)
+    for (report::FigureCell& cell : row) {
+      if (!cell.result || !cell.note.empty()) continue;
+      const nlohmann::json* im = report::find(*cell.result, {"images"});
+      const std::string image = im ? report::text(report::find(*im, {"image"})) : "";
+      const std::string ref = im ? report::text(report::find(*im, {"reference"})) : "";
+      if (image.empty() || ref.empty() || !fs::is_regular_file(dir / image) ||
+          !fs::is_regular_file(dir / ref))
+        continue;
+      try {
+        cell.banding =
+            bandingMeasure(readImage((dir / image).string()), readImage((dir / ref).string()));
+      } catch (const InputError&) {
+        // sizes differ: no measure for this cell
+      }
+    }
 }
 
 }  // namespace
@@ -289,6 +311,7 @@ int runFigure(const FigureOptions& o) {
     so.suitePath = suiteFile.string();
     so.out = tmp.string();
     so.progressBar = o.progressBar;
+    so.minReps = o.minReps;
     const int status = runSweep(so);
     // The sweep records the suite file it read; name the figure instead of the temporary file.
     auto sweepDoc = readJsonFile<ojson>(tmp / "sweep.json");
@@ -298,11 +321,22 @@ int runFigure(const FigureOptions& o) {
 
     const auto results = readJsonFile<nlohmann::json>(tmp / "results.json");
     const auto figure = nlohmann::json::parse(doc["figure"].dump());
-    const report::FigureGrid grid = report::buildFigureGrid(figure, results, name, o.backend);
+    report::FigureGrid grid = report::buildFigureGrid(figure, results, name, o.backend);
+    addBanding(grid, tmp);
     const nlohmann::json layout = composeGrid(grid, tmp);
     writeFileAtomic(tmp / "figure.json", report::figureJson(grid, layout).dump(1) + "\n");
-    writeFileAtomic(tmp / "figure.md", report::renderFigureMarkdown(grid, results, "figure.png",
-                                                                    commandText(o, outText)));
+    const std::string command = commandText(o, outText);
+    writeFileAtomic(tmp / "figure.md",
+                    report::renderFigureMarkdown(grid, results, "figure.png", command));
+    if (!o.docs.empty()) {
+      // The page the docs include: the same Markdown beside its own copy of the grid.
+      const fs::path docs(o.docs);
+      fs::create_directories(docs, ec);
+      writeFileAtomic(docs / (name + ".md"),
+                      report::renderFigureMarkdown(grid, results, name + ".png", command));
+      fs::copy_file(tmp / "figure.png", docs / (name + ".png"),
+                    fs::copy_options::overwrite_existing);
+    }
     if (fs::exists(out)) fs::remove_all(out);
     fs::rename(tmp, out);
     std::cout << "wrote " << (out / "figure.png").string() << " (" << grid.rows.size() << " x "
@@ -328,7 +362,14 @@ void registerFigureCommand(CLI::App& app) {
   cmd->add_flag("--small", o->small,
                 "the figure's small variant (smaller scene, size, repeats; under a minute)");
   cmd->add_option("--backend", o->backend, "gl or vulkan (default gl)");
+  cmd->add_option("--min-reps", o->minReps,
+                  "timed rounds per case at least (default: the figure's repeat): the frame "
+                  "samples the 95% intervals and the claims' verdicts are made of")
+      ->check(CLI::Range(1, 100));
   cmd->add_option("--out", o->out, "output folder (default figures/NAME[-small]-BACKEND)");
+  cmd->add_option("--docs", o->docs,
+                  "also write DIR/NAME.md and DIR/NAME.png, the page the docs include "
+                  "(docs/figures; its first line names the command, commit and digest)");
   cmd->callback([o, list] {
     runGuarded("figure", [&] {
       if (*list) {

@@ -212,6 +212,36 @@ bool isExr(const std::string& path) {
 
 }  // namespace
 
+double bandingMeasure(const Image& a, const Image& b, int radius) {
+  if (a.width != b.width || a.height != b.height)
+    throw InputError("banding: images differ in size (" + std::to_string(a.width) + "x" +
+                     std::to_string(a.height) + " and " + std::to_string(b.width) + "x" +
+                     std::to_string(b.height) + ")");
+  if (a.channels < 3 || b.channels < 3) throw InputError("banding: an image has no RGB");
+  const int w = a.width, h = a.height;
+  if (w <= 0 || h <= 0) return 0.0;
+  // Summed-area table of the luminance difference.
+  std::vector<double> sat(std::size_t(w + 1) * std::size_t(h + 1), 0.0);
+  auto S = [&](int x, int y) -> double& { return sat[std::size_t(y) * std::size_t(w + 1) + x]; };
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      double d = 0.0;
+      const double weights[3] = {0.2126, 0.7152, 0.0722};
+      for (int c = 0; c < 3; ++c) d += weights[c] * (double(a.at(x, y, c)) - b.at(x, y, c));
+      S(x + 1, y + 1) = d + S(x, y + 1) + S(x + 1, y) - S(x, y);
+    }
+  double sum = 0.0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const int x0 = std::max(x - radius, 0), x1 = std::min(x + radius + 1, w);
+      const int y0 = std::max(y - radius, 0), y1 = std::min(y + radius + 1, h);
+      const double box =
+          (S(x1, y1) - S(x0, y1) - S(x1, y0) + S(x0, y0)) / double((x1 - x0) * (y1 - y0));
+      sum += box * box;
+    }
+  return std::sqrt(sum / double(w) / double(h));
+}
+
 ImageError compareImages(const Image& a, const Image& b, double threshold, int channels) {
   checkComparable(a, b, channels);
   ImageError e;

@@ -59,6 +59,14 @@ struct ImageError {
 ImageError compareImages(const Image& a, const Image& b, double threshold = 1.0 / 255.0,
                          int channels = 3);
 
+// A banding measure: the RMSE of the luminance difference a - b (Rec. 709 weights on RGB)
+// after a (2 radius + 1)^2 box filter (clamped at the borders). Coherent errors (stripes,
+// stair steps, layering) survive the filter; per-pixel noise of zero mean averages out, so
+// jittered sampling that trades banding for noise scores lower while plain RMSE can score it
+// higher. 0 for identical images. Throws InputError when the sizes differ or an image has
+// fewer than 3 channels.
+double bandingMeasure(const Image& a, const Image& b, int radius = 3);
+
 // {"width", "height", "channels", "rmse", "psnr", "max_abs", "ssim",
 //  "fraction_over", "pixels_over", "nan_pixels", "identical"}; non-finite
 // numbers -> null.

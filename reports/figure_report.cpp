@@ -6,6 +6,7 @@
 
 #include "base/errors.h"
 #include "reports/report_data.h"
+#include "reports/stats.h"
 
 namespace sb::report {
 
@@ -37,7 +38,159 @@ Cell countCell(std::optional<double> v) {
   return {std::to_string(std::llround(*v)), true};
 }
 
+std::vector<double> frameSamples(const json* r) {
+  std::vector<double> v;
+  const json* s = r ? find(*r, {"frame_ms", "samples"}) : nullptr;
+  if (s && s->is_array())
+    for (const json& x : *s)
+      if (x.is_number()) v.push_back(x.get<double>());
+  return v;
+}
+
+// The median frame time's 95% bootstrap interval, "[a, b]"; kNone with fewer than 2 samples.
+Cell intervalCell(const json* r) {
+  const std::vector<double> v = frameSamples(r);
+  if (v.size() < 2) return {kNone, true};
+  const Interval i = bootstrapMedian(v);
+  return {"[" + formatSig(i.low) + ", " + formatSig(i.high) + "]", true};
+}
+
+std::string contextLine(const json& results, const std::string& command) {
+  const json* c = find(results, {"context"});
+  std::string commit = c ? text(find(*c, {"commit"})) : "";
+  if (commit.empty()) commit = "unknown";
+  const json* dirty = c ? find(*c, {"commit_dirty"}) : nullptr;
+  std::string s = "Written by `" + command + "` on commit `" + commit.substr(0, 12) + "`";
+  if (dirty && *dirty == true) s += " (with uncommitted changes)";
+  if (c) {
+    if (const std::string d = text(find(*c, {"date"})); !d.empty()) s += ", " + d;
+    if (const std::string cpu = text(find(*c, {"cpu"})); !cpu.empty()) s += ", " + cpu;
+    if (const auto l = number(find(*c, {"load_before", "1min"})))
+      s += ", load average " + formatSig(*l) + " (1 min) when it started";
+  }
+  return s + ".";
+}
+
 }  // namespace
+
+std::string figureDigest(const std::string& body) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (unsigned char ch : body) {
+    h ^= ch;
+    h *= 1099511628211ull;
+  }
+  static const char* hex = "0123456789abcdef";
+  std::string out(16, '0');
+  for (int i = 15; i >= 0; --i, h >>= 4) out[std::size_t(i)] = hex[h & 15];
+  return out;
+}
+
+std::string figureHeader(const std::string& name, const std::string& command,
+                         const std::string& commit, const std::string& body) {
+  return "<!-- strandbench figure " + name + ": written by `" + command + "`, commit " +
+         (commit.empty() ? std::string("unknown") : commit) + ", digest " + figureDigest(body) +
+         "; do not edit -->\n";
+}
+
+std::optional<FigureHeader> parseFigureHeader(const std::string& markdown) {
+  const std::string prefix = "<!-- strandbench figure ";
+  const std::size_t eol = markdown.find('\n');
+  if (!markdown.starts_with(prefix) || eol == std::string::npos) return std::nullopt;
+  const std::string line = markdown.substr(0, eol);
+  FigureHeader h;
+  const std::size_t colon = line.find(": written by `", prefix.size());
+  if (colon == std::string::npos) return std::nullopt;
+  h.name = line.substr(prefix.size(), colon - prefix.size());
+  const std::size_t cmdStart = colon + std::string(": written by `").size();
+  const std::size_t cmdEnd = line.find("`, commit ", cmdStart);
+  if (cmdEnd == std::string::npos) return std::nullopt;
+  h.command = line.substr(cmdStart, cmdEnd - cmdStart);
+  const std::size_t commitStart = cmdEnd + std::string("`, commit ").size();
+  const std::size_t commitEnd = line.find(", digest ", commitStart);
+  if (commitEnd == std::string::npos) return std::nullopt;
+  h.commit = line.substr(commitStart, commitEnd - commitStart);
+  const std::size_t digestStart = commitEnd + std::string(", digest ").size();
+  const std::size_t digestEnd = line.find("; do not edit -->", digestStart);
+  if (digestEnd == std::string::npos) return std::nullopt;
+  h.digest = line.substr(digestStart, digestEnd - digestStart);
+  return h;
+}
+
+std::vector<FigureClaim> figureClaims(const json& results) {
+  std::vector<FigureClaim> claims;
+  const json* tables = find(results, {"tables"});
+  const json* rs = find(results, {"results"});
+  if (!tables || !tables->is_array() || !rs || !rs->is_array()) return claims;
+  auto first = [&](const std::string& group, const json* match) -> const json* {
+    for (const json& r : *rs)
+      if (matches(r, group, match) && failureOf(r).empty()) return &r;
+    return nullptr;
+  };
+  for (const json& t : *tables) {
+    const std::string tableMetric = text(find(t, {"metric"}));
+    if (!tableMetric.empty() && tableMetric != "frame_ms") continue;
+    const json* rows = find(t, {"rows"});
+    if (!rows || !rows->is_array()) continue;
+    const json* base = nullptr;
+    for (const json& r : *rows)
+      if (const json* b = find(r, {"baseline"}); b && *b == true) base = &r;
+    // A claim compares frame times: a baseline of another metric (one step) makes none.
+    if (!base) continue;
+    if (const std::string m = text(find(*base, {"metric"})); !m.empty() && m != "frame_ms")
+      continue;
+    const std::string tableGroup = text(find(t, {"group"}));
+    auto groupOfRow = [&](const json& r) {
+      const std::string g = text(find(r, {"group"}));
+      return g.empty() ? tableGroup : g;
+    };
+    const std::string unit = text(find(t, {"paper_unit"}));
+    auto paperMs = [&](const json& r) -> std::optional<double> {
+      const auto p = number(find(r, {"paper"}));
+      if (!p || *p <= 0) return std::nullopt;
+      return unit == "fps" ? 1000.0 / *p : *p;
+    };
+    const auto basePaper = paperMs(*base);
+    const json* baseResult = first(groupOfRow(*base), find(*base, {"match"}));
+    for (const json& r : *rows) {
+      if (&r == base) continue;
+      const std::string rowMetric = text(find(r, {"metric"}));
+      if (!rowMetric.empty() && rowMetric != "frame_ms") continue;
+      const auto paper = paperMs(r);
+      if (!paper || !basePaper) continue;
+      FigureClaim c;
+      c.table = text(find(t, {"title"}));
+      c.row = text(find(r, {"label"}));
+      c.baseline = text(find(*base, {"label"}));
+      c.paperRatio = *paper / *basePaper;
+      const bool below = c.paperRatio < 1.0;
+      const json* ours = first(groupOfRow(r), find(r, {"match"}));
+      const std::vector<double> num = frameSamples(ours), den = frameSamples(baseResult);
+      c.time = c.fragments = c.bytes = "-";
+      if (!num.empty() && !den.empty()) {
+        const Interval i = bootstrapRatio(num, den, false);
+        c.low = i.low;
+        c.estimate = i.estimate;
+        c.high = i.high;
+        // An interval of one or two samples a side says nothing: no verdict in time.
+        c.time = num.size() < 3 || den.size() < 3 ? "undecided (too few samples; --min-reps 3)"
+                                                  : orderingVerdict(i, 1.0, below);
+      }
+      auto work = [&](std::optional<double> a, std::optional<double> b) -> std::string {
+        if (!a || !b || *b <= 0) return "-";
+        const double ratio = *a / *b;
+        if (ratio == 1.0) return "undecided";
+        return (ratio < 1.0) == below ? "holds" : "fails";
+      };
+      if (ours && baseResult) {
+        c.fragments = work(frameCounter(*ours, "fragment_invocations"),
+                           frameCounter(*baseResult, "fragment_invocations"));
+        c.bytes = work(frameBytes(*ours), frameBytes(*baseResult));
+      }
+      claims.push_back(std::move(c));
+    }
+  }
+  return claims;
+}
 
 void checkFigureBlock(const json& suite, const std::string& where) {
   const json* f = find(suite, {"figure"});
@@ -45,11 +198,12 @@ void checkFigureBlock(const json& suite, const std::string& where) {
     throw InputError(where +
                      ": \"figure\" (an object with title, rows, columns, cells) is required");
   for (const auto& [key, value] : f->items()) {
-    static const std::set<std::string> known = {"title",   "source", "group",  "rows",
-                                                "columns", "cells",  "models", "note"};
+    static const std::set<std::string> known = {"title", "source", "group", "rows",  "columns",
+                                                "cells", "models", "note",  "claims"};
     if (!known.contains(key))
       throw InputError(where + ": \"figure\" has an unknown key \"" + key +
-                       "\" (known: title, source, group, rows, columns, cells, models, note)");
+                       "\" (known: title, source, group, rows, columns, cells, models, note, "
+                       "claims)");
   }
   if (text(find(*f, {"title"})).empty())
     throw InputError(where + ": \"figure\".title (a string) is required");
@@ -86,6 +240,32 @@ void checkFigureBlock(const json& suite, const std::string& where) {
   }
 }
 
+std::optional<double> cellMetric(const FigureCell& c, const std::string& metric) {
+  if (metric == "banding") return c.banding;
+  const json* r = c.result;
+  if (!r || !c.note.empty()) return std::nullopt;
+  if (metric == "image_rmse") return at(r, {"error", "image", "rmse"});
+  if (metric == "flip_mean") return at(r, {"error", "image", "flip", "mean"});
+  if (metric == "visibility_rmse") return at(r, {"error", "visibility", "rmse"});
+  return std::nullopt;
+}
+
+std::string errorClaimVerdict(const FigureGrid& g, const FigureErrorClaim& c) {
+  auto cell = [&](int r, int col) -> const FigureCell* {
+    if (r < 0 || col < 0 || r >= int(g.cells.size()) || col >= int(g.cells[r].size()))
+      return nullptr;
+    return &g.cells[r][col];
+  };
+  const FigureCell* a = cell(c.row, c.column);
+  const FigureCell* b = cell(c.thanRow, c.thanColumn);
+  if (!a || !b) return "-";
+  const auto x = cellMetric(*a, c.metric), y = cellMetric(*b, c.metric);
+  if (!x || !y) return "-";
+  if (c.relation == "same")
+    return std::abs(*x - *y) <= c.tolerance * std::abs(*y) ? "holds" : "fails";
+  return *x < *y ? "holds" : "fails";
+}
+
 FigureGrid buildFigureGrid(const json& figure, const json& results, const std::string& name,
                            const std::string& backend) {
   FigureGrid g;
@@ -94,6 +274,23 @@ FigureGrid buildFigureGrid(const json& figure, const json& results, const std::s
   g.title = text(find(figure, {"title"}));
   g.source = text(find(figure, {"source"}));
   g.description = text(find(figure, {"note"}));
+  if (const json* cs = find(figure, {"claims"}); cs && cs->is_array())
+    for (const json& jc : *cs) {
+      FigureErrorClaim c;
+      c.text = text(find(jc, {"text"}));
+      c.metric = text(find(jc, {"metric"}));
+      c.relation = text(find(jc, {"relation"}));
+      if (const auto t = number(find(jc, {"tolerance"}))) c.tolerance = *t;
+      const json* a = find(jc, {"cell"});
+      const json* b = find(jc, {"than"});
+      if (a && a->is_array() && a->size() == 2 && b && b->is_array() && b->size() == 2) {
+        c.row = (*a)[0].get<int>();
+        c.column = (*a)[1].get<int>();
+        c.thanRow = (*b)[0].get<int>();
+        c.thanColumn = (*b)[1].get<int>();
+      }
+      g.errorClaims.push_back(std::move(c));
+    }
   for (const json& x : figure.value("rows", json::array())) g.rows.push_back(text(&x));
   for (const json& x : figure.value("columns", json::array())) g.columns.push_back(text(&x));
   const std::string figureGroup = text(find(figure, {"group"}));
@@ -153,6 +350,7 @@ json figureJson(const FigureGrid& g, const json& layout) {
       put("visibility_rmse", at(r, {"error", "visibility", "rmse"}));
       put("shadow_mib", r ? memoryMiB(*r, "shadow_bytes") : std::nullopt);
       put("segments", at(r, {"scene", "segments"}));
+      put("banding", c.banding);
       if (!c.note.empty()) jc["note"] = c.note;
       jr.push_back(std::move(jc));
     }
@@ -168,29 +366,39 @@ std::string renderFigureMarkdown(const FigureGrid& g, const json& results,
   std::ostringstream o;
   o << "# " << md(g.title) << "\n\n";
   if (!g.source.empty()) o << "Source: " << md(g.source) << "\n\n";
+  if (const std::string about = text(find(results, {"suite", "description"})); !about.empty())
+    o << md(about) << "\n\n";
   if (!g.description.empty()) o << md(g.description) << "\n\n";
-  o << "Command: `" << command << "` (backend " << g.backend << ")\n\n";
+  o << contextLine(results, command) << " Backend " << g.backend << ".\n\n";
   o << "![" << md(g.title) << "](" << imageFile << ")\n\n";
   o << "The grid has the paper's rows and columns; each cell is our image (left) and its error "
        "heatmap against the exact reference (right).\n\n";
 
   o << "## Cells\n\n";
   Table t;
-  t.header = {"Row",        "Column",    "Case",      "Segments",   "Frame (ms)",
-              "Image RMSE", "FLIP mean", "Vis. RMSE", "Shadow MiB", "Note"};
+  bool banding = false;
+  for (const auto& row : g.cells)
+    for (const FigureCell& c : row) banding |= c.banding.has_value();
+  t.header = {"Row",          "Column",     "Case",      "Segments",  "Frame (ms)",
+              "95% interval", "Image RMSE", "FLIP mean", "Vis. RMSE", "Shadow MiB"};
+  if (banding) t.header.insert(t.header.begin() + 8, "Banding");
+  t.header.push_back("Note");
   for (const auto& row : g.cells)
     for (const FigureCell& c : row) {
       const json* r = c.result;
-      t.rows.push_back({{c.row},
-                        {c.column},
-                        {r ? caseId(*r) : std::string(kNone)},
-                        countCell(at(r, {"scene", "segments"})),
-                        numCell(r ? frameMs(*r) : std::nullopt),
-                        numCell(at(r, {"error", "image", "rmse"})),
-                        numCell(at(r, {"error", "image", "flip", "mean"})),
-                        numCell(at(r, {"error", "visibility", "rmse"})),
-                        numCell(r ? memoryMiB(*r, "shadow_bytes") : std::nullopt),
-                        {c.note}});
+      std::vector<Cell> cells = {{c.row},
+                                 {c.column},
+                                 {r ? caseId(*r) : std::string(kNone)},
+                                 countCell(at(r, {"scene", "segments"})),
+                                 numCell(r ? frameMs(*r) : std::nullopt),
+                                 intervalCell(r),
+                                 numCell(at(r, {"error", "image", "rmse"})),
+                                 numCell(at(r, {"error", "image", "flip", "mean"})),
+                                 numCell(at(r, {"error", "visibility", "rmse"})),
+                                 numCell(r ? memoryMiB(*r, "shadow_bytes") : std::nullopt)};
+      if (banding) cells.insert(cells.begin() + 8, numCell(c.banding));
+      cells.push_back({c.note});
+      t.rows.push_back(std::move(cells));
     }
   mdTable(o, t);
 
@@ -204,8 +412,68 @@ std::string renderFigureMarkdown(const FigureGrid& g, const json& results,
       if (!pt.notes.empty()) o << "\n";
     }
   }
-  o << "The sweep's own reports (report.md, report.html, results.json) are in this folder.\n";
-  return o.str();
+  if (banding)
+    o << "Banding: the RMSE of the luminance error against the reference after a 7x7 box "
+         "filter (imaging/metrics.h, bandingMeasure): stripes and steps, spatially coherent, "
+         "survive the filter; per-pixel noise (what jitter trades them for) averages out.\n\n";
+  if (!g.errorClaims.empty()) {
+    o << "## The paper's claims on errors\n\n";
+    o << "Errors are deterministic (a run gives the same images again), so each claim holds or "
+         "fails on this run's images; \"same\" allows the relative tolerance shown.\n\n";
+    Table et;
+    et.header = {"Claim", "Metric", "Cell", "Value", "Against", "Value", "Relation", "Verdict"};
+    for (const FigureErrorClaim& c : g.errorClaims) {
+      auto label = [&](int r, int col) -> std::string {
+        if (r < 0 || col < 0 || r >= int(g.rows.size()) || col >= int(g.columns.size())) return "?";
+        return g.rows[r] + " / " + g.columns[col];
+      };
+      auto value = [&](int r, int col) -> std::optional<double> {
+        if (r < 0 || col < 0 || r >= int(g.cells.size()) || col >= int(g.cells[r].size()))
+          return std::nullopt;
+        return cellMetric(g.cells[r][col], c.metric);
+      };
+      et.rows.push_back(
+          {{c.text},
+           {c.metric},
+           {label(c.row, c.column)},
+           numCell(value(c.row, c.column)),
+           {label(c.thanRow, c.thanColumn)},
+           numCell(value(c.thanRow, c.thanColumn)),
+           {c.relation == "same" ? "same within " + formatSig(100 * c.tolerance, 2) + "%"
+                                 : std::string("below")},
+           {errorClaimVerdict(g, c)}});
+    }
+    mdTable(o, et);
+  }
+  const std::vector<FigureClaim> claims = figureClaims(results);
+  if (!claims.empty()) {
+    o << "## The paper's claims, at 95%\n\n";
+    o << "Each row of a paper table against its baseline: the paper's ratio says whether the "
+         "row is faster (below 1) or slower; our ratio of median frame times with its "
+         "bootstrap interval gives the verdict in time, the frame's fragment shader "
+         "invocations and bytes the verdict in work (counted, the same on every device).\n\n";
+    Table ct;
+    ct.header = {"Table", "Claim", "Paper ratio", "Our ratio [95%]", "Time", "Fragments", "Bytes"};
+    for (const FigureClaim& c : claims) {
+      std::string ours = kNone;
+      if (c.estimate)
+        ours = formatSig(*c.estimate) + " [" + formatSig(*c.low) + ", " + formatSig(*c.high) + "]";
+      ct.rows.push_back(
+          {{c.table},
+           {c.row + (c.paperRatio < 1 ? " faster than " : " slower than ") + c.baseline},
+           {formatSig(c.paperRatio), true},
+           {ours, true},
+           {c.time},
+           {c.fragments},
+           {c.bytes}});
+    }
+    mdTable(o, ct);
+  }
+  o << "The sweep's own reports (report.md, report.html, results.json) are in the run's "
+       "folder.\n";
+  const json* c = find(results, {"context"});
+  const std::string body = o.str();
+  return figureHeader(g.name, command, c ? text(find(*c, {"commit"})) : "", body) + body;
 }
 
 }  // namespace sb::report

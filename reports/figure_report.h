@@ -4,6 +4,7 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,13 +16,35 @@ struct FigureCell {
   nlohmann::json match;                    // the cell's match (null: every case of the group)
   const nlohmann::json* result = nullptr;  // the matching result on the figure's backend
   std::string note;                        // why there is no result, or that it failed
+  // The banding measure (bandingMeasure, imaging/metrics.h) of the cell's image against its
+  // reference, where the figure command could read both.
+  std::optional<double> banding;
+};
+
+// A claim of the paper about errors, read from the figure block's "claims":
+//   {"text": "...", "metric": "image_rmse" | "flip_mean" | "visibility_rmse" | "banding",
+//    "cell": [row, column], "than": [row, column], "relation": "below" | "same",
+//    "tolerance": 0.05}
+// "below": the cell's metric is below the other's; "same": within `tolerance` (relative) of
+// it. Errors are deterministic (the same run gives the same images), so the verdict is
+// holds or fails, "-" where a cell has no value.
+struct FigureErrorClaim {
+  std::string text, metric, relation;
+  int row = 0, column = 0, thanRow = 0, thanColumn = 0;
+  double tolerance = 0.05;
 };
 
 struct FigureGrid {
   std::string name, title, source, description, backend;
   std::vector<std::string> rows, columns;
   std::vector<std::vector<FigureCell>> cells;  // [row][column]
+  std::vector<FigureErrorClaim> errorClaims;
 };
+
+// A cell's value of an error metric (image_rmse, flip_mean, visibility_rmse, banding).
+std::optional<double> cellMetric(const FigureCell& c, const std::string& metric);
+// holds / fails / "-" for one error claim of the grid.
+std::string errorClaimVerdict(const FigureGrid& g, const FigureErrorClaim& c);
 
 // Checks a suite's "figure" block (title, rows, columns, cells: rows x columns, each cell
 // {"group", "match"} or null) against the suite's groups; throws InputError naming `where`
@@ -38,10 +61,40 @@ FigureGrid buildFigureGrid(const nlohmann::json& figure, const nlohmann::json& r
 // copied in as given.
 nlohmann::json figureJson(const FigureGrid& g, const nlohmann::json& layout);
 
-// figure.md: title and source, the grid image, a table of every cell (our frame time, image
-// error against the exact reference, FLIP, visibility error), and the paper tables of the
-// results (our numbers beside the paper's, with ratios).
+// figure.md: the generated header (figureHeader), title and source, how the run was made
+// (command, commit, date, machine, device, load), the grid image, a table of every cell (our
+// frame time with its 95% interval, image error against the exact reference, FLIP, banding,
+// visibility error), the paper tables of the results (our numbers beside the paper's, with
+// ratios) and the verdict on each of the paper's claims (figureClaims).
 std::string renderFigureMarkdown(const FigureGrid& g, const nlohmann::json& results,
                                  const std::string& imageFile, const std::string& command);
+
+// The first line of every figure.md (and of its copy in docs/figures/NAME.md):
+//   <!-- strandbench figure NAME: written by `COMMAND`, commit SHA, digest HEX; do not edit -->
+// HEX is figureDigest of everything after the line, so a table edited by hand, or copied from
+// another run, no longer matches its header (tests/test_figure_docs.cpp).
+std::string figureHeader(const std::string& name, const std::string& command,
+                         const std::string& commit, const std::string& body);
+// FNV-1a 64 of `body`, 16 hex digits.
+std::string figureDigest(const std::string& body);
+struct FigureHeader {
+  std::string name, command, commit, digest;
+};
+// Parses the first line of a figure Markdown file; nullopt where it is not a figure header.
+std::optional<FigureHeader> parseFigureHeader(const std::string& markdown);
+
+// A paper's claim on one row of a paper table with a baseline: the row is faster (ratio
+// below 1) or slower than the baseline, as the paper's own ratio says. Verdicts at 95%: in
+// time, "holds" / "fails" / "undecided" by the bootstrap interval of our median ratio (the
+// frame samples of both cases; orderingVerdict); in work, by the fragment shader
+// invocations and bytes ratios (counted, not sampled: "holds" or "fails" on their side of 1,
+// "-" without counters).
+struct FigureClaim {
+  std::string table, row, baseline;
+  double paperRatio = 0;
+  std::optional<double> low, estimate, high;  // our ratio's interval (time)
+  std::string time, fragments, bytes;         // verdicts
+};
+std::vector<FigureClaim> figureClaims(const nlohmann::json& results);
 
 }  // namespace sb::report

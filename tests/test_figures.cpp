@@ -20,12 +20,15 @@ using json = nlohmann::json;
 
 // The papers' grids, written here apart from the figure files: rows x columns.
 const std::map<std::string, std::pair<int, int>> kPaperShapes = {
-    {"dom-fig1", {1, 4}},      {"dom-fig3", {1, 4}},     {"dom-fig5", {1, 4}},
-    {"dom-fig7", {1, 1}},      {"dom-fig8", {1, 3}},     {"occ-fig1", {1, 2}},
-    {"occ-fig2", {1, 4}},      {"occ-steps", {1, 1}},    {"occ-fig6", {1, 2}},
-    {"occ-fig9", {1, 2}},      {"occ-fig10", {1, 3}},    {"occ-memory", {1, 5}},
-    {"osm-fig4", {1, 6}},      {"osm-plate2", {1, 4}},   {"osm-plate3", {1, 2}},
-    {"thesis-table1", {3, 3}}, {"thesis-table2", {3, 2}}};
+    {"dom-fig1", {1, 4}},      {"dom-fig3", {1, 4}},      {"dom-fig5", {1, 4}},
+    {"dom-fig7", {1, 1}},      {"dom-fig8", {1, 3}},      {"occ-fig1", {1, 2}},
+    {"occ-fig2", {1, 4}},      {"occ-steps", {1, 1}},     {"occ-fig6", {1, 2}},
+    {"occ-fig9", {1, 3}},      {"occ-fig10", {1, 3}},     {"occ-memory", {1, 5}},
+    {"osm-fig4", {1, 6}},      {"osm-plate2", {1, 4}},    {"osm-plate3", {1, 2}},
+    {"thesis-table1", {3, 3}}, {"thesis-table2", {3, 2}}, {"osm-fig3", {1, 3}},
+    {"osm-fig5", {1, 8}},      {"osm-steps", {1, 1}},     {"dom-fig2", {1, 3}},
+    {"dom-fig4", {1, 4}},      {"dom-fig6", {1, 4}},      {"dom-depth-bits", {2, 3}},
+    {"occ-fig4", {1, 2}},      {"occ-fig5", {1, 3}},      {"occ-fps", {1, 2}}};
 
 json figureFile(const std::string& name) {
   return json::parse(readFile(sb::figuresDir() / (name + ".json")));
@@ -91,7 +94,12 @@ std::vector<std::string> checkFigureFolder(const fs::path& dir, const json& file
                     static_cast<int>(r) * (L["cell_height"].get<int>() + L["margin"].get<int>());
       if (!varied(png, x, y, L["tile"].get<int>(), L["tile"].get<int>()))
         fail(where + "the image tile is flat");
-      if (md.find(cell["case"].get<std::string>()) == std::string::npos)
+      // Markdown escapes the case id's underscores (shadow.depth\_bits=8).
+      std::string escaped;
+      for (char ch : cell["case"].get<std::string>())
+        escaped += ch == '_' ? "\\_" : std::string(1, ch);
+      if (md.find(cell["case"].get<std::string>()) == std::string::npos &&
+          md.find(escaped) == std::string::npos)
         fail(where + "figure.md does not name the case");
     }
   }
@@ -150,6 +158,36 @@ TEST(Figure, EveryPaperFigureHasAFile) {
   const auto names = sb::figureNames();
   for (const auto& [name, shape] : kPaperShapes)
     EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
+}
+
+TEST(Figure, ListHoldsEveryFigureOfTheFourPapers) {
+  const CliResult l = runCli("figure --list");
+  EXPECT_EQ(l.status, 0);
+  int lines = 0;
+  for (char c : l.out) lines += c == '\n';
+  EXPECT_GE(lines, 26) << l.out;
+  for (const char* n : {"osm-fig3", "osm-fig5", "osm-steps", "dom-fig2", "dom-fig4", "dom-fig6",
+                        "dom-depth-bits", "occ-fig4", "occ-fig5", "occ-fps"})
+    EXPECT_NE(l.out.find(std::string(n) + "  "), std::string::npos) << n << "\n" << l.out;
+}
+
+// The paper's settings in the figures that reproduce it: the OSM paper's 3x3 kernel on every
+// OSM lookup of its figures, the thesis's DOM counting in the thesis's tables.
+TEST(Figure, PaperSettingsInThePapersFigures) {
+  for (const std::string& name : sb::figureNames()) {
+    const json file = figureFile(name);
+    std::vector<std::string> shadows;
+    if (file.contains("defaults")) shadows.push_back(file["defaults"].value("shadow", ""));
+    for (const json& g : file["groups"]) shadows.push_back(g.value("shadow", ""));
+    for (const std::string& s : shadows) {
+      if (name.starts_with("osm-") && s.starts_with("osm")) {
+        EXPECT_NE(s.find("filter=box3x3"), std::string::npos) << name << ": " << s;
+      }
+      if (name.starts_with("thesis-") && s.starts_with("dom")) {
+        EXPECT_NE(s.find("counting=thesis"), std::string::npos) << name << ": " << s;
+      }
+    }
+  }
 }
 
 TEST(Figure, BadNameIsRefusedWithTheListAndWritesNothing) {
@@ -234,6 +272,31 @@ TEST(Figure, GridPicksEachCellsResultOnItsBackend) {
   EXPECT_EQ(j["cells"][0][0]["case"], "a/gl");
   EXPECT_EQ(j["cells"][0][0]["frame_ms"], 2.0);
   EXPECT_TRUE(j["cells"][1][0]["case"].is_null());
+}
+
+TEST(Figure, ErrorClaimsHoldOrFailOnTheCellsValues) {
+  sb::report::FigureGrid g;
+  g.rows = {"r"};
+  g.columns = {"a", "b"};
+  const json ra = {{"error", {{"visibility", {{"rmse", 0.10}}}, {"image", {{"rmse", 0.0200}}}}}};
+  const json rb = {{"error", {{"visibility", {{"rmse", 0.13}}}, {"image", {{"rmse", 0.0209}}}}}};
+  sb::report::FigureCell a, b;
+  a.result = &ra;
+  b.result = &rb;
+  a.banding = 0.5;
+  g.cells = {{a, b}};
+  sb::report::FigureErrorClaim c{"a below b", "visibility_rmse", "below", 0, 0, 0, 1, 0.05};
+  EXPECT_EQ(sb::report::errorClaimVerdict(g, c), "holds");
+  std::swap(c.column, c.thanColumn);
+  EXPECT_EQ(sb::report::errorClaimVerdict(g, c), "fails");
+  // 0.0200 against 0.0209: 4.3% apart, within 5%, not within 4%.
+  sb::report::FigureErrorClaim same{"same", "image_rmse", "same", 0, 0, 0, 1, 0.05};
+  EXPECT_EQ(sb::report::errorClaimVerdict(g, same), "holds");
+  same.tolerance = 0.04;
+  EXPECT_EQ(sb::report::errorClaimVerdict(g, same), "fails");
+  // b has no banding: no verdict; a cell outside the grid: none either.
+  EXPECT_EQ(sb::report::errorClaimVerdict(g, {"x", "banding", "below", 0, 0, 0, 1, 0.05}), "-");
+  EXPECT_EQ(sb::report::errorClaimVerdict(g, {"x", "image_rmse", "below", 0, 0, 2, 1, 0.05}), "-");
 }
 
 }  // namespace

@@ -367,3 +367,25 @@ TEST_F(CompareCommandTest, InputErrorsGiveStatus2) {
     EXPECT_NE(err.str().find("5x4"), std::string::npos) << err.str();
   }
 }
+
+// The banding measure: the luminance error's RMSE after a (2r+1)^2 box filter.
+TEST(Metrics, BandingKeepsCoherentErrorAndAveragesNoiseOut) {
+  const int n = 32;
+  sb::Image ref(n, n, 3, 0.5f), offset(n, n, 3, 0.7f), noise(n, n, 3, 0.5f), band(n, n, 3, 0.5f);
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x)
+      for (int c = 0; c < 3; ++c) {
+        noise.at(x, y, c) = 0.5f + (((x + y) % 2) ? 0.2f : -0.2f);  // zero-mean checkerboard
+        band.at(x, y, c) = x < n / 2 ? 0.7f : 0.5f;  // a stripe: half the image off by 0.2
+      }
+  EXPECT_EQ(sb::bandingMeasure(ref, ref), 0.0);
+  // A uniform error of 0.2 on every channel: luminance 0.2 (the weights sum to 1), kept.
+  EXPECT_NEAR(sb::bandingMeasure(offset, ref), 0.2, 1e-6);
+  // The checkerboard's RMSE is 0.2 too, but a 3x3 box inside the image holds 5 of one sign
+  // and 4 of the other: |mean| 0.2 / 9 on the 30 x 30 inner pixels; a box on an edge (2 x 3)
+  // or a corner (2 x 2) holds as many of each: 0. RMS: 0.2 / 9 * sqrt(900 / 1024).
+  EXPECT_NEAR(sb::bandingMeasure(noise, ref, 1), 0.2 / 9 * std::sqrt(900.0 / 1024.0), 1e-6);
+  // The stripe keeps most of its error: only the columns within r of the edge are smoothed.
+  EXPECT_GT(sb::bandingMeasure(band, ref, 1), 0.9 * 0.2 * std::sqrt(0.5));
+  EXPECT_THROW(sb::bandingMeasure(ref, sb::Image(4, 4, 3)), sb::InputError);
+}

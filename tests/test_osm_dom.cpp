@@ -141,6 +141,32 @@ TEST(OpacityMath, DomLayerBoundaries) {
   EXPECT_GT(d[1], 0.0f);
 }
 
+TEST(OpacityMath, DomCountingYukselAgainstTheThesis) {
+  // Three constant layers of 0.1 behind z0: d = 0, 0.1, 0.2, 0.3. Fragments at dz = 0 (layer
+  // 1), 0.15 (layer 2), 0.25 (layer 3) and 0.5 (beyond). Yuksel & Keyser: a fragment counts in
+  // its own layer and every later one: layer 1 = 1, layer 2 = 2, layer 3 = 3, plus the one
+  // beyond in layer 3 with beyond=last (4). The thesis (Listing 3): its own and every
+  // preceding one: layer 1 = 3 (the three inside), layer 2 = 2, layer 3 = 1; beyond=last
+  // counts the fourth in all three (4, 3, 2), beyond=ignore drops it.
+  const std::vector<float> d = {0.0f, 0.1f, 0.2f, 0.3f};
+  glsl::domDCpu = d.data();
+  const std::vector<float> dz = {0.0f, 0.15f, 0.25f, 0.5f};
+  auto layers = [&](bool thesis, int beyond) {
+    std::vector<float> l(3, 0.0f);
+    for (float z : dz)
+      for (int k = 1; k <= 3; ++k)
+        l[std::size_t(k - 1)] += thesis ? glsl::domContributionPreceding(z, k, 3, beyond)
+                                        : glsl::domContribution(z, k, 3, beyond);
+    return l;
+  };
+  EXPECT_EQ(layers(false, glsl::kDomLast), (std::vector<float>{1, 2, 4}));
+  EXPECT_EQ(layers(false, glsl::kDomIgnore), (std::vector<float>{1, 2, 3}));
+  EXPECT_EQ(layers(true, glsl::kDomLast), (std::vector<float>{4, 3, 2}));
+  EXPECT_EQ(layers(true, glsl::kDomIgnore), (std::vector<float>{3, 2, 1}));
+  EXPECT_EQ(glsl::domContributionPreceding(0.05f, 0, 3, glsl::kDomLast), 0.0f);  // no layer 0
+  EXPECT_EQ(glsl::domContributionPreceding(0.05f, 4, 3, glsl::kDomLast), 0.0f);
+}
+
 TEST(OpacityMath, DomOnFragmentLists) {
   const std::vector<float> none;
   for (int spacing : {glsl::kDomConstant, glsl::kDomLinear, glsl::kDomPow2, glsl::kDomFibonacci})

@@ -10,14 +10,14 @@
 
 #include "gpu_test_util.h"
 #include "harness/render.h"
+#include "occupancy_maps_cpu.h"
 #include "scenes/view.h"
 #include "techniques/common/light_space.h"
 #include "techniques/common/opacity.h"
-#include "techniques/frame/renderer.h"
 #include "techniques/dom/dom.h"
 #include "techniques/fake/fake.h"
+#include "techniques/frame/renderer.h"
 #include "techniques/occupancy_oit/occupancy_oit_math.h"
-#include "occupancy_maps_cpu.h"
 #include "techniques/osm/osm.h"
 
 namespace sb {
@@ -101,6 +101,37 @@ TEST(OccupancyVariants, PaperOrderKeepsASlicesFragmentsTogether) {
   EXPECT_NEAR(glsl::oitOrderPaper(deep[1], d.zMin, d.zMax, d.bits, d.slabs, 128, 4), 1.0f, 1e-4f);
   EXPECT_NEAR(glsl::oitOrderPaper(last, d.zMin, d.zMax, d.bits, d.slabs, 128, 4), 1.0f, 1e-4f);
   EXPECT_GT(glsl::oitOrder(last, d.zMin, d.zMax, d.bits, d.slabs, 128, 4), 4.0f);
+}
+
+TEST(OccupancyVariants, PrintedOrderSpreadsInTheSliceAndKeepsTheOwnShare) {
+  // One fragment at 0, ten in slice 64 (0.5 .. 0.5 + 0.0039 * 0.9: t = 64 .. 64.449 slices of
+  // 1/128), one at 1. Slabs of 32 slices: 1, 0, 10, 1. Printed (3.2 in full): before +
+  // F_i / B_total * (B_before + f): the first of the ten 1 + 10 * 0 = 1, the last
+  // 1 + 10 * 0.0039 * 0.9 * 128 = 5.4928; the one at z = zMax: 11 + 1 * (0 + 1) = 12 = n (not
+  // clamped to n - 1; corrected: 11).
+  std::vector<float> deep = {0.0f};
+  for (int i = 0; i < 10; ++i) deep.push_back(0.5f + 0.0039f * float(i) / 10.0f);
+  deep.push_back(1.0f);
+  TexelMaps d(deep, 128, 4);
+  EXPECT_NEAR(glsl::oitOrderPrinted(deep[1], d.zMin, d.zMax, d.bits, d.slabs, 128, 4), 1.0f, 1e-4f);
+  EXPECT_NEAR(glsl::oitOrderPrinted(deep[10], d.zMin, d.zMax, d.bits, d.slabs, 128, 4),
+              1.0f + 10.0f * 0.0039f * 0.9f * 128.0f, 2e-3f);
+  EXPECT_NEAR(glsl::oitOrderPrinted(1.0f, d.zMin, d.zMax, d.bits, d.slabs, 128, 4), 12.0f, 1e-4f);
+  EXPECT_NEAR(glsl::oitOrder(1.0f, d.zMin, d.zMax, d.bits, d.slabs, 128, 4), 11.0f, 1e-4f);
+  EXPECT_EQ(glsl::oitOrderPrinted(0.0f, d.zMin, d.zMax, d.bits, d.slabs, 128, 4), 0.0f);
+}
+
+TEST(OccupancyVariants, PrintedLambdaScalesByHairAlphaOverLambda) {
+  // hair = (0.1, 0.2, 0.3), weights summing to 0.5, log2 T = -2: Lambda = 1 - 1/4 = 0.75.
+  // Printed (3.4): rgb * 0.5 / 0.75; corrected: rgb * 0.75 / 0.5.
+  const glm::vec4 acc(0.1f, 0.2f, 0.3f, 0.5f);
+  const glm::vec4 printed = glsl::oitResolvePrinted(acc, -2.0f);
+  EXPECT_NEAR(printed.x, 0.1f * 0.5f / 0.75f, 1e-6f);
+  EXPECT_NEAR(printed.z, 0.3f * 0.5f / 0.75f, 1e-6f);
+  EXPECT_NEAR(printed.w, 0.75f, 1e-6f);
+  const glm::vec4 corrected = glsl::oitResolve(acc, -2.0f, true);
+  EXPECT_NEAR(corrected.x, 0.1f * 0.75f / 0.5f, 1e-6f);
+  EXPECT_EQ(glsl::oitResolvePrinted(acc, 0.0f), glm::vec4(0.0f));  // no coverage, no colour
 }
 
 // ---- GPU ----

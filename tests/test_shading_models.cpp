@@ -146,6 +146,21 @@ TEST(ShadingModels, SadeghiGlintsPeakAtTheGlintAngle) {
   EXPECT_GT(on, 2 * away);
 }
 
+TEST(ShadingModels, SadeghiDefaultsAreTheThesisListing2) {
+  // Kraft 2018, Listing 2: diffuse 0.4, the specular sum R + TT + TRT unweighted (1), no
+  // ambient term, the glints' Gaussian at the TT lobe's azi_width (tt_width, 10 degrees).
+  const sb::ShadingModel m = model("sadeghi");
+  EXPECT_FLOAT_EQ(m.material.x, 0.4f);
+  EXPECT_FLOAT_EQ(m.material.y, 1.0f);
+  EXPECT_FLOAT_EQ(m.material.w, 0.0f);
+  EXPECT_FLOAT_EQ(m.glintWidth, 10.0f * kPi / 180.0f);
+  EXPECT_FLOAT_EQ(m.glintWidth, m.width.w);
+  EXPECT_FLOAT_EQ(model("sadeghi:tt_width=20").glintWidth, 20.0f * kPi / 180.0f);
+  EXPECT_FLOAT_EQ(model("sadeghi:glint_width=5").glintWidth, 5.0f * kPi / 180.0f);
+  EXPECT_FLOAT_EQ(model("sadeghi:ambient=0.12").material.w, 0.12f);
+  EXPECT_FLOAT_EQ(model("marschner").material.y, 0.5f);  // Marschner keeps its own
+}
+
 TEST(ShadingModels, SpecsAndErrors) {
   EXPECT_EQ(model("kajiya-kay").kind, sb::ShadingKind::KajiyaKay);
   EXPECT_EQ(model("marschner:eta=1.6").shift.w, 1.6f);

@@ -126,6 +126,16 @@ SB_INLINE float domContribution(float dz, int k, int K, int beyond) {
   return (dz < SB_DOM_D(k) || (beyond == kDomLast && k == K)) ? 1.0f : 0.0f;
 }
 
+// The thesis's counting (Kraft 2018, Listing 3): a fragment counts in its own
+// layer and every layer in front of it, so layer k holds the fragments at or
+// behind its start d_(k-1) (layer 1 all of them). Beyond the last layer it is
+// ignored, or (kDomLast) counted in every layer, as the listing does.
+SB_INLINE float domContributionPreceding(float dz, int k, int K, int beyond) {
+  if (k < 1 || k > K) return 0.0f;
+  if (!(dz < SB_DOM_D(K)) && beyond != kDomLast) return 0.0f;
+  return dz >= SB_DOM_D(k - 1) ? 1.0f : 0.0f;
+}
+
 #ifdef SB_DOM_LAYER
 // Opacity at depth z in a texel whose hair starts at z0, from K layers;
 // SB_DOM_LAYER(k) (k = 1..K) is layer k's accumulated opacity. Interpolated

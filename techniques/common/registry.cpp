@@ -188,10 +188,10 @@ OptionInfo momentKind() {
 }
 
 std::vector<OptionInfo> lobes(std::string diffuseHelp, std::string specularHelp,
-                              std::vector<OptionInfo> more) {
+                              std::vector<OptionInfo> more, std::string specularDefault) {
   std::vector<OptionInfo> o = {
       number("diffuse", "0.4", 0, 4, std::move(diffuseHelp)),
-      number("specular", "0.5", 0, 4, std::move(specularHelp)),
+      number("specular", std::move(specularDefault), 0, 4, std::move(specularHelp)),
       number("alpha", "-7.5", -20, 20,
              "R lobe's longitudinal shift in degrees (cuticle tilt; TT -alpha/2, TRT "
              "-3alpha/2), -20..20"),

@@ -117,7 +117,7 @@ OptionInfo momentKind();
 // The lobe options ShadingModel::withLobes reads (marschner, sadeghi): diffuse, specular,
 // alpha and beta, the models' own options after them.
 std::vector<OptionInfo> lobes(std::string diffuseHelp, std::string specularHelp,
-                              std::vector<OptionInfo> more);
+                              std::vector<OptionInfo> more, std::string specularDefault = "0.5");
 }  // namespace opt
 
 }  // namespace sb

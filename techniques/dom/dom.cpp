@@ -54,6 +54,7 @@ DeepOpacityMaps::Options DeepOpacityMaps::readOptions(const OptionReader& o) {
                : beyond == "extend" ? glsl::kDomExtend
                                     : glsl::kDomLast;
   opt.depthBits = static_cast<uint32_t>(std::stoi(o.choice("depth_bits")));
+  opt.thesisCounting = o.choice("counting") == "thesis";
   opt.size = static_cast<uint32_t>(o.integer("size"));
   opt.bias = static_cast<float>(o.number("bias"));
   return opt;
@@ -99,6 +100,7 @@ void DeepOpacityMaps::setup(Device& dev, const GpuScene& scene, const RenderSett
   }
   ShaderDefines defs;
   defs.defines.push_back({"SB_DOM_TARGETS", std::to_string(targets())});
+  defs.defines.push_back({"SB_DOM_COUNTING", opt_.thesisCounting ? "1" : "0"});
   const ShaderCode frag = loadShader("techniques/dom/opacity.frag", defs);
   PipelineDesc d = opacityPass().pipeline(dev, "dom.opacity", "dom");
   d.vertex = &vert;

@@ -27,6 +27,7 @@ class DeepOpacityMaps : public LightMapShadow {
     float sizeFrac = 0.1f;    // s as a fraction of the hair's depth range from the light
     int beyond = 1;           // kDomIgnore | kDomLast | kDomExtend
     uint32_t depthBits = 32;  // z0 quantized to 8, 16 or 32 bits where it is read
+    bool thesisCounting = false;  // counting=thesis: own and preceding layers (Listing 3)
     uint32_t size = 512;
     float bias = 0.002f;
   };

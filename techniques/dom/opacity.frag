@@ -1,5 +1,6 @@
 // Step 2: every hair fragment adds 1 to the layer it falls in and to every
-// layer behind it (additive blending). Channel 0 of target 0 is unused (0):
+// layer behind it (additive blending; SB_DOM_COUNTING 1: to every layer in
+// front of it instead, the thesis's Listing 3). Channel 0 of target 0 is unused (0):
 // z0 lives in the depth map only, quantized to the depth bits as it is read.
 #include "dom.glsl"
 #include "../common/opacity.glsl"
@@ -13,7 +14,11 @@ layout(location = 0) out vec4 domOut[SB_DOM_TARGETS];
 
 float domValue(int j, float dz) {
   if (j < 1 || j > domLayout.x) return 0.0;
+#if SB_DOM_COUNTING == 1
+  return domContributionPreceding(dz, j, domLayout.x, domLayout.z);
+#else
   return domContribution(dz, j, domLayout.x, domLayout.z);
+#endif
 }
 
 vec4 domTarget(int t, float dz) {

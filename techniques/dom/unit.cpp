@@ -28,6 +28,9 @@ SB_TECHNIQUE(
           opt::choice("depth_bits", "32", {"8", "16", "32"},
                       "precision of z0 (the depth-only pass's 32-bit float depth map), "
                       "quantized where read: 8 | 16 | 32"),
+          opt::choice("counting", "yuksel", {"yuksel", "thesis"},
+                      "yuksel (a fragment counts in its own layer and every later one, the "
+                      "paper) | thesis (its own and every preceding one, Kraft 2018 Listing 3)"),
           opt::opacityFilter(), opt::mapSize(), opt::bias()},
      .stepped = SteppedOption{"layers", false, 1, 31},
      .makeShadow = [](const OptionReader& o) {

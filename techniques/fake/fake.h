@@ -7,7 +7,7 @@
 namespace sb {
 
 // The deep opacity maps paper's "fake transparency" (Yuksel & Keyser 2008,
-// section 5: "we divided the set of hair strands into three disjoint subsets.
+// section 4: "we divided the set of hair strands into three disjoint subsets.
 // Each one of these subsets is rendered separately with no transparency on a
 // separate image. The resulting images are then blended to produce the final
 // frame."). Strand i goes to subset i mod 3 (interleaved, so each subset

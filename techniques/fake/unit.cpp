@@ -7,8 +7,8 @@ SB_TECHNIQUE(
     {.name = "fake",
      .family = Family::Transparency,
      .folder = "fake",
-     .paper = "Yuksel & Keyser 2008, section 5",
-     .help = "fake transparency (Yuksel & Keyser 2008, section 5): the strands in 3 interleaved "
+     .paper = "Yuksel & Keyser 2008, section 4",
+     .help = "fake transparency (Yuksel & Keyser 2008, section 4): the strands in 3 interleaved "
              "subsets, each drawn opaque into its own image, the 3 images blended equally",
      .caps = {.multisampling = true},
      .makeOit = [](const OptionReader&) { return std::make_unique<FakeTransparency>(); }});

@@ -43,9 +43,12 @@ void main() {
   }
   // Paper 3.2: slabs before the fragment's own, plus F_i / B_total * B_before
   // within it, interpolated linearly inside the fragment's slice.
-  // order=paper: the printed formula, without the within-slice spread.
-#if SB_OOIT_ORDER_PAPER
+  // order=paper: the printed formula, without the within-slice spread;
+  // order=printed: the printed formula with it, the fragment's own share kept.
+#if SB_OOIT_ORDER == 1
   float o = oitOrderPaper(gl_FragCoord.z, r.x, -r.y, bits, slabs, SB_OOIT_SLICES, SB_OOIT_SLABS);
+#elif SB_OOIT_ORDER == 2
+  float o = oitOrderPrinted(gl_FragCoord.z, r.x, -r.y, bits, slabs, SB_OOIT_SLICES, SB_OOIT_SLABS);
 #else
   float o = oitOrder(gl_FragCoord.z, r.x, -r.y, bits, slabs, SB_OOIT_SLICES, SB_OOIT_SLABS);
 #endif

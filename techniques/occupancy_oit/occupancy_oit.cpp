@@ -4,8 +4,8 @@
 
 #include "scenes/options.h"
 #include "techniques/common/shader_library.h"
-#include "techniques/shading/hair_shading.h"
 #include "techniques/occupancy_oit/slots.h"
+#include "techniques/shading/hair_shading.h"
 
 namespace sb {
 
@@ -22,7 +22,8 @@ OccupancyOit::Options OccupancyOit::readOptions(const OptionReader& o) {
   opts.slices = static_cast<uint32_t>(o.integer("slices"));
   opts.slabs = static_cast<uint32_t>(o.integer("slabs"));
   opts.lambda = o.flag("lambda");
-  opts.paperOrder = o.choice("order") == "paper";
+  const std::string order = o.choice("order");
+  opts.order = order == "paper" ? 1 : order == "printed" ? 2 : 0;
   const std::string what = "transparency technique 'occupancy': ";
   if (opts.slices % 32 != 0)
     throw InputError(what + "slices=" + std::to_string(opts.slices) +
@@ -56,7 +57,8 @@ void OccupancyOit::setup(Device& dev, const GpuScene& scene, const RenderSetting
       dev.createTexture({"occupancy_oit.log2_transmittance", "oit", Format::R32F, w, h, false});
 
   ShaderDefines defs = maps_.defines();
-  defs.defines.push_back({"SB_OIT_LAMBDA", opts_.lambda ? "1" : "0"});
+  // order=printed takes Lambda as printed too (hair.a / Lambda).
+  defs.defines.push_back({"SB_OIT_LAMBDA", !opts_.lambda ? "0" : opts_.order == 2 ? "2" : "1"});
 
   // The resolve: a full-screen triangle, blend One, OneMinusSrcAlpha.
   {
@@ -81,7 +83,7 @@ void OccupancyOit::setup(Device& dev, const GpuScene& scene, const RenderSetting
                        {"SB_OOIT_SLABS", std::to_string(opts_.slabs)},
                        {"SB_OOIT_WORD_TARGETS", std::to_string(maps_.wordTargets())},
                        {"SB_OOIT_SLAB_TARGETS", std::to_string(maps_.slabTargets())},
-                       {"SB_OOIT_ORDER_PAPER", opts_.paperOrder ? "1" : "0"}};
+                       {"SB_OOIT_ORDER", std::to_string(opts_.order)}};
   const ShaderDefines hair = shading.hairDefines();
   for (const auto& [alias, file] : hair.aliases) accumDefs.aliases[alias] = file;
   // One size for occupancy_math.glsl's arrays, which the occupancy shadow's

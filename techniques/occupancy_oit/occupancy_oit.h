@@ -22,10 +22,11 @@ class OptionReader;
 class OccupancyOit : public OitTechnique {
  public:
   struct Options {
-    uint32_t slices = 128;    // multiple of 32, at most 1024
-    uint32_t slabs = 4;       // divides slices, at most 32
-    bool lambda = true;       // the paper's renormalisation of the hair weights
-    bool paperOrder = false;  // order=paper: section 3.2's printed order (oitOrderPaper)
+    uint32_t slices = 128;  // multiple of 32, at most 1024
+    uint32_t slabs = 4;     // divides slices, at most 32
+    bool lambda = true;     // the paper's renormalisation of the hair weights
+    int order = 0;          // 0 corrected (oitOrder), 1 paper (oitOrderPaper), 2 printed
+                            // (oitOrderPrinted, with Lambda as printed: oitResolvePrinted)
   };
   // Reads and validates slices, slabs, lambda (InputError).
   static Options readOptions(const OptionReader& o);

@@ -99,6 +99,16 @@ SB_INLINE float oitOrderPaper(float z, float zMin, float zMax, uint bits[SB_OCC_
   return clamp(before + within, 0.0f, n - 1.0f);
 }
 
+// order=printed: section 3.2 as printed in full, the slab counts before the
+// fragment's slab plus F_i / B_total * B_before with B_before interpolated
+// linearly inside the fragment's own slice (occupancyCount): the fragment's
+// own share is not taken out, and nothing clamps it to n - 1 (the furthest
+// fragment gets n).
+SB_INLINE float oitOrderPrinted(float z, float zMin, float zMax, uint bits[SB_OCC_MAX_WORDS],
+                                float slabCounts[SB_OCC_MAX_SLABS], int slices, int slabs) {
+  return max(occupancyCount(z, zMin, zMax, bits, slabCounts, slices, slabs, true), 0.0f);
+}
+
 // The weight of a fragment of alpha a and order o: (1 - a)^o * a.
 SB_INLINE float oitWeight(float a, float o) {
   return oitTransmittance(a, o) * clamp(a, 0.0f, 1.0f);
@@ -131,5 +141,15 @@ SB_INLINE vec4 oitResolve(vec4 acc, float log2T, bool lambda) {
   float coverage = oitCoverage(log2T);
   vec3 rgb = vec3(max(acc.x, 0.0f), max(acc.y, 0.0f), max(acc.z, 0.0f));
   if (lambda) rgb = acc.w > 1e-30f ? rgb * (coverage / acc.w) : vec3(0.0f);
+  return vec4(rgb, coverage);
+}
+
+// The resolve with Lambda as printed (section 3.4, order=printed):
+// hair.rgb * hair.a / Lambda (guarded: no coverage, no colour); see oitResolve
+// for why this inverts the correction it aims at.
+SB_INLINE vec4 oitResolvePrinted(vec4 acc, float log2T) {
+  float coverage = oitCoverage(log2T);
+  vec3 rgb = vec3(max(acc.x, 0.0f), max(acc.y, 0.0f), max(acc.z, 0.0f));
+  rgb = coverage > 1e-30f ? rgb * (max(acc.w, 0.0f) / coverage) : vec3(0.0f);
   return vec4(rgb, coverage);
 }

@@ -20,9 +20,11 @@ SB_TECHNIQUE(
                  opt::flag("lambda", true,
                            "on | off: renormalise the hair weights to 1 - prod(1 - alpha) (Lambda "
                            "/ hair.a: the printed hair.a / Lambda inverted, see README)"),
-                 opt::choice("order", "corrected", {"corrected", "paper"},
+                 opt::choice("order", "corrected", {"corrected", "paper", "printed"},
                              "corrected (the fragment's own share taken out, spread within its "
-                             "slice) | paper (the printed F_i / B_total * B_before)")},
+                             "slice) | paper (the printed F_i / B_total * B_before, not spread) "
+                             "| printed (section 3.2 in full: spread within its slice, its own "
+                             "share kept; with lambda=on Lambda as printed, hair.a / Lambda)")},
      .caps = {.msaaRefusal = "its occupancy bits, slab counts and depth range are per-pixel maps "
                              "that order the fragments: samples would multiply them by N and split "
                              "one pixel's order; not supported"},
