@@ -1,9 +1,11 @@
 #include "backends/driver_env.h"
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
@@ -178,6 +180,31 @@ void selectDriverFromArgs(int argc, char** argv) {
   std::cerr << "strandbench: --driver " << name
             << ": re-executing /proc/self/exe failed: " << std::strerror(errno) << "\n";
   std::exit(2);
+}
+
+int runSelfOnDriver(const std::string& driver, const std::vector<std::string>& args) {
+  std::fflush(stdout);
+  const pid_t pid = fork();
+  if (pid < 0) throw InputError("cannot start a process for driver " + driver + " (fork failed)");
+  if (pid == 0) {
+    try {
+      setDriverEnvironment(driver);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "%s\n", e.what());
+      _exit(2);
+    }
+    std::vector<std::string> argv = {"strandbench"};
+    argv.insert(argv.end(), args.begin(), args.end());
+    std::vector<char*> p;
+    for (std::string& a : argv) p.push_back(a.data());
+    p.push_back(nullptr);
+    execv("/proc/self/exe", p.data());
+    _exit(127);
+  }
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0) {
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
 }  // namespace sb

@@ -40,6 +40,11 @@ void setDriverEnvironment(const std::string& name);
 // message on stderr and exit status 2.
 void selectDriverFromArgs(int argc, char** argv);
 
+// Runs `strandbench ARGS` (/proc/self/exe) in a child process with `driver`'s
+// environment, its output going to ours, and waits for it: how one command uses two
+// drivers (one process loads one). Returns its exit status, 128 + the signal when killed.
+int runSelfOnDriver(const std::string& driver, const std::vector<std::string>& args);
+
 // The help of every --driver option.
 extern const char* const kDriverHelp;
 

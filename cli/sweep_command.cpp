@@ -38,6 +38,8 @@ void registerSweepCommands(CLI::App& app) {
                     "PCT: take rounds until every case's median frame time has a 95% interval "
                     "within +-PCT of it (or --max-reps)");
     addDriverOption(*cmd);
+    // Internal: a child sweep of the cases on its --driver (harness/sweep.h).
+    cmd->add_flag("--driver-cases", o->driverCasesOnly)->group("");
     cmd->add_flag("--interleave,!--no-interleave", o->interleave,
                   "measure a group's cases in interleaved rounds (default), or each case's "
                   "`repeat` frames back to back in one run");

@@ -1,8 +1,5 @@
 #include "harness/driver_ab.h"
 
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -30,33 +27,6 @@ namespace fs = std::filesystem;
 using ojson = nlohmann::ordered_json;
 
 namespace {
-
-// `strandbench ARGS` in a child process with `driver`'s loader environment; its output
-// goes to ours. Returns its exit status (128 + signal when killed).
-int runSelfOnDriver(const std::string& driver, const std::vector<std::string>& args) {
-  std::cout << std::flush;
-  const pid_t pid = fork();
-  if (pid < 0) throw InputError("driver A/B: cannot start a process (fork failed)");
-  if (pid == 0) {
-    try {
-      setDriverEnvironment(driver);
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "%s\n", e.what());
-      _exit(2);
-    }
-    std::vector<std::string> argv = {"strandbench"};
-    argv.insert(argv.end(), args.begin(), args.end());
-    std::vector<char*> p;
-    for (std::string& s : argv) p.push_back(s.data());
-    p.push_back(nullptr);
-    execv("/proc/self/exe", p.data());
-    _exit(127);
-  }
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0) {
-  }
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
 
 std::string fmt(double v, int digits = 3) {
   if (!std::isfinite(v)) return "-";

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <set>
 
+#include "backends/driver_env.h"
 #include "harness/json_keys.h"
 #include "harness/settings.h"
 #include "harness/technique_list.h"
@@ -22,10 +23,12 @@ using ojson = nlohmann::ordered_json;
 const std::vector<std::string> kSuiteKeys = {"name",   "description", "defaults", "presets",
                                              "groups", "tables",      "figure",   "small"};
 const std::vector<std::string> kGroupKeys = {"name", "description", "preset", "axes"};
-// Settings: the table's keys (harness/settings.h), and "backends", a list: one case per backend.
+// Settings: the table's keys (harness/settings.h), "backends", a list: one case per backend,
+// and "drivers", a list: one case per driver (each driver's cases run in a process of its own).
 std::vector<std::string> suiteSettings() {
   std::vector<std::string> keys = settingKeys();
   keys.push_back("backends");
+  keys.push_back("drivers");
   return keys;
 }
 const std::vector<std::string> kSpecSettings = {"scene", "shadow", "oit"};
@@ -41,6 +44,8 @@ void overlay(ojson& settings, const ojson& layer, const std::string& where) {
       throw InputError(where + ": " + unknownNameMessage("setting", key, keys));
     if (key == "backend") settings.erase("backends");
     if (key == "backends") settings.erase("backend");
+    if (key == "driver") settings.erase("drivers");
+    if (key == "drivers") settings.erase("driver");
     settings[key] = value;
   }
 }
@@ -67,7 +72,19 @@ RenderRequest toRequest(const ojson& s, const std::string& where) {
     // In table order, so that a case's first bad setting is the same whatever the layering.
     for (const Setting& setting : settingsTable())
       if (s.contains(setting.key)) setFromJson(r, setting, s.at(setting.key));
+    // A suite may name any driver: a sweep runs each driver's cases in a process of its own
+    // (harness/sweep.cpp); here the name only has to be a driver.
+    const std::string driver = r.driver;
+    r.driver.clear();
     checkRequest(r, Spelling::Json);
+    if (!driver.empty()) {
+      try {
+        checkDriver(driver);
+      } catch (const InputError& e) {
+        throw InputError(settingMessage(*findSetting("driver"), Spelling::Json, driver, e.what()));
+      }
+      r.driver = driver;
+    }
     // Technique specs are checked now, not half way through a sweep.
     checkTechniqueSpecs(r, Spelling::Json);
     const Spec scene = Spec::parse(r.scene);
@@ -173,6 +190,16 @@ Suite parseSuite(const std::string& text, const std::string& file) {
           std::find(axisNames.begin(), axisNames.end(), axis) == axisNames.end())
         throw InputError(gwhere + ": " + unknownNameMessage("axis", axis, axisNames));
     }
+    // A case per driver: the "drivers" setting as an axis (before the backends).
+    if (settings.contains("drivers") && !axes.contains("driver")) {
+      const ojson& list = settings["drivers"];
+      if (!list.is_array() || list.empty())
+        throw InputError(gwhere + ": \"drivers\" must be a non-empty list of driver names");
+      for (const auto& v : list)
+        if (!v.is_string()) throw InputError(gwhere + ": \"drivers\" holds names (strings)");
+      axes["driver"] = list;
+    }
+    settings.erase("drivers");
     // A case per backend: the axis, else the "backend" or "backends" setting.
     if (!axes.contains("backend")) {
       if (settings.contains("backend")) {

@@ -15,6 +15,7 @@
 #include <sstream>
 #include <thread>
 
+#include "backends/driver_env.h"
 #include "harness/measure.h"
 #include "harness/stop.h"
 #include "imaging/image.h"
@@ -319,6 +320,7 @@ int runSweep(const SweepOptions& o) {
       selected.push_back(&c);
   if (selected.empty())
     throw InputError("suite " + o.suitePath + ": no case matches the filter and shard");
+  std::vector<std::string> failedDrivers;  // child sweeps of other drivers that failed
   if (std::any_of(selected.begin(), selected.end(),
                   [](const SweepCase* c) { return c->request.image; }))
     loadImageModule();
@@ -350,6 +352,53 @@ int runSweep(const SweepOptions& o) {
   if (!fs::exists(sweepFile)) {
     writeFileAtomic(dir / "context.json", runContext().dump(2) + "\n");
     writeFileAtomic(sweepFile, sweepDoc.dump(2) + "\n");
+  }
+
+  // One process, one driver: the cases of other drivers go to a child sweep per driver.
+  std::vector<std::string> otherDrivers;
+  {
+    std::vector<const SweepCase*> own;
+    for (const auto* c : selected) {
+      const std::string& d = c->request.driver;
+      const bool mine =
+          o.driverCasesOnly ? !d.empty() && isCurrentDriver(d) : d.empty() || isCurrentDriver(d);
+      if (mine)
+        own.push_back(c);
+      else if (!o.driverCasesOnly &&
+               std::find(otherDrivers.begin(), otherDrivers.end(), d) == otherDrivers.end())
+        otherDrivers.push_back(d);
+    }
+    selected = own;
+  }
+  for (const std::string& d : otherDrivers) {
+    std::vector<std::string> args = {
+        "sweep",    o.suitePath,
+        "--out",    o.out,
+        "--resume", "--driver",
+        d,          "--driver-cases",
+        "--shard",  std::to_string(o.shardIndex) + "/" + std::to_string(o.shardCount)};
+    if (!o.filter.empty()) args.insert(args.end(), {"--filter", o.filter});
+    if (o.failFast) args.push_back("--fail-fast");
+    if (!o.interleave) args.push_back("--no-interleave");
+    for (const auto& [flag, v] :
+         {std::pair{"--min-reps", o.minReps}, std::pair{"--max-reps", o.maxReps}})
+      if (v) args.insert(args.end(), {flag, std::to_string(v)});
+    if (o.targetCiPct > 0) args.insert(args.end(), {"--target-ci", std::to_string(o.targetCiPct)});
+    std::cout << "sweep " << suite.name << ": the cases on driver " << d
+              << " in a process of its own\n";
+    const int status = runSelfOnDriver(d, args);
+    if (status == 130 || status == 143) throw Interrupted(status == 130 ? 2 : 15);
+    if (status == 2)
+      throw InputError("the sweep of the cases on driver " + d + " refused its input");
+    if (status != 0)
+      failedDrivers.push_back("the cases on driver " + d + " (exit status " +
+                              std::to_string(status) + ", above)");
+  }
+  if (selected.empty() && !otherDrivers.empty()) {
+    const int n = writeSweepReport(o.out);
+    std::cout << "wrote " << (dir / "results.json").string() << " (" << n << " results)\n";
+    for (const auto& f : failedDrivers) std::cout << "failed: " << f << "\n";
+    return failedDrivers.empty() ? 0 : 1;
   }
 
   std::vector<const SweepCase*> todo;
@@ -488,9 +537,11 @@ int runSweep(const SweepOptions& o) {
     context["load_after"] = loadAverage();
     writeFileAtomic(dir / "context.json", context.dump(2) + "\n");
   }
+  if (o.driverCasesOnly) return failures.empty() ? 0 : 1;  // the parent writes the reports
   const int n = writeSweepReport(o.out);
   std::cout << "wrote " << (dir / "results.json").string() << " (" << n
             << " results), results.csv, passes.csv, cost_model.json, report.md, report.html\n";
+  for (const auto& f : failedDrivers) failures.push_back("failed: " + f);
   // Cases done by an earlier run count too: a resumed sweep reports them.
   for (const auto* c : selected) {
     if (std::find(todo.begin(), todo.end(), c) != todo.end()) continue;

@@ -30,6 +30,10 @@ struct SweepOptions {
   int minReps = 0;         // rounds always taken; 0: the group's largest `repeat`
   int maxReps = 0;         // rounds at most; 0: minReps, or 15 with a target
   double targetCiPct = 0;  // take rounds until every median's 95% interval is within +-PCT
+  // Cases on another driver than the process's ("drivers" in the suite) run in a child
+  // sweep per driver, started with --driver D and this set: it runs only the cases of its
+  // own driver and leaves the reports to the parent.
+  bool driverCasesOnly = false;
 };
 
 // Runs the cases and writes the reports; returns the exit status: 0, or 1

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -70,22 +71,43 @@ TEST(Drivers, Mesa25RendersAndIsNamed) {
   }
 }
 
-// A suite case cannot switch drivers inside the process: the sweep says which flag does.
-TEST(Drivers, ASuiteCaseNamesOnlyTheProcesssDriver) {
+// A suite's "drivers": one case per driver, each driver's cases swept in a process of its
+// own (the sweep's own driver here, Mesa 25.0.7 in a child), joined in one results.json; an
+// unknown driver is refused before anything runs.
+TEST(Drivers, ASuiteSweepsEachDriverInAProcessOfItsOwn) {
   if (const std::string why = sbtest::mesa25Missing(); !why.empty()) GTEST_SKIP() << why;
   const auto dir = sbtest::tempDir("driver-suite");
-  const nlohmann::json suite = {
-      {"name", "t"},
-      {"defaults",
-       {{"backends", {"gl"}}, {"scene", "straight:strands=20,points=4"}, {"size", "16x16"}}},
-      {"groups", {{{"name", "g"}, {"driver", "mesa-25.0"}}}}};
+  nlohmann::json suite = {{"name", "t"},
+                          {"defaults",
+                           {{"backends", {"gl", "vulkan"}},
+                            {"scene", "straight:strands=20,points=4"},
+                            {"size", "16x16"},
+                            {"repeat", 2}}},
+                          {"groups", {{{"name", "g"}, {"drivers", {"system", "mesa-25.0"}}}}}};
   std::ofstream(dir / "suite.json") << suite.dump(2);
   const sbtest::CliResult r =
       runCli("sweep " + (dir / "suite.json").string() + " --out " + (dir / "o").string());
-  EXPECT_EQ(r.status, 2) << r.err;
-  EXPECT_NE(r.err.find("\"driver\""), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("give --driver mesa-25.0"), std::string::npos) << r.err;
-  EXPECT_FALSE(fs::exists(dir / "o"));
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("the cases on driver mesa-25.0 in a process of its own"), std::string::npos)
+      << r.out;
+  const auto results = nlohmann::json::parse(sbtest::readFile(dir / "o" / "results.json"));
+  std::map<std::string, std::string> drivers;  // case id -> the driver string it ran on
+  for (const auto& x : results["results"])
+    drivers[x["case"]["id"].get<std::string>()] = x["driver"].get<std::string>();
+  ASSERT_EQ(drivers.size(), 4u) << r.out;
+  for (const char* backend : {"gl", "vulkan"}) {
+    const std::string b = backend;
+    EXPECT_NE(drivers["g/driver=system,backend=" + b].find("Mesa 22.3"), std::string::npos);
+    EXPECT_NE(drivers["g/driver=mesa-25.0,backend=" + b].find("Mesa 25.0.7"), std::string::npos);
+  }
+
+  suite["groups"][0]["drivers"] = {"system", "no-such-driver"};
+  std::ofstream(dir / "bad.json") << suite.dump(2);
+  const sbtest::CliResult bad =
+      runCli("sweep " + (dir / "bad.json").string() + " --out " + (dir / "o2").string());
+  EXPECT_EQ(bad.status, 2) << bad.err;
+  EXPECT_NE(bad.err.find("no-such-driver"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(dir / "o2"));
   fs::remove_all(dir);
 }
 
