@@ -236,18 +236,6 @@ TEST(AaReferenceCli, ASuiteAsksForItAndTheReportsShowIt) {
   fs::remove_all(dir);
 }
 
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kAsan = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kAsan = true;
-#else
-constexpr bool kAsan = false;
-#endif
-#else
-constexpr bool kAsan = false;
-#endif
-
 TEST(AaReferenceCli, OverTheBudgetOrTheLargestSideItIsRefused) {
   // A side over 16384 before any work; over the host budget (an address-space
   // limit of 2.2 GB, as tests/test_large_runs.cpp) before its resources are made.
@@ -256,7 +244,7 @@ TEST(AaReferenceCli, OverTheBudgetOrTheLargestSideItIsRefused) {
       "--warmup 0 --reference --reference aa:samples=8");
   EXPECT_EQ(side.status, 2) << side.err;
   EXPECT_NE(side.err.find("32768x32768 samples"), std::string::npos) << side.err;
-  if (kAsan) GTEST_SKIP() << "AddressSanitizer cannot run under an address-space limit";
+  if (sbtest::kAsan) GTEST_SKIP() << sbtest::kNoLimitUnderAsan;
   const fs::path dir = sbtest::tempDir("aa-budget");
   const std::string cmd =
       "(ulimit -v 2200000 && exec " SB_CLI

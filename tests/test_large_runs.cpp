@@ -20,23 +20,6 @@ namespace fs = std::filesystem;
 using json = nlohmann::json;
 using Clock = std::chrono::steady_clock;
 
-// AddressSanitizer reserves terabytes of address space for its shadow memory as a
-// process starts, which `ulimit -v` refuses: under the sanitizer build
-// (scripts/test-sanitizers.sh) the CLI cannot start under an address-space limit.
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kAsan = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kAsan = true;
-#else
-constexpr bool kAsan = false;
-#endif
-#else
-constexpr bool kAsan = false;
-#endif
-constexpr const char* kNoLimitUnderAsan =
-    "AddressSanitizer cannot reserve its shadow memory under an address-space limit (ulimit -v)";
-
 // The CLI under an address-space limit (KiB, as `ulimit -v` takes it).
 CliResult runCliLimited(long kib, const std::string& args) {
   const fs::path dir = tempDir("limited");
@@ -94,7 +77,7 @@ const char* kLongRender =
     "--repeat 50 --warmup 0 --json";
 
 TEST(LargeRuns, AHostAllocationThatFailsUnderAnAddressSpaceLimitExitsTwoOnBothBackends) {
-  if (kAsan) GTEST_SKIP() << kNoLimitUnderAsan;
+  if (sbtest::kAsan) GTEST_SKIP() << sbtest::kNoLimitUnderAsan;
   const fs::path dir = tempDir("oom");
   for (const std::string backend : {"gl", "vulkan"}) {
     // 100M points need about 3 GB of host arrays: over a 1.5 GB address space.
@@ -118,7 +101,7 @@ TEST(LargeRuns, AHostAllocationThatFailsUnderAnAddressSpaceLimitExitsTwoOnBothBa
 }
 
 TEST(LargeRuns, ARunOverTheHostBudgetIsRefusedBeforeItsResourcesAreMade) {
-  if (kAsan) GTEST_SKIP() << kNoLimitUnderAsan;
+  if (sbtest::kAsan) GTEST_SKIP() << sbtest::kNoLimitUnderAsan;
   // The CPU drivers' budget is host memory, here the address-space limit: an
   // exact shadow and fragment lists at 4096x4096 (about 1.6 GB with the image
   // read back) need more than is left of 2.2 GB. The drivers (and the Vulkan

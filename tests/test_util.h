@@ -96,4 +96,21 @@ inline std::string mesa25Missing() {
          "--tests runs it)";
 }
 
+// AddressSanitizer reserves terabytes of address space for its shadow memory as a
+// process starts, which `ulimit -v` refuses: under the sanitizer build
+// (scripts/test-sanitizers.sh) the CLI cannot start under an address-space limit.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kAsan = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr bool kAsan = true;
+#else
+constexpr bool kAsan = false;
+#endif
+#else
+constexpr bool kAsan = false;
+#endif
+inline constexpr const char* kNoLimitUnderAsan =
+    "AddressSanitizer cannot reserve its shadow memory under an address-space limit (ulimit -v)";
+
 }  // namespace sbtest
