@@ -86,7 +86,12 @@ TEST_P(ViewMemoryTest, FiftyTechniqueSwitchesLeaveWhatAFreshRunHolds) {
   // back after each renderer's group (Device::destroyGroup). Measured on a
   // session like this one: Vulkan 352 -> 433 MiB before, 226 -> 231 MiB
   // after; GL 218 -> 220-230 MiB.
-  EXPECT_LE(lastBytes, warmBytes * 1.10);
+  // Under AddressSanitizer freed memory waits in its quarantine (up to 256 MiB) before it is
+  // reused, so resident memory grows with every free: the device accounting above still
+  // holds, the resident bound does not mean anything there.
+  if (!sbtest::kAsan) {
+    EXPECT_LE(lastBytes, warmBytes * 1.10);
+  }
   fs::remove_all(dir);
 }
 
