@@ -24,7 +24,7 @@ set(_techniques ${CMAKE_BINARY_DIR}/libsb_techniques_prebuilt.a)
 file(COPY_FILE ${SB_PREBUILT_DIR}/libsb_techniques.a ${_techniques})
 execute_process(COMMAND ${CMAKE_AR} d ${_techniques} embedded_shaders.cpp.o
                 COMMAND_ERROR_IS_FATAL ANY)
-foreach(_lib sb_cli sb_harness sb_imaging sb_reports sb_backends sb_scenes)
+foreach(_lib sb_cli sb_harness sb_imaging sb_reports sb_pbr sb_backends sb_scenes)
   add_library(${_lib} STATIC IMPORTED)
   set_target_properties(${_lib} PROPERTIES IMPORTED_LOCATION ${SB_PREBUILT_DIR}/lib${_lib}.a)
 endforeach()
@@ -51,7 +51,7 @@ add_executable(strandbench ${_sources})
 target_include_directories(strandbench PRIVATE ${CMAKE_SOURCE_DIR})
 # The new folders' objects are linked as they are (each registers itself); the
 # prebuilt techniques whole, as in the main build.
-target_link_libraries(strandbench PRIVATE sb_cli sb_harness sb_imaging sb_reports
+target_link_libraries(strandbench PRIVATE sb_cli sb_harness sb_imaging sb_reports sb_pbr
   "$<LINK_LIBRARY:WHOLE_ARCHIVE,sb_techniques>" sb_backends sb_scenes
   CLI11::CLI11 nlohmann_json::nlohmann_json
   glm::glm tinyobjloader::tinyobjloader Vulkan::Vulkan PkgConfig::EGL PkgConfig::GLFW
