@@ -302,6 +302,7 @@ void registerCommands(CLI::App& app) {
   registerHistoryCommand(app);
   registerViewCommand(app);
   registerFigureCommand(app);
+  registerBsdfProbeCommand(app);
   // Unknown options get the closest valid one, for every command.
   for (CLI::App* cmd : app.get_subcommands([](CLI::App*) { return true; }))
     cmd->parse_complete_callback([cmd] { rejectUnknownArguments(*cmd); });

@@ -30,6 +30,8 @@ void registerHistoryCommand(CLI::App& app);
 void registerViewCommand(CLI::App& app);
 // `figure` (cli/figure_command.cpp).
 void registerFigureCommand(CLI::App& app);
+// `bsdf-probe` (cli/bsdf_probe_command.cpp).
+void registerBsdfProbeCommand(CLI::App& app);
 int lastCommandStatus();
 // --driver on a command without the render settings (check, sweep): main() has
 // already acted on it (backends/driver_env.h); the option is for --help and parsing.

@@ -5,7 +5,7 @@
 // pdf() give, and its directions follow pdf by a chi-square test (which rejects a pdf 1 degree
 // of tilt off). Reciprocity where the model has it (alpha = 0, +h and -h, |theta_i| =
 // |theta_o|), and its failure elsewhere. The lobes against the paper's equations computed here
-// independently (std::cyl_bessel_i, Snell and Fresnel).
+// independently (std::cyl_bessel_i, Snell and Fresnel). Then `strandbench bsdf-probe`.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -570,6 +570,58 @@ TEST(HairBsdf, BadParametersAreRefused) {
   bad(p, "alpha");
   sbtest::expectInputError(
       [] { sb::pbr::sigmaAFromReflectance(glm::vec3(0.5f, 0.0f, 0.5f), 0.3f); }, {"color 0"});
+}
+
+// --- strandbench bsdf-probe ---
+
+TEST(HairBsdfCli, ProbePrintsTheBsdfAsJson) {
+  const auto r = sbtest::runCli(
+      "bsdf-probe --wo 0.2,0.9,0.3 --wi-deg -15,150 --h 0.3 --beta-m 0.25 --beta-n 0.4 "
+      "--alpha 2.5 --sigma-a 0.3,0.6,1.2");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const char* key : {"params", "wo", "wi", "f", "f_cos", "pdf", "lobes"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_FLOAT_EQ(j["params"]["h"].get<float>(), 0.3f);
+  EXPECT_FLOAT_EQ(j["params"]["beta_m"].get<float>(), 0.25f);
+  EXPECT_FLOAT_EQ(j["params"]["alpha_deg"].get<float>(), 2.5f);
+  EXPECT_EQ(j["params"]["sigma_a_from"], "sigma-a");
+  ASSERT_EQ(j["lobes"].size(), 4u);
+  EXPECT_EQ(j["lobes"][0]["name"], "R");
+  // The probe's numbers are the library's.
+  HairParams p = params(0.3f, 0.25f, 0.4f, 2.5f, glm::vec3(0.3f, 0.6f, 1.2f));
+  const HairBsdf bsdf(p);
+  const glm::vec3 wo = glm::normalize(glm::vec3(0.2f, 0.9f, 0.3f));
+  const glm::vec3 wi = direction(std::sin(-15.0 * kPi / 180), 150.0 * kPi / 180);
+  const glm::vec3 f = bsdf.f(wo, wi);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(j["f"][c].get<double>(), f[c], 1e-4 * f[c]);
+    EXPECT_NEAR(j["lobes"][1]["ap"][c].get<double>(), bsdf.ap(wo)[1][c], 1e-5);
+  }
+  EXPECT_NEAR(j["pdf"].get<double>(), bsdf.pdf(wo, wi), 1e-4 * bsdf.pdf(wo, wi));
+  // A colour is turned into sigma_a by the paper's mapping.
+  const auto c = sbtest::runCli("bsdf-probe --wo 0,1,0 --wi 0,-1,0 --color 0.5,0.25,1");
+  ASSERT_EQ(c.status, 0) << c.err;
+  const auto jc = nlohmann::json::parse(c.out);
+  EXPECT_EQ(jc["params"]["sigma_a_from"], "color");
+  EXPECT_NEAR(jc["params"]["sigma_a"][0].get<double>(), 0.0138565, 1e-5);
+}
+
+TEST(HairBsdfCli, BadInputExitsWithStatus2) {
+  for (const auto& [args, needle] : std::vector<std::pair<std::string, std::string>>{
+           {"--wo 0,1,0 --wi 0,0,1 --h 2", "h 2"},
+           {"--wo 0,0,0 --wi 0,0,1", "--wo"},
+           {"--wo 1,2 --wi 0,0,1", "--wo 1,2"},
+           {"--wo 0,1,0 --wi 0,0,1 --color 1.5,0.5,0.5", "color"},
+           {"--wo 0,1,0 --wi 0,0,1 --color 0.5,0.5,0.5 --sigma-a 1,1,1", "at most one"},
+           {"--wo 0,1,0", "--wi"},
+           {"--wo 0,1,0 --wi 0,0,1 --beta-m abc", "beta-m"},
+           {"--wo 0,1,0 --wi-deg 100,0", "--wi-deg"}}) {
+    const auto r = sbtest::runCli("bsdf-probe " + args);
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.out << r.err;
+    EXPECT_NE(r.err.find(needle), std::string::npos) << args << "\n" << r.err;
+    EXPECT_TRUE(r.out.empty()) << args;
+  }
 }
 
 }  // namespace
