@@ -270,6 +270,14 @@ Buffer Device::createBuffer(const BufferDesc& given, const void* data) {
   desc.name = labelPrefix_ + given.name;
   const std::string where = quoted("createBuffer", desc.name);
   if (desc.bytes == 0) throw DeviceError(where + ": zero size");
+  // Refused before any work rather than bound in part (a shader would lose what lies beyond).
+  if (const std::size_t most = driver_->info().maxStorageBufferBytes;
+      desc.usage == BufferUsage::Storage && most > 0 && desc.bytes > most)
+    throw DeviceError(where + ": " + std::to_string(desc.bytes) +
+                      " bytes, more than this device binds as one storage buffer (" +
+                      std::to_string(most) + " bytes" +
+                      (given.owner.empty() ? "" : ", owner " + given.owner) +
+                      "); a smaller image, scene or samples= would fit");
   if (data) guardMaking(desc.name, desc.owner, desc.bytes);
   // Created now only when it has contents to take; otherwise when first used.
   auto rec = std::make_unique<BufferRec>(BufferRec{

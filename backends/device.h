@@ -310,6 +310,10 @@ struct DeviceInfo {
   // and depth sample counts). Always has 1. Integer formats are never
   // multisampled.
   uint32_t sampleCounts = 1;
+  // The most bytes one storage buffer may have where a shader can see all of
+  // it (Vulkan: maxStorageBufferRange, 128 MiB on lavapipe; a larger one would
+  // be bound in part). 0: no limit enforced (GL binds whole buffers).
+  std::size_t maxStorageBufferBytes = 0;
 };
 
 // The memory a run may still take on a device, and where that figure came from

@@ -292,8 +292,8 @@ std::string depthComplexityCharts(const ReportData& d) {
 // Error against frame index for each animated case, beside its strip.
 std::string animationSection(const ReportData& d, const fs::path& dir);
 
-// (b), (c): frame time and memory against numeric technique options, frame time
-// against segments.
+// (b), (c): frame time, memory and image error against numeric technique options,
+// frame time against segments.
 std::string groupCharts(const Group& g) {
   std::ostringstream o;
   for (const std::string& axis : g.params) {
@@ -311,6 +311,13 @@ std::string groupCharts(const Group& g) {
     memory.series = seriesBy(
         g.results, x, [](const json& r) { return memoryMiB(r); }, series);
     o << "<figure>" << svgChart(time) << "</figure><figure>" << svgChart(memory) << "</figure>\n";
+    // Error beside time: an axis such as compute_raster's LOD share trades one for the other.
+    Chart error{g.name + ": " + kErrorMetrics[0].label + " vs " + axis, axis,
+                kErrorMetrics[0].label};
+    error.series = seriesBy(g.results, x, kErrorMetrics[0].value, series);
+    const bool anyError = std::any_of(error.series.begin(), error.series.end(),
+                                      [](const ChartSeries& s) { return !s.points.empty(); });
+    if (anyError) o << "<figure>" << svgChart(error) << "</figure>\n";
   }
   const bool sized = std::count(g.params.begin(), g.params.end(), "scene.strands") ||
                      std::count(g.params.begin(), g.params.end(), "scene.points");

@@ -13,6 +13,7 @@
 # Needs root (mmdebstrap in root mode, chroot, mounts); installs mmdebstrap when missing.
 # Prints each step with its time and ends with one line:
 #   fresh machine: OK      or      fresh machine: FAILED at STEP
+# The test command's whole log is kept in /var/tmp/sb-fresh-test.log.
 # Exit 0 or 1 (2 for bad arguments). Not part of CI: run it before submitting a change to
 # dependencies, CMake, setup or test scripts (README, "A fresh machine").
 set -uo pipefail
@@ -29,7 +30,7 @@ while (($#)); do
     --keep) keep=1 ;;
     --tests) tests=${2:?--tests needs a regular expression}; shift ;;
     --root) root=${2:?--root needs a folder}; shift ;;
-    -h | --help) sed -n '2,19p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h | --help) sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "fresh-machine-check: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
   shift
@@ -61,6 +62,9 @@ mounted=()
 cleanup() {
   local status=$?
   if [ -n "$root" ] && [ -d "$root" ]; then
+    # The test log outlives the root, so a failure can be read after it is removed.
+    [ -s "$root/root/test.log" ] && cp "$root/root/test.log" /var/tmp/sb-fresh-test.log &&
+      echo "fresh-machine-check: the test command's log is in /var/tmp/sb-fresh-test.log"
     # Processes left inside the root (a server a test started) would keep its mounts busy.
     for p in /proc/[0-9]*; do
       [ "$(readlink "$p/root" 2>/dev/null)" = "$root" ] && kill -9 "${p#/proc/}" 2>/dev/null
@@ -165,7 +169,9 @@ if ((quick)); then
     inside "scripts/setup.sh --tests && cd build && ctest --output-on-failure -j \"\$(nproc)\" -R '$tests' 2>&1 | tail -n 40; exit \${PIPESTATUS[0]}"
 else
   step "README test command (scripts/test.sh)" \
-    inside "scripts/test.sh >/root/test.log 2>&1; s=\$?; tail -n 60 /root/test.log; exit \$s"
+    inside "scripts/test.sh >/root/test.log 2>&1; s=\$?; tail -n 60 /root/test.log
+      # The tail may hold only the skips and the fuzzers: name the failed tests too.
+      sed -n '/The following tests FAILED/,/^Errors while running/p' /root/test.log; exit \$s"
   write_readme_block
 fi
 echo "== total: $(($(date +%s) - start)) s"

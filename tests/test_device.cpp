@@ -482,6 +482,31 @@ TEST_P(DeviceTest, LinesTopology) {
   EXPECT_LE(colLit, 8);
 }
 
+// Vulkan binds at most maxStorageBufferRange bytes of a storage buffer (128 MiB
+// on lavapipe): a larger one is refused when it is declared, before any work,
+// rather than bound in part (the exact reference's fragment pool at 512x512
+// once lost the strands drawn last that way). GL binds whole buffers.
+TEST_P(DeviceTest, StorageBufferOverTheDevicesRangeIsRefusedWhenDeclared) {
+  const std::size_t most = dev_->info().maxStorageBufferBytes;
+  if (GetParam() == "gl") {
+    EXPECT_EQ(most, 0u);
+    return;
+  }
+  ASSERT_GT(most, 0u);
+  try {
+    dev_->createBuffer({"fragments", "oit", BufferUsage::Storage, most + 4});
+    ADD_FAILURE() << "a storage buffer of " << most + 4 << " bytes was accepted";
+  } catch (const DeviceError& e) {
+    EXPECT_NE(std::string(e.what()).find("more than this device binds as one storage buffer"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_TRUE(dev_->declared().empty());
+  // At the limit it is taken (declared only: nothing is made until used).
+  dev_->createBuffer({"fragments", "oit", BufferUsage::Storage, most});
+  EXPECT_EQ(dev_->declared().size(), 1u);
+}
+
 TEST_P(DeviceTest, MemoryAccounting) {
   EXPECT_TRUE(dev_->allocations().empty());
   Buffer a = dev_->createBuffer({"hair-vertices", "scene", BufferUsage::Storage, 1000});

@@ -400,6 +400,7 @@ TEST_F(ReportWriter, HtmlIsSelfContainedWithChartsAndImages) {
   EXPECT_NE(html.find("<polyline class=\"pareto-frontier\""), std::string::npos);
   EXPECT_NE(html.find("frame time vs shadow.maps"), std::string::npos);
   EXPECT_NE(html.find("memory vs shadow.maps"), std::string::npos);
+  EXPECT_NE(html.find("image RMSE vs shadow.maps"), std::string::npos);
   EXPECT_NE(html.find("visibility along a light ray"), std::string::npos);
   EXPECT_NE(html.find("images/gone.png is missing"), std::string::npos);
   EXPECT_NE(html.find("<th>FLIP mean (total)</th>"), std::string::npos);

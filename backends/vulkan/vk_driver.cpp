@@ -693,6 +693,13 @@ class VulkanDriver final : public Driver {
         const VkDeviceSize limit = w.descriptorType == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
                                        ? limits_.maxUniformBufferRange
                                        : limits_.maxStorageBufferRange;
+        // A uniform block reads only its declared size; a storage buffer over the
+        // limit would be bound in part, so it is refused (Device::createBuffer
+        // refuses it sooner, when it is made as storage).
+        if (w.descriptorType != VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER && r.size > limit)
+          throw DeviceError("Vulkan: buffer '" + r.desc.name + "' (" + std::to_string(r.size) +
+                            " bytes) bound as storage: more than maxStorageBufferRange (" +
+                            std::to_string(limit) + " bytes)");
         bufInfos.push_back({r.buffer, 0, std::min<VkDeviceSize>(r.size, limit)});
         w.pBufferInfo = &bufInfos.back();
       }

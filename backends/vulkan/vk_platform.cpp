@@ -256,6 +256,7 @@ void VulkanPlatform::pickPhysicalDevice() {
   info.timing = cpuTiming ? "cpu clock per pass (submit and wait)" : "gpu timestamps";
   info.platform = surface != VK_NULL_HANDLE ? "window" : "headless";
   info.maxColorAttachments = pick->props.limits.maxColorAttachments;
+  info.maxStorageBufferBytes = pick->props.limits.maxStorageBufferRange;
   info.fragmentShaderInterlock =
       hasDeviceExtension(physical, VK_EXT_FRAGMENT_SHADER_INTERLOCK_EXTENSION_NAME);
   // Multisampled render targets: counts both colour and depth attachments take.

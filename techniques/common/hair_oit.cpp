@@ -16,13 +16,18 @@ PipelineDesc transparentHairDesc(const Device& dev, const Pass& pass, const std:
   return d;
 }
 
-void HairOit::setupCommon(Device& dev, const GpuScene& scene, const RenderSettings& s,
-                          const HairShading& shading, const OitTargets& targets) {
+void CompositedOit::keepInputs(Device& dev, const GpuScene& scene, const RenderSettings& s,
+                               const HairShading& shading, const OitTargets& targets) {
   scene_ = &scene;
   shading_ = &shading;
   settings_ = s;
   targets_ = targets;
   composite_.setup(dev, s, shading.viewUbo(), targets, name());
+}
+
+void HairOit::setupCommon(Device& dev, const GpuScene& scene, const RenderSettings& s,
+                          const HairShading& shading, const OitTargets& targets) {
+  keepInputs(dev, scene, s, shading, targets);
   counts_ = dev.createBuffer(
       {name() + ".counts", "oit", BufferUsage::Storage, std::size_t(s.width) * s.height * 4});
   count_ = makeHairCountPipeline(dev, s, countPass(), kCountsBinding, name());

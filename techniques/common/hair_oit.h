@@ -21,15 +21,30 @@ PipelineDesc transparentHairDesc(const Device& dev, const Pass& pass, const std:
                                  const std::string& technique, const ShaderCode& vert,
                                  const RenderSettings& s);
 
-class HairOit : public OitTechnique {
+// A transparency technique that composites its own accumulation over the
+// opaque image: the inputs it keeps from setup() and its composite.
+class CompositedOit : public OitTechnique {
+ protected:
+  // Keeps the inputs and sets up the accumulation/composite.
+  void keepInputs(Device& dev, const GpuScene& scene, const RenderSettings& s,
+                  const HairShading& shading, const OitTargets& targets);
+
+  const GpuScene* scene_ = nullptr;
+  const HairShading* shading_ = nullptr;
+  RenderSettings settings_;
+  OitTargets targets_;
+  AccumComposite composite_;
+};
+
+class HairOit : public CompositedOit {
  public:
   static constexpr uint32_t kCountsBinding = SB_SLOT_OIT_COUNTS;
   bool needsPrepare() const override { return true; }  // the counting pass
   std::optional<DepthComplexity> depthComplexity() const override { return complexity_; }
 
  protected:
-  // Keeps the inputs, creates the per-pixel count buffer, the counting
-  // pipeline and the accumulation/composite.
+  // Keeps the inputs (keepInputs), creates the per-pixel count buffer and the
+  // counting pipeline.
   void setupCommon(Device& dev, const GpuScene& scene, const RenderSettings& s,
                    const HairShading& shading, const OitTargets& targets);
   // A hair pass with no colour target, depth-tested against the opaque depth
@@ -44,11 +59,6 @@ class HairOit : public OitTechnique {
   uint32_t hairVertices() const { return Geometry::strandVertexCount(*scene_, settings_); }
   uint32_t pixels() const { return settings_.width * settings_.height; }
 
-  const GpuScene* scene_ = nullptr;
-  const HairShading* shading_ = nullptr;
-  RenderSettings settings_;
-  OitTargets targets_;
-  AccumComposite composite_;
   DepthComplexity complexity_;
   Buffer counts_;
   Pipeline count_;

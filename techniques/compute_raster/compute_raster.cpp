@@ -56,11 +56,7 @@ ComputeRasterOit::Strand ComputeRasterOit::strand(const Options& o, float frameW
 
 void ComputeRasterOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
                              const HairShading& shading, const OitTargets& targets) {
-  scene_ = &scene;
-  shading_ = &shading;
-  settings_ = s;
-  targets_ = targets;
-  composite_.setup(dev, s, shading.viewUbo(), targets, name());
+  keepInputs(dev, scene, s, shading, targets);
   tilesX_ = (s.width + o_.tile - 1) / o_.tile;
   tilesY_ = (s.height + o_.tile - 1) / o_.tile;
 

@@ -25,15 +25,14 @@
 // that the hair's coverage stays what all strands gave.
 #pragma once
 
-#include "techniques/common/composite.h"
-#include "techniques/common/technique.h"
+#include "techniques/common/hair_oit.h"
 
 namespace sb {
 
 class OptionReader;
 class HairShading;
 
-class ComputeRasterOit : public OitTechnique {
+class ComputeRasterOit : public CompositedOit {
  public:
   struct Options {
     uint32_t tile = 8;              // pixels per tile side (8 or 16)
@@ -75,11 +74,6 @@ class ComputeRasterOit : public OitTechnique {
   uint32_t tiles() const { return tilesX_ * tilesY_; }
 
   Options o_;
-  const GpuScene* scene_ = nullptr;
-  const HairShading* shading_ = nullptr;
-  RenderSettings settings_;
-  OitTargets targets_;
-  AccumComposite composite_;
   uint32_t tilesX_ = 0, tilesY_ = 0;
   uint64_t pool_ = 0;
   Buffer params_, cursor_, layout_, fragments_, buckets_, ranges_, shaded_;
