@@ -237,11 +237,13 @@ Device::PipelineRec& Device::pipeline(Pipeline p, const std::string& where) {
 // binding, an update or a read first uses them: what only culled passes use is
 // never allocated, and allocations() counts exactly what was made.
 DriverObject* Device::created(BufferRec& r) {
-  if (!r.object) guardMaking(r.desc.name, r.desc.owner, r.desc.bytes);
-  if (!r.object)
+  if (!r.object) {
+    guardMaking(r.desc.name, r.desc.owner, r.desc.bytes);
+    checkStorageRange(r.desc);
     r.object =
         namingAllocation("making buffer '" + r.desc.name + "' (" + r.desc.owner + ")", r.desc.bytes,
                          [&] { return driver_->createBuffer(r.desc, nullptr); });
+  }
   return r.object.get();
 }
 
@@ -270,15 +272,10 @@ Buffer Device::createBuffer(const BufferDesc& given, const void* data) {
   desc.name = labelPrefix_ + given.name;
   const std::string where = quoted("createBuffer", desc.name);
   if (desc.bytes == 0) throw DeviceError(where + ": zero size");
-  // Refused before any work rather than bound in part (a shader would lose what lies beyond).
-  if (const std::size_t most = driver_->info().maxStorageBufferBytes;
-      desc.usage == BufferUsage::Storage && most > 0 && desc.bytes > most)
-    throw DeviceError(where + ": " + std::to_string(desc.bytes) +
-                      " bytes, more than this device binds as one storage buffer (" +
-                      std::to_string(most) + " bytes" +
-                      (given.owner.empty() ? "" : ", owner " + given.owner) +
-                      "); a smaller image, scene or samples= would fit");
-  if (data) guardMaking(desc.name, desc.owner, desc.bytes);
+  if (data) {
+    guardMaking(desc.name, desc.owner, desc.bytes);
+    checkStorageRange(desc);
+  }
   // Created now only when it has contents to take; otherwise when first used.
   auto rec = std::make_unique<BufferRec>(BufferRec{
       desc,
@@ -794,6 +791,21 @@ std::vector<ResourceBytes> Device::declared() const { return resources(false, {}
 
 void Device::guardMemory(const std::set<uint32_t>& ids, const std::string& what) const {
   if (memoryGuard_) memoryGuard_(resources(true, ids), what);
+  for (const uint32_t id : ids)
+    if (auto it = buffers_.find(id); it != buffers_.end()) checkStorageRange(it->second->desc);
+}
+
+// Refused before any work rather than bound in part (a shader would lose what
+// lies beyond). Checked after the memory guard: a run over the budget hears
+// that first, with every resource listed, since fitting it fixes both.
+void Device::checkStorageRange(const BufferDesc& desc) const {
+  const std::size_t most = driver_->info().maxStorageBufferBytes;
+  if (desc.usage != BufferUsage::Storage || most == 0 || desc.bytes <= most) return;
+  throw DeviceError(quoted("createBuffer", desc.name) + ": " + std::to_string(desc.bytes) +
+                    " bytes, more than this device binds as one storage buffer (" +
+                    std::to_string(most) + " bytes" +
+                    (desc.owner.empty() ? "" : ", owner " + desc.owner) +
+                    "); a smaller --size, map size=, scene or samples= would fit");
 }
 
 void Device::guardMaking(const std::string& name, const std::string& owner,

@@ -445,7 +445,8 @@ class Device {
       std::function<void(const std::vector<ResourceBytes>& planned, const std::string& what)>;
   void setMemoryGuard(MemoryGuard guard) { memoryGuard_ = std::move(guard); }
   // The guard's verdict on making the resources with these ids (the renderer
-  // asks it before a technique's preparation, which makes what it declared).
+  // asks it before a technique's preparation, which makes what it declared),
+  // then a refusal of any storage buffer among them over maxStorageBufferBytes.
   void guardMemory(const std::set<uint32_t>& ids, const std::string& what) const;
   // Handle ids grow with creation: the ids of the live buffers and textures
   // created since nextHandleId() returned `first`.
@@ -513,6 +514,7 @@ class Device {
   DriverObject* compiled(PipelineRec& p);
   MemoryGuard memoryGuard_;
   void guardMaking(const std::string& name, const std::string& owner, std::size_t bytes) const;
+  void checkStorageRange(const BufferDesc& desc) const;
 };
 
 struct DeviceOptions {

@@ -483,28 +483,44 @@ TEST_P(DeviceTest, LinesTopology) {
 }
 
 // Vulkan binds at most maxStorageBufferRange bytes of a storage buffer (128 MiB
-// on lavapipe): a larger one is refused when it is declared, before any work,
-// rather than bound in part (the exact reference's fragment pool at 512x512
-// once lost the strands drawn last that way). GL binds whole buffers.
-TEST_P(DeviceTest, StorageBufferOverTheDevicesRangeIsRefusedWhenDeclared) {
+// on lavapipe): a larger one is refused when it would be made or planned
+// (guardMemory), before any work, rather than bound in part (the exact
+// reference's fragment pool at 512x512 once lost the strands drawn last that
+// way). The refusal comes after the memory guard's, which lists every
+// resource. GL binds whole buffers.
+TEST_P(DeviceTest, StorageBufferOverTheDevicesRangeIsRefusedBeforeItIsMade) {
   const std::size_t most = dev_->info().maxStorageBufferBytes;
   if (GetParam() == "gl") {
     EXPECT_EQ(most, 0u);
     return;
   }
   ASSERT_GT(most, 0u);
-  try {
-    dev_->createBuffer({"fragments", "oit", BufferUsage::Storage, most + 4});
-    ADD_FAILURE() << "a storage buffer of " << most + 4 << " bytes was accepted";
-  } catch (const DeviceError& e) {
-    EXPECT_NE(std::string(e.what()).find("more than this device binds as one storage buffer"),
-              std::string::npos)
-        << e.what();
-  }
-  EXPECT_TRUE(dev_->declared().empty());
-  // At the limit it is taken (declared only: nothing is made until used).
+  auto expectRefused = [&](const std::function<void()>& use, const char* how) {
+    try {
+      use();
+      ADD_FAILURE() << how << ": a storage buffer of " << most + 4 << " bytes was accepted";
+    } catch (const DeviceError& e) {
+      EXPECT_NE(std::string(e.what()).find("more than this device binds as one storage buffer"),
+                std::string::npos)
+          << how << ": " << e.what();
+    }
+  };
+  const uint32_t first = dev_->nextHandleId();
+  const Buffer big = dev_->createBuffer({"fragments", "oit", BufferUsage::Storage, most + 4});
+  expectRefused([&] { dev_->guardMemory(dev_->resourceIdsFrom(first), "preparing oit"); },
+                "planned");
+  expectRefused([&] { dev_->readBuffer(big); }, "first used");
+  EXPECT_TRUE(dev_->allocations().empty());
+  // A memory guard that refuses speaks first.
+  dev_->setMemoryGuard([](const std::vector<ResourceBytes>&, const std::string&) {
+    throw OutOfMemoryError("over the budget");
+  });
+  EXPECT_THROW(dev_->guardMemory(dev_->resourceIdsFrom(first), "preparing oit"), OutOfMemoryError);
+  dev_->setMemoryGuard(nullptr);
+  // At the limit it is taken (planned only: making 128 MiB would spend time).
+  const uint32_t atLimit = dev_->nextHandleId();
   dev_->createBuffer({"fragments", "oit", BufferUsage::Storage, most});
-  EXPECT_EQ(dev_->declared().size(), 1u);
+  EXPECT_NO_THROW(dev_->guardMemory(dev_->resourceIdsFrom(atLimit), "preparing oit"));
 }
 
 TEST_P(DeviceTest, MemoryAccounting) {

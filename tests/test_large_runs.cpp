@@ -115,9 +115,18 @@ TEST(LargeRuns, ARunOverTheHostBudgetIsRefusedBeforeItsResourcesAreMade) {
         backend + " --out " + (dir / "big.png").string();
     const CliResult r = runCliLimited(2200000, run + " --size 4096x4096");
     EXPECT_EQ(r.status, 2) << backend << ": " << r.err;
-    EXPECT_NE(r.err.find("over the device's budget"), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find("address-space limit"), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find("Largest resources"), std::string::npos) << r.err;
+    if (backend == "vulkan") {
+      // lavapipe binds at most 128 MiB of a storage buffer: the 256 MiB
+      // accumulation buffer meets that limit before the budget (which only
+      // the host's image read back passes), in the preparation.
+      EXPECT_NE(r.err.find("'abuffer.accum'): 268435456 bytes, more than this device binds"),
+                std::string::npos)
+          << r.err;
+    } else {
+      EXPECT_NE(r.err.find("over the device's budget"), std::string::npos) << r.err;
+      EXPECT_NE(r.err.find("address-space limit"), std::string::npos) << r.err;
+      EXPECT_NE(r.err.find("Largest resources"), std::string::npos) << r.err;
+    }
     EXPECT_NE(r.err.find("a smaller --size"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(dir / "big.png"));
     // At 256x256 with a 256 light map it fits.
