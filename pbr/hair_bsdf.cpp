@@ -231,48 +231,38 @@ HairBsdf::Outgoing HairBsdf::outgoing(glm::dvec3 wo) const {
   return o;
 }
 
-glm::dvec3 HairBsdf::sumLobes(const Outgoing& o, glm::dvec3 wi) const {
+template <class Weight>
+Weight HairBsdf::weightedLobes(const Outgoing& o, glm::dvec3 wi,
+                               const std::array<Weight, kHairPMax + 1>& weight) const {
   const double sinThetaI = std::clamp(wi.x, -1.0, 1.0);
   const double cosThetaI = safeSqrt(1.0 - sinThetaI * sinThetaI);
   const double phi = std::atan2(wi.z, wi.y) - o.phiO;
-  glm::dvec3 sum(0.0);
+  Weight sum(0.0);
   for (int p = 0; p < kHairPMax; ++p)
-    sum += hair::Mp(cosThetaI, o.cosThetaOp[p], sinThetaI, o.sinThetaOp[p], v_[p]) * o.ap[p] *
+    sum += hair::Mp(cosThetaI, o.cosThetaOp[p], sinThetaI, o.sinThetaOp[p], v_[p]) * weight[p] *
            hair::Np(phi, p, s_, gammaO_, o.gammaT);
   // The higher orders: spread uniformly in azimuth.
   sum += hair::Mp(cosThetaI, o.cosThetaOp[kHairPMax], sinThetaI, o.sinThetaOp[kHairPMax],
                   v_[kHairPMax]) *
-         o.ap[kHairPMax] / (2.0 * kPi);
+         weight[kHairPMax] / (2.0 * kPi);
   return sum;
 }
 
-double HairBsdf::pdfLobes(const Outgoing& o, glm::dvec3 wi) const {
-  // sumLobes with each lobe's Ap replaced by the probability of drawing it.
-  const double sinThetaI = std::clamp(wi.x, -1.0, 1.0);
-  const double cosThetaI = safeSqrt(1.0 - sinThetaI * sinThetaI);
-  const double phi = std::atan2(wi.z, wi.y) - o.phiO;
-  double pdf = 0.0;
-  for (int p = 0; p < kHairPMax; ++p)
-    pdf += hair::Mp(cosThetaI, o.cosThetaOp[p], sinThetaI, o.sinThetaOp[p], v_[p]) * o.apPdf[p] *
-           hair::Np(phi, p, s_, gammaO_, o.gammaT);
-  pdf += hair::Mp(cosThetaI, o.cosThetaOp[kHairPMax], sinThetaI, o.sinThetaOp[kHairPMax],
-                  v_[kHairPMax]) *
-         o.apPdf[kHairPMax] / (2.0 * kPi);
-  return pdf;
-}
-
 glm::vec3 HairBsdf::fCos(glm::vec3 wo, glm::vec3 wi) const {
-  return glm::vec3(sumLobes(outgoing(glm::dvec3(wo)), glm::dvec3(wi)));
+  const Outgoing o = outgoing(glm::dvec3(wo));
+  return glm::vec3(weightedLobes(o, glm::dvec3(wi), o.ap));
 }
 
 glm::vec3 HairBsdf::f(glm::vec3 wo, glm::vec3 wi) const {
-  const glm::dvec3 sum = sumLobes(outgoing(glm::dvec3(wo)), glm::dvec3(wi));
+  const Outgoing o = outgoing(glm::dvec3(wo));
+  const glm::dvec3 sum = weightedLobes(o, glm::dvec3(wi), o.ap);
   const double cosN = std::abs(double(wi.z));
   return glm::vec3(cosN > 0 ? sum / cosN : sum);
 }
 
 float HairBsdf::pdf(glm::vec3 wo, glm::vec3 wi) const {
-  return float(pdfLobes(outgoing(glm::dvec3(wo)), glm::dvec3(wi)));
+  const Outgoing o = outgoing(glm::dvec3(wo));
+  return float(weightedLobes(o, glm::dvec3(wi), o.apPdf));
 }
 
 HairBsdf::Sample HairBsdf::sample(glm::vec3 wo, glm::vec2 u0, glm::vec2 u1) const {
@@ -309,8 +299,8 @@ HairBsdf::Sample HairBsdf::sample(glm::vec3 wo, glm::vec2 u0, glm::vec2 u1) cons
   const glm::dvec3 wi(sinThetaI, cosThetaI * std::cos(phiI), cosThetaI * std::sin(phiI));
   out.wi = glm::vec3(wi);
 
-  const glm::dvec3 sum = sumLobes(o, wi);
-  const double pdf = pdfLobes(o, wi);
+  const glm::dvec3 sum = weightedLobes(o, wi, o.ap);
+  const double pdf = weightedLobes(o, wi, o.apPdf);
   const double cosN = std::abs(wi.z);
   out.f = glm::vec3(cosN > 0 ? sum / cosN : sum);
   out.pdf = float(pdf);

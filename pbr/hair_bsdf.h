@@ -103,8 +103,11 @@ class HairBsdf {
   // sin and cos of theta_o rotated by lobe p's scale tilt.
   void tiltedThetaO(int p, double sinThetaO, double cosThetaO, double& sinOut,
                     double& cosOut) const;
-  glm::dvec3 sumLobes(const Outgoing& o, glm::dvec3 wi) const;
-  double pdfLobes(const Outgoing& o, glm::dvec3 wi) const;
+  // The lobes Mp Np summed with a weight each: their Ap (the BSDF) or the
+  // probability of drawing them (the pdf).
+  template <class Weight>
+  Weight weightedLobes(const Outgoing& o, glm::dvec3 wi,
+                       const std::array<Weight, kHairPMax + 1>& weight) const;
 
   HairParams params_;
   double gammaO_ = 0;

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <numbers>
@@ -547,27 +548,18 @@ TEST(HairBsdf, ScalesShiftTheReflectionCone) {
 }
 
 TEST(HairBsdf, BadParametersAreRefused) {
-  auto bad = [](HairParams p, const char* needle) {
+  // Each parameter out of range in turn, the others at their defaults.
+  auto bad = [](const std::function<void(HairParams&)>& set, const char* needle) {
+    HairParams p;
+    set(p);
     sbtest::expectInputError([&] { HairBsdf b(p); }, {needle});
   };
-  HairParams p;
-  p.h = 1.5f;
-  bad(p, "h 1.5");
-  p = HairParams();
-  p.eta = 0.9f;
-  bad(p, "eta");
-  p = HairParams();
-  p.betaM = 0.0f;
-  bad(p, "beta_m");
-  p = HairParams();
-  p.betaN = 1.5f;
-  bad(p, "beta_n");
-  p = HairParams();
-  p.sigmaA.g = -1.0f;
-  bad(p, "sigma_a");
-  p = HairParams();
-  p.alphaDeg = std::nanf("");
-  bad(p, "alpha");
+  bad([](HairParams& p) { p.h = 1.5f; }, "h 1.5");
+  bad([](HairParams& p) { p.eta = 0.9f; }, "eta");
+  bad([](HairParams& p) { p.betaM = 0.0f; }, "beta_m");
+  bad([](HairParams& p) { p.betaN = 1.5f; }, "beta_n");
+  bad([](HairParams& p) { p.sigmaA.g = -1.0f; }, "sigma_a");
+  bad([](HairParams& p) { p.alphaDeg = std::nanf(""); }, "alpha");
   sbtest::expectInputError(
       [] { sb::pbr::sigmaAFromReflectance(glm::vec3(0.5f, 0.0f, 0.5f), 0.3f); }, {"color 0"});
 }
