@@ -100,7 +100,7 @@ build_root() {
 
 copy_tree() {
   mkdir -p "$root/root/strandbench"
-  git archive --format=tar HEAD | tar -x -C "$root/root/strandbench"
+  git archive --format=tar "$commit" | tar -x -C "$root/root/strandbench"
   cp /etc/resolv.conf "$root/etc/resolv.conf" 2>/dev/null || true
 }
 
@@ -127,7 +127,9 @@ elif [ -e "$root" ] && [ -n "$(ls -A "$root" 2>/dev/null)" ]; then
   exit 2
 fi
 root=$(realpath -m "$root")
-echo "fresh-machine-check: commit $(git rev-parse --short HEAD) in $root"
+# The commit tested, fixed now: HEAD may move while the check runs (about 25 minutes).
+commit=$(git rev-parse HEAD)
+echo "fresh-machine-check: commit ${commit:0:7} in $root"
 [ -z "$(git status --porcelain --untracked-files=no)" ] ||
   echo "fresh-machine-check: note: uncommitted changes are not part of the check (git archive HEAD)"
 
@@ -147,7 +149,7 @@ write_readme_block() {
   local block
   block=$(
     cat <<TXT
-Measured by \`sudo scripts/fresh-machine-check.sh\` on commit $(git rev-parse --short HEAD), $(date -u '+%Y-%m-%d %H:%M') UTC,
+Measured by \`sudo scripts/fresh-machine-check.sh\` on commit ${commit:0:7}, $(date -u '+%Y-%m-%d %H:%M') UTC,
 $(nproc) cores, load average $load0 before it started: the main command took
 ${took["README main command (scripts/main-job.sh)"]} s (report written), the test command
 ${took["README test command (scripts/test.sh)"]} s (ctest: "$ctest_line"; $skips; the fuzzers
