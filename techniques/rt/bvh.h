@@ -83,8 +83,8 @@ inline Bvh buildBvh(const std::vector<Segment>& segs, uint32_t leafSize = 4) {
   const uint32_t n = uint32_t(segs.size());
   bvh.order.resize(n);
   std::iota(bvh.order.begin(), bvh.order.end(), 0u);
-  if (n == 0) {  // one empty leaf whose box no ray enters
-    bvh.nodes.push_back({glm::vec3(1.0f), 0, glm::vec3(-1.0f), 0});
+  if (n == 0) {  // one leaf of packSegments' zero-length segment, which no ray hits
+    bvh.nodes.push_back({glm::vec3(0.0f), 0, glm::vec3(0.0f), 1});
     bvh.depth = 1;
     return bvh;
   }
@@ -115,7 +115,8 @@ inline uint32_t countHits(const Bvh& bvh, const std::vector<Segment>& segs, glm:
       stack.push_back(index + 1);
       continue;
     }
-    for (uint32_t i = n.leftOrFirst; i < n.leftOrFirst + n.count; ++i) {
+    const uint32_t end = std::min<uint32_t>(n.leftOrFirst + n.count, uint32_t(bvh.order.size()));
+    for (uint32_t i = n.leftOrFirst; i < end; ++i) {
       const Segment& s = segs[bvh.order[i]];
       const glm::vec4 h = glsl::rtSegmentHit(o, d, s.a, s.b, s.radius);
       if (h.x > 0.0f && h.y > tMin && h.y < tMax) ++hits;
