@@ -110,10 +110,16 @@ void RayTracedShadow::addPasses(FrameGraph& graph, Device& dev) {
 
 ShadowLookup RayTracedShadow::lookup() const {
   ShadowLookup l{"techniques/rt/lookup.glsl"};
+  // The status buffer is written by the lookup (an atomic count of capped
+  // rays) but declared read: a side output that must not keep a pass alive.
+  // As written storage, every pass that shades through the lookup became a
+  // writer the graph kept (a culled transparency technique's passes in a
+  // visibility-only run, tests/test_cull_build.cpp). So the counter sums the
+  // rays of the passes that ran; rt.clear zeroes it before them.
   l.inputs.uniform(kParams, params_)
       .readStorage(kNodes, nodes_)
       .readStorage(kSegments, segments_)
-      .storage(kStatus, status_);
+      .readStorage(kStatus, status_);
   opaque_.addTo(l);
   return l;
 }
