@@ -120,6 +120,7 @@ ShadowLookup RayTracedShadow::lookup() const {
       .readStorage(kNodes, nodes_)
       .readStorage(kSegments, segments_)
       .readStorage(kStatus, status_);
+  if (opt_.maxHits > 0) l.defines.defines.push_back({"SB_RT_COUNT_CAP", "1"});
   opaque_.addTo(l);
   return l;
 }
