@@ -92,54 +92,59 @@ bool contains(const rt::Node& outer, vec3 lo, vec3 hi) {
 }
 
 TEST(RtBvh, EverySegmentIsReachableOnceAndBoundsContainTheirChildren) {
-  for (const uint32_t n : {0u, 1u, 5u, 1000u}) {
-    const std::vector<rt::Segment> segs = randomSegments(n, 7 + n);
-    const rt::Bvh bvh = rt::buildBvh(segs);
-    if (n == 0) {  // one leaf of one zero-length segment (a buffer may not be empty)
-      ASSERT_EQ(bvh.nodes.size(), 1u);
-      EXPECT_EQ(bvh.nodes[0].count, 1u);
-      EXPECT_EQ(rt::packSegments(bvh, segs), std::vector<glm::vec4>(2, glm::vec4(0.0f)));
-      EXPECT_EQ(glsl::rtSegmentHit(vec3(0, 0, -1), vec3(0, 0, 1), vec3(0), vec3(0), 0.0f).x, 0.0f);
-      EXPECT_EQ(rt::countHits(bvh, segs, vec3(0), vec3(0, 0, 1), 0.0f, 1e30f), 0u);
-      continue;
-    }
-    std::multiset<uint32_t> reached;
-    std::vector<uint32_t> stack{0};
-    uint32_t visited = 0;
-    while (!stack.empty()) {
-      const uint32_t i = stack.back();
-      stack.pop_back();
-      ASSERT_LT(i, bvh.nodes.size());
-      ++visited;
-      const rt::Node& node = bvh.nodes[i];
-      if (node.count == 0) {
-        ASSERT_LT(node.leftOrFirst, bvh.nodes.size());
-        for (const uint32_t c : {i + 1, node.leftOrFirst}) {
-          EXPECT_TRUE(contains(node, bvh.nodes[c].lo, bvh.nodes[c].hi)) << "node " << i;
-          stack.push_back(c);
-        }
+  for (const bool sah : {true, false})
+    for (const uint32_t n : {0u, 1u, 5u, 1000u}) {
+      SCOPED_TRACE(sah ? "sah" : "median");
+      const std::vector<rt::Segment> segs = randomSegments(n, 7 + n);
+      const rt::Bvh bvh = rt::buildBvh(segs, 4, sah);
+      if (n == 0) {  // one leaf of one zero-length segment (a buffer may not be empty)
+        ASSERT_EQ(bvh.nodes.size(), 1u);
+        EXPECT_EQ(bvh.nodes[0].count, 1u);
+        EXPECT_EQ(rt::packSegments(bvh, segs), std::vector<glm::vec4>(2, glm::vec4(0.0f)));
+        EXPECT_EQ(glsl::rtSegmentHit(vec3(0, 0, -1), vec3(0, 0, 1), vec3(0), vec3(0), 0.0f).x,
+                  0.0f);
+        EXPECT_EQ(rt::countHits(bvh, segs, vec3(0), vec3(0, 0, 1), 0.0f, 1e30f), 0u);
         continue;
       }
-      for (uint32_t k = node.leftOrFirst; k < node.leftOrFirst + node.count; ++k) {
-        vec3 lo, hi;
-        rt::segmentBounds(segs[bvh.order[k]], lo, hi);
-        EXPECT_TRUE(contains(node, lo, hi)) << "leaf " << i;
-        reached.insert(bvh.order[k]);
+      std::multiset<uint32_t> reached;
+      std::vector<uint32_t> stack{0};
+      uint32_t visited = 0;
+      while (!stack.empty()) {
+        const uint32_t i = stack.back();
+        stack.pop_back();
+        ASSERT_LT(i, bvh.nodes.size());
+        ++visited;
+        const rt::Node& node = bvh.nodes[i];
+        if (node.count == 0) {
+          ASSERT_LT(node.leftOrFirst, bvh.nodes.size());
+          for (const uint32_t c : {i + 1, node.leftOrFirst}) {
+            EXPECT_TRUE(contains(node, bvh.nodes[c].lo, bvh.nodes[c].hi)) << "node " << i;
+            stack.push_back(c);
+          }
+          continue;
+        }
+        for (uint32_t k = node.leftOrFirst; k < node.leftOrFirst + node.count; ++k) {
+          vec3 lo, hi;
+          rt::segmentBounds(segs[bvh.order[k]], lo, hi);
+          EXPECT_TRUE(contains(node, lo, hi)) << "leaf " << i;
+          reached.insert(bvh.order[k]);
+        }
+      }
+      EXPECT_EQ(visited, bvh.nodes.size()) << n;  // no node unreachable
+      EXPECT_EQ(reached.size(), n);
+      for (uint32_t s = 0; s < n; ++s) EXPECT_EQ(reached.count(s), 1u) << s;
+      // The shader's stack (48) is far from full: median splits are balanced,
+      // SAH ones turn to the median below rt::kSahLevels.
+      if (n) {
+        const uint32_t balanced = 2 + uint32_t(std::ceil(std::log2(double(n))));
+        EXPECT_LE(bvh.depth, sah ? rt::kSahLevels + balanced : balanced);
       }
     }
-    EXPECT_EQ(visited, bvh.nodes.size()) << n;  // no node unreachable
-    EXPECT_EQ(reached.size(), n);
-    for (uint32_t s = 0; s < n; ++s) EXPECT_EQ(reached.count(s), 1u) << s;
-    // Balanced: the shader's stack (48) is far from full.
-    if (n) {
-      EXPECT_LE(bvh.depth, 2 + uint32_t(std::ceil(std::log2(double(n)))));
-    }
-  }
 }
 
 TEST(RtBvh, TraversalFindsWhatBruteForceFinds) {
   const std::vector<rt::Segment> segs = randomSegments(2000, 3);
-  const rt::Bvh bvh = rt::buildBvh(segs);
+  const rt::Bvh bvh = rt::buildBvh(segs), median = rt::buildBvh(segs, 4, false);
   std::mt19937 rng(11);
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
   uint64_t total = 0;
@@ -152,6 +157,7 @@ TEST(RtBvh, TraversalFindsWhatBruteForceFinds) {
       if (h.x > 0.0f && h.y > 0.0f && h.y < 5.0f) ++brute;
     }
     EXPECT_EQ(rt::countHits(bvh, segs, o, d, 0.0f, 5.0f), brute) << i;
+    EXPECT_EQ(rt::countHits(median, segs, o, d, 0.0f, 5.0f), brute) << i;
     total += brute;
   }
   EXPECT_GT(total, 200u);  // the rays do cross segments
