@@ -50,6 +50,7 @@ RayTracedShadow::Options RayTracedShadow::readOptions(const OptionReader& o) {
   opt.bias = static_cast<float>(o.number("bias"));
   opt.rays = static_cast<uint32_t>(o.integer("rays"));
   opt.maxHits = static_cast<uint32_t>(o.integer("max_hits"));
+  opt.sah = o.choice("bvh") == "sah";
   const std::string tier = o.choice("tier");
   opt.tier = tier == "software"    ? Tier::Software
              : tier == "ray_query" ? Tier::RayQuery
@@ -73,7 +74,7 @@ void RayTracedShadow::setup(Device& dev, const GpuScene& scene, const RenderSett
 
   const auto start = std::chrono::steady_clock::now();
   const std::vector<rt::Segment> segs = strandSegments(dev, scene, view.viewProj, perW, texels);
-  const rt::Bvh bvh = rt::buildBvh(segs);
+  const rt::Bvh bvh = rt::buildBvh(segs, 4, opt_.sah);
   const std::vector<glm::vec4> packed = rt::packSegments(bvh, segs);
   buildMs_ =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -25,6 +25,7 @@ class RayTracedShadow : public LightMapShadow {
     uint32_t rays = 1;
     uint32_t maxHits = 0;
     Tier tier = Tier::Auto;
+    bool sah = true;  // BVH splits: binned SAH, or at the median
   };
   static Options readOptions(const OptionReader& o);  // the registry's options
   explicit RayTracedShadow(const Options& o) : opt_(o) {}

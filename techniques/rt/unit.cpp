@@ -20,6 +20,9 @@ SB_TECHNIQUE(
                  opt::integer("max_hits", 0, 0, 1000000,
                               "stop a ray after this many strands (0: no cap); counted in "
                               "rt.max_hits_reached, 0..1000000"),
+                 opt::choice("bvh", "sah", {"sah", "median"},
+                             "BVH splits: sah (binned surface area heuristic) | median (of the "
+                             "longest axis)"),
                  opt::choice("tier", "auto", {"auto", "software", "ray_query"},
                              "auto | software (BVH in shader code) | ray_query (not built yet: "
                              "refused); auto is software")},
