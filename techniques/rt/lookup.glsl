@@ -15,7 +15,8 @@ layout(std430, binding = SB_SLOT_RT_SEGMENTS) readonly buffer RtSegments { vec4 
 // x: rays that reached max_hits (the counter rt.max_hits_reached).
 layout(std430, binding = SB_SLOT_RT_STATUS) buffer RtStatus { uint rtCapped; };
 
-// Enough for a median-split tree of 2^40 leaves (bvh.h keeps it balanced).
+// Enough for the BVH bvh.h builds: at most 24 SAH levels, then balanced median
+// splits (depth <= 24 + log2(segments) + 2).
 const int kRtStack = 48;
 
 // Transmittance along o + t d, t in (0, tMax), over segments whose axis point
