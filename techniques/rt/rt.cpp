@@ -1,0 +1,139 @@
+#include "techniques/rt/rt.h"
+
+#include <chrono>
+#include <cstring>
+
+#include "techniques/rt/bvh.h"
+#include "techniques/rt/slots.h"
+#include "techniques/rt/uniforms.h"
+
+namespace sb {
+
+namespace {
+constexpr uint32_t kParams = SB_SLOT_RT_PARAMS, kNodes = SB_SLOT_RT_NODES,
+                   kSegments = SB_SLOT_RT_SEGMENTS, kStatus = SB_SLOT_RT_STATUS;
+
+template <class T>
+std::vector<T> readAs(Device& dev, Buffer b) {
+  const std::vector<uint8_t> bytes = dev.readBuffer(b);
+  std::vector<T> v(bytes.size() / sizeof(T));
+  if (!v.empty()) std::memcpy(v.data(), bytes.data(), v.size() * sizeof(T));
+  return v;
+}
+
+// The scene's segments, each as wide as the light map of `size` texels draws
+// it: `texels` wide at the world size of one texel at its midpoint.
+std::vector<rt::Segment> strandSegments(Device& dev, const GpuScene& scene, const glm::mat4& vp,
+                                        float worldPerTexelPerW, float texels) {
+  std::vector<rt::Segment> segs;
+  if (!scene.hasHair()) return segs;
+  const auto points = readAs<glm::vec4>(dev, scene.points);
+  const auto firsts = readAs<uint32_t>(dev, scene.segments);
+  segs.reserve(scene.segmentCount);
+  for (uint32_t i = 0; i < scene.segmentCount && i < firsts.size(); ++i) {
+    const uint32_t f = firsts[i];
+    if (f + 1 >= points.size()) continue;
+    rt::Segment s;
+    s.a = glm::vec3(points[f]);
+    s.b = glm::vec3(points[f + 1]);
+    const float w = (vp * glm::vec4(0.5f * (s.a + s.b), 1.0f)).w;
+    s.radius = 0.5f * texels * worldPerTexelPerW * std::abs(w);
+    segs.push_back(s);
+  }
+  return segs;
+}
+}  // namespace
+
+RayTracedShadow::Options RayTracedShadow::readOptions(const OptionReader& o) {
+  Options opt;
+  opt.size = static_cast<uint32_t>(o.integer("size"));
+  opt.bias = static_cast<float>(o.number("bias"));
+  opt.rays = static_cast<uint32_t>(o.integer("rays"));
+  opt.maxHits = static_cast<uint32_t>(o.integer("max_hits"));
+  opt.sah = o.choice("bvh") == "sah";
+  const std::string tier = o.choice("tier");
+  opt.tier = tier == "software"    ? Tier::Software
+             : tier == "ray_query" ? Tier::RayQuery
+                                   : Tier::Auto;
+  return opt;
+}
+
+void RayTracedShadow::setup(Device& dev, const GpuScene& scene, const RenderSettings& s) {
+  // Phase 1 has the software tier only: auto picks it on every device.
+  if (opt_.tier == Tier::RayQuery)
+    throw InputError(dev.info().rayQuery
+                         ? "shadow technique 'rt': tier=ray_query is not built yet (use "
+                           "tier=software or auto)"
+                         : "shadow technique 'rt': tier=ray_query: this device offers no "
+                           "VK_KHR_ray_query (use tier=software or auto)");
+  const ViewUniforms view = setupLight(dev, scene, s, opt_.size);
+  const glm::mat4 proj = s.light.projection(), lightV = s.light.view();
+  // One texel is 2 / size of the NDC square: 2 w / (size P00) world units at clip w.
+  const float perW = 2.0f / (float(opt_.size) * proj[0][0]);
+  const float texels = s.primitive == Primitive::Ribbons ? s.ribbonWidth : 1.0f;
+
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<rt::Segment> segs = strandSegments(dev, scene, view.viewProj, perW, texels);
+  const rt::Bvh bvh = rt::buildBvh(segs, 4, opt_.sah);
+  const std::vector<glm::vec4> packed = rt::packSegments(bvh, segs);
+  buildMs_ =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  nodeCount_ = uint32_t(bvh.nodes.size());
+  depth_ = bvh.depth;
+  segmentCount_ = uint32_t(segs.size());
+
+  RtParams p{};
+  p.rtViewProj = view.viewProj;
+  p.rtParams = glm::vec4(opt_.bias, float(opt_.size), scene.shadowAlpha, float(opt_.rays));
+  const bool point = s.light.type == LightType::Point;
+  p.rtLight = point ? glm::vec4(s.light.position, 1.0f)
+                    : glm::vec4(-glm::normalize(s.light.direction), 0.0f);
+  // The light view's right and up axes: rows 0 and 1 of its rotation.
+  p.rtAxisU = glm::vec4(lightV[0][0], lightV[1][0], lightV[2][0], float(opt_.maxHits));
+  p.rtAxisV = glm::vec4(lightV[0][1], lightV[1][1], lightV[2][1], perW);
+  params_ = dev.createBuffer({"rt.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
+  nodes_ = dev.createBuffer(
+      {"rt.bvh_nodes", "shadow", BufferUsage::Storage, bvh.nodes.size() * sizeof(rt::Node)},
+      bvh.nodes.data());
+  segments_ = dev.createBuffer(
+      {"rt.segments", "shadow", BufferUsage::Storage, packed.size() * sizeof(glm::vec4)},
+      packed.data());
+  status_ = dev.createBuffer({"rt.status", "shadow", BufferUsage::Storage, 16});
+}
+
+// Clears the capped-ray count before the shading passes add to it.
+Pass RayTracedShadow::clearPass() const { return Pass("rt.clear").storage(kStatus, status_); }
+
+void RayTracedShadow::addPasses(FrameGraph& graph, Device& dev) {
+  opaque_.addPass(graph, dev);
+  graph.add(clearPass(), [this, &dev] { dev.fillBuffer(status_, 0); });
+}
+
+ShadowLookup RayTracedShadow::lookup() const {
+  ShadowLookup l{"techniques/rt/lookup.glsl"};
+  // The status buffer is written by the lookup (an atomic count of capped
+  // rays) but declared read: a side output that must not keep a pass alive.
+  // As written storage, every pass that shades through the lookup became a
+  // writer the graph kept (a culled transparency technique's passes in a
+  // visibility-only run, tests/test_cull_build.cpp). So the counter sums the
+  // rays of the passes that ran; rt.clear zeroes it before them.
+  l.inputs.uniform(kParams, params_)
+      .readStorage(kNodes, nodes_)
+      .readStorage(kSegments, segments_)
+      .readStorage(kStatus, status_);
+  if (opt_.maxHits > 0) l.defines.defines.push_back({"SB_RT_COUNT_CAP", "1"});
+  opaque_.addTo(l);
+  return l;
+}
+
+std::vector<Counter> RayTracedShadow::counters(Device& dev) {
+  const auto status = readAs<uint32_t>(dev, status_);
+  return {{"rt.bvh_build_ms", buildMs_},
+          {"rt.bvh_nodes", double(nodeCount_)},
+          {"rt.bvh_depth", double(depth_)},
+          {"rt.segments", double(segmentCount_)},
+          {"rt.max_hits_reached", status.empty() ? 0.0 : double(status[0])},
+          {"rt.tier_ray_query", 0.0}};
+}
+
+}  // namespace sb

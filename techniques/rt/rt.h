@@ -1,0 +1,47 @@
+#pragma once
+
+#include "scenes/options.h"
+#include "techniques/common/opaque_shadow.h"
+#include "techniques/common/technique.h"
+
+namespace sb {
+
+// Ray-traced strand shadows (issue 34, software tier): every strand segment is
+// a capsule's cylinder of radius r (rt_math.glsl says how a ray hits it), a
+// BVH over the segments is built on the CPU at setup (techniques/rt/bvh.h) and
+// walked in the lookup by rays from the shaded point to the light.
+// The width: a strand is as wide as the light map draws it, one texel for
+// lines and ribbon_width texels for ribbons of a map of `size` texels, so
+// r = width / 2 texels, in world units at the segment's midpoint (constant
+// for a directional light). That is the width the exact reference and the
+// anti-aliased reference give strands in shadow, so the three judge one
+// geometry. Opacity: the scene's shadow_alpha per strand crossed, as exact.
+class RayTracedShadow : public LightMapShadow {
+ public:
+  enum class Tier { Auto, Software, RayQuery };
+  struct Options {
+    uint32_t size = 512;
+    float bias = 0.002f;
+    uint32_t rays = 1;
+    uint32_t maxHits = 0;
+    Tier tier = Tier::Auto;
+    bool sah = true;  // BVH splits: binned SAH, or at the median
+  };
+  static Options readOptions(const OptionReader& o);  // the registry's options
+  explicit RayTracedShadow(const Options& o) : opt_(o) {}
+  std::string name() const override { return "rt"; }
+  void setup(Device& dev, const GpuScene& scene, const RenderSettings& s) override;
+  void addPasses(FrameGraph& graph, Device& dev) override;
+  ShadowLookup lookup() const override;
+  std::vector<Counter> counters(Device& dev) override;
+
+ private:
+  Pass clearPass() const;
+
+  Options opt_;
+  Buffer params_, nodes_, segments_, status_;
+  double buildMs_ = 0;
+  uint32_t nodeCount_ = 0, depth_ = 0, segmentCount_ = 0;
+};
+
+}  // namespace sb

@@ -1,0 +1,13 @@
+// rt: parameters, BVH nodes, segments (in BVH order), status (rays capped)
+// Its own binding names, for its C++ (#include "techniques/rt/slots.h") and
+// its GLSL (#include "slots.h"); the ranges and the shared names are in
+// techniques/common/slots.h. Plain #defines, read by both languages.
+#ifndef SB_RT_SLOTS_H
+#define SB_RT_SLOTS_H
+
+#define SB_SLOT_RT_PARAMS 8
+#define SB_SLOT_RT_NODES 9
+#define SB_SLOT_RT_SEGMENTS 10
+#define SB_SLOT_RT_STATUS 11
+
+#endif  // SB_RT_SLOTS_H

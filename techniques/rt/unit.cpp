@@ -1,0 +1,32 @@
+// --shadow rt: ray-traced strand shadows (issue 34, phase 1: the software tier).
+#include "techniques/common/unit.h"
+
+#include "techniques/rt/rt.h"
+
+SB_TECHNIQUE(
+    {.name = "rt",
+     .family = Family::Shadow,
+     .folder = "rt",
+     .paper = "",
+     .help = "ray-traced shadows: rays from the point to the light through a BVH of strand "
+             "segments (capsule cylinders as wide as the light map draws them), "
+             "(1-shadow_alpha) per strand crossed; software tier (BVH walked in the shader)",
+     .options = {opt::mapSize("the light texel the strand width and the rays' jitter are "
+                              "measured in (and the opaque mesh's map), 1..16384"),
+                 opt::bias(),
+                 opt::integer("rays", 1, 1, 256,
+                              "rays per point, jittered over the light texel at the point "
+                              "(1: the point itself), 1..256"),
+                 opt::integer("max_hits", 0, 0, 1000000,
+                              "stop a ray after this many strands (0: no cap); counted in "
+                              "rt.max_hits_reached, 0..1000000"),
+                 opt::choice("bvh", "sah", {"sah", "median"},
+                             "BVH splits: sah (binned surface area heuristic) | median (of the "
+                             "longest axis)"),
+                 opt::choice("tier", "auto", {"auto", "software", "ray_query"},
+                             "auto | software (BVH in shader code) | ray_query (not built yet: "
+                             "refused); auto is software")},
+     .stepped = SteppedOption{"rays", true, 1, 256},
+     .makeShadow = [](const OptionReader& o) {
+       return std::make_unique<RayTracedShadow>(RayTracedShadow::readOptions(o));
+     }});
