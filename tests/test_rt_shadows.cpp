@@ -1,4 +1,4 @@
-// Ray-traced strand shadows (--shadow rt, issue 34 phase 1, software tier).
+// Ray-traced strand shadows (--shadow rt, the software tier).
 // On the CPU: the BVH (techniques/rt/bvh.h) and the ray-segment test shared
 // with the GLSL (techniques/rt/rt_math.glsl). On both backends: GL and Vulkan
 // agree; with one ray per point and no cap rt matches the exact reference on a

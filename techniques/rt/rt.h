@@ -6,7 +6,7 @@
 
 namespace sb {
 
-// Ray-traced strand shadows (issue 34, software tier): every strand segment is
+// Ray-traced strand shadows (the software tier): every strand segment is
 // a capsule's cylinder of radius r (rt_math.glsl says how a ray hits it), a
 // BVH over the segments is built on the CPU at setup (techniques/rt/bvh.h) and
 // walked in the lookup by rays from the shaded point to the light.

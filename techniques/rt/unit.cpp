@@ -1,4 +1,4 @@
-// --shadow rt: ray-traced strand shadows (issue 34, phase 1: the software tier).
+// --shadow rt: ray-traced strand shadows (the software tier).
 #include "techniques/common/unit.h"
 
 #include "techniques/rt/rt.h"
