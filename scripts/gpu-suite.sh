@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
-# The quick suite and the paper suites on a GPU machine, GL through EGL and Vulkan with GPU
+# The quick, paper and ray-tracing suites on a GPU machine, GL through EGL and Vulkan with GPU
 # timestamps, into one folder: OUT/<suite>/ (results.json, report.md, report.html per suite)
 # and OUT/summary.md (date, GPU, driver, devices and timing method per backend, time per suite).
 # Usage: scripts/gpu-suite.sh [--out DIR] [--small] [--suites "quick paper-dom ..."]
 #   --out DIR   the folder (default out/gpu-<date>); a stopped run continues (--resume)
 #   --small     the quick suite only (minutes on CPU drivers; proves the script works)
-#   --suites S  the suites to run (names in suites/, default: quick and every paper-*)
+#   --suites S  the suites to run (names in suites/, default: quick, every paper-* and
+#               ray-tracing)
 # On a machine without an NVIDIA GPU it runs on whatever devices there are (Mesa's llvmpipe
 # and lavapipe here) and says so in the summary. Timing: GPU timestamps on both APIs, no
 # finish between passes (SB_VULKAN_GPU_TIMING=1, SB_GL_GPU_TIMING=1: Vulkan timestamps, GL
@@ -14,13 +15,13 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="out/gpu-$(date -u +%Y%m%d)"
-suites="quick paper-dom paper-osm paper-occupancy paper-thesis"
+suites="quick paper-dom paper-osm paper-occupancy paper-thesis ray-tracing"
 while (($#)); do
   case "$1" in
     --out) out=${2:?--out needs a folder}; shift ;;
     --small) suites="quick" ;;
     --suites) suites=${2:?--suites needs names}; shift ;;
-    -h | --help) sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h | --help) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "gpu-suite.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
   shift
