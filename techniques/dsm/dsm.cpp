@@ -1,7 +1,6 @@
 #include "techniques/dsm/dsm.h"
 
-#include <cstring>
-
+#include "techniques/common/readback.h"
 #include "techniques/common/shader_library.h"
 #include "techniques/dsm/compress_uniforms.h"
 #include "techniques/dsm/slots.h"
@@ -16,11 +15,6 @@ constexpr uint32_t kParams = SB_SLOT_DSM_PARAMS, kKept = SB_SLOT_DSM_KEPT,
                    kOutNodes = SB_SLOT_DSM_OUT_NODES, kOutStatus = SB_SLOT_DSM_OUT_STATUS,
                    kCompress = SB_SLOT_DSM_COMPRESS;
 
-std::vector<uint32_t> toUints(const std::vector<uint8_t>& bytes) {
-  std::vector<uint32_t> v(bytes.size() / 4);
-  std::memcpy(v.data(), bytes.data(), v.size() * 4);
-  return v;
-}
 }  // namespace
 
 DeepShadowMaps::Options DeepShadowMaps::readOptions(const OptionReader& o) {
@@ -103,12 +97,12 @@ ShadowLookup DeepShadowMaps::lookup() const {
 }
 
 std::vector<uint32_t> DeepShadowMaps::keptNodes(Device& dev) {
-  return toUints(dev.readBuffer(kept_));
+  return readBufferAs<uint32_t>(dev, kept_);
 }
 
 std::vector<std::string> DeepShadowMaps::warnings(Device& dev) {
   std::vector<std::string> w = lists_.warnings(dev);
-  const uint32_t cut = toUints(dev.readBuffer(status_))[0];
+  const uint32_t cut = readBufferAs<uint32_t>(dev, status_)[0];
   if (cut)
     w.push_back("dsm: " + std::to_string(cut) +
                 " texels needed more than max_nodes=" + std::to_string(opt_.maxNodes) +

@@ -1,8 +1,7 @@
 #include "techniques/exact/exact.h"
 
-#include <cstring>
-
 #include "techniques/common/peel_uniforms.h"
+#include "techniques/common/readback.h"
 #include "techniques/common/shader_library.h"
 #include "techniques/exact/uniforms.h"
 
@@ -189,14 +188,9 @@ ShadowLookup ExactShadow::lookup() const {
 }
 
 ExactShadow::Lists ExactShadow::readLists(Device& dev) {
-  auto toUints = [](const std::vector<uint8_t>& bytes) {
-    std::vector<uint32_t> v(bytes.size() / 4);
-    std::memcpy(v.data(), bytes.data(), v.size() * 4);
-    return v;
-  };
   Lists l;
-  l.stored = toUints(dev.readBuffer(cursor_));
-  l.keys = toUints(dev.readBuffer(nodes_));
+  l.stored = readBufferAs<uint32_t>(dev, cursor_);
+  l.keys = readBufferAs<uint32_t>(dev, nodes_);
   l.keys.resize(complexity_.total * 2);
   return l;
 }

@@ -1,8 +1,8 @@
 #include "techniques/rt/rt.h"
 
 #include <chrono>
-#include <cstring>
 
+#include "techniques/common/readback.h"
 #include "techniques/rt/bvh.h"
 #include "techniques/rt/slots.h"
 #include "techniques/rt/uniforms.h"
@@ -13,22 +13,14 @@ namespace {
 constexpr uint32_t kParams = SB_SLOT_RT_PARAMS, kNodes = SB_SLOT_RT_NODES,
                    kSegments = SB_SLOT_RT_SEGMENTS, kStatus = SB_SLOT_RT_STATUS;
 
-template <class T>
-std::vector<T> readAs(Device& dev, Buffer b) {
-  const std::vector<uint8_t> bytes = dev.readBuffer(b);
-  std::vector<T> v(bytes.size() / sizeof(T));
-  if (!v.empty()) std::memcpy(v.data(), bytes.data(), v.size() * sizeof(T));
-  return v;
-}
-
 // The scene's segments, each as wide as the light map of `size` texels draws
 // it: `texels` wide at the world size of one texel at its midpoint.
 std::vector<rt::Segment> strandSegments(Device& dev, const GpuScene& scene, const glm::mat4& vp,
                                         float worldPerTexelPerW, float texels) {
   std::vector<rt::Segment> segs;
   if (!scene.hasHair()) return segs;
-  const auto points = readAs<glm::vec4>(dev, scene.points);
-  const auto firsts = readAs<uint32_t>(dev, scene.segments);
+  const auto points = readBufferAs<glm::vec4>(dev, scene.points);
+  const auto firsts = readBufferAs<uint32_t>(dev, scene.segments);
   segs.reserve(scene.segmentCount);
   for (uint32_t i = 0; i < scene.segmentCount && i < firsts.size(); ++i) {
     const uint32_t f = firsts[i];
@@ -127,7 +119,7 @@ ShadowLookup RayTracedShadow::lookup() const {
 }
 
 std::vector<Counter> RayTracedShadow::counters(Device& dev) {
-  const auto status = readAs<uint32_t>(dev, status_);
+  const auto status = readBufferAs<uint32_t>(dev, status_);
   return {{"rt.bvh_build_ms", buildMs_},
           {"rt.bvh_nodes", double(nodeCount_)},
           {"rt.bvh_depth", double(depth_)},
