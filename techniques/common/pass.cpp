@@ -19,6 +19,16 @@ Inputs& Inputs::storage(uint32_t slot, Buffer b) {
   return *this;
 }
 
+Inputs& Inputs::sideOutput(uint32_t slot, Buffer b) {
+  inputs_.push_back({{slot, BindingKind::StorageBuffer}, b, {}, false, true});
+  return *this;
+}
+
+Inputs& Inputs::accelerationStructure(uint32_t slot, Buffer as) {
+  inputs_.push_back({{slot, BindingKind::AccelerationStructure}, as, {}, false});
+  return *this;
+}
+
 Inputs& Inputs::sample(uint32_t slot, Texture t) {
   inputs_.push_back({{slot, BindingKind::SampledTexture}, {}, t, false});
   return *this;
@@ -76,6 +86,13 @@ std::vector<GraphResource> Inputs::writes() const {
   return out;
 }
 
+std::vector<GraphResource> Inputs::sideWrites() const {
+  std::vector<GraphResource> out;
+  for (const Input& i : inputs_)
+    if (i.side) out.push_back(GraphResource::of(i.buffer));
+  return out;
+}
+
 Pass& Pass::color(Texture t, LoadOp load, std::array<float, 4> clear, uint32_t layer) {
   desc_.color.push_back({t, load, clear, {}, layer, {}});
   return *this;
@@ -121,6 +138,16 @@ Pass& Pass::readStorage(uint32_t slot, Buffer b) {
 
 Pass& Pass::storage(uint32_t slot, Buffer b) {
   inputs_.storage(slot, b);
+  return *this;
+}
+
+Pass& Pass::sideOutput(uint32_t slot, Buffer b) {
+  inputs_.sideOutput(slot, b);
+  return *this;
+}
+
+Pass& Pass::accelerationStructure(uint32_t slot, Buffer as) {
+  inputs_.accelerationStructure(slot, as);
   return *this;
 }
 
