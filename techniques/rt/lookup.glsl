@@ -2,6 +2,7 @@
 // by walking a BVH (built on the CPU, techniques/rt/bvh.h) with a stack in
 // shader code. The rays and the rule for a crossing: rays.glsl.
 #include "rays.glsl"
+#include "slots.h"
 
 layout(std430, binding = SB_SLOT_RT_NODES) readonly buffer RtNodes { vec4 rtNodes[]; };
 

@@ -6,6 +6,7 @@
 // goes on through every box on the ray, and a ray stops only at max_hits.
 #extension GL_EXT_ray_query : require
 #include "rays.glsl"
+#include "slots.h"
 
 layout(binding = SB_SLOT_RT_SCENE) uniform accelerationStructureEXT rtScene;
 
