@@ -58,10 +58,7 @@ TEST(FrameGraph, ASideOutputKeepsNoWriterAliveAndKeepsItsClear) {
     Pass shading("shading");
     shading.color(kColor, LoadOp::Clear);
     for (Pass* p : {&unused, &shading}) {
-      if (side)
-        p->sideOutput(1, counter);
-      else
-        p->storage(1, counter);
+      p->inputs(side ? Inputs().sideOutput(1, counter) : Inputs().storage(1, counter));
       g.add(*p, [] {});
     }
     return g;

@@ -141,16 +141,6 @@ Pass& Pass::storage(uint32_t slot, Buffer b) {
   return *this;
 }
 
-Pass& Pass::sideOutput(uint32_t slot, Buffer b) {
-  inputs_.sideOutput(slot, b);
-  return *this;
-}
-
-Pass& Pass::accelerationStructure(uint32_t slot, Buffer as) {
-  inputs_.accelerationStructure(slot, as);
-  return *this;
-}
-
 Pass& Pass::sample(uint32_t slot, Texture t) {
   inputs_.sample(slot, t);
   return *this;

@@ -82,12 +82,11 @@ class Pass {
   Pass& depthReadOnly(Texture t);
   Pass& size(uint32_t width, uint32_t height);  // a pass without attachments
 
-  // What its shaders bind (see Inputs).
+  // What its shaders bind (see Inputs; side outputs and acceleration structures
+  // through inputs()).
   Pass& uniform(uint32_t slot, Buffer b);
   Pass& readStorage(uint32_t slot, Buffer b);
   Pass& storage(uint32_t slot, Buffer b);
-  Pass& sideOutput(uint32_t slot, Buffer b);
-  Pass& accelerationStructure(uint32_t slot, Buffer as);
   Pass& sample(uint32_t slot, Texture t);
   Pass& sampleArray(uint32_t slot, Texture t);
   Pass& inputs(const Inputs& more);
