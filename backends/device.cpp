@@ -43,6 +43,9 @@ struct Device::BufferRec {
   BufferDesc desc;
   std::unique_ptr<DriverObject> object;
   uint32_t group = 0;  // the ResourceGroup current at creation (0: none)
+  // An acceleration structure's boxes (usage AccelerationStructure).
+  Buffer aabbs;
+  uint32_t boxes = 0;
 };
 struct Device::TextureRec {
   TextureDesc desc;
@@ -238,13 +241,31 @@ Device::PipelineRec& Device::pipeline(Pipeline p, const std::string& where) {
 // never allocated, and allocations() counts exactly what was made.
 DriverObject* Device::created(BufferRec& r) {
   if (!r.object) {
+    const std::string what = "making buffer '" + r.desc.name + "' (" + r.desc.owner + ")";
+    if (r.desc.usage == BufferUsage::AccelerationStructure) {
+      // Its boxes first (their own accounting), then the structure built from them.
+      DriverObject* boxes =
+          created(buffer(r.aabbs, quoted("createAccelerationStructure", r.desc.name)));
+      guardMaking(r.desc.name, r.desc.owner, r.desc.bytes);
+      r.object = namingAllocation(what, r.desc.bytes, [&] {
+        return driver_->createAccelerationStructure(r.desc, *boxes, r.boxes);
+      });
+      return r.object.get();
+    }
     guardMaking(r.desc.name, r.desc.owner, r.desc.bytes);
     checkStorageRange(r.desc);
-    r.object =
-        namingAllocation("making buffer '" + r.desc.name + "' (" + r.desc.owner + ")", r.desc.bytes,
-                         [&] { return driver_->createBuffer(r.desc, nullptr); });
+    r.object = namingAllocation(what, r.desc.bytes,
+                                [&] { return driver_->createBuffer(r.desc, nullptr); });
   }
   return r.object.get();
+}
+
+// Buffers of usage AccelerationStructure are built by the device, never
+// written or read by calls.
+void Device::requireContents(const BufferRec& r, const char* call) const {
+  if (r.desc.usage == BufferUsage::AccelerationStructure)
+    throw DeviceError(quoted(call, r.desc.name) +
+                      ": an acceleration structure (the device builds its contents)");
 }
 
 DriverObject* Device::created(TextureRec& t) {
@@ -272,6 +293,8 @@ Buffer Device::createBuffer(const BufferDesc& given, const void* data) {
   desc.name = labelPrefix_ + given.name;
   const std::string where = quoted("createBuffer", desc.name);
   if (desc.bytes == 0) throw DeviceError(where + ": zero size");
+  if (desc.usage == BufferUsage::AccelerationStructure)
+    throw DeviceError(where + ": usage AccelerationStructure (use createAccelerationStructure)");
   if (data) {
     guardMaking(desc.name, desc.owner, desc.bytes);
     checkStorageRange(desc);
@@ -290,6 +313,7 @@ Buffer Device::createBuffer(const BufferDesc& given, const void* data) {
 
 void Device::updateBuffer(Buffer b, const void* data, std::size_t bytes, std::size_t offset) {
   BufferRec& r = buffer(b, "updateBuffer");
+  requireContents(r, "updateBuffer");
   const std::string where = quoted("updateBuffer", r.desc.name);
   if (inPass_)
     throw DeviceError(where + ": inside pass '" + pass_->name +
@@ -304,10 +328,30 @@ void Device::updateBuffer(Buffer b, const void* data, std::size_t bytes, std::si
 
 void Device::fillBuffer(Buffer b, uint32_t value) {
   BufferRec& r = buffer(b, "fillBuffer");
+  requireContents(r, "fillBuffer");
   if (inPass_)
     throw DeviceError(quoted("fillBuffer", r.desc.name) + ": inside pass '" + pass_->name +
                       "': buffers may only be filled between passes");
   driver_->fillBuffer(*created(r), r.desc, value);
+}
+
+Buffer Device::createAccelerationStructure(const std::string& name, const std::string& owner,
+                                           Buffer aabbs, uint32_t boxes) {
+  const std::string where = quoted("createAccelerationStructure", labelPrefix_ + name);
+  if (!driver_->info().rayQuery)
+    throw DeviceError(where + ": this device offers no ray queries (DeviceInfo::rayQuery)");
+  const BufferRec& src = buffer(aabbs, where);
+  if (boxes == 0) throw DeviceError(where + ": no boxes");
+  if (src.desc.usage != BufferUsage::Storage || src.desc.bytes < std::size_t{boxes} * 24)
+    throw DeviceError(where + ": the boxes need a storage buffer of " +
+                      std::to_string(std::size_t{boxes} * 24) + " bytes or more; '" +
+                      src.desc.name + "' is not one");
+  BufferDesc desc{labelPrefix_ + name, owner, BufferUsage::AccelerationStructure,
+                  driver_->accelerationStructureBytes(boxes)};
+  auto rec = std::make_unique<BufferRec>(BufferRec{desc, nullptr, group_, aabbs, boxes});
+  const uint32_t id = nextId_++;
+  buffers_.emplace(id, std::move(rec));
+  return Buffer{id};
 }
 
 Texture Device::createTexture(const TextureDesc& given) {
@@ -428,6 +472,7 @@ std::set<uint32_t> Device::pipelineIdsFrom(uint32_t first) const {
 
 void Device::setBufferSize(Buffer b, std::size_t bytes) {
   BufferRec& r = buffer(b, "setBufferSize");
+  requireContents(r, "setBufferSize");
   const std::string where = quoted("setBufferSize", r.desc.name);
   if (bytes == 0) throw DeviceError(where + ": zero size");
   if (r.object) throw DeviceError(where + ": already made (sizes change only before first use)");
@@ -645,6 +690,12 @@ std::vector<DriverBinding> Device::resolve(const PipelineRec& p, const std::vect
     } else {
       if (!it->buffer || it->texture) throw DeviceError(slot + " needs a buffer");
       BufferRec& b = buffer(it->buffer, where);
+      const bool structure = b.desc.usage == BufferUsage::AccelerationStructure;
+      if (structure != (s.kind == BindingKind::AccelerationStructure))
+        throw DeviceError(slot + ": buffer '" + b.desc.name + "' " +
+                          (structure
+                               ? "is an acceleration structure (an AccelerationStructure slot)"
+                               : "is not an acceleration structure"));
       out.push_back({s.binding, s.kind, created(b), &b.desc, nullptr});
       const bool storage = s.kind == BindingKind::StorageBuffer;
       touch(counted.work, counted.touched, 'b', it->buffer.id, 0,
@@ -724,6 +775,7 @@ std::vector<uint8_t> Device::readTexture(Texture t) {
 
 std::vector<uint8_t> Device::readBuffer(Buffer b) {
   BufferRec& r = buffer(b, "readBuffer");
+  requireContents(r, "readBuffer");
   requireFrame(quoted("readBuffer", r.desc.name), false, false);
   DriverObject* object = created(r);
   return namingAllocation("reading back buffer '" + r.desc.name + "'", r.desc.bytes,

@@ -57,7 +57,8 @@ struct Pipeline {
   explicit operator bool() const { return id != 0; }
 };
 
-enum class BufferUsage { Uniform, Storage };
+// AccelerationStructure: made by Device::createAccelerationStructure only.
+enum class BufferUsage { Uniform, Storage, AccelerationStructure };
 
 struct BufferDesc {
   std::string name;   // reported in memory accounting
@@ -141,7 +142,15 @@ struct BlendState {
 
 // SampledTexture: sampler2D of a one-layer texture; SampledTextureArray:
 // sampler2DArray of any texture (a one-layer texture is an array of one).
-enum class BindingKind { UniformBuffer, StorageBuffer, SampledTexture, SampledTextureArray };
+// AccelerationStructure: accelerationStructureEXT (GL_EXT_ray_query), a buffer
+// made by Device::createAccelerationStructure.
+enum class BindingKind {
+  UniformBuffer,
+  StorageBuffer,
+  SampledTexture,
+  SampledTextureArray,
+  AccelerationStructure,
+};
 
 struct BindingSlot {
   uint32_t binding = 0;
@@ -219,7 +228,7 @@ struct PassDesc {
 
 struct Binding {
   uint32_t binding = 0;
-  Buffer buffer;
+  Buffer buffer;  // buffer kinds and AccelerationStructure
   Texture texture;
   static Binding buf(uint32_t b, Buffer x) { return {b, x, {}}; }
   static Binding tex(uint32_t b, Texture t) { return {b, {}, t}; }
@@ -297,7 +306,9 @@ struct DeviceInfo {
   // Absent on Mesa's CPU rasterizers: mlab then emulates the order in a resolve.
   bool fragmentShaderInterlock = false;
   // Capabilities `strandbench --version` lists per driver: ray queries (Vulkan:
-  // VK_KHR_ray_query; GL has none), mesh shaders (VK_EXT_mesh_shader;
+  // VK_KHR_ray_query with VK_KHR_acceleration_structure and buffer device
+  // addresses, their features enabled; GL has none: createAccelerationStructure
+  // and AccelerationStructure slots need it), mesh shaders (VK_EXT_mesh_shader;
   // GL_EXT_mesh_shader / GL_NV_mesh_shader) and timestamp queries (Vulkan: the
   // queue's timestampValidBits; GL: core since 3.3). Pipeline statistics: `counters`.
   bool rayQuery = false;
@@ -359,6 +370,20 @@ class Device {
 
   // A buffer of zero bytes is an error. Contents are zero unless data is given.
   Buffer createBuffer(const BufferDesc& desc, const void* data = nullptr);
+  // Ray queries (DeviceInfo::rayQuery; a DeviceError elsewhere): an
+  // acceleration structure over `boxes` axis-aligned boxes of the storage
+  // buffer `aabbs`, 6 floats each (min xyz, max xyz; 24 bytes): a bottom level
+  // of procedural geometry (a candidate's primitive index is its box's index)
+  // under a top level of one identity instance, opaque flags off so that every
+  // candidate reaches the shader. A buffer of usage AccelerationStructure, bound
+  // to AccelerationStructure slots only (never updated, filled or read back).
+  // Its bytes, known at once from the driver, are everything it holds: both
+  // levels, the build's scratch and the copies of the boxes and the instance.
+  // It is made, and built on the device, when first used, like any buffer,
+  // from the boxes' contents at that moment: give them at creation or by
+  // updateBuffer outside frames.
+  Buffer createAccelerationStructure(const std::string& name, const std::string& owner,
+                                     Buffer aabbs, uint32_t boxes);
   // Ordered with the recorded work: allowed between passes inside a frame.
   void updateBuffer(Buffer b, const void* data, std::size_t bytes, std::size_t offset = 0);
   void fillBuffer(Buffer b, uint32_t value);  // between passes
@@ -515,6 +540,7 @@ class Device {
   MemoryGuard memoryGuard_;
   void guardMaking(const std::string& name, const std::string& owner, std::size_t bytes) const;
   void checkStorageRange(const BufferDesc& desc) const;
+  void requireContents(const BufferRec& r, const char* call) const;
 };
 
 struct DeviceOptions {

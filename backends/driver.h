@@ -103,6 +103,21 @@ class Driver {
   // desc.width, desc.height > 0, desc.layers in 1..kMaxTextureLayers (1 for
   // depth); contents zero (colour) or 1 (depth).
   virtual std::unique_ptr<DriverObject> createTexture(const TextureDesc& desc) = 0;
+  // Ray queries (info().rayQuery, else never called): the bytes an
+  // acceleration structure of `boxes` boxes holds, everything it allocates
+  // included, and the structure itself, built on the device from the first
+  // `boxes` boxes (24 bytes each) of `aabbs` before this returns.
+  virtual std::size_t accelerationStructureBytes(uint32_t boxes) const {
+    (void)boxes;
+    return 0;
+  }
+  virtual std::unique_ptr<DriverObject> createAccelerationStructure(const BufferDesc& desc,
+                                                                    DriverObject& aabbs,
+                                                                    uint32_t boxes) {
+    (void)aabbs, (void)boxes;
+    throw DeviceError("createAccelerationStructure('" + desc.name + "'): no ray queries on " +
+                      info().device);
+  }
   // Either vertex+fragment or compute; bindings unique; formats checked.
   virtual std::unique_ptr<DriverObject> createPipeline(const PipelineDesc& desc) = 0;
   // Frees the object now, or once the recorded work of the frame is done.

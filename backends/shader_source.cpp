@@ -19,6 +19,10 @@ const char* kVulkanPreamble =
 
 std::string completeShaderSource(const ShaderCode& code, ShaderApi api) {
   std::string out = api == ShaderApi::GL ? kGlPreamble : kVulkanPreamble;
+  // GL_EXT_ray_query needs GLSL 4.60 (glslang declares rayQueryEXT from 460
+  // on); other shaders stay at 4.50, their SPIR-V unchanged.
+  if (api == ShaderApi::Vulkan && code.text.find("GL_EXT_ray_query") != std::string::npos)
+    out.replace(out.find("450"), 3, "460");
   out += "#line 1 0\n";
   out += code.text;
   return out;

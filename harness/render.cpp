@@ -455,6 +455,10 @@ void outputs(const RenderRequest& req, const Validated& v, Plan& p, Device& dev,
     if (!why.empty()) out.timingEmulated += (out.timingEmulated.empty() ? "" : "; ") + why;
   if (!out.timingEmulated.empty())
     out.warnings.push_back("timing emulated, not a real cost: " + out.timingEmulated);
+  const std::string shadowTier = renderer.shadow().tier(), oitTier = renderer.oit().tier();
+  out.tier = shadowTier.empty() || oitTier.empty() || shadowTier == oitTier
+                 ? (shadowTier.empty() ? oitTier : shadowTier)
+                 : "shadow " + shadowTier + ", oit " + oitTier;
 
   out.device = dev.info();
   out.scene = {req.scene,

@@ -232,6 +232,9 @@ struct RenderResult {
   // (OitTechnique::timingEmulated).
   std::vector<Counter> counters;
   std::string timingEmulated;
+  // The tier the techniques ran (ShadowTechnique::tier, OitTechnique::tier):
+  // "software" or "ray_query"; both named when they differ; empty without tiers.
+  std::string tier;
 
   // With extra lights: each light's share of the timed frames (the key light
   // first), told apart by the names of passes and resources

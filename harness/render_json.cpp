@@ -193,6 +193,7 @@ nlohmann::json renderJson(const RenderResult& r) {
     j["counters"] = counters;
   }
   if (!r.timingEmulated.empty()) j["timing_emulated"] = r.timingEmulated;
+  if (!r.tier.empty()) j["tier"] = r.tier;
   if (r.validationMessages) j["validation_messages"] = *r.validationMessages;
   if (r.presented) {
     // frame_ms plus the present: the frame time with presentation included.

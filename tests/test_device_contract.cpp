@@ -122,6 +122,24 @@ std::vector<Rule> rules() {
        [](World& w) {
          w.dev.createBuffer({"empty", "test", BufferUsage::Storage, 0});
        }},
+      {"buffer made an acceleration structure by its usage",
+       "createBuffer('tlas'): usage AccelerationStructure (use createAccelerationStructure)",
+       [](World& w) {
+         w.dev.createBuffer({"tlas", "test", BufferUsage::AccelerationStructure, 64});
+       }},
+      // The system's Mesa 22.3 has no ray queries on either API (Mesa 25.0.7's
+      // lavapipe has: tests/test_rt_shadows.cpp, RtTiers).
+      {"acceleration structure without ray queries", "createAccelerationStructure('scene'): ",
+       [](World& w) {
+         try {
+           w.dev.createAccelerationStructure("scene", "test", w.data, 2);
+         } catch (const DeviceError& e) {
+           if (std::string(e.what()).find("offers no ray queries (DeviceInfo::rayQuery)") ==
+               std::string::npos)
+             ADD_FAILURE() << e.what();
+           throw;
+         }
+       }},
       {"zero-size texture", "createTexture('flat'): zero size",
        [](World& w) {
          w.dev.createTexture({"flat", "test", Format::RGBA8, 0, 4, false});

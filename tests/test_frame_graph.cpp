@@ -45,6 +45,32 @@ TEST(FrameGraph, KeepsOnlyWhatTheOutputsNeed) {
   EXPECT_TRUE(g.compile({GraphResource::of(kTypo)}).empty());
 }
 
+// A side output (a counter the shading adds to): its writer is not kept for
+// it, the pass that clears it is kept before a writer that is kept. Can fail:
+// the same counter as plain storage keeps the unneeded writer alive.
+TEST(FrameGraph, ASideOutputKeepsNoWriterAliveAndKeepsItsClear) {
+  const Buffer counter{8};
+  auto graph = [&](bool side) {
+    FrameGraph g;
+    g.add(Pass("clear").storage(0, counter), [] {});
+    Pass unused("unused");
+    unused.color(kExtra, LoadOp::Clear);
+    Pass shading("shading");
+    shading.color(kColor, LoadOp::Clear);
+    for (Pass* p : {&unused, &shading}) {
+      p->inputs(side ? Inputs().sideOutput(1, counter) : Inputs().storage(1, counter));
+      g.add(*p, [] {});
+    }
+    return g;
+  };
+  const FrameGraph side = graph(true);
+  EXPECT_EQ(names(side.compile({GraphResource::of(kColor)})),
+            (std::vector<std::string>{"clear", "shading"}));
+  EXPECT_EQ(side.nodes()[2].sideWrites, std::vector<GraphResource>{GraphResource::of(counter)});
+  EXPECT_TRUE(side.nodes()[2].writes.size() == 1);                          // the colour only
+  EXPECT_EQ(graph(false).compile({GraphResource::of(kColor)}).size(), 3u);  // "unused" kept
+}
+
 TEST(FrameGraph, ATextureReadNothingWritesIsRejectedNamingPassAndResource) {
   const FrameGraph g = shadowAndShading(kTypo);  // the wrong texture
   try {

@@ -757,6 +757,8 @@ class GLDriver final : public Driver {
         case BindingKind::SampledTextureArray:
           gl_.BindTextureUnit(b.binding, arrayName(b));
           break;
+        case BindingKind::AccelerationStructure:  // GL has no ray queries: never made
+          break;
       }
     }
   }

@@ -152,6 +152,18 @@ class VulkanDriver final : public Driver {
     return resources_.createTexture(desc);
   }
 
+  std::size_t accelerationStructureBytes(uint32_t boxes) const override {
+    return resources_.accelerationStructureBytes(boxes);
+  }
+
+  // Built by its own submission, also inside a frame (a build cannot be
+  // recorded inside a rendering): the boxes are those already on the device.
+  std::unique_ptr<DriverObject> createAccelerationStructure(const BufferDesc& desc,
+                                                            DriverObject& aabbs,
+                                                            uint32_t boxes) override {
+    return resources_.createAccelerationStructure(desc, static_cast<BufferRes&>(aabbs), boxes);
+  }
+
   std::unique_ptr<DriverObject> createPipeline(const PipelineDesc& desc) override {
     const bool compute = desc.compute != nullptr;
     // Compile first: errors throw before any Vulkan object exists.
@@ -637,10 +649,12 @@ class VulkanDriver final : public Driver {
       if (descPool_ == descPools_.size()) {
         const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1024},
                                               {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3072},
-                                              {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1024}};
+                                              {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1024},
+                                              {VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR, 512}};
         VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
         pi.maxSets = 512;
-        pi.poolSizeCount = 3;
+        // Acceleration structures only where the device has them (an invalid type elsewhere).
+        pi.poolSizeCount = platform_->info.rayQuery ? 4 : 3;
         pi.pPoolSizes = sizes;
         VkDescriptorPool pool = VK_NULL_HANDLE;
         check(vkCreateDescriptorPool(device_, &pi, nullptr, &pool), "vkCreateDescriptorPool");
@@ -674,8 +688,10 @@ class VulkanDriver final : public Driver {
     if (bindings.empty()) return VK_NULL_HANDLE;
     std::vector<VkDescriptorBufferInfo> bufInfos;
     std::vector<VkDescriptorImageInfo> imgInfos;
+    std::vector<VkWriteDescriptorSetAccelerationStructureKHR> accelInfos;
     bufInfos.reserve(bindings.size());
     imgInfos.reserve(bindings.size());
+    accelInfos.reserve(bindings.size());
     std::vector<VkWriteDescriptorSet> writes;
     for (const DriverBinding& b : bindings) {
       VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
@@ -688,6 +704,11 @@ class VulkanDriver final : public Driver {
         imgInfos.push_back(
             {samplers_[t.linear ? 1 : 0], v, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
         w.pImageInfo = &imgInfos.back();
+      } else if (b.kind == BindingKind::AccelerationStructure) {
+        const auto& a = static_cast<const AccelerationStructureRes&>(*b.object);
+        accelInfos.push_back({VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET_ACCELERATION_STRUCTURE_KHR,
+                              nullptr, 1, &a.top});
+        w.pNext = &accelInfos.back();
       } else {
         const auto& r = static_cast<const BufferRes&>(*b.object);
         const VkDeviceSize limit = w.descriptorType == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER

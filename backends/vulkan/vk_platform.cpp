@@ -266,7 +266,10 @@ void VulkanPlatform::pickPhysicalDevice() {
   info.device = pick->props.deviceName;
   info.apiVersion = versionString(pick->props.apiVersion);
   info.timestamps = timestampBits != 0;
-  info.rayQuery = hasDeviceExtension(physical, VK_KHR_RAY_QUERY_EXTENSION_NAME);
+  // Ray queries: confirmed by their features in createLogicalDevice.
+  info.rayQuery = hasDeviceExtension(physical, VK_KHR_RAY_QUERY_EXTENSION_NAME) &&
+                  hasDeviceExtension(physical, VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME) &&
+                  hasDeviceExtension(physical, VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME);
   info.meshShaders = hasDeviceExtension(physical, VK_EXT_MESH_SHADER_EXTENSION_NAME);
   if (drv.driverName[0] != '\0') {
     info.driver = std::string(drv.driverName) + " " + drv.driverInfo;
@@ -291,10 +294,17 @@ void VulkanPlatform::createLogicalDevice() {
   // Enable every supported core feature (the techniques' shaders may use image
   // or int64 atomics, logic op, independent blend...), except robustness, which
   // only costs speed, and sparse/protected features, which need more setup.
+  // Ray queries (the rt technique's hardware tier): their two features,
+  // chained only where the extensions are offered.
+  VkPhysicalDeviceRayQueryFeaturesKHR rayQueryFeature{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR};
+  VkPhysicalDeviceAccelerationStructureFeaturesKHR accelFeature{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR, &rayQueryFeature};
   VkPhysicalDeviceLineRasterizationFeaturesEXT line{
-      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_LINE_RASTERIZATION_FEATURES_EXT};
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_LINE_RASTERIZATION_FEATURES_EXT,
+      info.rayQuery ? &accelFeature : nullptr};
   VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
-                                       haveLineExt ? &line : nullptr};
+                                       haveLineExt ? static_cast<void*>(&line) : line.pNext};
   VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &f13};
   VkPhysicalDeviceVulkan11Features f11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES, &f12};
   VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f11};
@@ -311,6 +321,16 @@ void VulkanPlatform::createLogicalDevice() {
   f2.features.sparseResidencyAliased = VK_FALSE;
   f11.protectedMemory = VK_FALSE;
   f13.robustImageAccess = VK_FALSE;
+  info.rayQuery = info.rayQuery && accelFeature.accelerationStructure == VK_TRUE &&
+                  rayQueryFeature.rayQuery == VK_TRUE && f12.bufferDeviceAddress == VK_TRUE;
+  // Only what the lookup needs: no capture/replay, indirect or host builds.
+  accelFeature = {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR,
+                  &rayQueryFeature};
+  accelFeature.accelerationStructure = VK_TRUE;
+  rayQueryFeature.pNext = nullptr;
+  if (!info.rayQuery) line.pNext = nullptr;
+  f12.bufferDeviceAddressCaptureReplay = VK_FALSE;
+  f12.bufferDeviceAddressMultiDevice = VK_FALSE;
   logicOp = f2.features.logicOp == VK_TRUE;
   statistics = f2.features.pipelineStatisticsQuery == VK_TRUE && f12.hostQueryReset == VK_TRUE;
   preciseOcclusion = f2.features.occlusionQueryPrecise == VK_TRUE;
@@ -333,7 +353,13 @@ void VulkanPlatform::createLogicalDevice() {
   std::vector<const char*> enabled;
   if (bresenham) enabled.push_back(VK_EXT_LINE_RASTERIZATION_EXTENSION_NAME);
   if (surface != VK_NULL_HANDLE) enabled.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
-  if (!bresenham) f13.pNext = nullptr;
+  if (info.rayQuery)
+    for (const char* e :
+         {VK_KHR_RAY_QUERY_EXTENSION_NAME, VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME,
+          VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME})
+      enabled.push_back(e);
+  // Unchained where unused: a feature struct of an extension not enabled is invalid.
+  if (!bresenham) f13.pNext = line.pNext;
 
   const float priority = 1.0f;
   VkDeviceQueueCreateInfo qi{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};

@@ -58,6 +58,7 @@ VulkanResources::VulkanResources(const VulkanPlatform& platform)
     cp.queueFamilyIndex = platform.queueFamily;
     check(vkCreateCommandPool(device_, &cp, nullptr, &cmdPool_), "vkCreateCommandPool");
     immCmd_ = allocateCommandBuffer();
+    if (platform.info.rayQuery) loadAccelerationStructureApi();
     VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
     check(vkCreateFence(device_, &fi, nullptr, &fence_), "vkCreateFence");
   } catch (...) {
@@ -95,7 +96,7 @@ void VulkanResources::submitAndWait(VkCommandBuffer cmd) {
 }
 
 VkDeviceMemory VulkanResources::allocate(const VkMemoryRequirements& req, bool host,
-                                         const std::string& what) {
+                                         const std::string& what, VkMemoryAllocateFlags flags) {
   const VkPhysicalDeviceMemoryProperties& memProps = platform_.memProps;
   const VkMemoryPropertyFlags want =
       host ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
@@ -113,7 +114,9 @@ VkDeviceMemory VulkanResources::allocate(const VkMemoryRequirements& req, bool h
     }
   }
   if (type == UINT32_MAX) throw DeviceError("vulkan: no memory type for " + what);
-  VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  VkMemoryAllocateFlagsInfo fi{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
+  fi.flags = flags;
+  VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, flags != 0 ? &fi : nullptr};
   ai.allocationSize = req.size;
   ai.memoryTypeIndex = type;
   VkDeviceMemory mem = VK_NULL_HANDLE;
@@ -328,6 +331,7 @@ void VulkanResources::destroyObject(DriverObject& object) {
   if (auto* b = dynamic_cast<BufferRes*>(&object)) destroyBuffer(*b);
   if (auto* t = dynamic_cast<TextureRes*>(&object)) destroyTexture(*t);
   if (auto* p = dynamic_cast<PipelineRes*>(&object)) destroyPipeline(*p);
+  if (auto* a = dynamic_cast<AccelerationStructureRes*>(&object)) destroyAccelerationStructure(*a);
 }
 
 }  // namespace sb

@@ -49,6 +49,33 @@ struct PipelineRes : DriverObject {
   VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
 };
 
+// A device buffer with its own memory and device address (the parts of an
+// acceleration structure).
+struct AddressedBuffer {
+  VkBuffer buffer = VK_NULL_HANDLE;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  VkDeviceAddress address = 0;
+};
+
+// Device::createAccelerationStructure: the top level (bound to shaders) over
+// the bottom level of boxes, and every buffer they were built from, kept for
+// the structure's life (so what it holds is what the front end counted).
+struct AccelerationStructureRes : DriverObject {
+  BufferDesc desc;
+  VkAccelerationStructureKHR bottom = VK_NULL_HANDLE, top = VK_NULL_HANDLE;
+  std::vector<AddressedBuffer> buffers;  // bottom, top, scratch, boxes, instance
+};
+
+// The VK_KHR_acceleration_structure entry points (device functions).
+struct AccelerationStructureApi {
+  PFN_vkCreateAccelerationStructureKHR create = nullptr;
+  PFN_vkDestroyAccelerationStructureKHR destroy = nullptr;
+  PFN_vkGetAccelerationStructureBuildSizesKHR buildSizes = nullptr;
+  PFN_vkCmdBuildAccelerationStructuresKHR build = nullptr;
+  PFN_vkGetAccelerationStructureDeviceAddressKHR address = nullptr;
+  VkDeviceSize scratchAlignment = 1;  // minAccelerationStructureScratchOffsetAlignment
+};
+
 struct HostBuffer {
   VkBuffer buffer = VK_NULL_HANDLE;
   VkDeviceMemory memory = VK_NULL_HANDLE;
@@ -88,8 +115,10 @@ class VulkanResources {
     submitAndWait(immCmd_);
   }
 
-  // Device-local memory (any type where none fits), or host-visible coherent.
-  VkDeviceMemory allocate(const VkMemoryRequirements& req, bool host, const std::string& what);
+  // Device-local memory (any type where none fits), or host-visible coherent;
+  // flags: VkMemoryAllocateFlags (device addresses).
+  VkDeviceMemory allocate(const VkMemoryRequirements& req, bool host, const std::string& what,
+                          VkMemoryAllocateFlags flags = 0);
   // A mapped host buffer of at least `bytes` (at least 4), for transfers both ways.
   HostBuffer createHostBuffer(VkDeviceSize bytes);
   void destroyHostBuffer(HostBuffer& h);
@@ -116,14 +145,32 @@ class VulkanResources {
   // The view a pass renders into: the texture's own, or its layer's (made once).
   VkImageView attachmentView(TextureRes& t, uint32_t layer);
 
+  // Ray queries (vk_accel.cpp; the platform's info.rayQuery): the bytes
+  // createAccelerationStructure will hold for `boxes` boxes, and the structure,
+  // built from the first `boxes` boxes of `aabbs` (copied) before it returns.
+  std::size_t accelerationStructureBytes(uint32_t boxes) const;
+  std::unique_ptr<AccelerationStructureRes> createAccelerationStructure(const BufferDesc& desc,
+                                                                        const BufferRes& aabbs,
+                                                                        uint32_t boxes);
+  void destroyAccelerationStructure(AccelerationStructureRes& a);
+
   void destroyBuffer(BufferRes& b);
   void destroyTexture(TextureRes& t);
   void destroyPipeline(PipelineRes& p);
-  void destroyObject(DriverObject& object);  // whichever of the three it is
+  void destroyObject(DriverObject& object);  // whichever of the four it is
 
  private:
   VkImageView makeView(const TextureRes& t, VkImageViewType type, uint32_t first, uint32_t count);
   void destroy();
+  struct AccelerationSizes {
+    VkDeviceSize bottom = 0, top = 0, scratch = 0;
+  };
+  AccelerationSizes accelerationSizes(uint32_t boxes) const;
+  AddressedBuffer createAddressedBuffer(VkDeviceSize bytes, VkBufferUsageFlags usage,
+                                        const std::string& what);
+
+  void loadAccelerationStructureApi();
+  AccelerationStructureApi accel_;  // loaded where the device has ray queries
 
   const VulkanPlatform& platform_;
   VkDevice device_ = VK_NULL_HANDLE;

@@ -75,8 +75,9 @@ constexpr VkBlendOp kBlendOps[] = {VK_BLEND_OP_ADD, VK_BLEND_OP_SUBTRACT,
 static_assert(std::size(kBlendOps) == std::size_t(BlendOp::Max) + 1);
 constexpr VkDescriptorType kDescriptors[] = {
     VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-    VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
-static_assert(std::size(kDescriptors) == std::size_t(BindingKind::SampledTextureArray) + 1);
+    VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+    VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR};
+static_assert(std::size(kDescriptors) == std::size_t(BindingKind::AccelerationStructure) + 1);
 
 VkFormat toVkFormat(Format f) { return byEnum(kFormats, f); }
 VkCompareOp toVk(CompareOp op) { return byEnum(kCompare, op); }

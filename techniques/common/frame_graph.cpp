@@ -15,11 +15,12 @@ bool contains(const std::vector<GraphResource>& v, GraphResource r) {
 
 void FrameGraph::add(std::string name, const std::vector<Pass>& passes,
                      std::function<void()> execute) {
-  PassNode node{std::move(name), {}, {}, std::move(execute)};
+  PassNode node{std::move(name), {}, {}, {}, std::move(execute)};
   for (const Pass& p : passes) {
     for (GraphResource r : p.reads())
       if (!contains(node.writes, r)) addUnique(node.reads, r);
     for (GraphResource r : p.writes()) addUnique(node.writes, r);
+    for (GraphResource r : p.sideWrites()) addUnique(node.sideWrites, r);
   }
   nodes_.push_back(std::move(node));
 }

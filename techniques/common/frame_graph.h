@@ -22,6 +22,9 @@ struct PassNode {
   std::string name;
   std::vector<GraphResource> reads;
   std::vector<GraphResource> writes;
+  // Written on the side (Inputs::sideOutput): also among the reads, and never
+  // a reason to keep the node.
+  std::vector<GraphResource> sideWrites;
   std::function<void()> execute;  // records the node's passes on the Device
 };
 

@@ -19,6 +19,16 @@ Inputs& Inputs::storage(uint32_t slot, Buffer b) {
   return *this;
 }
 
+Inputs& Inputs::sideOutput(uint32_t slot, Buffer b) {
+  inputs_.push_back({{slot, BindingKind::StorageBuffer}, b, {}, false, true});
+  return *this;
+}
+
+Inputs& Inputs::accelerationStructure(uint32_t slot, Buffer as) {
+  inputs_.push_back({{slot, BindingKind::AccelerationStructure}, as, {}, false});
+  return *this;
+}
+
 Inputs& Inputs::sample(uint32_t slot, Texture t) {
   inputs_.push_back({{slot, BindingKind::SampledTexture}, {}, t, false});
   return *this;
@@ -73,6 +83,13 @@ std::vector<GraphResource> Inputs::writes() const {
   std::vector<GraphResource> out;
   for (const Input& i : inputs_)
     if (i.written) out.push_back(GraphResource::of(i.buffer));
+  return out;
+}
+
+std::vector<GraphResource> Inputs::sideWrites() const {
+  std::vector<GraphResource> out;
+  for (const Input& i : inputs_)
+    if (i.side) out.push_back(GraphResource::of(i.buffer));
   return out;
 }
 

@@ -33,8 +33,15 @@ struct GraphResource {
 class Inputs {
  public:
   Inputs& uniform(uint32_t slot, Buffer b);
-  Inputs& readStorage(uint32_t slot, Buffer b);   // a storage buffer only read
-  Inputs& storage(uint32_t slot, Buffer b);       // a storage buffer read and written
+  Inputs& readStorage(uint32_t slot, Buffer b);  // a storage buffer only read
+  Inputs& storage(uint32_t slot, Buffer b);      // a storage buffer read and written
+  // A storage buffer the shaders add to on the side (a counter of capped
+  // rays): written, yet what writes it is not needed for it. The graph sees a
+  // read (the pass that cleared it stays before it) and a side write
+  // (sideWrites), never a write, so it keeps no pass alive.
+  Inputs& sideOutput(uint32_t slot, Buffer b);
+  // An acceleration structure (Device::createAccelerationStructure), read.
+  Inputs& accelerationStructure(uint32_t slot, Buffer as);
   Inputs& sample(uint32_t slot, Texture t);       // sampler2D
   Inputs& sampleArray(uint32_t slot, Texture t);  // sampler2DArray
   Inputs& add(const Inputs& more);
@@ -47,6 +54,7 @@ class Inputs {
   std::vector<Texture> sampled() const;
   std::vector<GraphResource> reads() const;
   std::vector<GraphResource> writes() const;
+  std::vector<GraphResource> sideWrites() const;
 
  private:
   struct Input {
@@ -54,6 +62,7 @@ class Inputs {
     Buffer buffer;
     Texture texture;
     bool written = false;
+    bool side = false;  // sideOutput
   };
   std::vector<Input> inputs_;
 };
@@ -73,7 +82,8 @@ class Pass {
   Pass& depthReadOnly(Texture t);
   Pass& size(uint32_t width, uint32_t height);  // a pass without attachments
 
-  // What its shaders bind (see Inputs).
+  // What its shaders bind (see Inputs; side outputs and acceleration structures
+  // through inputs()).
   Pass& uniform(uint32_t slot, Buffer b);
   Pass& readStorage(uint32_t slot, Buffer b);
   Pass& storage(uint32_t slot, Buffer b);
@@ -99,6 +109,7 @@ class Pass {
   PipelineDesc pipeline(const Device& dev, std::string name, std::string technique = {}) const;
   std::vector<GraphResource> reads() const;
   std::vector<GraphResource> writes() const;
+  std::vector<GraphResource> sideWrites() const { return inputs_.sideWrites(); }
 
   // Records it: a render pass with one draw (none when the pipeline is empty,
   // e.g. a scene without hair: the pass then only clears its targets) ...

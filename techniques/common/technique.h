@@ -156,6 +156,9 @@ class ShadowTechnique {
   // Non-empty (the reason) when part of the timed work is an emulation (avsm
   // without fragment-shader interlock), as OitTechnique::timingEmulated.
   virtual std::string timingEmulated() const { return {}; }
+  // Techniques with tiers (rt: "software" | "ray_query"): the one in use,
+  // known after setup (render JSON "tier"); empty for the others.
+  virtual std::string tier() const { return {}; }
   // The lookup, declared once: its shader, defines and inputs.
   virtual ShadowLookup lookup() const = 0;
 };
@@ -195,6 +198,8 @@ class OitTechnique {
   // cost is not the technique's real cost (mlab without fragment-shader
   // interlock): the JSON and the reports mark the timing "emulated".
   virtual std::string timingEmulated() const { return {}; }
+  // As ShadowTechnique::tier.
+  virtual std::string tier() const { return {}; }
   // Whether it renders into multisampled frame targets (--msaa N > 1). Those
   // that keep per-pixel data (fragment lists, peeled layers, accumulation
   // targets, occupancy maps) say no and the renderer refuses --msaa for them.

@@ -1,6 +1,9 @@
 #include "techniques/rt/rt.h"
 
+#include <algorithm>
+#include <array>
 #include <chrono>
+#include <numeric>
 
 #include "techniques/common/readback.h"
 #include "techniques/rt/bvh.h"
@@ -11,7 +14,8 @@ namespace sb {
 
 namespace {
 constexpr uint32_t kParams = SB_SLOT_RT_PARAMS, kNodes = SB_SLOT_RT_NODES,
-                   kSegments = SB_SLOT_RT_SEGMENTS, kStatus = SB_SLOT_RT_STATUS;
+                   kSegments = SB_SLOT_RT_SEGMENTS, kStatus = SB_SLOT_RT_STATUS,
+                   kScene = SB_SLOT_RT_SCENE;
 
 // The scene's segments, each as wide as the light map of `size` texels draws
 // it: `texels` wide at the world size of one texel at its midpoint.
@@ -51,13 +55,11 @@ RayTracedShadow::Options RayTracedShadow::readOptions(const OptionReader& o) {
 }
 
 void RayTracedShadow::setup(Device& dev, const GpuScene& scene, const RenderSettings& s) {
-  // Phase 1 has the software tier only: auto picks it on every device.
-  if (opt_.tier == Tier::RayQuery)
-    throw InputError(dev.info().rayQuery
-                         ? "shadow technique 'rt': tier=ray_query is not built yet (use "
-                           "tier=software or auto)"
-                         : "shadow technique 'rt': tier=ray_query: this device offers no "
-                           "VK_KHR_ray_query (use tier=software or auto)");
+  const DeviceInfo info = dev.info();
+  if (opt_.tier == Tier::RayQuery && !info.rayQuery)
+    throw InputError("shadow technique 'rt': tier=ray_query: this device (" + info.backend + ", " +
+                     info.device + ") offers no VK_KHR_ray_query (use tier=software or auto)");
+  rayQuery_ = opt_.tier == Tier::RayQuery || (opt_.tier == Tier::Auto && info.rayQuery);
   const ViewUniforms view = setupLight(dev, scene, s, opt_.size);
   const glm::mat4 proj = s.light.projection(), lightV = s.light.view();
   // One texel is 2 / size of the NDC square: 2 w / (size P00) world units at clip w.
@@ -66,8 +68,19 @@ void RayTracedShadow::setup(Device& dev, const GpuScene& scene, const RenderSett
 
   const auto start = std::chrono::steady_clock::now();
   const std::vector<rt::Segment> segs = strandSegments(dev, scene, view.viewProj, perW, texels);
-  const rt::Bvh bvh = rt::buildBvh(segs, 4, opt_.sah);
+  // Ray queries need no BVH of ours: the segments in scene order, one box each.
+  rt::Bvh bvh;
+  if (rayQuery_) {
+    bvh.order.resize(segs.size());
+    std::iota(bvh.order.begin(), bvh.order.end(), 0u);
+  } else {
+    bvh = rt::buildBvh(segs, 4, opt_.sah);
+  }
   const std::vector<glm::vec4> packed = rt::packSegments(bvh, segs);
+  std::vector<std::array<glm::vec3, 2>> boxes(std::max<std::size_t>(segs.size(), 1));
+  if (rayQuery_)
+    for (std::size_t i = 0; i < segs.size(); ++i)
+      rt::segmentBounds(segs[i], boxes[i][0], boxes[i][1]);
   buildMs_ =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   nodeCount_ = uint32_t(bvh.nodes.size());
@@ -84,9 +97,19 @@ void RayTracedShadow::setup(Device& dev, const GpuScene& scene, const RenderSett
   p.rtAxisU = glm::vec4(lightV[0][0], lightV[1][0], lightV[2][0], float(opt_.maxHits));
   p.rtAxisV = glm::vec4(lightV[0][1], lightV[1][1], lightV[2][1], perW);
   params_ = dev.createBuffer({"rt.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
-  nodes_ = dev.createBuffer(
-      {"rt.bvh_nodes", "shadow", BufferUsage::Storage, bvh.nodes.size() * sizeof(rt::Node)},
-      bvh.nodes.data());
+  if (rayQuery_) {
+    // A scene without hair: one empty box at the origin (packSegments' zero
+    // segment, which no ray hits).
+    boxes_ = dev.createBuffer(
+        {"rt.boxes", "shadow", BufferUsage::Storage, boxes.size() * sizeof(boxes[0])},
+        boxes.data());
+    scene_ = dev.createAccelerationStructure("rt.acceleration_structure", "shadow", boxes_,
+                                             uint32_t(boxes.size()));
+  } else {
+    nodes_ = dev.createBuffer(
+        {"rt.bvh_nodes", "shadow", BufferUsage::Storage, bvh.nodes.size() * sizeof(rt::Node)},
+        bvh.nodes.data());
+  }
   segments_ = dev.createBuffer(
       {"rt.segments", "shadow", BufferUsage::Storage, packed.size() * sizeof(glm::vec4)},
       packed.data());
@@ -102,17 +125,19 @@ void RayTracedShadow::addPasses(FrameGraph& graph, Device& dev) {
 }
 
 ShadowLookup RayTracedShadow::lookup() const {
-  ShadowLookup l{"techniques/rt/lookup.glsl"};
+  ShadowLookup l{rayQuery_ ? "techniques/rt/lookup_ray_query.glsl" : "techniques/rt/lookup.glsl"};
   // The status buffer is written by the lookup (an atomic count of capped
-  // rays) but declared read: a side output that must not keep a pass alive.
-  // As written storage, every pass that shades through the lookup became a
-  // writer the graph kept (a culled transparency technique's passes in a
-  // visibility-only run, tests/test_cull_build.cpp). So the counter sums the
-  // rays of the passes that ran; rt.clear zeroes it before them.
-  l.inputs.uniform(kParams, params_)
-      .readStorage(kNodes, nodes_)
-      .readStorage(kSegments, segments_)
-      .readStorage(kStatus, status_);
+  // rays): a side output, which keeps no pass alive. As written storage,
+  // every pass that shades through the lookup became a writer the graph kept
+  // (a culled transparency technique's passes in a visibility-only run,
+  // tests/test_cull_build.cpp). So the counter sums the rays of the passes
+  // that ran; rt.clear zeroes it before them.
+  l.inputs.uniform(kParams, params_);
+  if (rayQuery_)
+    l.inputs.accelerationStructure(kScene, scene_);
+  else
+    l.inputs.readStorage(kNodes, nodes_);
+  l.inputs.readStorage(kSegments, segments_).sideOutput(kStatus, status_);
   if (opt_.maxHits > 0) l.defines.defines.push_back({"SB_RT_COUNT_CAP", "1"});
   opaque_.addTo(l);
   return l;
@@ -125,7 +150,7 @@ std::vector<Counter> RayTracedShadow::counters(Device& dev) {
           {"rt.bvh_depth", double(depth_)},
           {"rt.segments", double(segmentCount_)},
           {"rt.max_hits_reached", status.empty() ? 0.0 : double(status[0])},
-          {"rt.tier_ray_query", 0.0}};
+          {"rt.tier_ray_query", rayQuery_ ? 1.0 : 0.0}};
 }
 
 }  // namespace sb

@@ -6,10 +6,14 @@
 
 namespace sb {
 
-// Ray-traced strand shadows (the software tier): every strand segment is
-// a capsule's cylinder of radius r (rt_math.glsl says how a ray hits it), a
-// BVH over the segments is built on the CPU at setup (techniques/rt/bvh.h) and
-// walked in the lookup by rays from the shaded point to the light.
+// Ray-traced strand shadows: every strand segment is a capsule's cylinder of
+// radius r (rt_math.glsl says how a ray hits it); rays from the shaded point
+// to the light find the segments they may cross in one of two tiers: the
+// software tier walks a BVH built on the CPU at setup (techniques/rt/bvh.h) in
+// shader code (lookup.glsl), the ray-query tier (Vulkan devices with
+// VK_KHR_ray_query) asks a ray query over an acceleration structure of the
+// segments' boxes (lookup_ray_query.glsl); both judge each candidate by the
+// same rule (rays.glsl). tier=auto takes ray queries where the device has them.
 // The width: a strand is as wide as the light map draws it, one texel for
 // lines and ribbon_width texels for ribbons of a map of `size` texels, so
 // r = width / 2 texels, in world units at the segment's midpoint (constant
@@ -34,12 +38,16 @@ class RayTracedShadow : public LightMapShadow {
   void addPasses(FrameGraph& graph, Device& dev) override;
   ShadowLookup lookup() const override;
   std::vector<Counter> counters(Device& dev) override;
+  std::string tier() const override { return rayQuery_ ? "ray_query" : "software"; }
 
  private:
   Pass clearPass() const;
 
   Options opt_;
-  Buffer params_, nodes_, segments_, status_;
+  bool rayQuery_ = false;  // the tier in use (after setup)
+  // nodes_: the software tier's BVH; boxes_ and scene_: the ray-query tier's
+  // boxes and acceleration structure over them.
+  Buffer params_, nodes_, segments_, status_, boxes_, scene_;
   double buildMs_ = 0;
   uint32_t nodeCount_ = 0, depth_ = 0, segmentCount_ = 0;
 };

@@ -1,4 +1,4 @@
-// --shadow rt: ray-traced strand shadows (the software tier).
+// --shadow rt: ray-traced strand shadows (software and ray-query tiers).
 #include "techniques/common/unit.h"
 
 #include "techniques/rt/rt.h"
@@ -10,7 +10,9 @@ SB_TECHNIQUE(
      .paper = "",
      .help = "ray-traced shadows: rays from the point to the light through a BVH of strand "
              "segments (capsule cylinders as wide as the light map draws them), "
-             "(1-shadow_alpha) per strand crossed; software tier (BVH walked in the shader)",
+             "(1-shadow_alpha) per strand crossed; software tier (BVH walked in the shader) or "
+             "ray-query tier (VK_KHR_ray_query over an acceleration structure of the segments' "
+             "boxes)",
      .options = {opt::mapSize("the light texel the strand width and the rays' jitter are "
                               "measured in (and the opaque mesh's map), 1..16384"),
                  opt::bias(),
@@ -24,8 +26,9 @@ SB_TECHNIQUE(
                              "BVH splits: sah (binned surface area heuristic) | median (of the "
                              "longest axis)"),
                  opt::choice("tier", "auto", {"auto", "software", "ray_query"},
-                             "auto | software (BVH in shader code) | ray_query (not built yet: "
-                             "refused); auto is software")},
+                             "auto (ray_query where the device offers VK_KHR_ray_query, else "
+                             "software) | software (BVH in shader code) | ray_query (refused, "
+                             "exit 2, on devices without it); the JSON's tier")},
      .stepped = SteppedOption{"rays", true, 1, 256},
      .makeShadow = [](const OptionReader& o) {
        return std::make_unique<RayTracedShadow>(RayTracedShadow::readOptions(o));
