@@ -1,7 +1,6 @@
 #include "techniques/rt_oit/rt_oit.h"
 
 #include <chrono>
-#include <cstring>
 
 #include "base/errors.h"
 #include "scenes/options.h"
@@ -66,6 +65,10 @@ void RayTracedOit::setup(Device& dev, const GpuScene& scene, const RenderSetting
                            "tier=software or auto)"
                          : "transparency technique 'rt': tier=ray_query: this device offers no "
                            "VK_KHR_ray_query (use tier=software or auto)");
+  if (scene.segmentCount > kMaxSegments)
+    throw InputError("transparency technique 'rt': " + std::to_string(scene.segmentCount) +
+                     " segments; at most " + std::to_string(kMaxSegments) +
+                     " (2^24: a segment's index is a float in the shader)");
   keepInputs(dev, scene, s, shading, targets);
   const glm::mat4 vp = cameraView(s).viewProj;
   const float pixels = s.primitive == Primitive::Ribbons ? s.ribbonWidth : 1.0f;
@@ -74,9 +77,10 @@ void RayTracedOit::setup(Device& dev, const GpuScene& scene, const RenderSetting
   const std::vector<rt::Segment> segs = eyeSegments(dev, scene, vp, float(s.width), pixels);
   const rt::Bvh bvh = rt::buildBvh(segs, 4, o_.sah);
   std::vector<glm::vec4> packed = rt::packSegments(bvh, segs);
-  // b.w: the segment's index, for its colours and the hits' order.
-  for (std::size_t k = 0; k < bvh.order.size(); ++k)
-    std::memcpy(&packed[2 * k + 1].w, &bvh.order[k], sizeof(float));
+  // b.w: the segment's index, for its colours and the hits' order, as a float's
+  // value (exact below 2^24): as bits, small integers are denormals, which a
+  // shader's float loads may flush to zero (llvmpipe did: every index read 0).
+  for (std::size_t k = 0; k < bvh.order.size(); ++k) packed[2 * k + 1].w = float(bvh.order[k]);
   buildMs_ =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   nodeCount_ = uint32_t(bvh.nodes.size());

@@ -28,6 +28,7 @@ class RayTracedOit : public CompositedOit {
     bool sah = true;  // BVH splits: binned SAH, or at the median
   };
   static constexpr uint32_t kMaxK = 32;
+  static constexpr uint32_t kMaxSegments = 1u << 24;
   explicit RayTracedOit(Options o) : o_(o) {}
   static Options readOptions(const OptionReader& o);
   std::string name() const override { return "rt"; }

@@ -45,7 +45,7 @@ float rtoTMax;
 // A hit's shaded colour (rgb, alpha): the segment at BVH slot i, s along it.
 vec4 rtoShade(uint i, float s) {
   vec4 a = rtoSegments[2u * i], b = rtoSegments[2u * i + 1u];
-  uint first = segments[floatBitsToUint(b.w)];
+  uint first = segments[uint(b.w)];
   vec3 e = b.xyz - a.xyz;
   vec3 tangent = dot(e, e) > 1e-30 ? normalize(e) : vec3(0.0, 1.0, 0.0);
   vec4 c = mix(colors[first], colors[first + 1u], s);
@@ -57,7 +57,7 @@ KBuffer rtoKb;
 uint rtoHits;
 void rtoVisit(uint i, float t, float s) {
   ++rtoHits;
-  uvec2 key = uvec2(floatBitsToUint(t), floatBitsToUint(rtoSegments[2u * i + 1u].w));
+  uvec2 key = uvec2(floatBitsToUint(t), uint(rtoSegments[2u * i + 1u].w));
   kbufferInsert(rtoKb, SB_RT_OIT_K, rtoShade(i, s), key);
 }
 #else
@@ -66,7 +66,7 @@ bool rtoAfterAny;  // false: the first walk, every hit counts
 uint rtoBestSlot;
 float rtoBestS;
 void rtoVisit(uint i, float t, float s) {
-  uvec2 key = uvec2(floatBitsToUint(t), floatBitsToUint(rtoSegments[2u * i + 1u].w));
+  uvec2 key = uvec2(floatBitsToUint(t), uint(rtoSegments[2u * i + 1u].w));
   if (rtoAfterAny && !rtoKeyLess(rtoLast, key)) return;
   if (!rtoKeyLess(key, rtoBest)) return;
   rtoBest = key;
