@@ -78,8 +78,7 @@ void RayTracedOit::setup(Device& dev, const GpuScene& scene, const RenderSetting
   const rt::Bvh bvh = rt::buildBvh(segs, 4, o_.sah);
   std::vector<glm::vec4> packed = rt::packSegments(bvh, segs);
   // b.w: the segment's index, for its colours and the hits' order, as a float's
-  // value (exact below 2^24): as bits, small integers are denormals, which a
-  // shader's float loads may flush to zero (llvmpipe did: every index read 0).
+  // value (exact below 2^24, which setup checks).
   for (std::size_t k = 0; k < bvh.order.size(); ++k) packed[2 * k + 1].w = float(bvh.order[k]);
   buildMs_ =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
