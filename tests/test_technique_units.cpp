@@ -218,6 +218,7 @@ std::vector<std::string> namesOutsideFolders(const fs::path& root) {
   const std::map<std::string, std::set<std::string>> reuse = {
       {"techniques/msm/", {"mboit"}},                // MSM is MBOIT's moment math on light maps
       {"techniques/occupancy_oit/", {"occupancy"}},  // the occupancy maps' transparency order
+      {"techniques/rt_oit/", {"kbuffer"}},           // k=: the k-buffer's merge of the hits past k
       {"techniques/shading/", {"marschner", "sadeghi"}}};  // the pass every model runs in
   // A name's folders: two descriptors may share one (occupancy: shadow and transparency).
   std::map<std::string, std::set<std::string>> homes;

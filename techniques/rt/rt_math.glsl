@@ -1,5 +1,8 @@
 // Ray against strand geometry, shared by the lookup (GLSL) and the CPU BVH and
 // its tests (rt_math.h, C++ with GLM). Rays are o + t d with |d| = 1.
+// Guarded: ray-traced transparency includes it beside rt's lookup.
+#ifndef SB_RT_MATH_GLSL
+#define SB_RT_MATH_GLSL
 #ifndef SB_INLINE
 #define SB_INLINE
 #endif
@@ -54,3 +57,4 @@ SB_INLINE vec2 rtJitter(int k, int n) {
   float y = fract(0.5f + float(k) * 0.61803398875f);
   return vec2(x, y) - vec2(0.5f);
 }
+#endif  // SB_RT_MATH_GLSL

@@ -1,0 +1,152 @@
+#include "techniques/rt_oit/rt_oit.h"
+
+#include <chrono>
+
+#include "base/errors.h"
+#include "scenes/options.h"
+#include "techniques/common/readback.h"
+#include "techniques/common/shader_library.h"
+#include "techniques/rt/bvh.h"
+#include "techniques/rt_oit/slots.h"
+#include "techniques/rt_oit/uniforms.h"
+#include "techniques/shading/hair_shading.h"
+
+namespace sb {
+
+namespace {
+constexpr uint32_t kParams = SB_SLOT_RT_OIT_PARAMS, kNodes = SB_SLOT_RT_OIT_NODES,
+                   kSegments = SB_SLOT_RT_OIT_SEGMENTS, kStatus = SB_SLOT_RT_OIT_STATUS,
+                   kOpaque = SB_SLOT_RT_OIT_OPAQUE;
+constexpr uint32_t kTile = 8;  // trace.comp's workgroup side
+
+// Every segment of the scene (index i is segment i: the trace reads its
+// colours through it), `pixels` wide at its midpoint: one pixel is
+// 2 |w| / (width * xScale) world units at clip w.
+std::vector<rt::Segment> eyeSegments(Device& dev, const GpuScene& scene, const glm::mat4& vp,
+                                     float frameWidth, float pixels) {
+  std::vector<rt::Segment> segs(scene.hasHair() ? scene.segmentCount : 0);
+  if (segs.empty()) return segs;
+  const auto points = readBufferAs<glm::vec4>(dev, scene.points);
+  const auto firsts = readBufferAs<uint32_t>(dev, scene.segments);
+  const float xScale = glm::length(glm::vec3(vp[0][0], vp[1][0], vp[2][0]));
+  for (uint32_t i = 0; i < segs.size() && i < firsts.size(); ++i) {
+    if (firsts[i] + 1 >= points.size()) continue;  // left a zero-length segment: never hit
+    rt::Segment& s = segs[i];
+    s.a = glm::vec3(points[firsts[i]]);
+    s.b = glm::vec3(points[firsts[i] + 1]);
+    const float w = std::abs((vp * glm::vec4(0.5f * (s.a + s.b), 1.0f)).w);
+    s.radius = 0.5f * pixels * 2.0f * w / (frameWidth * xScale);
+  }
+  return segs;
+}
+}  // namespace
+
+RayTracedOit::Options RayTracedOit::readOptions(const OptionReader& o) {
+  Options r;
+  r.k = static_cast<uint32_t>(o.integer("k"));
+  r.maxHits = static_cast<uint32_t>(o.integer("max_hits"));
+  r.sah = o.choice("bvh") == "sah";
+  const std::string tier = o.choice("tier");
+  r.tier = tier == "software" ? Tier::Software : tier == "ray_query" ? Tier::RayQuery : Tier::Auto;
+  if (r.k > 0 && r.maxHits > 0)
+    throw InputError(
+        "transparency technique 'rt': max_hits caps the walks of k=0 (every hit); "
+        "with k=" +
+        std::to_string(r.k) + " every hit is kept or merged: give one");
+  return r;
+}
+
+void RayTracedOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
+                         const HairShading& shading, const OitTargets& targets) {
+  // The software tier only so far: auto picks it on every device.
+  if (o_.tier == Tier::RayQuery)
+    throw InputError(dev.info().rayQuery
+                         ? "transparency technique 'rt': tier=ray_query is not built yet (use "
+                           "tier=software or auto)"
+                         : "transparency technique 'rt': tier=ray_query: this device offers no "
+                           "VK_KHR_ray_query (use tier=software or auto)");
+  if (scene.segmentCount > kMaxSegments)
+    throw InputError("transparency technique 'rt': " + std::to_string(scene.segmentCount) +
+                     " segments; at most " + std::to_string(kMaxSegments) +
+                     " (2^24: a segment's index is a float in the shader)");
+  keepInputs(dev, scene, s, shading, targets);
+  const glm::mat4 vp = cameraView(s).viewProj;
+  const float pixels = s.primitive == Primitive::Ribbons ? s.ribbonWidth : 1.0f;
+
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<rt::Segment> segs = eyeSegments(dev, scene, vp, float(s.width), pixels);
+  const rt::Bvh bvh = rt::buildBvh(segs, 4, o_.sah);
+  std::vector<glm::vec4> packed = rt::packSegments(bvh, segs);
+  // b.w: the segment's index, for its colours and the hits' order, as a float's
+  // value (exact below 2^24, which setup checks).
+  for (std::size_t k = 0; k < bvh.order.size(); ++k) packed[2 * k + 1].w = float(bvh.order[k]);
+  buildMs_ =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  nodeCount_ = uint32_t(bvh.nodes.size());
+  depth_ = bvh.depth;
+  segmentCount_ = uint32_t(segs.size());
+
+  RtOitParams p{};
+  p.rtoInvViewProj = glm::mat4(glm::inverse(glm::dmat4(vp)));
+  p.rtoSize = glm::uvec4(s.width, s.height, o_.k, o_.maxHits);
+  params_ = dev.createBuffer({"rt.oit_params", "frame", BufferUsage::Uniform, sizeof p}, &p);
+  nodes_ = dev.createBuffer(
+      {"rt.oit_bvh_nodes", "oit", BufferUsage::Storage, bvh.nodes.size() * sizeof(rt::Node)},
+      bvh.nodes.data());
+  segments_ = dev.createBuffer(
+      {"rt.oit_segments", "oit", BufferUsage::Storage, packed.size() * sizeof(glm::vec4)},
+      packed.data());
+  status_ = dev.createBuffer({"rt.oit_status", "oit", BufferUsage::Storage, 16});
+
+  ShaderDefines defs = shading.hairDefines();
+  if (targets.opaqueDrawn) defs.defines.push_back({"SB_RT_OIT_OPAQUE", "1"});
+  if (o_.k > 0) defs.defines.push_back({"SB_RT_OIT_K", std::to_string(o_.k)});
+  const ShaderCode comp = loadShader("techniques/rt_oit/trace.comp", defs);
+  PipelineDesc d =
+      tracePass().pipeline(dev, name() + ".trace", name() + "+" + shading.shadow().name());
+  d.compute = &comp;
+  trace_ = dev.createPipeline(d);
+}
+
+Pass RayTracedOit::tracePass() const {
+  Pass p(name() + ".trace");
+  p.inputs(shading_->hairInputs())
+      .uniform(kParams, params_)
+      .readStorage(kNodes, nodes_)
+      .readStorage(kSegments, segments_)
+      .storage(kStatus, status_)
+      .storage(AccumComposite::kAccumBinding, composite_.accum());
+  if (targets_.opaqueDrawn) p.sample(kOpaque, targets_.depth);
+  return p;
+}
+
+void RayTracedOit::addPasses(FrameGraph& graph, Device& dev) {
+  graph.add(name(), {tracePass(), composite_.pass()}, [this, &dev] {
+    dev.fillBuffer(status_, 0);
+    tracePass().dispatch(dev, trace_, (settings_.width + kTile - 1) / kTile,
+                         (settings_.height + kTile - 1) / kTile);
+    composite_.record(dev);
+  });
+}
+
+std::vector<Counter> RayTracedOit::counters(Device& dev) {
+  const auto status = readBufferAs<uint32_t>(dev, status_);
+  auto word = [&status](std::size_t i) { return i < status.size() ? double(status[i]) : 0.0; };
+  return {{"rt.oit_bvh_build_ms", buildMs_},
+          {"rt.oit_bvh_nodes", double(nodeCount_)},
+          {"rt.oit_bvh_depth", double(depth_)},
+          {"rt.oit_segments", double(segmentCount_)},
+          {"rt.oit_hits", word(0)},
+          {"rt.oit_pixels_capped", word(1)},
+          {"rt.oit_pixels_merged", word(2)},
+          {"rt.oit_tier_ray_query", 0.0}};
+}
+
+std::vector<std::string> RayTracedOit::warnings(Device& dev) {
+  const auto status = readBufferAs<uint32_t>(dev, status_);
+  if (status.size() < 2 || status[1] == 0) return {};
+  return {"rt: " + std::to_string(status[1]) + " pixels reached max_hits=" +
+          std::to_string(o_.maxHits) + " (their farther hits are left out)"};
+}
+
+}  // namespace sb

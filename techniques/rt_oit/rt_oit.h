@@ -1,0 +1,51 @@
+// Ray-traced transparency (--oit rt), the software tier: a primary ray per
+// pixel through the centre of the pixel into a BVH of the strand segments
+// (built on the CPU at setup with rt's builder, techniques/rt/bvh.h, over the
+// segments as the camera sees them), its hits composited front to back in
+// depth order over the opaque result; each hit is shaded with the scene's
+// shading model and shadow technique (trace.comp says how).
+// The width: a segment is a capsule's cylinder (rt_math.glsl) of radius half
+// the strand's drawn width (lines 1 pixel, ribbons ribbon_width pixels) in
+// world units at the segment's midpoint, the width the raster techniques draw.
+// A ray at the pixel centre then sees the strand's true width, as the
+// anti-aliased reference does at each of its samples, where the exact
+// reference sees what the rasterizer covers (docs/transparency-techniques.md).
+#pragma once
+
+#include "techniques/common/hair_oit.h"
+
+namespace sb {
+
+class OptionReader;
+
+class RayTracedOit : public CompositedOit {
+ public:
+  enum class Tier { Auto, Software, RayQuery };
+  struct Options {
+    uint32_t k = 0;        // 0: every hit in order; k: the k nearest, the rest merged
+    uint32_t maxHits = 0;  // k = 0: hits composited per pixel at most (0: no cap)
+    Tier tier = Tier::Auto;
+    bool sah = true;  // BVH splits: binned SAH, or at the median
+  };
+  static constexpr uint32_t kMaxK = 32;
+  static constexpr uint32_t kMaxSegments = 1u << 24;
+  explicit RayTracedOit(Options o) : o_(o) {}
+  static Options readOptions(const OptionReader& o);
+  std::string name() const override { return "rt"; }
+  void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
+             const HairShading& shading, const OitTargets& targets) override;
+  void addPasses(FrameGraph& graph, Device& dev) override;
+  std::vector<Counter> counters(Device& dev) override;
+  std::vector<std::string> warnings(Device& dev) override;
+
+ private:
+  Pass tracePass() const;
+
+  Options o_;
+  Buffer params_, nodes_, segments_, status_;
+  Pipeline trace_;
+  double buildMs_ = 0;
+  uint32_t nodeCount_ = 0, depth_ = 0, segmentCount_ = 0;
+};
+
+}  // namespace sb

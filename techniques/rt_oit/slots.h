@@ -1,0 +1,13 @@
+// rt (transparency): its own binding names, for its C++ (#include
+// "techniques/rt_oit/slots.h") and its GLSL (#include "slots.h"); the ranges
+// and the shared names (the accumulation, 16) are in techniques/common/slots.h.
+#ifndef SB_RT_OIT_SLOTS_H
+#define SB_RT_OIT_SLOTS_H
+
+#define SB_SLOT_RT_OIT_PARAMS 18    // RtOitParams
+#define SB_SLOT_RT_OIT_NODES 19     // the eye BVH's nodes (techniques/rt/bvh.h)
+#define SB_SLOT_RT_OIT_SEGMENTS 20  // its segments in BVH order: (a, radius), (b, segment index)
+#define SB_SLOT_RT_OIT_STATUS 21    // uint counters: hits, pixels capped, pixels merged
+#define SB_SLOT_RT_OIT_OPAQUE 22    // the opaque depth (when a mesh was drawn)
+
+#endif  // SB_RT_OIT_SLOTS_H

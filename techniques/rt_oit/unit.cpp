@@ -1,0 +1,32 @@
+// --oit rt: ray-traced transparency (the software tier).
+#include "techniques/common/unit.h"
+
+#include "techniques/rt_oit/rt_oit.h"
+
+SB_TECHNIQUE(
+    {.name = "rt",
+     .family = Family::Transparency,
+     .folder = "rt_oit",
+     .paper = "",
+     .help = "ray-traced transparency: a primary ray per pixel centre through a BVH of strand "
+             "segments (capsule cylinders as wide as the frame draws strands), its hits shaded "
+             "with the shadow technique and composited front to back in depth order; software "
+             "tier (BVH walked in a compute shader)",
+     .options = {opt::integer("k", 0, 0, RayTracedOit::kMaxK,
+                              "0: every hit in order (a walk per hit); k: one walk keeping the k "
+                              "nearest sorted, the rest merged behind them in walk order "
+                              "(counted in rt.oit_pixels_merged), 0..32"),
+                 opt::integer("max_hits", 0, 0, 1000000,
+                              "with k=0: hits composited per pixel at most (0: no cap); capped "
+                              "pixels are counted and warned about, 0..1000000"),
+                 opt::choice("bvh", "sah", {"sah", "median"},
+                             "BVH splits: sah (binned surface area heuristic) | median (of the "
+                             "longest axis)"),
+                 opt::choice("tier", "auto", {"auto", "software", "ray_query"},
+                             "auto | software (BVH in shader code) | ray_query (not built yet: "
+                             "refused); auto is software")},
+     .caps = {.msaaRefusal = "one primary ray per pixel centre: samples would need a ray "
+                             "each; not supported"},
+     .makeOit = [](const OptionReader& o) {
+       return std::make_unique<RayTracedOit>(RayTracedOit::readOptions(o));
+     }});
