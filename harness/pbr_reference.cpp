@@ -325,7 +325,18 @@ RenderResult::MoreReference renderPbrReference(const Scene& scene, const RenderS
   RenderResult::MoreReference::Pbr info;
   info.mode = spec.mode;
   info.width = pbrWidthModel(spec);
-  info.thickness = info.width == "world" ? pbrThickness(scene, s, spec) : 0.0;
+  if (info.width == "world") {
+    // The strands' own widths where they have them (their mean), else the fallback.
+    double sum = 0;
+    std::size_t own = 0;
+    for (float t : scene.strands.thickness)
+      if (t > 0) {
+        sum += t;
+        ++own;
+      }
+    info.thicknessSource = own ? "strands" : "fallback";
+    info.thickness = own ? sum / double(own) : pbrThickness(scene, s, spec);
+  }
   if (info.width == "footprint") m.lightSize = static_cast<uint32_t>(mapSize(refShadow));
 
   const std::string key = cacheKeyText(scene, s, refShadow, spec);

@@ -63,6 +63,7 @@ nlohmann::json errorJson(const RenderResult& r) {
       e["reference"]["pbr"] = {{"mode", p.mode},
                                {"width", p.width},
                                {"thickness", p.thickness},
+                               {"thickness_source", p.thicknessSource},
                                {"spp", p.spp},
                                {"stopped_at_noise_target", p.stoppedAtTarget},
                                {"cache", {{"key", p.key}, {"file", p.file}, {"hit", p.cacheHit}}},

@@ -165,19 +165,24 @@ glm::vec3 cosineSample(glm::vec3 n, glm::vec2 u) {
   return r * std::cos(phi) * t + r * std::sin(phi) * b + std::sqrt(std::max(0.0f, 1 - u.x)) * n;
 }
 
-// The nearest surface along a ray, skipping the strand segment it leaves (a ribbon faces
-// every ray, so a ray leaving it could find it again).
+// The nearest surface along a ray, skipping the strand it leaves: a ribbon faces every ray, so
+// a ray leaving a strand nearly along it (a light above straight hair) would run inside that
+// strand's ribbon for its whole length. A fibre shadowing itself (a curl bending back over
+// its own root) is the case this leaves out (docs/physics-reference.md).
 struct Nearest {
   bool hit = false, mesh = false;
   float t = 0;
   StrandHit strand;
   uint32_t triangle = 0;
 };
+struct Skip {
+  int64_t strand = -1;
+};
 Nearest nearest(const StrandTracer& t, glm::vec3 o, glm::vec3 d, float tnear, float tfar,
-                int64_t skipSegment) {
+                Skip skip) {
   const RayHits h = t.trace(o, d, tnear, tfar);
   for (const StrandHit& s : h.strands)
-    if (int64_t(s.segment) != skipSegment) return {true, false, s.t, s, 0};
+    if (int64_t(t.segmentStrand()[s.segment]) != skip.strand) return {true, false, s.t, s, 0};
   if (h.mesh) return {true, true, h.meshT, {}, h.triangle};
   return {};
 }
@@ -186,7 +191,7 @@ Nearest nearest(const StrandTracer& t, glm::vec3 o, glm::vec3 d, float tnear, fl
 glm::vec3 pathSample(const StrandScene& s, const StrandTracer& tr, const RenderOptions& o,
                      float eps, Rng& rng, float px, float py) {
   glm::vec3 origin = s.eye, dir = primaryDirection(s, px, py), throughput(1.0f), radiance(0.0f);
-  int64_t skip = -1;
+  Skip skip;
   for (uint32_t bounce = 0; bounce < o.bounces; ++bounce) {
     const Nearest n = nearest(tr, origin, dir, bounce == 0 ? 0.0f : eps,
                               std::numeric_limits<float>::infinity(), skip);
@@ -195,13 +200,13 @@ glm::vec3 pathSample(const StrandScene& s, const StrandTracer& tr, const RenderO
       break;
     }
     const glm::vec3 p = origin + n.t * dir, wo = -dir;
-    // Next-event estimation: each light's direct contribution, its shadow ray unblocked.
+    skip = n.mesh ? Skip{} : Skip{int64_t(tr.segmentStrand()[n.strand.segment])};
     auto lit = [&](const TraceLight& l, const std::function<glm::vec3(glm::vec3)>& fCos) {
       float dist = 0;
       const glm::vec3 wi = toLight(l, p, dist);
       const glm::vec3 f = fCos(wi);
       if (f.r + f.g + f.b <= 0) return;
-      if (nearest(tr, p, wi, eps, dist, n.mesh ? -1 : int64_t(n.strand.segment)).hit) return;
+      if (nearest(tr, p, wi, eps, dist, skip).hit) return;
       // No falloff for a point light either: the raster shading has none (the light's colour
       // is the irradiance over pi wherever it arrives).
       radiance += throughput * f * (kPi * l.color);
@@ -214,7 +219,6 @@ glm::vec3 pathSample(const StrandScene& s, const StrandTracer& tr, const RenderO
         lit(l, [&](glm::vec3 wi) { return brdf * std::max(0.0f, glm::dot(nrm, wi)); });
       dir = cosineSample(nrm, rng.uniform2());
       throughput *= s.meshAlbedo;
-      skip = -1;
     } else {
       const uint32_t a = tr.segmentStart()[n.strand.segment];
       const glm::vec3 c =
@@ -236,7 +240,6 @@ glm::vec3 pathSample(const StrandScene& s, const StrandTracer& tr, const RenderO
       if (!(smp.pdf > 0)) break;
       dir = glm::normalize(fr.toWorld(smp.wi));
       throughput *= smp.weight;
-      skip = int64_t(n.strand.segment);
     }
     origin = p;
     // Russian roulette past the third bounce: unbiased, it ends paths that carry little.

@@ -59,8 +59,10 @@ StrandTracer::StrandTracer(const TraceGeometry& g) : g_(g), e_(std::make_unique<
   if (g_.radius.size() != g_.points.size())
     throw InputError("pbr reference: one radius per strand point is needed");
   for (std::size_t s = 0; s < g_.pointCount.size(); ++s)
-    for (uint32_t k = 0; k + 1 < g_.pointCount[s]; ++k)
+    for (uint32_t k = 0; k + 1 < g_.pointCount[s]; ++k) {
       segmentStart_.push_back(g_.firstPoint[s] + k);
+      segmentStrand_.push_back(static_cast<uint32_t>(s));
+    }
 
   e_->device = rtcNewDevice("verbose=0");
   if (!e_->device) throw std::runtime_error("Embree: no device");

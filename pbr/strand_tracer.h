@@ -55,6 +55,8 @@ class StrandTracer {
 
   // The first point of each segment (into TraceGeometry::points).
   const std::vector<uint32_t>& segmentStart() const { return segmentStart_; }
+  // The strand of each segment.
+  const std::vector<uint32_t>& segmentStrand() const { return segmentStrand_; }
   const TraceGeometry& geometry() const { return g_; }
 
  private:
@@ -62,7 +64,7 @@ class StrandTracer {
   void addStrands();
   void addMesh();
   TraceGeometry g_;
-  std::vector<uint32_t> segmentStart_;
+  std::vector<uint32_t> segmentStart_, segmentStrand_;
   std::unique_ptr<Embree> e_;
 };
 
