@@ -100,7 +100,10 @@ std::string cacheKeyText(const Scene& scene, const RenderSettings& s, const Spec
       << l.fovYDegrees << "|";
   }
   v3(s.background);
-  k << s.ambient << "|" << refShadow.str() << "|";
+  k << s.ambient << "|";
+  // The exact shadow's map (size, bias) counts in transmittance mode and for footprint widths.
+  if (spec.mode == "transmittance" || pbrWidthModel(spec) == "footprint")
+    k << refShadow.str() << "|";
   // The shading model counts in transmittance mode only (the path's is the hair BSDF).
   if (spec.mode == "transmittance") {
     k << s.shading.spec << ";";
