@@ -107,7 +107,7 @@ void expectAgreement(const std::string& scene, double tolerance, bool interiorOn
   const Interior control = interiorDifference(out, out.image, pbr, interiorOnly);
   std::cout << "[ measured ] " << scene << ": " << agree.covered
             << " interior covered pixels, mean max-channel |exact - pbr| " << agree.mean
-            << "; control (shadowmap - pbr) " << control.mean << "; whole-image RMSE "
+            << "; control (no shadows - pbr) " << control.mean << "; whole-image RMSE "
             << sb::compareImages(out.referenceImage, pbr).rmse << "\n";
   EXPECT_GT(agree.covered, 30);
   EXPECT_LE(agree.mean, tolerance);
