@@ -219,6 +219,19 @@ struct RenderResult {
     ImageError image;                   // of the image against it
     FlipResult flip;
     Image referenceImage;  // the filtered reference, the image's size
+    // pbr (harness/pbr_reference.h): what it rendered, its noise and its disk cache.
+    struct Pbr {
+      std::string mode, width;      // width: footprint or world (auto resolved)
+      double thickness = 0;         // world: the strands' mean width
+      std::string thicknessSource;  // world: "strands" (the file's or scene's) or "fallback"
+      uint32_t spp = 0;             // samples per pixel rendered
+      bool stoppedAtTarget = false;
+      double meanStderr = 0, noiseRmse = 0;  // per pixel; noiseRmse: sqrt(mean stderr^2)
+      std::string key, file;                 // the cache's hash (hex) and file
+      bool cacheHit = false;
+      double renderMs = 0;  // the render that made it (also on a cache hit: the first's)
+    };
+    std::optional<Pbr> pbr;
   };
   std::vector<MoreReference> moreReferences;
   std::optional<AnimationResult> animation;  // with animate

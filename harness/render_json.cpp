@@ -1,5 +1,6 @@
 // The render result as JSON (`render --json`, a sweep's results.json).
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <nlohmann/json.hpp>
 
@@ -50,6 +51,24 @@ nlohmann::json errorJson(const RenderResult& r) {
                       {"bytes", m.bytes},
                       {"host_bytes", m.hostBytes},
                       {"cached", m.cached}};
+    if (m.pbr) {
+      // The reference's own noise: sqrt(mean stderr^2) is the RMSE a perfect image would
+      // score against it, so rmse^2 - noise^2 estimates the error without it.
+      const RenderResult::MoreReference::Pbr& p = *m.pbr;
+      e["noise"] = {
+          {"rmse", p.noiseRmse},
+          {"mean_stderr", p.meanStderr},
+          {"rmse_without_noise",
+           std::sqrt(std::max(0.0, m.image.rmse * m.image.rmse - p.noiseRmse * p.noiseRmse))}};
+      e["reference"]["pbr"] = {{"mode", p.mode},
+                               {"width", p.width},
+                               {"thickness", p.thickness},
+                               {"thickness_source", p.thicknessSource},
+                               {"spp", p.spp},
+                               {"stopped_at_noise_target", p.stoppedAtTarget},
+                               {"cache", {{"key", p.key}, {"file", p.file}, {"hit", p.cacheHit}}},
+                               {"render_ms", p.renderMs}};
+    }
     error[m.name] = e;
   }
   if (!r.errorByEyeLayers.empty()) {

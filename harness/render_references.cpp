@@ -1,11 +1,13 @@
 // The further references of a render (RenderRequest::references,
 // harness/reference_spec.h): the anti-aliased exact reference and the error
-// against it (error.aa). docs/ground-truth.md "The anti-aliased reference".
+// against it (error.aa), docs/ground-truth.md "The anti-aliased reference"; the
+// CPU strand references (error.pbr, harness/pbr_reference.h).
 #include <chrono>
 #include <cstdio>
 #include <string>
 
 #include "backends/device.h"
+#include "harness/pbr_reference.h"
 #include "harness/reference_spec.h"
 #include "harness/render_steps.h"
 #include "imaging/metrics.h"
@@ -142,14 +144,15 @@ std::vector<RenderResult::MoreReference> moreReferences(
   std::vector<RenderResult::MoreReference> list;
   for (const std::string& text : req.references) {
     const ReferenceSpec spec = parseReferenceSpec(text);
-    if (spec.name != "aa") continue;  // exact: the default reference, already rendered
+    if (spec.name == "exact") continue;  // the default reference, already rendered
     const std::string key = referenceKey(req, settings, refShadow) + "|" + spec.str();
     RenderResult::MoreReference m;
     if (cache && cache->moreReferences.count(key)) {
       m = cache->moreReferences.at(key);
       m.cached = true;
     } else {
-      m = renderAaReference(req, scene, settings, refShadow, spec.samples);
+      m = spec.name == "pbr" ? renderPbrReference(scene, settings, refShadow, spec)
+                             : renderAaReference(req, scene, settings, refShadow, spec.samples);
       if (cache) cache->moreReferences[key] = m;
     }
     m.image = compareImages(out.image, m.referenceImage);

@@ -22,13 +22,14 @@ fi
 # with the tests, though the main command does not build them). glslang-tools and
 # openimageio-tools only because glslang's and OpenImageIO's CMake configs import their
 # programs: configure fails without them. libstb-dev: stb_easy_font.h, the viewer's overlay text.
+# libembree-dev: Embree 3, the ray tracing of the CPU strand references (pbr/).
 packages=(
   build-essential cmake pkg-config git
   libegl-dev libegl-mesa0 libgl-dev libgl1-mesa-dri libosmesa6
   libvulkan-dev mesa-vulkan-drivers
   glslang-dev glslang-tools libglfw3-dev libglm-dev
   libopenimageio-dev openimageio-tools libcli11-dev nlohmann-json3-dev libtinyobjloader-dev
-  libgtest-dev fonts-dejavu-core libstb-dev
+  libgtest-dev fonts-dejavu-core libstb-dev libembree-dev
 )
 if ((tests)); then
   packages+=(

@@ -1,0 +1,402 @@
+#include "harness/pbr_reference.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+#include "harness/stop.h"
+#include "reports/files.h"
+#include "techniques/common/unit.h"
+#include "techniques/kajiya_kay/kajiya_kay.h"
+#include "techniques/marschner/marschner.h"
+#include "techniques/sadeghi/sadeghi.h"
+#include "techniques/shading/hair_shading.h"
+
+namespace sb {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Bumped when the pbr code changes what it renders: every cached image is then stale.
+constexpr const char* kPbrCodeVersion = "pbr-1";
+constexpr const char* kCacheMagic = "strandbench pbr reference 1\n";
+
+float strandWidthPixels(const RenderSettings& s) {
+  return s.primitive == Primitive::Lines ? 1.0f : s.ribbonWidth;
+}
+
+glm::mat4 cameraViewProj(const RenderSettings& s) {
+  return s.camera.projection(float(s.width) / float(s.height)) * s.camera.view();
+}
+
+// The world size of one pixel (one texel of a square map of `side`) at p for this
+// view-projection: 2 w / (P[1][1] side), w the clip w (1 for an orthographic light).
+float pixelAt(const glm::mat4& proj, const glm::mat4& viewProj, glm::vec3 p, float side) {
+  const float w = (viewProj * glm::vec4(p, 1.0f)).w;
+  return 2.0f * std::abs(w) / (std::abs(proj[1][1]) * side);
+}
+
+std::vector<Light> allLights(const RenderSettings& s) {
+  std::vector<Light> l{s.light};
+  l.insert(l.end(), s.extraLights.begin(), s.extraLights.end());
+  return l;
+}
+
+uint64_t fnv1a(uint64_t h, const void* data, std::size_t n) {
+  const auto* b = static_cast<const unsigned char*>(data);
+  for (std::size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 0x100000001B3ull;
+  return h;
+}
+template <class T>
+uint64_t fnvVector(uint64_t h, const std::vector<T>& v) {
+  return fnv1a(h, v.data(), v.size() * sizeof(T));
+}
+
+long long mapSize(const Spec& refShadow) {
+  return readerFor(findTechnique(Family::Shadow, refShadow.name), refShadow).integer("size");
+}
+double mapBias(const Spec& refShadow) {
+  return readerFor(findTechnique(Family::Shadow, refShadow.name), refShadow).number("bias");
+}
+
+// Everything the reference's pixels depend on, as text (hashed into the cache's key).
+std::string cacheKeyText(const Scene& scene, const RenderSettings& s, const Spec& refShadow,
+                         const ReferenceSpec& spec) {
+  std::ostringstream k;
+  k.precision(9);
+  auto v3 = [&](const glm::vec3& v) { k << v.x << "," << v.y << "," << v.z << ";"; };
+  auto v4 = [&](const glm::vec4& v) { k << v.x << "," << v.y << "," << v.z << "," << v.w << ";"; };
+  k << kPbrCodeVersion << "|" << spec.str() << "|" << scene.name << "|";
+  uint64_t h = 0xCBF29CE484222325ull;
+  const Strands& st = scene.strands;
+  h = fnvVector(h, st.firstPoint);
+  h = fnvVector(h, st.pointCount);
+  h = fnvVector(h, st.points);
+  h = fnvVector(h, st.colors);
+  h = fnvVector(h, st.thickness);
+  h = fnvVector(h, st.transparency);
+  h = fnvVector(h, scene.mesh.positions);
+  h = fnvVector(h, scene.mesh.normals);
+  h = fnvVector(h, scene.mesh.indices);
+  k << std::hex << h << std::dec << "|" << scene.hairAlpha << "," << scene.shadowAlpha << ";";
+  v3(scene.hairColor);
+  k << s.width << "x" << s.height << "|" << int(s.primitive) << "," << s.ribbonWidth << "|";
+  v3(s.camera.eye);
+  v3(s.camera.target);
+  v3(s.camera.up);
+  k << s.camera.fovYDegrees << "," << s.camera.nearPlane << "," << s.camera.farPlane << "|";
+  for (const Light& l : allLights(s)) {
+    k << int(l.type) << ";";
+    v3(l.position);
+    v3(l.direction);
+    v3(l.color);
+    k << l.intensity << "," << l.nearPlane << "," << l.farPlane << "," << l.orthoHalfExtent << ","
+      << l.fovYDegrees << "|";
+  }
+  v3(s.background);
+  k << s.ambient << "|";
+  // The exact shadow's map (size, bias) counts in transmittance mode and for footprint widths.
+  if (spec.mode == "transmittance" || pbrWidthModel(spec) == "footprint")
+    k << refShadow.str() << "|";
+  // The shading model counts in transmittance mode only (the path's is the hair BSDF).
+  if (spec.mode == "transmittance") {
+    k << s.shading.spec << ";";
+    v4(s.shading.material);
+    v4(s.shading.shift);
+    v4(s.shading.width);
+    v4(s.shading.intensity);
+    k << s.shading.glintWidth;
+  }
+  return k.str();
+}
+
+std::string hex64(uint64_t v) {
+  std::ostringstream o;
+  o << std::hex << std::setw(16) << std::setfill('0') << v;
+  return o.str();
+}
+
+// The cached image: the magic line, the key text's length and text, the header numbers, then
+// the mean (RGB floats) and the standard error per pixel.
+struct CacheHeader {
+  uint32_t width, height, spp, stoppedAtTarget;
+  double renderMs;
+};
+
+std::string cacheBytes(const std::string& key, const pbr::RenderImage& img, double renderMs) {
+  std::string out = kCacheMagic;
+  const uint64_t n = key.size();
+  out.append(reinterpret_cast<const char*>(&n), sizeof n);
+  out += key;
+  const CacheHeader h{img.width, img.height, img.spp, img.stoppedAtTarget ? 1u : 0u, renderMs};
+  out.append(reinterpret_cast<const char*>(&h), sizeof h);
+  out.append(reinterpret_cast<const char*>(img.mean.data()), img.mean.size() * sizeof(glm::vec3));
+  out.append(reinterpret_cast<const char*>(img.stderror.data()),
+             img.stderror.size() * sizeof(float));
+  return out;
+}
+
+// The cached image when the file holds exactly this key (a hash collision or a damaged file
+// reads as a miss).
+bool readCache(const fs::path& file, const std::string& key, pbr::RenderImage& img,
+               double& renderMs) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return false;
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::size_t at = std::strlen(kCacheMagic);
+  if (bytes.compare(0, at, kCacheMagic) != 0 || bytes.size() < at + sizeof(uint64_t)) return false;
+  uint64_t n = 0;
+  std::memcpy(&n, bytes.data() + at, sizeof n);
+  at += sizeof n;
+  if (n != key.size() || bytes.compare(at, n, key) != 0) return false;
+  at += n;
+  CacheHeader h{};
+  if (bytes.size() < at + sizeof h) return false;
+  std::memcpy(&h, bytes.data() + at, sizeof h);
+  at += sizeof h;
+  const std::size_t pixels = std::size_t(h.width) * h.height;
+  if (bytes.size() != at + pixels * (sizeof(glm::vec3) + sizeof(float))) return false;
+  img.width = h.width;
+  img.height = h.height;
+  img.spp = h.spp;
+  img.stoppedAtTarget = h.stoppedAtTarget != 0;
+  img.mean.resize(pixels);
+  img.stderror.resize(pixels);
+  std::memcpy(img.mean.data(), bytes.data() + at, pixels * sizeof(glm::vec3));
+  std::memcpy(img.stderror.data(), bytes.data() + at + pixels * sizeof(glm::vec3),
+              pixels * sizeof(float));
+  renderMs = h.renderMs;
+  return true;
+}
+
+// The scene's shading model on the CPU: the hair passes' shadeHair and the mesh pass
+// (techniques/shading/hair_shading.glsl, mesh.frag), every light's term weighted by its
+// visibility, the ambient term once.
+pbr::ShadeFn shadingOf(const RenderSettings& s) {
+  const std::vector<Light> lights = allLights(s);
+  return [s, lights](const pbr::SurfacePoint& p, const std::vector<float>& vis) {
+    const ShadingModel& m = s.shading;
+    const float ambient = s.ambient ? 1.0f : 0.0f;
+    const glm::vec3 V = glm::normalize(s.camera.eye - p.position);
+    glm::vec3 out(0.0f);
+    if (p.mesh) {
+      glm::vec3 N = p.direction;
+      if (glm::dot(N, V) < 0) N = -N;
+      const glm::vec3 albedo(HairShading::kMeshMaterial);
+      out = albedo * HairShading::kMeshMaterial.w * ambient;
+      for (std::size_t l = 0; l < lights.size(); ++l) {
+        const Light& L = lights[l];
+        const glm::vec3 toL = L.type == LightType::Point ? glm::normalize(L.position - p.position)
+                                                         : -glm::normalize(L.direction);
+        out += albedo * vis[l] * std::max(glm::dot(N, toL), 0.0f) * L.color * L.intensity;
+      }
+      return out;
+    }
+    const glm::vec3 T = glm::normalize(p.direction), c = p.color;
+    out = m.material.w * ambient * c;
+    for (std::size_t l = 0; l < lights.size(); ++l) {
+      const Light& Lt = lights[l];
+      const glm::vec3 L = Lt.type == LightType::Point ? glm::normalize(Lt.position - p.position)
+                                                      : -glm::normalize(Lt.direction);
+      glm::vec3 direct;
+      if (m.kind == ShadingKind::KajiyaKay) {
+        const glm::vec2 kk = glsl::kajiyaKay(T, L, V, m.material.z);
+        direct = m.material.x * kk.x * c + glm::vec3(m.material.y * kk.y);
+      } else {
+        const float tl = glm::dot(T, L);
+        const float diffuse = std::sqrt(std::max(0.0f, 1.0f - tl * tl));
+        const glm::vec3 specular =
+            m.kind == ShadingKind::Marschner
+                ? glsl::marschner(T, L, V, c, m.shift, m.width) * diffuse
+                : glsl::sadeghi(T, L, V, c, m.shift, m.width, m.intensity, m.glintWidth);
+        direct = m.material.x * diffuse * c + m.material.y * specular;
+      }
+      out += vis[l] * direct * Lt.color * Lt.intensity;
+    }
+    return out;
+  };
+}
+
+}  // namespace
+
+std::string pbrCacheDir() {
+  if (const char* d = std::getenv("SB_PBR_CACHE"); d && *d)
+    return std::string(d) == "off" ? "" : std::string(d);
+  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x)
+    return (fs::path(x) / "strandbench" / "pbr").string();
+  if (const char* home = std::getenv("HOME"); home && *home)
+    return (fs::path(home) / ".cache" / "strandbench" / "pbr").string();
+  return "";
+}
+
+std::string pbrWidthModel(const ReferenceSpec& spec) {
+  if (spec.width != "auto") return spec.width;
+  return spec.mode == "transmittance" ? "footprint" : "world";
+}
+
+double pbrThickness(const Scene& scene, const RenderSettings& s, const ReferenceSpec& spec) {
+  if (spec.thickness > 0) return spec.thickness;
+  const glm::mat4 proj = s.camera.projection(float(s.width) / float(s.height));
+  return pixelAt(proj, proj * s.camera.view(), scene.bounds().center(), float(s.height));
+}
+
+pbr::StrandScene pbrScene(const Scene& scene, const RenderSettings& s, const Spec& refShadow) {
+  pbr::StrandScene out;
+  const Strands& st = scene.strands;
+  out.colors.resize(st.points.size());
+  out.alpha.resize(st.points.size());
+  for (std::size_t i = 0; i < st.points.size(); ++i) {
+    out.colors[i] = i < st.colors.size() ? st.colors[i] : scene.hairColor;
+    const float transparency = i < st.transparency.size() ? st.transparency[i] : 0.0f;
+    out.alpha[i] = scene.hairAlpha * (1.0f - transparency);
+  }
+  out.meshNormals = scene.mesh.normals;
+  out.shadowAlpha = scene.shadowAlpha;
+  out.background = s.background;
+  out.meshAlbedo = glm::vec3(HairShading::kMeshMaterial);
+  const float bias = static_cast<float>(mapBias(refShadow));
+  for (const Light& l : allLights(s)) {
+    pbr::TraceLight t;
+    t.point = l.type == LightType::Point;
+    t.position = l.position;
+    t.toLight = -glm::normalize(l.direction);
+    t.color = l.color * l.intensity;
+    t.viewProj = l.projection() * l.view();
+    t.bias = bias;
+    out.lights.push_back(t);
+  }
+  out.eye = s.camera.eye;
+  out.invViewProj = glm::inverse(cameraViewProj(s));
+  out.width = s.width;
+  out.height = s.height;
+  return out;
+}
+
+pbr::TraceGeometry pbrGeometry(const Scene& scene, const RenderSettings& s, const Spec& refShadow,
+                               const ReferenceSpec& spec, int light) {
+  pbr::TraceGeometry g;
+  const Strands& st = scene.strands;
+  g.firstPoint = st.firstPoint;
+  g.pointCount = st.pointCount;
+  g.points = st.points;
+  g.meshPositions = scene.mesh.positions;
+  g.meshIndices = scene.mesh.indices;
+  g.radius.resize(st.points.size());
+  const float px = strandWidthPixels(s);
+  if (pbrWidthModel(spec) == "world") {
+    const float fallback = static_cast<float>(pbrThickness(scene, s, spec));
+    for (std::size_t i = 0; i < st.points.size(); ++i) {
+      const float t = i < st.thickness.size() ? st.thickness[i] : 0.0f;
+      g.radius[i] = 0.5f * (t > 0 ? t : fallback);
+    }
+    return g;
+  }
+  // Footprint: ribbon_width pixels (a line: one) wide as the eye sees it, or as many texels
+  // of light l's map: the width each rasterized view draws.
+  glm::mat4 proj, viewProj;
+  float side;
+  if (light < 0) {
+    proj = s.camera.projection(float(s.width) / float(s.height));
+    viewProj = proj * s.camera.view();
+    side = float(s.height);
+  } else {
+    const Light& l = allLights(s)[std::size_t(light)];
+    proj = l.projection();
+    viewProj = proj * l.view();
+    side = float(mapSize(refShadow));
+  }
+  for (std::size_t i = 0; i < st.points.size(); ++i)
+    g.radius[i] = 0.5f * px * pixelAt(proj, viewProj, st.points[i], side);
+  return g;
+}
+
+RenderResult::MoreReference renderPbrReference(const Scene& scene, const RenderSettings& s,
+                                               const Spec& refShadow, const ReferenceSpec& spec) {
+  const auto start = std::chrono::steady_clock::now();
+  RenderResult::MoreReference m;
+  m.name = "pbr";
+  m.spec = spec.str();
+  m.samples = spec.spp;
+  m.width = s.width;
+  m.height = s.height;
+  RenderResult::MoreReference::Pbr info;
+  info.mode = spec.mode;
+  info.width = pbrWidthModel(spec);
+  if (info.width == "world") {
+    // The strands' own widths where they have them (their mean), else the fallback.
+    double sum = 0;
+    std::size_t own = 0;
+    for (float t : scene.strands.thickness)
+      if (t > 0) {
+        sum += t;
+        ++own;
+      }
+    info.thicknessSource = own ? "strands" : "fallback";
+    info.thickness = own ? sum / double(own) : pbrThickness(scene, s, spec);
+  }
+  if (info.width == "footprint") m.lightSize = static_cast<uint32_t>(mapSize(refShadow));
+
+  const std::string key = cacheKeyText(scene, s, refShadow, spec);
+  info.key = hex64(fnv1a(0xCBF29CE484222325ull, key.data(), key.size()));
+  const std::string dir = pbrCacheDir();
+  if (!dir.empty()) info.file = (fs::path(dir) / (info.key + ".pbr")).string();
+
+  pbr::RenderImage img;
+  double renderMs = 0;
+  if (!info.file.empty() && readCache(info.file, key, img, renderMs)) {
+    info.cacheHit = true;
+  } else {
+    const pbr::StrandScene ps = pbrScene(scene, s, refShadow);
+    const pbr::StrandTracer eye(pbrGeometry(scene, s, refShadow, spec));
+    std::vector<std::unique_ptr<pbr::StrandTracer>> own;
+    std::vector<const pbr::StrandTracer*> lights{&eye};
+    if (spec.mode == "transmittance" && info.width == "footprint") {
+      lights.clear();
+      for (std::size_t l = 0; l < ps.lights.size(); ++l) {
+        own.push_back(std::make_unique<pbr::StrandTracer>(
+            pbrGeometry(scene, s, refShadow, spec, static_cast<int>(l))));
+        lights.push_back(own.back().get());
+      }
+    }
+    pbr::RenderOptions o;
+    o.mode = spec.mode == "path" ? pbr::Mode::Path : pbr::Mode::Transmittance;
+    o.spp = static_cast<uint32_t>(spec.spp);
+    o.bounces = static_cast<uint32_t>(spec.bounces);
+    o.noiseTarget = static_cast<float>(spec.noise);
+    o.seed = static_cast<uint64_t>(spec.seed);
+    ProgressLine line("pbr reference " + spec.mode + " " + std::to_string(s.width) + "x" +
+                      std::to_string(s.height));
+    const auto t0 = std::chrono::steady_clock::now();
+    img = pbr::renderStrands(ps, eye, lights, o, shadingOf(s), [&line](const std::string& text) {
+      throwIfStopped();
+      line.update(text);
+    });
+    renderMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    if (!info.file.empty()) {
+      fs::create_directories(dir);
+      writeFileAtomic(info.file, cacheBytes(key, img, renderMs));
+    }
+  }
+  info.spp = img.spp;
+  info.stoppedAtTarget = img.stoppedAtTarget;
+  info.meanStderr = img.meanStderr();
+  info.noiseRmse = img.rmsStderr();
+  info.renderMs = renderMs;
+  m.referenceImage = Image(int(img.width), int(img.height), 4, 1.0f);
+  for (std::size_t i = 0; i < img.mean.size(); ++i)
+    for (int c = 0; c < 3; ++c) m.referenceImage.pixels[i * 4 + std::size_t(c)] = img.mean[i][c];
+  m.hostBytes = img.mean.size() * (sizeof(glm::vec3) + sizeof(float) + 16);
+  m.pbr = info;
+  m.wallMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return m;
+}
+
+}  // namespace sb
