@@ -158,7 +158,8 @@ std::string referenceKey(const RenderRequest& req, const RenderSettings& s, cons
   k.precision(9);
   auto v3 = [&](const glm::vec3& v) { k << v.x << "," << v.y << "," << v.z << ";"; };
   k << req.backend << "|" << req.platform << "|" << req.scene << "|" << s.width << "x" << s.height
-    << "|" << req.primitive << "|" << req.ribbonWidth << "|" << refShadow.str() << "|";
+    << "|" << req.primitive << "|" << req.ribbonWidth << "|" << refShadow.str() << "|"
+    << (req.image ? req.shading : "") << "|";  // its image is shaded with the case's model
   v3(s.camera.eye);
   v3(s.camera.target);
   v3(s.camera.up);

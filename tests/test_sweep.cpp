@@ -8,6 +8,8 @@
 
 #include "browser_util.h"
 #include "harness/suite.h"
+#include "imaging/image.h"
+#include "imaging/metrics.h"
 #include "test_util.h"
 
 namespace {
@@ -193,6 +195,31 @@ TEST(Sweep, ReferenceComputedOncePerSceneAndViewAndNotWhenUnneeded) {
     EXPECT_FALSE(res.contains("reference"));
     EXPECT_FALSE(res.contains("measurement_graph"));
   }
+  fs::remove_all(dir);
+}
+
+TEST(Sweep, EachShadingModelGetsItsOwnReference) {
+  // The reference's image is shaded with the case's model: the exact techniques score zero under
+  // every model, where a reference shared across models would score Kajiya-Kay against Marschner
+  // (the control: the two models' images differ).
+  const fs::path dir = tempDir("sweep-ref-shading");
+  const fs::path suite = writeSuite(dir, R"({"name": "shading",
+    "defaults": {"scene": "straight:strands=40,points=5,head=0", "size": "24x24", "repeat": 1,
+                 "warmup": 0, "reference": true, "backends": ["gl"], "shadow": "exact",
+                 "oit": "abuffer"},
+    "groups": [{"name": "g", "axes": {"shading": ["kajiya-kay", "marschner", "sadeghi"]}}]})",
+                                    "shading.json");
+  const CliResult r = runCli("sweep " + suite.string() + " --out " + (dir / "o").string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("references rendered: 3\n"), std::string::npos) << r.out;
+  const json run = results(dir / "o");
+  ASSERT_EQ(run.at("results").size(), 3u);
+  for (const auto& res : run.at("results"))
+    EXPECT_LT(res.at("error").at("image").at("rmse").get<double>(), 1e-6) << res.at("shading");
+  const fs::path a = dir / "o" / run["results"][0]["images"]["image"].get<std::string>();
+  const fs::path b = dir / "o" / run["results"][1]["images"]["image"].get<std::string>();
+  EXPECT_GT(sb::compareImages(sb::readImage(a.string()), sb::readImage(b.string())).rmse, 0.01)
+      << "the models' images differ";
   fs::remove_all(dir);
 }
 
