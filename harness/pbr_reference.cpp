@@ -12,9 +12,6 @@
 #include "harness/stop.h"
 #include "reports/files.h"
 #include "techniques/common/unit.h"
-#include "techniques/kajiya_kay/kajiya_kay.h"
-#include "techniques/marschner/marschner.h"
-#include "techniques/sadeghi/sadeghi.h"
 #include "techniques/shading/hair_shading.h"
 
 namespace sb {
@@ -204,19 +201,7 @@ pbr::ShadeFn shadingOf(const RenderSettings& s) {
       const Light& Lt = lights[l];
       const glm::vec3 L = Lt.type == LightType::Point ? glm::normalize(Lt.position - p.position)
                                                       : -glm::normalize(Lt.direction);
-      glm::vec3 direct;
-      if (m.kind == ShadingKind::KajiyaKay) {
-        const glm::vec2 kk = glsl::kajiyaKay(T, L, V, m.material.z);
-        direct = m.material.x * kk.x * c + glm::vec3(m.material.y * kk.y);
-      } else {
-        const float tl = glm::dot(T, L);
-        const float diffuse = std::sqrt(std::max(0.0f, 1.0f - tl * tl));
-        const glm::vec3 specular =
-            m.kind == ShadingKind::Marschner
-                ? glsl::marschner(T, L, V, c, m.shift, m.width) * diffuse
-                : glsl::sadeghi(T, L, V, c, m.shift, m.width, m.intensity, m.glintWidth);
-        direct = m.material.x * diffuse * c + m.material.y * specular;
-      }
+      const glm::vec3 direct = HairShading::direct(m, T, L, V, c);
       out += vis[l] * direct * Lt.color * Lt.intensity;
     }
     return out;
@@ -246,7 +231,10 @@ double pbrThickness(const Scene& scene, const RenderSettings& s, const Reference
   return pixelAt(proj, proj * s.camera.view(), scene.bounds().center(), float(s.height));
 }
 
-pbr::StrandScene pbrScene(const Scene& scene, const RenderSettings& s, const Spec& refShadow) {
+// footprint: shadow rays start at the centres of the exact shadow's texels (transmittance mode
+// with the raster's widths: the same lookup as the raster's).
+pbr::StrandScene pbrScene(const Scene& scene, const RenderSettings& s, const Spec& refShadow,
+                          bool footprint) {
   pbr::StrandScene out;
   const Strands& st = scene.strands;
   out.colors.resize(st.points.size());
@@ -269,6 +257,8 @@ pbr::StrandScene pbrScene(const Scene& scene, const RenderSettings& s, const Spe
     t.color = l.color * l.intensity;
     t.viewProj = l.projection() * l.view();
     t.bias = bias;
+    t.invViewProj = glm::inverse(t.viewProj);
+    if (footprint) t.texels = static_cast<uint32_t>(mapSize(refShadow));
     out.lights.push_back(t);
   }
   out.eye = s.camera.eye;
@@ -306,7 +296,7 @@ pbr::TraceGeometry pbrGeometry(const Scene& scene, const RenderSettings& s, cons
     viewProj = proj * s.camera.view();
     side = float(s.height);
   } else {
-    const Light& l = allLights(s)[std::size_t(light)];
+    const Light l = allLights(s)[std::size_t(light)];  // a copy: the list is a temporary
     proj = l.projection();
     viewProj = proj * l.view();
     side = float(mapSize(refShadow));
@@ -352,7 +342,8 @@ RenderResult::MoreReference renderPbrReference(const Scene& scene, const RenderS
   if (!info.file.empty() && readCache(info.file, key, img, renderMs)) {
     info.cacheHit = true;
   } else {
-    const pbr::StrandScene ps = pbrScene(scene, s, refShadow);
+    const pbr::StrandScene ps =
+        pbrScene(scene, s, refShadow, spec.mode == "transmittance" && info.width == "footprint");
     const pbr::StrandTracer eye(pbrGeometry(scene, s, refShadow, spec));
     std::vector<std::unique_ptr<pbr::StrandTracer>> own;
     std::vector<const pbr::StrandTracer*> lights{&eye};

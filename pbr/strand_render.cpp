@@ -270,8 +270,17 @@ float lightTransmittance(const StrandScene& s, const StrandTracer& tracer, std::
                          glm::vec3 p) {
   const TraceLight& light = s.lights[l];
   bool inside = false;
-  const float z = ndcOf(light.viewProj, p, inside).z - light.bias;
+  const glm::vec3 ndc = ndcOf(light.viewProj, p, inside);
+  const float z = ndc.z - light.bias;
   if (!inside) return 1.0f;  // outside the light's frustum: lit, as the exact shadow has it
+  if (light.texels > 0) {
+    const glm::vec2 texel =
+        glm::min(glm::floor((glm::vec2(ndc) + 1.0f) * 0.5f * float(light.texels)),
+                 glm::vec2(float(light.texels - 1)));
+    const glm::vec2 centre = (texel + 0.5f) / float(light.texels) * 2.0f - 1.0f;
+    const glm::vec4 w = light.invViewProj * glm::vec4(centre, ndc.z, 1.0f);
+    p = glm::vec3(w) / w.w;
+  }
   float dist = 0;
   const glm::vec3 wi = toLight(light, p, dist);
   int n = 0;

@@ -26,6 +26,10 @@ struct TraceLight {
   // more than the bias, the point inside the light's frustum.
   glm::mat4 viewProj{1.0f};
   float bias = 0.0f;
+  // Where not 0, the side of the exact shadow's light map: a shadow ray starts at the centre
+  // of the texel the point falls in (at the point's depth), where the raster looks it up.
+  uint32_t texels = 0;
+  glm::mat4 invViewProj{1.0f};
 };
 
 struct StrandScene {

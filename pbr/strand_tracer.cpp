@@ -58,6 +58,7 @@ StrandTracer::StrandTracer(const TraceGeometry& g) : g_(g), e_(std::make_unique<
       throw InputError("pbr reference: a strand radius is negative or not finite");
   if (g_.radius.size() != g_.points.size())
     throw InputError("pbr reference: one radius per strand point is needed");
+  for (float r : g_.radius) backOff_ = std::max(backOff_, 4.0f * r);
   for (std::size_t s = 0; s < g_.pointCount.size(); ++s)
     for (uint32_t k = 0; k + 1 < g_.pointCount[s]; ++k) {
       segmentStart_.push_back(g_.firstPoint[s] + k);
@@ -118,15 +119,21 @@ RayHits StrandTracer::trace(glm::vec3 origin, glm::vec3 dir, float tnear, float 
   rtcInitIntersectContext(&c.context);
   c.hits = &raw;
   c.u = &us;
+  // Embree's curve intersectors miss a curve that passes within about its radius of the ray's
+  // origin (measured against a brute-force test: a shadow ray started inside a dense groom lost
+  // 1% of its crossings, always the nearest ones). The ray starts backOff_ earlier instead, and
+  // its distances are taken back.
+  const float back = backOff_;
+  const glm::vec3 start = origin - back * dir;
   RTCRayHit rh{};
-  rh.ray.org_x = origin.x;
-  rh.ray.org_y = origin.y;
-  rh.ray.org_z = origin.z;
+  rh.ray.org_x = start.x;
+  rh.ray.org_y = start.y;
+  rh.ray.org_z = start.z;
   rh.ray.dir_x = dir.x;
   rh.ray.dir_y = dir.y;
   rh.ray.dir_z = dir.z;
-  rh.ray.tnear = tnear;
-  rh.ray.tfar = tfar;
+  rh.ray.tnear = tnear + back;
+  rh.ray.tfar = tfar + back;
   rh.ray.mask = ~0u;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(e_->scene, &c.context, &rh);
@@ -135,7 +142,7 @@ RayHits StrandTracer::trace(glm::vec3 origin, glm::vec3 dir, float tnear, float 
   float end = tfar;
   if (rh.hit.geomID == kMeshGeometry) {
     out.mesh = true;
-    out.meshT = end = rh.ray.tfar;
+    out.meshT = end = rh.ray.tfar - back;
     out.triangle = rh.hit.primID;
   }
   // Sorted by t; a segment kept once (a primitive may be reported from more than one leaf).
@@ -147,16 +154,23 @@ RayHits StrandTracer::trace(glm::vec3 origin, glm::vec3 dir, float tnear, float 
   });
   std::vector<uint32_t> seen;
   for (std::size_t i : order) {
-    const auto [t, prim] = raw[i];
+    const float t = raw[i].first - back;
+    const uint32_t prim = raw[i].second;
     if (t >= end || std::find(seen.begin(), seen.end(), prim) != seen.end()) continue;
+    const uint32_t first = segmentStart_[prim];
+    const glm::vec3 p0 = g_.points[first], p1 = g_.points[first + 1];
+    const glm::vec3 d = p1 - p0;
+    // Embree caps a linear segment past each end (u then reads 0 or 1); a cap hit lies over
+    // the next segment and would take its tangent. Strands are ribbons without caps, as the
+    // raster draws them: a hit whose point lies beyond the segment's ends is not one.
+    const float along =
+        glm::dot(d, d) > 1e-30f ? glm::dot(origin + t * dir - p0, d) / glm::dot(d, d) : 0.5f;
+    if (along < -1e-4f || along > 1.0f + 1e-4f) continue;
     seen.push_back(prim);
     StrandHit h;
     h.t = t;
     h.segment = prim;
     h.u = std::clamp(us[i], 0.0f, 1.0f);
-    const uint32_t first = segmentStart_[prim];
-    const glm::vec3 p0 = g_.points[first], p1 = g_.points[first + 1];
-    const glm::vec3 d = p1 - p0;
     h.tangent = glm::dot(d, d) > 1e-30f ? glm::normalize(d) : glm::vec3(0, 1, 0);
     // The offset across the ribbon: from the axis, along the ribbon's width (perpendicular
     // to the ray and the tangent), in units of the radius there.

@@ -65,6 +65,7 @@ class StrandTracer {
   void addMesh();
   TraceGeometry g_;
   std::vector<uint32_t> segmentStart_, segmentStrand_;
+  float backOff_ = 0;  // how far before its origin a ray starts (trace)
   std::unique_ptr<Embree> e_;
 };
 

@@ -1,10 +1,29 @@
 #include "techniques/shading/hair_shading.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "techniques/common/shader_library.h"
+#include "techniques/kajiya_kay/kajiya_kay.h"
+#include "techniques/marschner/marschner.h"
+#include "techniques/sadeghi/sadeghi.h"
 
 namespace sb {
+
+glm::vec3 HairShading::direct(const ShadingModel& m, glm::vec3 T, glm::vec3 L, glm::vec3 V,
+                              glm::vec3 c) {
+  if (m.kind == ShadingKind::KajiyaKay) {
+    const glm::vec2 kk = glsl::kajiyaKay(T, L, V, m.material.z);
+    return m.material.x * kk.x * c + glm::vec3(m.material.y * kk.y);
+  }
+  const float tl = glm::dot(T, L);
+  const float diffuse = std::sqrt(std::max(0.0f, 1.0f - tl * tl));
+  const glm::vec3 specular =
+      m.kind == ShadingKind::Marschner
+          ? glsl::marschner(T, L, V, c, m.shift, m.width) * diffuse
+          : glsl::sadeghi(T, L, V, c, m.shift, m.width, m.intensity, m.glintWidth);
+  return m.material.x * diffuse * c + m.material.y * specular;
+}
 
 float HairShading::maxRadiance(const RenderSettings& s) {
   // Every light's shading adds up; the ambient term counts once.
@@ -24,7 +43,7 @@ float HairShading::maxRadiance(const RenderSettings& s) {
 }
 
 void HairShading::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
-                             const ShadowTechnique& shadow, Texture color, Texture depth) {
+                        const ShadowTechnique& shadow, Texture color, Texture depth) {
   scene_ = &scene;
   shadow_ = &shadow;
   settings_ = s;

@@ -17,6 +17,10 @@ class HairShading {
   // The brightest any shaded fragment or the background can be (hair colour
   // <= 1, visibility <= 1): a bound every composited pixel must stay under.
   static float maxRadiance(const RenderSettings& s);
+  // shadeHair's direct term for one light of unit colour on the CPU (hair_shading.glsl; the
+  // CPU references shade with it): T the tangent, L towards the light, V towards the eye.
+  static glm::vec3 direct(const ShadingModel& m, glm::vec3 T, glm::vec3 L, glm::vec3 V,
+                          glm::vec3 color);
 
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
              const ShadowTechnique& shadow, Texture color, Texture depth);
