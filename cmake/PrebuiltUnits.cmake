@@ -10,6 +10,7 @@ find_package(glslang CONFIG REQUIRED)
 find_package(CLI11 CONFIG REQUIRED)
 find_package(nlohmann_json CONFIG REQUIRED)
 find_package(Threads REQUIRED)
+find_package(embree 3 CONFIG REQUIRED)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(EGL REQUIRED IMPORTED_TARGET egl)
 pkg_check_modules(GLFW REQUIRED IMPORTED_TARGET glfw3)
@@ -55,5 +56,5 @@ target_link_libraries(strandbench PRIVATE sb_cli sb_harness sb_imaging sb_report
   "$<LINK_LIBRARY:WHOLE_ARCHIVE,sb_techniques>" sb_backends sb_scenes
   CLI11::CLI11 nlohmann_json::nlohmann_json
   glm::glm tinyobjloader::tinyobjloader Vulkan::Vulkan PkgConfig::EGL PkgConfig::GLFW
-  glslang::glslang glslang::SPIRV glslang::glslang-default-resource-limits ${CMAKE_DL_LIBS}
+  glslang::glslang glslang::SPIRV glslang::glslang-default-resource-limits embree ${CMAKE_DL_LIBS}
   Threads::Threads)

@@ -30,8 +30,8 @@ TEST(DriverAb, QuickSuiteSystemAgainstMesa25) {
   EXPECT_EQ(ab["b"]["name"], "mesa-25.0");
   EXPECT_NE(ab["b"]["version"].get<std::string>().find("Mesa 25.0.7"), std::string::npos);
   const auto& pairs = ab["pairs"];
-  // shadows 6, transparency 7, every-shadow 8, every-transparency 9: on gl and vulkan.
-  EXPECT_EQ(pairs.size(), 60u);
+  // shadows 6, transparency 7, every-shadow 8, every-transparency 10: on gl and vulkan.
+  EXPECT_EQ(pairs.size(), 62u);
   double last = 1e9;
   for (const auto& p : pairs) {
     EXPECT_FALSE(p["a"].contains("failed") || p["b"].contains("failed")) << p.dump();
