@@ -218,6 +218,9 @@ struct RenderResult {
     std::vector<std::string> warnings;  // its techniques' (a fragment list overflow)
     ImageError image;                   // of the image against it
     FlipResult flip;
+    // Means over pixels and RGB of the image and of the reference (pbr's JSON: how much
+    // brighter or darker one is, the part of the error a scale would explain).
+    double imageMean = 0, referenceMean = 0;
     Image referenceImage;  // the filtered reference, the image's size
     // pbr (harness/pbr_reference.h): what it rendered, its noise and its disk cache.
     struct Pbr {

@@ -60,6 +60,7 @@ nlohmann::json errorJson(const RenderResult& r) {
           {"mean_stderr", p.meanStderr},
           {"rmse_without_noise",
            std::sqrt(std::max(0.0, m.image.rmse * m.image.rmse - p.noiseRmse * p.noiseRmse))}};
+      e["mean"] = {{"image", m.imageMean}, {"reference", m.referenceMean}};
       e["reference"]["pbr"] = {{"mode", p.mode},
                                {"width", p.width},
                                {"thickness", p.thickness},

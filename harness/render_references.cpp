@@ -18,6 +18,18 @@ namespace sb {
 
 namespace {
 
+double meanRgb(const Image& im) {
+  double sum = 0;
+  for (int y = 0; y < im.height; ++y)
+    for (int x = 0; x < im.width; ++x)
+      for (int c = 0; c < 3; ++c) sum += im.pixels[im.index(x, y, c)];
+  return im.width && im.height ? sum / (3.0 * im.width * im.height) : 0.0;
+}
+
+}  // namespace
+
+namespace {
+
 // The largest image and light map side (the size setting's range, 16384: what
 // the drivers' textures take).
 constexpr uint64_t kMaxSide = 16384;
@@ -157,6 +169,8 @@ std::vector<RenderResult::MoreReference> moreReferences(
     }
     m.image = compareImages(out.image, m.referenceImage);
     m.flip = computeFlip(out.image, m.referenceImage);
+    m.imageMean = meanRgb(out.image);
+    m.referenceMean = meanRgb(m.referenceImage);
     list.push_back(std::move(m));
   }
   return list;

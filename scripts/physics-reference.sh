@@ -68,13 +68,18 @@ lines = [
     "taken out (sqrt(rmse^2 - noise^2)). The row `exact` is the rasterized exact reference itself: its "
     "distance from physics is the model's error alone.",
     "",
-    "| shading | shadow | vs exact | vs path traced | vs path traced, noise removed |",
-    "|---|---|---|---|---|",
+    f"Brightness: the path-traced image's mean (over pixels and RGB, linear) is "
+    f"{p0['mean']['reference']:.4f}; each row's own mean is in the last column. A model whose mean is far "
+    "from it is off by a scale (its radiometry) as much as by its shadows.",
+    "",
+    "| shading | shadow | vs exact | vs path traced | vs path traced, noise removed | mean |",
+    "|---|---|---|---|---|---|",
 ]
 for r in first:
     e = r["error"]
     lines.append(f"| {r['case']['params']['shading']} | {r['case']['params']['shadow']} | "
-                 f"{e['image']['rmse']:.4f} | {e['pbr']['rmse']:.4f} | {e['pbr']['noise']['rmse_without_noise']:.4f} |")
+                 f"{e['image']['rmse']:.4f} | {e['pbr']['rmse']:.4f} | {e['pbr']['noise']['rmse_without_noise']:.4f} | "
+                 f"{e['pbr']['mean']['image']:.4f} |")
 open(out, "w").write("\n".join(lines) + "\n")
 print("wrote", out)
 PY
