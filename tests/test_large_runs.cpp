@@ -154,6 +154,26 @@ TEST(LargeRuns, SigintStopsALongRenderWithinSecondsAndLeavesNoFile) {
   EXPECT_TRUE(temporaries(dir).empty());
 }
 
+TEST(LargeRuns, SigintStopsAPathTracedReferenceAndCachesNothing) {
+  // The CPU reference checks for a stop between passes of samples: a stop lands within a pass
+  // (64x64 pixels, one sample each), the cache keeps no part of it.
+  const fs::path dir = tempDir("sigint-pbr");
+  ::setenv("SB_PBR_CACHE", (dir / "cache").c_str(), 1);
+  const Child c = startCli(dir,
+                           "render --scene straight:strands=200,points=8,head=0 --size 64x64 "
+                           "--warmup 0 --reference --reference pbr:mode=path,spp=65536 --out " +
+                               (dir / "image.png").string());
+  ::unsetenv("SB_PBR_CACHE");
+  std::this_thread::sleep_for(std::chrono::milliseconds(2500));
+  const auto [status, seconds] = stopAndWait(c, SIGINT);
+  EXPECT_EQ(status, 130) << readFile(c.err);
+  EXPECT_LT(seconds, 3.0);
+  EXPECT_NE(readFile(c.err).find("stopped by SIGINT"), std::string::npos) << readFile(c.err);
+  EXPECT_FALSE(fs::exists(dir / "image.png"));
+  EXPECT_TRUE(!fs::exists(dir / "cache") || fs::is_empty(dir / "cache"));
+  EXPECT_TRUE(temporaries(dir).empty());
+}
+
 TEST(LargeRuns, SigtermStopsALongRenderWithStatus143) {
   const fs::path dir = tempDir("sigterm-render");
   const Child c = startCli(dir, std::string(kLongRender) + " --out " + (dir / "peel.png").string());
