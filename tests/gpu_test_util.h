@@ -4,17 +4,21 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <filesystem>
 #include <initializer_list>
 #include <iostream>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "backends/device.h"
 #include "harness/render.h"
+#include "imaging/image.h"
 #include "imaging/metrics.h"
 #include "scenes/view.h"
 #include "techniques/common/technique.h"
+#include "tests/test_util.h"
 
 namespace sbtest {
 
@@ -124,6 +128,35 @@ inline sb::RenderSettings fittedSettings(const sb::Scene& scene, uint32_t size) 
   s.camera = sb::fitCamera(scene.bounds(), 1.0f);
   s.light = sb::fitLight(scene.bounds(), sb::LightType::Directional);
   return s;
+}
+
+// `strandbench render <args> --json --out <a temporary .exr>`, for a run on
+// a driver of its own (--driver: one per process): its exit status, stderr,
+// JSON and float image (when it rendered), and whether it wrote the image.
+struct CliRender {
+  int status = -1;
+  std::string err;
+  nlohmann::json json;
+  sb::Image image;
+  bool wrote = false;
+};
+inline CliRender renderCli(const std::string& args) {
+  const auto dir = tempDir("cli-render");
+  const std::string exr = (dir / "image.exr").string();
+  const CliResult r = runCli("render " + args + " --json --out " + exr);
+  CliRender c{r.status, r.err, {}, {}, std::filesystem::exists(exr)};
+  if (r.status == 0) {
+    c.json = nlohmann::json::parse(r.out.substr(r.out.find('{')));
+    c.image = sb::readImage(exr);
+  }
+  std::filesystem::remove_all(dir);
+  return c;
+}
+
+// A counter of a render's JSON, or -1 when it has none of that name.
+inline double jsonCounter(const nlohmann::json& j, const std::string& name) {
+  return j.contains("counters") && j["counters"].contains(name) ? j["counters"][name].get<double>()
+                                                                : -1.0;
 }
 
 }  // namespace sbtest

@@ -330,35 +330,14 @@ INSTANTIATE_TEST_SUITE_P(Backends, RtShadow, ::testing::Values("gl", "vulkan"),
 
 constexpr const char* kTierScene = "--scene curly:strands=60,seed=3 --size 96x96 --repeat 1";
 
-struct TierRun {
-  int status = -1;
-  std::string err;
-  nlohmann::json json;
-  Image image;
-};
-
-// `render` of kTierScene with rt:size=128,<shadow> on a driver and backend, its
-// JSON and (with an image path) its float image.
-TierRun renderTier(const std::string& driver, const std::string& backend, const std::string& shadow,
-                   const std::string& scene = kTierScene) {
-  const auto dir = sbtest::tempDir("rt-tier");
-  const std::string exr = (dir / "image.exr").string();
-  const sbtest::CliResult r =
-      sbtest::runCli("render " + scene + " --driver " + driver + " --backend " + backend +
-                     " --shadow rt:size=128," + shadow + " --json --out " + exr);
-  TierRun t{r.status, r.err, {}, {}};
-  if (r.status == 0) {
-    t.json = nlohmann::json::parse(r.out);
-    t.image = readImage(exr);
-  }
-  std::filesystem::remove_all(dir);
-  return t;
+// `render` of kTierScene with rt:size=128,<shadow> on a driver and backend.
+sbtest::CliRender renderTier(const std::string& driver, const std::string& backend,
+                             const std::string& shadow, const std::string& scene = kTierScene) {
+  return sbtest::renderCli(scene + " --driver " + driver + " --backend " + backend +
+                           " --shadow rt:size=128," + shadow);
 }
 
-double jsonCounter(const nlohmann::json& j, const std::string& name) {
-  return j.contains("counters") && j["counters"].contains(name) ? j["counters"][name].get<double>()
-                                                                : -1.0;
-}
+using sbtest::jsonCounter;
 
 // Both tiers on Mesa 25.0.7's lavapipe, one and four rays per point, give the
 // same image within 2 8-bit codes at any pixel and RMSE <= 0.002: the rule for a
@@ -373,8 +352,8 @@ TEST(RtTiers, BothTiersAgreeOnMesa25) {
   if (const std::string why = sbtest::mesa25Missing(); !why.empty()) GTEST_SKIP() << why;
   for (const std::string rays : {"rays=1", "rays=4,max_hits=3"}) {
     SCOPED_TRACE(rays);
-    const TierRun sw = renderTier("mesa-25.0", "vulkan", rays + ",tier=software");
-    const TierRun rq = renderTier("mesa-25.0", "vulkan", rays + ",tier=ray_query");
+    const sbtest::CliRender sw = renderTier("mesa-25.0", "vulkan", rays + ",tier=software");
+    const sbtest::CliRender rq = renderTier("mesa-25.0", "vulkan", rays + ",tier=ray_query");
     ASSERT_EQ(sw.status, 0) << sw.err;
     ASSERT_EQ(rq.status, 0) << rq.err;
     EXPECT_EQ(sw.json["tier"], "software");
@@ -406,7 +385,7 @@ TEST(RtTiers, BothTiersAgreeOnMesa25) {
     }
     EXPECT_TRUE(counted) << rq.json["memory"].dump();
     // Can fail: a wrong opacity is far outside the tolerance.
-    const TierRun wrong =
+    const sbtest::CliRender wrong =
         renderTier("mesa-25.0", "vulkan", rays + ",tier=ray_query",
                    "--scene curly:strands=60,seed=3,shadow_alpha=0.3 --size 96x96 --repeat 1");
     ASSERT_EQ(wrong.status, 0) << wrong.err;
@@ -426,7 +405,7 @@ TEST(RtTiers, AutoPicksRayQueriesWhereTheDeviceOffersThem) {
   for (const auto& [driver, backend, tier] :
        {std::tuple{"mesa-25.0", "vulkan", "ray_query"}, std::tuple{"mesa-25.0", "gl", "software"},
         std::tuple{"system", "vulkan", "software"}, std::tuple{"system", "gl", "software"}}) {
-    const TierRun r = renderTier(driver, backend, "tier=auto", tiny);
+    const sbtest::CliRender r = renderTier(driver, backend, "tier=auto", tiny);
     ASSERT_EQ(r.status, 0) << driver << " " << backend << ": " << r.err;
     EXPECT_EQ(r.json["tier"], tier) << driver << " " << backend;
   }
@@ -439,11 +418,12 @@ TEST(RtTiers, RayQueryTierWithoutRayQueriesIsBadInput) {
   const std::string tiny = "--scene curly:strands=10 --size 32x32 --repeat 1";
   for (const auto& [driver, backend] :
        {std::pair{"system", "vulkan"}, std::pair{"system", "gl"}, std::pair{"mesa-25.0", "gl"}}) {
-    const TierRun r = renderTier(driver, backend, "tier=ray_query", tiny);
+    const sbtest::CliRender r = renderTier(driver, backend, "tier=ray_query", tiny);
     EXPECT_EQ(r.status, 2) << driver << " " << backend << ": " << r.err;
     EXPECT_NE(r.err.find("tier=ray_query: this device"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("offers no VK_KHR_ray_query"), std::string::npos) << r.err;
     EXPECT_TRUE(r.json.is_null());
+    EXPECT_FALSE(r.wrote);
   }
 }
 
