@@ -284,6 +284,13 @@ sbtest::CliRender renderTier(const std::string& driver, const std::string& backe
 
 using sbtest::jsonCounter;
 
+// A tiny scene in tier=<tier>, for the choice of tier.
+sbtest::CliRender tinyTier(const std::string& driver, const std::string& backend,
+                           const std::string& tier) {
+  return renderTier(driver, backend, "rt:tier=" + tier,
+                    "--scene curly:strands=10 --size 32x32 --shadow none");
+}
+
 // Both tiers on Mesa 25.0.7's lavapipe give the same image within 1 8-bit
 // code at any pixel (max 1/255, RMSE <= 0.001) and count the same hits, for
 // every hit in order (k=0), every hit up to max_hits=3 and the 32 nearest
@@ -304,14 +311,13 @@ TEST(RtOitTiers, BothTiersAgreeOnMesa25) {
   for (const std::string oit : {"rt", "rt:max_hits=3", "rt:k=32", "rt:k=2"}) {
     SCOPED_TRACE(oit);
     const std::string sep = oit == "rt" ? ":" : ",";
-    const sbtest::CliRender sw = renderTier("mesa-25.0", "vulkan", oit + sep + "tier=software");
-    const sbtest::CliRender rq = renderTier("mesa-25.0", "vulkan", oit + sep + "tier=ray_query");
-    ASSERT_EQ(sw.status, 0) << sw.err;
-    ASSERT_EQ(rq.status, 0) << rq.err;
-    EXPECT_EQ(sw.json["tier"], "software");
-    EXPECT_EQ(rq.json["tier"], "ray_query");
-    EXPECT_EQ(jsonCounter(rq.json, "rt.oit_tier_ray_query"), 1.0);
-    EXPECT_EQ(jsonCounter(sw.json, "rt.oit_tier_ray_query"), 0.0);
+    const sbtest::BothTiers both = sbtest::renderBothTiers(
+        [&](const std::string& tier) {
+          return renderTier("mesa-25.0", "vulkan", oit + sep + "tier=" + tier);
+        },
+        "rt.oit_tier_ray_query");
+    ASSERT_TRUE(both.rendered());
+    const sbtest::CliRender &sw = both.software, &rq = both.rayQuery;
     const ImageError e = compareImages(sw.image, rq.image);
     std::cout << "[ measured ] mesa-25.0 vulkan " << oit << ": software vs ray_query image max "
               << e.maxAbs << ", RMSE " << e.rmse << ", pixels over one code " << e.pixelsOver
@@ -378,32 +384,14 @@ TEST(RtOitTiers, TheJsonNamesEachTechniquesTier) {
 // and on the system's Mesa 22.3 (no VK_KHR_ray_query there).
 TEST(RtOitTiers, AutoPicksRayQueriesWhereTheDeviceOffersThem) {
   if (const std::string why = sbtest::mesa25Missing(); !why.empty()) GTEST_SKIP() << why;
-  const std::string tiny = "--scene curly:strands=10 --size 32x32 --shadow none";
-  for (const auto& [driver, backend, tier] :
-       {std::tuple{"mesa-25.0", "vulkan", "ray_query"}, std::tuple{"mesa-25.0", "gl", "software"},
-        std::tuple{"system", "vulkan", "software"}, std::tuple{"system", "gl", "software"}}) {
-    const sbtest::CliRender r = renderTier(driver, backend, "rt:tier=auto", tiny);
-    ASSERT_EQ(r.status, 0) << driver << " " << backend << ": " << r.err;
-    EXPECT_EQ(r.json["tier"], tier) << driver << " " << backend;
-  }
+  sbtest::expectAutoPicksRayQueriesWhereOffered(tinyTier);
 }
 
 // tier=ray_query where the device has no ray queries (the system's Mesa 22.3,
 // GL anywhere): exit status 2, the reason, nothing written.
 TEST(RtOitTiers, RayQueryTierWithoutRayQueriesIsBadInput) {
   if (const std::string why = sbtest::mesa25Missing(); !why.empty()) GTEST_SKIP() << why;
-  const std::string tiny = "--scene curly:strands=10 --size 32x32 --shadow none";
-  for (const auto& [driver, backend] :
-       {std::pair{"system", "vulkan"}, std::pair{"system", "gl"}, std::pair{"mesa-25.0", "gl"}}) {
-    const sbtest::CliRender r = renderTier(driver, backend, "rt:tier=ray_query", tiny);
-    EXPECT_EQ(r.status, 2) << driver << " " << backend << ": " << r.err;
-    EXPECT_NE(r.err.find("transparency technique 'rt': tier=ray_query: this device"),
-              std::string::npos)
-        << r.err;
-    EXPECT_NE(r.err.find("offers no VK_KHR_ray_query"), std::string::npos) << r.err;
-    EXPECT_TRUE(r.json.is_null());
-    EXPECT_FALSE(r.wrote);
-  }
+  sbtest::expectRayQueryRefusedWhereNotOffered(tinyTier, "transparency technique 'rt'");
 }
 
 }  // namespace
