@@ -3,15 +3,16 @@
 // software tier walks the eye BVH (techniques/rt/bvh.h) in this shader, the
 // ray-query tier (SB_RT_OIT_RAY_QUERY) asks a ray query over an acceleration
 // structure of the segments' boxes (rtoWalk, either way); both hand every
-// segment the same test passes to rtoVisit, so they collect the same hits. Every hit is shaded at its
-// axis point (the segment's tangent, its colour at s) through the shading
-// model and the shadow technique's lookup, and composited front to back with
-// its alpha. SB_RT_OIT_K unset: all hits in order, each the nearest after the
-// last (one walk per hit, no per-pixel memory), at most max_hits (capped
-// pixels counted). SB_RT_OIT_K = k: one walk, the k nearest kept sorted and
-// the rest merged in walk order into one tail behind them (the k-buffer's
-// math, techniques/kbuffer/kbuffer_math.glsl; merged pixels counted): the one
-// place the tiers differ, as their walks visit hits in different orders.
+// segment the same test passes to rtoVisit, so they collect the same hits.
+// Every hit is shaded at its axis point (the segment's tangent, its colour at
+// s) through the shading model and the shadow technique's lookup, and
+// composited front to back with its alpha. SB_RT_OIT_K unset: all hits in
+// order, each the nearest after the last (one walk per hit, no per-pixel
+// memory), at most max_hits (capped pixels counted). SB_RT_OIT_K = k: one
+// walk, the k nearest kept sorted and the rest merged in walk order into one
+// tail behind them (the k-buffer's math, techniques/kbuffer/kbuffer_math.glsl;
+// merged pixels counted): the one place the tiers differ, as their walks meet
+// hits in different orders.
 #ifdef SB_RT_OIT_RAY_QUERY
 #extension GL_EXT_ray_query : require
 #endif
