@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Measures ray-traced transparency (--oit rt, the software tier) for
+# Measures ray-traced transparency (--oit rt: on GL the software tier;
+# scripts/rt-oit-tiers.sh compares the tiers) for
 # docs/transparency-techniques.md ("Ray-traced transparency"): its image error
 # against the exact reference (pixel centres: what the rasterizer covers) and
 # against the anti-aliased reference (aa:samples=4: strands at their true

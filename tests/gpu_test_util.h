@@ -4,17 +4,24 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <filesystem>
+#include <functional>
 #include <initializer_list>
 #include <iostream>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "backends/device.h"
 #include "harness/render.h"
+#include "imaging/image.h"
 #include "imaging/metrics.h"
 #include "scenes/view.h"
 #include "techniques/common/technique.h"
+#include "tests/test_util.h"
 
 namespace sbtest {
 
@@ -124,6 +131,86 @@ inline sb::RenderSettings fittedSettings(const sb::Scene& scene, uint32_t size) 
   s.camera = sb::fitCamera(scene.bounds(), 1.0f);
   s.light = sb::fitLight(scene.bounds(), sb::LightType::Directional);
   return s;
+}
+
+// `strandbench render <args> --json --out <a temporary .exr>`, for a run on
+// a driver of its own (--driver: one per process): its exit status, stderr,
+// JSON and float image (when it rendered), and whether it wrote the image.
+struct CliRender {
+  int status = -1;
+  std::string err;
+  nlohmann::json json;
+  sb::Image image;
+  bool wrote = false;
+};
+inline CliRender renderCli(const std::string& args) {
+  const auto dir = tempDir("cli-render");
+  const std::string exr = (dir / "image.exr").string();
+  const CliResult r = runCli("render " + args + " --json --out " + exr);
+  CliRender c{r.status, r.err, {}, {}, std::filesystem::exists(exr)};
+  if (r.status == 0) {
+    c.json = nlohmann::json::parse(r.out.substr(r.out.find('{')));
+    c.image = sb::readImage(exr);
+  }
+  std::filesystem::remove_all(dir);
+  return c;
+}
+
+// A counter of a render's JSON, or -1 when it has none of that name.
+inline double jsonCounter(const nlohmann::json& j, const std::string& name) {
+  return j.contains("counters") && j["counters"].contains(name) ? j["counters"][name].get<double>()
+                                                                : -1.0;
+}
+
+// Both tiers of a ray-traced technique (`render(tier)`: with tier=<tier> on
+// Mesa 25.0.7's Vulkan, which offers ray queries), each checked to have run
+// in its tier: the JSON's tier, and `tierCounter` 1 for ray queries, else 0.
+struct BothTiers {
+  CliRender software, rayQuery;
+  bool rendered() const { return software.status == 0 && rayQuery.status == 0; }
+};
+inline BothTiers renderBothTiers(const std::function<CliRender(const std::string& tier)>& render,
+                                 const std::string& tierCounter) {
+  BothTiers b{render("software"), render("ray_query")};
+  for (const CliRender* r : {&b.software, &b.rayQuery}) {
+    const bool rq = r == &b.rayQuery;
+    EXPECT_EQ(r->status, 0) << r->err;
+    if (r->status != 0) continue;
+    EXPECT_EQ(r->json["tier"], rq ? "ray_query" : "software");
+    EXPECT_EQ(jsonCounter(r->json, tierCounter), rq ? 1.0 : 0.0);
+  }
+  return b;
+}
+
+// The tiers of a ray-traced technique (--shadow rt, --oit rt) on the drivers
+// here: `render(driver, backend, tier)` renders it with tier=<tier>. tier=auto
+// is the ray-query tier on Mesa 25.0.7's Vulkan (VK_KHR_ray_query) and the
+// software tier on its GL and on the system's Mesa 22.3, both APIs.
+using TierRender = std::function<CliRender(const std::string& driver, const std::string& backend,
+                                           const std::string& tier)>;
+inline void expectAutoPicksRayQueriesWhereOffered(const TierRender& render) {
+  for (const auto& [driver, backend, tier] :
+       {std::tuple{"mesa-25.0", "vulkan", "ray_query"}, std::tuple{"mesa-25.0", "gl", "software"},
+        std::tuple{"system", "vulkan", "software"}, std::tuple{"system", "gl", "software"}}) {
+    const CliRender r = render(driver, backend, "auto");
+    ASSERT_EQ(r.status, 0) << driver << " " << backend << ": " << r.err;
+    EXPECT_EQ(r.json["tier"], tier) << driver << " " << backend;
+  }
+}
+// tier=ray_query where the device has no ray queries (the system's Mesa 22.3,
+// GL anywhere): exit status 2, the reason naming `technique` ("shadow
+// technique 'rt'"), nothing written.
+inline void expectRayQueryRefusedWhereNotOffered(const TierRender& render,
+                                                 const std::string& technique) {
+  for (const auto& [driver, backend] :
+       {std::pair{"system", "vulkan"}, std::pair{"system", "gl"}, std::pair{"mesa-25.0", "gl"}}) {
+    const CliRender r = render(driver, backend, "ray_query");
+    EXPECT_EQ(r.status, 2) << driver << " " << backend << ": " << r.err;
+    EXPECT_NE(r.err.find(technique + ": tier=ray_query: this device"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("offers no VK_KHR_ray_query"), std::string::npos) << r.err;
+    EXPECT_TRUE(r.json.is_null());
+    EXPECT_FALSE(r.wrote);
+  }
 }
 
 }  // namespace sbtest

@@ -330,34 +330,20 @@ INSTANTIATE_TEST_SUITE_P(Backends, RtShadow, ::testing::Values("gl", "vulkan"),
 
 constexpr const char* kTierScene = "--scene curly:strands=60,seed=3 --size 96x96 --repeat 1";
 
-struct TierRun {
-  int status = -1;
-  std::string err;
-  nlohmann::json json;
-  Image image;
-};
-
-// `render` of kTierScene with rt:size=128,<shadow> on a driver and backend, its
-// JSON and (with an image path) its float image.
-TierRun renderTier(const std::string& driver, const std::string& backend, const std::string& shadow,
-                   const std::string& scene = kTierScene) {
-  const auto dir = sbtest::tempDir("rt-tier");
-  const std::string exr = (dir / "image.exr").string();
-  const sbtest::CliResult r =
-      sbtest::runCli("render " + scene + " --driver " + driver + " --backend " + backend +
-                     " --shadow rt:size=128," + shadow + " --json --out " + exr);
-  TierRun t{r.status, r.err, {}, {}};
-  if (r.status == 0) {
-    t.json = nlohmann::json::parse(r.out);
-    t.image = readImage(exr);
-  }
-  std::filesystem::remove_all(dir);
-  return t;
+// `render` of kTierScene with rt:size=128,<shadow> on a driver and backend.
+sbtest::CliRender renderTier(const std::string& driver, const std::string& backend,
+                             const std::string& shadow, const std::string& scene = kTierScene) {
+  return sbtest::renderCli(scene + " --driver " + driver + " --backend " + backend +
+                           " --shadow rt:size=128," + shadow);
 }
 
-double jsonCounter(const nlohmann::json& j, const std::string& name) {
-  return j.contains("counters") && j["counters"].contains(name) ? j["counters"][name].get<double>()
-                                                                : -1.0;
+using sbtest::jsonCounter;
+
+// A tiny scene in tier=<tier>, for the choice of tier.
+sbtest::CliRender tinyTier(const std::string& driver, const std::string& backend,
+                           const std::string& tier) {
+  return renderTier(driver, backend, "tier=" + tier,
+                    "--scene curly:strands=10 --size 32x32 --repeat 1");
 }
 
 // Both tiers on Mesa 25.0.7's lavapipe, one and four rays per point, give the
@@ -373,14 +359,13 @@ TEST(RtTiers, BothTiersAgreeOnMesa25) {
   if (const std::string why = sbtest::mesa25Missing(); !why.empty()) GTEST_SKIP() << why;
   for (const std::string rays : {"rays=1", "rays=4,max_hits=3"}) {
     SCOPED_TRACE(rays);
-    const TierRun sw = renderTier("mesa-25.0", "vulkan", rays + ",tier=software");
-    const TierRun rq = renderTier("mesa-25.0", "vulkan", rays + ",tier=ray_query");
-    ASSERT_EQ(sw.status, 0) << sw.err;
-    ASSERT_EQ(rq.status, 0) << rq.err;
-    EXPECT_EQ(sw.json["tier"], "software");
-    EXPECT_EQ(rq.json["tier"], "ray_query");
-    EXPECT_EQ(jsonCounter(rq.json, "rt.tier_ray_query"), 1.0);
-    EXPECT_EQ(jsonCounter(sw.json, "rt.tier_ray_query"), 0.0);
+    const sbtest::BothTiers both = sbtest::renderBothTiers(
+        [&](const std::string& tier) {
+          return renderTier("mesa-25.0", "vulkan", rays + ",tier=" + tier);
+        },
+        "rt.tier_ray_query");
+    ASSERT_TRUE(both.rendered());
+    const sbtest::CliRender &sw = both.software, &rq = both.rayQuery;
     const ImageError e = compareImages(sw.image, rq.image);
     std::cout << "[ measured ] mesa-25.0 vulkan rt " << rays << ": software vs ray_query image max "
               << e.maxAbs << ", RMSE " << e.rmse << ", pixels over one code " << e.pixelsOver
@@ -406,7 +391,7 @@ TEST(RtTiers, BothTiersAgreeOnMesa25) {
     }
     EXPECT_TRUE(counted) << rq.json["memory"].dump();
     // Can fail: a wrong opacity is far outside the tolerance.
-    const TierRun wrong =
+    const sbtest::CliRender wrong =
         renderTier("mesa-25.0", "vulkan", rays + ",tier=ray_query",
                    "--scene curly:strands=60,seed=3,shadow_alpha=0.3 --size 96x96 --repeat 1");
     ASSERT_EQ(wrong.status, 0) << wrong.err;
@@ -422,29 +407,14 @@ TEST(RtTiers, BothTiersAgreeOnMesa25) {
 // and on the system's Mesa 22.3 (no VK_KHR_ray_query there).
 TEST(RtTiers, AutoPicksRayQueriesWhereTheDeviceOffersThem) {
   if (const std::string why = sbtest::mesa25Missing(); !why.empty()) GTEST_SKIP() << why;
-  const std::string tiny = "--scene curly:strands=10 --size 32x32 --repeat 1";
-  for (const auto& [driver, backend, tier] :
-       {std::tuple{"mesa-25.0", "vulkan", "ray_query"}, std::tuple{"mesa-25.0", "gl", "software"},
-        std::tuple{"system", "vulkan", "software"}, std::tuple{"system", "gl", "software"}}) {
-    const TierRun r = renderTier(driver, backend, "tier=auto", tiny);
-    ASSERT_EQ(r.status, 0) << driver << " " << backend << ": " << r.err;
-    EXPECT_EQ(r.json["tier"], tier) << driver << " " << backend;
-  }
+  sbtest::expectAutoPicksRayQueriesWhereOffered(tinyTier);
 }
 
 // tier=ray_query where the device has no ray queries (the system's Mesa 22.3,
 // GL anywhere): exit status 2, the reason, nothing written.
 TEST(RtTiers, RayQueryTierWithoutRayQueriesIsBadInput) {
   if (const std::string why = sbtest::mesa25Missing(); !why.empty()) GTEST_SKIP() << why;
-  const std::string tiny = "--scene curly:strands=10 --size 32x32 --repeat 1";
-  for (const auto& [driver, backend] :
-       {std::pair{"system", "vulkan"}, std::pair{"system", "gl"}, std::pair{"mesa-25.0", "gl"}}) {
-    const TierRun r = renderTier(driver, backend, "tier=ray_query", tiny);
-    EXPECT_EQ(r.status, 2) << driver << " " << backend << ": " << r.err;
-    EXPECT_NE(r.err.find("tier=ray_query: this device"), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find("offers no VK_KHR_ray_query"), std::string::npos) << r.err;
-    EXPECT_TRUE(r.json.is_null());
-  }
+  sbtest::expectRayQueryRefusedWhereNotOffered(tinyTier, "shadow technique 'rt'");
 }
 
 }  // namespace

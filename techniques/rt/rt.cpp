@@ -1,12 +1,6 @@
 #include "techniques/rt/rt.h"
 
-#include <algorithm>
-#include <array>
-#include <chrono>
-#include <numeric>
-
 #include "techniques/common/readback.h"
-#include "techniques/rt/bvh.h"
 #include "techniques/rt/slots.h"
 #include "techniques/rt/uniforms.h"
 
@@ -46,45 +40,23 @@ RayTracedShadow::Options RayTracedShadow::readOptions(const OptionReader& o) {
   opt.bias = static_cast<float>(o.number("bias"));
   opt.rays = static_cast<uint32_t>(o.integer("rays"));
   opt.maxHits = static_cast<uint32_t>(o.integer("max_hits"));
-  opt.sah = o.choice("bvh") == "sah";
-  const std::string tier = o.choice("tier");
-  opt.tier = tier == "software"    ? Tier::Software
-             : tier == "ray_query" ? Tier::RayQuery
-                                   : Tier::Auto;
+  opt.walk = rt::readTierOptions(o);
   return opt;
 }
 
 void RayTracedShadow::setup(Device& dev, const GpuScene& scene, const RenderSettings& s) {
-  const DeviceInfo info = dev.info();
-  if (opt_.tier == Tier::RayQuery && !info.rayQuery)
-    throw InputError("shadow technique 'rt': tier=ray_query: this device (" + info.backend + ", " +
-                     info.device + ") offers no VK_KHR_ray_query (use tier=software or auto)");
-  rayQuery_ = opt_.tier == Tier::RayQuery || (opt_.tier == Tier::Auto && info.rayQuery);
+  rayQuery_ = rt::useRayQueries(opt_.walk.tier, dev.info(), "shadow technique 'rt'");
   const ViewUniforms view = setupLight(dev, scene, s, opt_.size);
   const glm::mat4 proj = s.light.projection(), lightV = s.light.view();
   // One texel is 2 / size of the NDC square: 2 w / (size P00) world units at clip w.
   const float perW = 2.0f / (float(opt_.size) * proj[0][0]);
   const float texels = s.primitive == Primitive::Ribbons ? s.ribbonWidth : 1.0f;
 
-  const auto start = std::chrono::steady_clock::now();
   const std::vector<rt::Segment> segs = strandSegments(dev, scene, view.viewProj, perW, texels);
-  // Ray queries need no BVH of ours: the segments in scene order, one box each.
-  rt::Bvh bvh;
-  if (rayQuery_) {
-    bvh.order.resize(segs.size());
-    std::iota(bvh.order.begin(), bvh.order.end(), 0u);
-  } else {
-    bvh = rt::buildBvh(segs, 4, opt_.sah);
-  }
-  const std::vector<glm::vec4> packed = rt::packSegments(bvh, segs);
-  std::vector<std::array<glm::vec3, 2>> boxes(std::max<std::size_t>(segs.size(), 1));
-  if (rayQuery_)
-    for (std::size_t i = 0; i < segs.size(); ++i)
-      rt::segmentBounds(segs[i], boxes[i][0], boxes[i][1]);
-  buildMs_ =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  nodeCount_ = uint32_t(bvh.nodes.size());
-  depth_ = bvh.depth;
+  const rt::Walk walk = rt::buildWalk(segs, rayQuery_, opt_.walk.sah);
+  buildMs_ = walk.buildMs;
+  nodeCount_ = uint32_t(walk.bvh.nodes.size());
+  depth_ = walk.bvh.depth;
   segmentCount_ = uint32_t(segs.size());
 
   RtParams p{};
@@ -97,22 +69,7 @@ void RayTracedShadow::setup(Device& dev, const GpuScene& scene, const RenderSett
   p.rtAxisU = glm::vec4(lightV[0][0], lightV[1][0], lightV[2][0], float(opt_.maxHits));
   p.rtAxisV = glm::vec4(lightV[0][1], lightV[1][1], lightV[2][1], perW);
   params_ = dev.createBuffer({"rt.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
-  if (rayQuery_) {
-    // A scene without hair: one empty box at the origin (packSegments' zero
-    // segment, which no ray hits).
-    boxes_ = dev.createBuffer(
-        {"rt.boxes", "shadow", BufferUsage::Storage, boxes.size() * sizeof(boxes[0])},
-        boxes.data());
-    scene_ = dev.createAccelerationStructure("rt.acceleration_structure", "shadow", boxes_,
-                                             uint32_t(boxes.size()));
-  } else {
-    nodes_ = dev.createBuffer(
-        {"rt.bvh_nodes", "shadow", BufferUsage::Storage, bvh.nodes.size() * sizeof(rt::Node)},
-        bvh.nodes.data());
-  }
-  segments_ = dev.createBuffer(
-      {"rt.segments", "shadow", BufferUsage::Storage, packed.size() * sizeof(glm::vec4)},
-      packed.data());
+  walk_ = rt::uploadWalk(dev, walk, rayQuery_, "rt.", "shadow");
   status_ = dev.createBuffer({"rt.status", "shadow", BufferUsage::Storage, 16});
 }
 
@@ -134,10 +91,10 @@ ShadowLookup RayTracedShadow::lookup() const {
   // that ran; rt.clear zeroes it before them.
   l.inputs.uniform(kParams, params_);
   if (rayQuery_)
-    l.inputs.accelerationStructure(kScene, scene_);
+    l.inputs.accelerationStructure(kScene, walk_.scene);
   else
-    l.inputs.readStorage(kNodes, nodes_);
-  l.inputs.readStorage(kSegments, segments_).sideOutput(kStatus, status_);
+    l.inputs.readStorage(kNodes, walk_.nodes);
+  l.inputs.readStorage(kSegments, walk_.segments).sideOutput(kStatus, status_);
   if (opt_.maxHits > 0) l.defines.defines.push_back({"SB_RT_COUNT_CAP", "1"});
   opaque_.addTo(l);
   return l;

@@ -3,6 +3,7 @@
 #include "scenes/options.h"
 #include "techniques/common/opaque_shadow.h"
 #include "techniques/common/technique.h"
+#include "techniques/rt/tier.h"
 
 namespace sb {
 
@@ -22,14 +23,12 @@ namespace sb {
 // geometry. Opacity: the scene's shadow_alpha per strand crossed, as exact.
 class RayTracedShadow : public LightMapShadow {
  public:
-  enum class Tier { Auto, Software, RayQuery };
   struct Options {
     uint32_t size = 512;
     float bias = 0.002f;
     uint32_t rays = 1;
     uint32_t maxHits = 0;
-    Tier tier = Tier::Auto;
-    bool sah = true;  // BVH splits: binned SAH, or at the median
+    rt::TierOptions walk;  // tier= and bvh= (techniques/rt/tier.h)
   };
   static Options readOptions(const OptionReader& o);  // the registry's options
   explicit RayTracedShadow(const Options& o) : opt_(o) {}
@@ -45,9 +44,8 @@ class RayTracedShadow : public LightMapShadow {
 
   Options opt_;
   bool rayQuery_ = false;  // the tier in use (after setup)
-  // nodes_: the software tier's BVH; boxes_ and scene_: the ray-query tier's
-  // boxes and acceleration structure over them.
-  Buffer params_, nodes_, segments_, status_, boxes_, scene_;
+  Buffer params_, status_;
+  rt::WalkBuffers walk_;  // the tier's BVH or acceleration structure, and the segments
   double buildMs_ = 0;
   uint32_t nodeCount_ = 0, depth_ = 0, segmentCount_ = 0;
 };

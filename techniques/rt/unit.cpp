@@ -13,22 +13,16 @@ SB_TECHNIQUE(
              "(1-shadow_alpha) per strand crossed; software tier (BVH walked in the shader) or "
              "ray-query tier (VK_KHR_ray_query over an acceleration structure of the segments' "
              "boxes)",
-     .options = {opt::mapSize("the light texel the strand width and the rays' jitter are "
-                              "measured in (and the opaque mesh's map), 1..16384"),
-                 opt::bias(),
-                 opt::integer("rays", 1, 1, 256,
-                              "rays per point, jittered over the light texel at the point "
-                              "(1: the point itself), 1..256"),
-                 opt::integer("max_hits", 0, 0, 1000000,
-                              "stop a ray after this many strands (0: no cap); counted in "
-                              "rt.max_hits_reached, 0..1000000"),
-                 opt::choice("bvh", "sah", {"sah", "median"},
-                             "BVH splits: sah (binned surface area heuristic) | median (of the "
-                             "longest axis)"),
-                 opt::choice("tier", "auto", {"auto", "software", "ray_query"},
-                             "auto (ray_query where the device offers VK_KHR_ray_query, else "
-                             "software) | software (BVH in shader code) | ray_query (refused, "
-                             "exit 2, on devices without it); the JSON's tier")},
+     .options = rt::withTierOptions(
+         {opt::mapSize("the light texel the strand width and the rays' jitter are "
+                       "measured in (and the opaque mesh's map), 1..16384"),
+          opt::bias(),
+          opt::integer("rays", 1, 1, 256,
+                       "rays per point, jittered over the light texel at the point "
+                       "(1: the point itself), 1..256"),
+          opt::integer("max_hits", 0, 0, 1000000,
+                       "stop a ray after this many strands (0: no cap); counted in "
+                       "rt.max_hits_reached, 0..1000000")}),
      .stepped = SteppedOption{"rays", true, 1, 256},
      .makeShadow = [](const OptionReader& o) {
        return std::make_unique<RayTracedShadow>(RayTracedShadow::readOptions(o));

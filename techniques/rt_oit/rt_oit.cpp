@@ -1,12 +1,9 @@
 #include "techniques/rt_oit/rt_oit.h"
 
-#include <chrono>
-
 #include "base/errors.h"
 #include "scenes/options.h"
 #include "techniques/common/readback.h"
 #include "techniques/common/shader_library.h"
-#include "techniques/rt/bvh.h"
 #include "techniques/rt_oit/slots.h"
 #include "techniques/rt_oit/uniforms.h"
 #include "techniques/shading/hair_shading.h"
@@ -16,7 +13,7 @@ namespace sb {
 namespace {
 constexpr uint32_t kParams = SB_SLOT_RT_OIT_PARAMS, kNodes = SB_SLOT_RT_OIT_NODES,
                    kSegments = SB_SLOT_RT_OIT_SEGMENTS, kStatus = SB_SLOT_RT_OIT_STATUS,
-                   kOpaque = SB_SLOT_RT_OIT_OPAQUE;
+                   kOpaque = SB_SLOT_RT_OIT_OPAQUE, kScene = SB_SLOT_RT_OIT_SCENE;
 constexpr uint32_t kTile = 8;  // trace.comp's workgroup side
 
 // Every segment of the scene (index i is segment i: the trace reads its
@@ -45,9 +42,7 @@ RayTracedOit::Options RayTracedOit::readOptions(const OptionReader& o) {
   Options r;
   r.k = static_cast<uint32_t>(o.integer("k"));
   r.maxHits = static_cast<uint32_t>(o.integer("max_hits"));
-  r.sah = o.choice("bvh") == "sah";
-  const std::string tier = o.choice("tier");
-  r.tier = tier == "software" ? Tier::Software : tier == "ray_query" ? Tier::RayQuery : Tier::Auto;
+  r.walk = rt::readTierOptions(o);
   if (r.k > 0 && r.maxHits > 0)
     throw InputError(
         "transparency technique 'rt': max_hits caps the walks of k=0 (every hit); "
@@ -58,13 +53,7 @@ RayTracedOit::Options RayTracedOit::readOptions(const OptionReader& o) {
 
 void RayTracedOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
                          const HairShading& shading, const OitTargets& targets) {
-  // The software tier only so far: auto picks it on every device.
-  if (o_.tier == Tier::RayQuery)
-    throw InputError(dev.info().rayQuery
-                         ? "transparency technique 'rt': tier=ray_query is not built yet (use "
-                           "tier=software or auto)"
-                         : "transparency technique 'rt': tier=ray_query: this device offers no "
-                           "VK_KHR_ray_query (use tier=software or auto)");
+  rayQuery_ = rt::useRayQueries(o_.walk.tier, dev.info(), "transparency technique 'rt'");
   if (scene.segmentCount > kMaxSegments)
     throw InputError("transparency technique 'rt': " + std::to_string(scene.segmentCount) +
                      " segments; at most " + std::to_string(kMaxSegments) +
@@ -73,34 +62,29 @@ void RayTracedOit::setup(Device& dev, const GpuScene& scene, const RenderSetting
   const glm::mat4 vp = cameraView(s).viewProj;
   const float pixels = s.primitive == Primitive::Ribbons ? s.ribbonWidth : 1.0f;
 
-  const auto start = std::chrono::steady_clock::now();
   const std::vector<rt::Segment> segs = eyeSegments(dev, scene, vp, float(s.width), pixels);
-  const rt::Bvh bvh = rt::buildBvh(segs, 4, o_.sah);
-  std::vector<glm::vec4> packed = rt::packSegments(bvh, segs);
+  rt::Walk walk = rt::buildWalk(segs, rayQuery_, o_.walk.sah);
   // b.w: the segment's index, for its colours and the hits' order, as a float's
-  // value (exact below 2^24, which setup checks).
-  for (std::size_t k = 0; k < bvh.order.size(); ++k) packed[2 * k + 1].w = float(bvh.order[k]);
-  buildMs_ =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  nodeCount_ = uint32_t(bvh.nodes.size());
-  depth_ = bvh.depth;
+  // value (exact below 2^24, which setup checks); for ray queries slot i is
+  // segment i, the index of its box.
+  for (std::size_t k = 0; k < walk.bvh.order.size(); ++k)
+    walk.packed[2 * k + 1].w = float(walk.bvh.order[k]);
+  buildMs_ = walk.buildMs;
+  nodeCount_ = uint32_t(walk.bvh.nodes.size());
+  depth_ = walk.bvh.depth;
   segmentCount_ = uint32_t(segs.size());
 
   RtOitParams p{};
   p.rtoInvViewProj = glm::mat4(glm::inverse(glm::dmat4(vp)));
   p.rtoSize = glm::uvec4(s.width, s.height, o_.k, o_.maxHits);
   params_ = dev.createBuffer({"rt.oit_params", "frame", BufferUsage::Uniform, sizeof p}, &p);
-  nodes_ = dev.createBuffer(
-      {"rt.oit_bvh_nodes", "oit", BufferUsage::Storage, bvh.nodes.size() * sizeof(rt::Node)},
-      bvh.nodes.data());
-  segments_ = dev.createBuffer(
-      {"rt.oit_segments", "oit", BufferUsage::Storage, packed.size() * sizeof(glm::vec4)},
-      packed.data());
+  walk_ = rt::uploadWalk(dev, walk, rayQuery_, "rt.oit_", "oit");
   status_ = dev.createBuffer({"rt.oit_status", "oit", BufferUsage::Storage, 16});
 
   ShaderDefines defs = shading.hairDefines();
   if (targets.opaqueDrawn) defs.defines.push_back({"SB_RT_OIT_OPAQUE", "1"});
   if (o_.k > 0) defs.defines.push_back({"SB_RT_OIT_K", std::to_string(o_.k)});
+  if (rayQuery_) defs.defines.push_back({"SB_RT_OIT_RAY_QUERY", "1"});
   const ShaderCode comp = loadShader("techniques/rt_oit/trace.comp", defs);
   PipelineDesc d =
       tracePass().pipeline(dev, name() + ".trace", name() + "+" + shading.shadow().name());
@@ -110,10 +94,15 @@ void RayTracedOit::setup(Device& dev, const GpuScene& scene, const RenderSetting
 
 Pass RayTracedOit::tracePass() const {
   Pass p(name() + ".trace");
+  Inputs walk;
+  if (rayQuery_)
+    walk.accelerationStructure(kScene, walk_.scene);
+  else
+    walk.readStorage(kNodes, walk_.nodes);
   p.inputs(shading_->hairInputs())
+      .inputs(walk)
       .uniform(kParams, params_)
-      .readStorage(kNodes, nodes_)
-      .readStorage(kSegments, segments_)
+      .readStorage(kSegments, walk_.segments)
       .storage(kStatus, status_)
       .storage(AccumComposite::kAccumBinding, composite_.accum());
   if (targets_.opaqueDrawn) p.sample(kOpaque, targets_.depth);
@@ -139,7 +128,7 @@ std::vector<Counter> RayTracedOit::counters(Device& dev) {
           {"rt.oit_hits", word(0)},
           {"rt.oit_pixels_capped", word(1)},
           {"rt.oit_pixels_merged", word(2)},
-          {"rt.oit_tier_ray_query", 0.0}};
+          {"rt.oit_tier_ray_query", rayQuery_ ? 1.0 : 0.0}};
 }
 
 std::vector<std::string> RayTracedOit::warnings(Device& dev) {

@@ -1,9 +1,14 @@
-// Ray-traced transparency (--oit rt), the software tier: a primary ray per
-// pixel through the centre of the pixel into a BVH of the strand segments
-// (built on the CPU at setup with rt's builder, techniques/rt/bvh.h, over the
-// segments as the camera sees them), its hits composited front to back in
-// depth order over the opaque result; each hit is shaded with the scene's
-// shading model and shadow technique (trace.comp says how).
+// Ray-traced transparency (--oit rt): a primary ray per pixel through the
+// centre of the pixel into the strand segments as the camera sees them, its
+// hits composited front to back in depth order over the opaque result; each
+// hit is shaded with the scene's shading model and shadow technique
+// (trace.comp says how). The segments are found in one of rt's two tiers
+// (techniques/rt/tier.h): the software tier walks a BVH built on the CPU at
+// setup (techniques/rt/bvh.h) in the shader, the ray-query tier (Vulkan
+// devices with VK_KHR_ray_query) asks ray queries over an acceleration
+// structure of the segments' boxes; both judge each candidate by the same
+// test, so they collect the same hits. tier=auto takes ray queries where the
+// device has them.
 // The width: a segment is a capsule's cylinder (rt_math.glsl) of radius half
 // the strand's drawn width (lines 1 pixel, ribbons ribbon_width pixels) in
 // world units at the segment's midpoint, the width the raster techniques draw.
@@ -13,6 +18,7 @@
 #pragma once
 
 #include "techniques/common/hair_oit.h"
+#include "techniques/rt/tier.h"
 
 namespace sb {
 
@@ -20,12 +26,10 @@ class OptionReader;
 
 class RayTracedOit : public CompositedOit {
  public:
-  enum class Tier { Auto, Software, RayQuery };
   struct Options {
     uint32_t k = 0;        // 0: every hit in order; k: the k nearest, the rest merged
     uint32_t maxHits = 0;  // k = 0: hits composited per pixel at most (0: no cap)
-    Tier tier = Tier::Auto;
-    bool sah = true;  // BVH splits: binned SAH, or at the median
+    rt::TierOptions walk;  // tier= and bvh= (techniques/rt/tier.h)
   };
   static constexpr uint32_t kMaxK = 32;
   static constexpr uint32_t kMaxSegments = 1u << 24;
@@ -37,12 +41,15 @@ class RayTracedOit : public CompositedOit {
   void addPasses(FrameGraph& graph, Device& dev) override;
   std::vector<Counter> counters(Device& dev) override;
   std::vector<std::string> warnings(Device& dev) override;
+  std::string tier() const override { return rayQuery_ ? "ray_query" : "software"; }
 
  private:
   Pass tracePass() const;
 
   Options o_;
-  Buffer params_, nodes_, segments_, status_;
+  bool rayQuery_ = false;  // the tier in use (after setup)
+  Buffer params_, status_;
+  rt::WalkBuffers walk_;  // the tier's BVH or acceleration structure, and the segments
   Pipeline trace_;
   double buildMs_ = 0;
   uint32_t nodeCount_ = 0, depth_ = 0, segmentCount_ = 0;

@@ -1,13 +1,21 @@
-// --oit rt, software tier: one invocation per pixel casts the primary ray
-// through the pixel's centre into the eye BVH of the strand segments
-// (techniques/rt/bvh.h), up to the opaque depth. Every hit is shaded at its
-// axis point (the segment's tangent, its colour at s) through the shading
-// model and the shadow technique's lookup, and composited front to back with
-// its alpha. SB_RT_OIT_K unset: all hits in order, each the nearest after the
-// last (one walk per hit, no per-pixel memory), at most max_hits (capped
-// pixels counted). SB_RT_OIT_K = k: one walk, the k nearest kept sorted and
-// the rest merged in walk order into one tail behind them (the k-buffer's
-// math, techniques/kbuffer/kbuffer_math.glsl; merged pixels counted).
+// --oit rt: one invocation per pixel casts the primary ray through the
+// pixel's centre into the strand segments, up to the opaque depth: the
+// software tier walks the eye BVH (techniques/rt/bvh.h) in this shader, the
+// ray-query tier (SB_RT_OIT_RAY_QUERY) asks a ray query over an acceleration
+// structure of the segments' boxes (rtoWalk, either way); both hand every
+// segment the same test passes to rtoVisit, so they collect the same hits.
+// Every hit is shaded at its axis point (the segment's tangent, its colour at
+// s) through the shading model and the shadow technique's lookup, and
+// composited front to back with its alpha. SB_RT_OIT_K unset: all hits in
+// order, each the nearest after the last (one walk per hit, no per-pixel
+// memory), at most max_hits (capped pixels counted). SB_RT_OIT_K = k: one
+// walk, the k nearest kept sorted and the rest merged in walk order into one
+// tail behind them (the k-buffer's math, techniques/kbuffer/kbuffer_math.glsl;
+// merged pixels counted): the one place the tiers differ, as their walks meet
+// hits in different orders.
+#ifdef SB_RT_OIT_RAY_QUERY
+#extension GL_EXT_ray_query : require
+#endif
 #include "../common/bindings.glsl"
 #include "../common/shading.glsl"
 #include <shadow>
@@ -26,7 +34,6 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(std430, binding = SB_SLOT_OIT_ACCUM) writeonly buffer Accum { vec4 accum[]; };
-layout(std430, binding = SB_SLOT_RT_OIT_NODES) readonly buffer RtoNodes { vec4 rtoNodes[]; };
 layout(std430, binding = SB_SLOT_RT_OIT_SEGMENTS) readonly buffer RtoSegments {
   vec4 rtoSegments[];
 };
@@ -35,9 +42,6 @@ layout(std430, binding = SB_SLOT_RT_OIT_STATUS) buffer RtoStatus { uint rtoStatu
 #ifdef SB_RT_OIT_OPAQUE
 layout(binding = SB_SLOT_RT_OIT_OPAQUE) uniform sampler2D opaqueDepth;
 #endif
-
-// Enough for the BVH bvh.h builds (rt's lookup says why).
-const int kRtoStack = 48;
 
 // The walk's state: how far hits count (the nearest-after search lowers it).
 float rtoTMax;
@@ -76,9 +80,42 @@ void rtoVisit(uint i, float t, float s) {
 }
 #endif
 
-// The traversal, the one function a ray-query tier replaces: every segment
-// whose cylinder the ray o + t d (|d| = 1) passes with 0 < t <= rtoTMax is
-// handed to rtoVisit(BVH slot, t, s), in walk order.
+// Whether segment slot i is hit by o + t d (|d| = 1) with 0 < t <= rtoTMax;
+// then rtoVisit(i, t, s). Both tiers' one test.
+void rtoTest(uint i, vec3 o, vec3 d) {
+  vec4 a = rtoSegments[2u * i];
+  vec4 b = rtoSegments[2u * i + 1u];
+  vec4 h = rtSegmentHit(o, d, a.xyz, b.xyz, a.w);
+  if (h.x == 0.0 || h.y <= 0.0 || h.y > rtoTMax) return;
+  rtoVisit(i, h.y, h.z);
+}
+
+// The traversal: every segment whose cylinder the ray o + t d passes with
+// 0 < t <= rtoTMax is handed to rtoVisit(slot, t, s), in the walk's order.
+#ifdef SB_RT_OIT_RAY_QUERY
+layout(binding = SB_SLOT_RT_OIT_SCENE) uniform accelerationStructureEXT rtoScene;
+
+// The candidates are the boxes the ray meets up to rtoTMax (box i: slot i).
+// When rtoVisit lowers rtoTMax (the nearest-after search), a generated
+// intersection at it lowers the query's end too, so farther boxes are
+// skipped, as the software walk skips them; nothing else is committed.
+void rtoWalk(vec3 o, vec3 d) {
+  rayQueryEXT q;
+  rayQueryInitializeEXT(q, rtoScene, gl_RayFlagsNoOpaqueEXT, 0xFF, o, 0.0, d, rtoTMax);
+  while (rayQueryProceedEXT(q)) {
+    if (rayQueryGetIntersectionTypeEXT(q, false) != gl_RayQueryCandidateIntersectionAABBEXT)
+      continue;
+    float before = rtoTMax;
+    rtoTest(uint(rayQueryGetIntersectionPrimitiveIndexEXT(q, false)), o, d);
+    if (rtoTMax < before) rayQueryGenerateIntersectionEXT(q, rtoTMax);
+  }
+}
+#else
+layout(std430, binding = SB_SLOT_RT_OIT_NODES) readonly buffer RtoNodes { vec4 rtoNodes[]; };
+
+// Enough for the BVH bvh.h builds (rt's lookup says why).
+const int kRtoStack = 48;
+
 void rtoWalk(vec3 o, vec3 d) {
   vec3 invD = rtSafeInverse(d);
   uint stack[kRtoStack];
@@ -98,15 +135,10 @@ void rtoWalk(vec3 o, vec3 d) {
       }
       continue;
     }
-    for (uint i = first; i < first + count; ++i) {
-      vec4 a = rtoSegments[2u * i];
-      vec4 b = rtoSegments[2u * i + 1u];
-      vec4 h = rtSegmentHit(o, d, a.xyz, b.xyz, a.w);
-      if (h.x == 0.0 || h.y <= 0.0 || h.y > rtoTMax) continue;
-      rtoVisit(i, h.y, h.z);
-    }
+    for (uint i = first; i < first + count; ++i) rtoTest(i, o, d);
   }
 }
+#endif
 
 void main() {
   uvec2 px = gl_GlobalInvocationID.xy;

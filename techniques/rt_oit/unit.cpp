@@ -1,4 +1,4 @@
-// --oit rt: ray-traced transparency (the software tier).
+// --oit rt: ray-traced transparency (software and ray-query tiers).
 #include "techniques/common/unit.h"
 
 #include "techniques/rt_oit/rt_oit.h"
@@ -11,20 +11,16 @@ SB_TECHNIQUE(
      .help = "ray-traced transparency: a primary ray per pixel centre through a BVH of strand "
              "segments (capsule cylinders as wide as the frame draws strands), its hits shaded "
              "with the shadow technique and composited front to back in depth order; software "
-             "tier (BVH walked in a compute shader)",
-     .options = {opt::integer("k", 0, 0, RayTracedOit::kMaxK,
-                              "0: every hit in order (a walk per hit); k: one walk keeping the k "
-                              "nearest sorted, the rest merged behind them in walk order "
-                              "(counted in rt.oit_pixels_merged), 0..32"),
-                 opt::integer("max_hits", 0, 0, 1000000,
-                              "with k=0: hits composited per pixel at most (0: no cap); capped "
-                              "pixels are counted and warned about, 0..1000000"),
-                 opt::choice("bvh", "sah", {"sah", "median"},
-                             "BVH splits: sah (binned surface area heuristic) | median (of the "
-                             "longest axis)"),
-                 opt::choice("tier", "auto", {"auto", "software", "ray_query"},
-                             "auto | software (BVH in shader code) | ray_query (not built yet: "
-                             "refused); auto is software")},
+             "tier (BVH walked in a compute shader) or ray-query tier (VK_KHR_ray_query over an "
+             "acceleration structure of the segments' boxes)",
+     .options = rt::withTierOptions(
+         {opt::integer("k", 0, 0, RayTracedOit::kMaxK,
+                       "0: every hit in order (a walk per hit); k: one walk keeping the k "
+                       "nearest sorted, the rest merged behind them in walk order "
+                       "(counted in rt.oit_pixels_merged), 0..32"),
+          opt::integer("max_hits", 0, 0, 1000000,
+                       "with k=0: hits composited per pixel at most (0: no cap); capped "
+                       "pixels are counted and warned about, 0..1000000")}),
      .caps = {.msaaRefusal = "one primary ray per pixel centre: samples would need a ray "
                              "each; not supported"},
      .makeOit = [](const OptionReader& o) {

@@ -1,0 +1,80 @@
+#include "techniques/rt/tier.h"
+
+#include <chrono>
+#include <numeric>
+
+#include "base/errors.h"
+#include "techniques/common/unit.h"
+
+namespace sb::rt {
+
+std::vector<OptionInfo> withTierOptions(std::vector<OptionInfo> own) {
+  for (OptionInfo& o : std::vector<OptionInfo>{
+           opt::choice("bvh", "sah", {"sah", "median"},
+                       "BVH splits: sah (binned surface area heuristic) | median (of the "
+                       "longest axis)"),
+           opt::choice("tier", "auto", {"auto", "software", "ray_query"},
+                       "auto (ray_query where the device offers VK_KHR_ray_query, else "
+                       "software) | software (BVH in shader code) | ray_query (refused, "
+                       "exit 2, on devices without it); the JSON's tier")})
+    own.push_back(std::move(o));
+  return own;
+}
+
+TierOptions readTierOptions(const OptionReader& o) {
+  TierOptions t;
+  t.sah = o.choice("bvh") == "sah";
+  const std::string tier = o.choice("tier");
+  t.tier = tier == "software" ? Tier::Software : tier == "ray_query" ? Tier::RayQuery : Tier::Auto;
+  return t;
+}
+
+bool useRayQueries(Tier tier, const DeviceInfo& info, const std::string& technique) {
+  if (tier == Tier::RayQuery && !info.rayQuery)
+    throw InputError(technique + ": tier=ray_query: this device (" + info.backend + ", " +
+                     info.device + ") offers no VK_KHR_ray_query (use tier=software or auto)");
+  return tier == Tier::RayQuery || (tier == Tier::Auto && info.rayQuery);
+}
+
+Walk buildWalk(const std::vector<Segment>& segs, bool rayQuery, bool sah) {
+  const auto start = std::chrono::steady_clock::now();
+  Walk w;
+  if (rayQuery) {
+    // Ray queries need no BVH of ours: the segments in scene order, one box
+    // each; a scene without hair gets one empty box at the origin
+    // (packSegments' zero segment, which no ray hits).
+    w.bvh.order.resize(segs.size());
+    std::iota(w.bvh.order.begin(), w.bvh.order.end(), 0u);
+    w.boxes.resize(std::max<std::size_t>(segs.size(), 1));
+    for (std::size_t i = 0; i < segs.size(); ++i)
+      segmentBounds(segs[i], w.boxes[i][0], w.boxes[i][1]);
+  } else {
+    w.bvh = buildBvh(segs, 4, sah);
+  }
+  w.packed = packSegments(w.bvh, segs);
+  w.buildMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return w;
+}
+
+WalkBuffers uploadWalk(Device& dev, const Walk& w, bool rayQuery, const std::string& prefix,
+                       const std::string& owner) {
+  WalkBuffers b;
+  if (rayQuery) {
+    b.boxes = dev.createBuffer(
+        {prefix + "boxes", owner, BufferUsage::Storage, w.boxes.size() * sizeof(w.boxes[0])},
+        w.boxes.data());
+    b.scene = dev.createAccelerationStructure(prefix + "acceleration_structure", owner, b.boxes,
+                                              uint32_t(w.boxes.size()));
+  } else {
+    b.nodes = dev.createBuffer(
+        {prefix + "bvh_nodes", owner, BufferUsage::Storage, w.bvh.nodes.size() * sizeof(Node)},
+        w.bvh.nodes.data());
+  }
+  b.segments = dev.createBuffer(
+      {prefix + "segments", owner, BufferUsage::Storage, w.packed.size() * sizeof(glm::vec4)},
+      w.packed.data());
+  return b;
+}
+
+}  // namespace sb::rt

@@ -1,0 +1,56 @@
+// The two tiers of the ray-traced techniques (--shadow rt and --oit rt), in
+// one place: their options (bvh=, tier=), the choice of tier on a device
+// (tier=auto takes ray queries where the device offers them; tier=ray_query is
+// bad input where it does not), and the data each tier's walk reads. The
+// software tier walks a BVH built here on the CPU (bvh.h) in shader code; the
+// ray-query tier asks ray queries over an acceleration structure of the
+// segments' boxes (Device::createAccelerationStructure), box i segment i.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "backends/device.h"
+#include "scenes/options.h"
+#include "techniques/rt/bvh.h"
+
+namespace sb::rt {
+
+enum class Tier { Auto, Software, RayQuery };
+
+struct TierOptions {
+  Tier tier = Tier::Auto;
+  bool sah = true;  // BVH splits: binned SAH, or at the median
+};
+
+// A technique's own options followed by bvh= and tier=, as the registry
+// declares them; and their reading.
+std::vector<OptionInfo> withTierOptions(std::vector<OptionInfo> own);
+TierOptions readTierOptions(const OptionReader& o);
+
+// Whether `technique` ("shadow technique 'rt'") traces with ray queries on
+// this device; tier=ray_query without them is an InputError saying why.
+bool useRayQueries(Tier tier, const DeviceInfo& info, const std::string& technique);
+
+// What a tier's walk reads, built on the CPU: the software tier's BVH and its
+// segments in BVH order, or for ray queries the segments in scene order (an
+// identity order, no nodes) and one box each. packed is packSegments' layout.
+struct Walk {
+  Bvh bvh;
+  std::vector<glm::vec4> packed;
+  std::vector<std::array<glm::vec3, 2>> boxes;  // ray queries only: at least one
+  double buildMs = 0;                           // the CPU's time to build the above
+};
+Walk buildWalk(const std::vector<Segment>& segs, bool rayQuery, bool sah);
+
+// The walk on the device, named `prefix` + "bvh_nodes", "segments", "boxes",
+// "acceleration_structure" (the latter two for ray queries, the first for the
+// software tier), owned by `owner`.
+struct WalkBuffers {
+  Buffer nodes, segments, boxes, scene;
+};
+WalkBuffers uploadWalk(Device& dev, const Walk& w, bool rayQuery, const std::string& prefix,
+                       const std::string& owner);
+
+}  // namespace sb::rt
