@@ -120,9 +120,9 @@ RayHits StrandTracer::trace(glm::vec3 origin, glm::vec3 dir, float tnear, float 
   c.hits = &raw;
   c.u = &us;
   // Embree's curve intersectors miss a curve that passes within about its radius of the ray's
-  // origin (measured against a brute-force test: a shadow ray started inside a dense groom lost
-  // 1% of its crossings, always the nearest ones). The ray starts backOff_ earlier instead, and
-  // its distances are taken back.
+  // origin (against a brute-force test, shadow rays started inside a dense groom lost some of
+  // their crossings, always the nearest ones). The ray starts backOff_ earlier instead, and its
+  // distances are taken back.
   const float back = backOff_;
   const glm::vec3 start = origin - back * dir;
   RTCRayHit rh{};
