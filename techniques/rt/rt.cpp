@@ -11,27 +11,6 @@ constexpr uint32_t kParams = SB_SLOT_RT_PARAMS, kNodes = SB_SLOT_RT_NODES,
                    kSegments = SB_SLOT_RT_SEGMENTS, kStatus = SB_SLOT_RT_STATUS,
                    kScene = SB_SLOT_RT_SCENE;
 
-// The scene's segments, each as wide as the light map of `size` texels draws
-// it: `texels` wide at the world size of one texel at its midpoint.
-std::vector<rt::Segment> strandSegments(Device& dev, const GpuScene& scene, const glm::mat4& vp,
-                                        float worldPerTexelPerW, float texels) {
-  std::vector<rt::Segment> segs;
-  if (!scene.hasHair()) return segs;
-  const auto points = readBufferAs<glm::vec4>(dev, scene.points);
-  const auto firsts = readBufferAs<uint32_t>(dev, scene.segments);
-  segs.reserve(scene.segmentCount);
-  for (uint32_t i = 0; i < scene.segmentCount && i < firsts.size(); ++i) {
-    const uint32_t f = firsts[i];
-    if (f + 1 >= points.size()) continue;
-    rt::Segment s;
-    s.a = glm::vec3(points[f]);
-    s.b = glm::vec3(points[f + 1]);
-    const float w = (vp * glm::vec4(0.5f * (s.a + s.b), 1.0f)).w;
-    s.radius = 0.5f * texels * worldPerTexelPerW * std::abs(w);
-    segs.push_back(s);
-  }
-  return segs;
-}
 }  // namespace
 
 RayTracedShadow::Options RayTracedShadow::readOptions(const OptionReader& o) {
@@ -52,7 +31,7 @@ void RayTracedShadow::setup(Device& dev, const GpuScene& scene, const RenderSett
   const float perW = 2.0f / (float(opt_.size) * proj[0][0]);
   const float texels = s.primitive == Primitive::Ribbons ? s.ribbonWidth : 1.0f;
 
-  const std::vector<rt::Segment> segs = strandSegments(dev, scene, view.viewProj, perW, texels);
+  const std::vector<rt::Segment> segs = rt::sceneSegments(dev, scene, view.viewProj, perW, texels);
   const rt::Walk walk = rt::buildWalk(segs, rayQuery_, opt_.walk.sah);
   buildMs_ = walk.buildMs;
   nodeCount_ = uint32_t(walk.bvh.nodes.size());

@@ -4,6 +4,7 @@
 #include <numeric>
 
 #include "base/errors.h"
+#include "techniques/common/readback.h"
 #include "techniques/common/unit.h"
 
 namespace sb::rt {
@@ -34,6 +35,23 @@ bool useRayQueries(Tier tier, const DeviceInfo& info, const std::string& techniq
     throw InputError(technique + ": tier=ray_query: this device (" + info.backend + ", " +
                      info.device + ") offers no VK_KHR_ray_query (use tier=software or auto)");
   return tier == Tier::RayQuery || (tier == Tier::Auto && info.rayQuery);
+}
+
+std::vector<Segment> sceneSegments(Device& dev, const GpuScene& scene, const glm::mat4& viewProj,
+                                   float worldPerUnitPerW, float width) {
+  std::vector<Segment> segs(scene.hasHair() ? scene.segmentCount : 0);
+  if (segs.empty()) return segs;
+  const auto points = readBufferAs<glm::vec4>(dev, scene.points);
+  const auto firsts = readBufferAs<uint32_t>(dev, scene.segments);
+  for (uint32_t i = 0; i < segs.size() && i < firsts.size(); ++i) {
+    if (firsts[i] + 1 >= points.size()) continue;
+    Segment& s = segs[i];
+    s.a = glm::vec3(points[firsts[i]]);
+    s.b = glm::vec3(points[firsts[i] + 1]);
+    const float w = (viewProj * glm::vec4(0.5f * (s.a + s.b), 1.0f)).w;
+    s.radius = 0.5f * width * worldPerUnitPerW * std::abs(w);
+  }
+  return segs;
 }
 
 Walk buildWalk(const std::vector<Segment>& segs, bool rayQuery, bool sah) {

@@ -13,6 +13,7 @@
 
 #include "backends/device.h"
 #include "scenes/options.h"
+#include "techniques/common/technique.h"
 #include "techniques/rt/bvh.h"
 
 namespace sb::rt {
@@ -32,6 +33,13 @@ TierOptions readTierOptions(const OptionReader& o);
 // Whether `technique` ("shadow technique 'rt'") traces with ray queries on
 // this device; tier=ray_query without them is an InputError saying why.
 bool useRayQueries(Tier tier, const DeviceInfo& info, const std::string& technique);
+
+// The scene's segments, index i segment i, each `width` units wide at its midpoint, one unit
+// being `worldPerUnitPerW` world units per unit of clip w under `viewProj` (a pixel of the
+// frame, a texel of a light map: the width the raster draws there). A segment whose points lie
+// past the point buffer is left degenerate (radius 0: never hit).
+std::vector<Segment> sceneSegments(Device& dev, const GpuScene& scene, const glm::mat4& viewProj,
+                                   float worldPerUnitPerW, float width);
 
 // What a tier's walk reads, built on the CPU: the software tier's BVH and its
 // segments in BVH order, or for ray queries the segments in scene order (an

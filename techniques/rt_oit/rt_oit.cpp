@@ -16,26 +16,6 @@ constexpr uint32_t kParams = SB_SLOT_RT_OIT_PARAMS, kNodes = SB_SLOT_RT_OIT_NODE
                    kOpaque = SB_SLOT_RT_OIT_OPAQUE, kScene = SB_SLOT_RT_OIT_SCENE;
 constexpr uint32_t kTile = 8;  // trace.comp's workgroup side
 
-// Every segment of the scene (index i is segment i: the trace reads its
-// colours through it), `pixels` wide at its midpoint: one pixel is
-// 2 |w| / (width * xScale) world units at clip w.
-std::vector<rt::Segment> eyeSegments(Device& dev, const GpuScene& scene, const glm::mat4& vp,
-                                     float frameWidth, float pixels) {
-  std::vector<rt::Segment> segs(scene.hasHair() ? scene.segmentCount : 0);
-  if (segs.empty()) return segs;
-  const auto points = readBufferAs<glm::vec4>(dev, scene.points);
-  const auto firsts = readBufferAs<uint32_t>(dev, scene.segments);
-  const float xScale = glm::length(glm::vec3(vp[0][0], vp[1][0], vp[2][0]));
-  for (uint32_t i = 0; i < segs.size() && i < firsts.size(); ++i) {
-    if (firsts[i] + 1 >= points.size()) continue;  // left a zero-length segment: never hit
-    rt::Segment& s = segs[i];
-    s.a = glm::vec3(points[firsts[i]]);
-    s.b = glm::vec3(points[firsts[i] + 1]);
-    const float w = std::abs((vp * glm::vec4(0.5f * (s.a + s.b), 1.0f)).w);
-    s.radius = 0.5f * pixels * 2.0f * w / (frameWidth * xScale);
-  }
-  return segs;
-}
 }  // namespace
 
 RayTracedOit::Options RayTracedOit::readOptions(const OptionReader& o) {
@@ -62,7 +42,10 @@ void RayTracedOit::setup(Device& dev, const GpuScene& scene, const RenderSetting
   const glm::mat4 vp = cameraView(s).viewProj;
   const float pixels = s.primitive == Primitive::Ribbons ? s.ribbonWidth : 1.0f;
 
-  const std::vector<rt::Segment> segs = eyeSegments(dev, scene, vp, float(s.width), pixels);
+  // One pixel is 2 |w| / (width * xScale) world units at clip w.
+  const float xScale = glm::length(glm::vec3(vp[0][0], vp[1][0], vp[2][0]));
+  const std::vector<rt::Segment> segs =
+      rt::sceneSegments(dev, scene, vp, 2.0f / (float(s.width) * xScale), pixels);
   rt::Walk walk = rt::buildWalk(segs, rayQuery_, o_.walk.sah);
   // b.w: the segment's index, for its colours and the hits' order, as a float's
   // value (exact below 2^24, which setup checks); for ray queries slot i is
