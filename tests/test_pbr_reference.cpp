@@ -39,9 +39,9 @@ struct CacheDir {
 
 sb::RenderRequest pbrRequest(const std::string& scene, const std::string& shadow,
                              const std::string& primitive, float ribbonWidth,
-                             const std::string& pbrSpec) {
+                             const std::string& pbrSpec, const std::string& backend = "gl") {
   sb::RenderRequest r;
-  r.backend = "gl";
+  r.backend = backend;
   r.scene = scene;
   r.shadow = shadow;
   r.width = r.height = 64;
@@ -83,30 +83,33 @@ Interior interiorDifference(const sb::RenderResult& out, const sb::Image& a, con
   return r;
 }
 
-bool glAvailable() {
+// Why `backend` cannot render here, or "" (the skip's words count as a set-up failure in CI).
+std::string backendMissing(const std::string& backend) {
   try {
-    sb::RenderRequest r = pbrRequest("straight:strands=2,points=3", "exact", "lines", 1, "exact");
+    sb::RenderRequest r =
+        pbrRequest("straight:strands=2,points=3", "exact", "lines", 1, "exact", backend);
     r.references.clear();
     sb::runRender(r);
-    return true;
-  } catch (const sb::DeviceError&) {
-    return false;
+    return "";
+  } catch (const sb::DeviceError& e) {
+    return backend + " backend unavailable: " + e.what();
   }
 }
-
 // The transmittance reference against the exact reference (and, the control, the image with
 // no shadows against the transmittance reference) over the pixels of ribbons 6 pixels wide
 // (interiorOnly: away from their edges), light maps of 256 texels (ribbons 6 texels wide there).
-void expectAgreement(const std::string& scene, double tolerance, bool interiorOnly) {
+void expectAgreement(const std::string& scene, double tolerance, bool interiorOnly,
+                     const std::string& backend) {
+  SCOPED_TRACE(backend);
   CacheDir cache("agree");
-  const sb::RenderResult out =
-      sb::runRender(pbrRequest(scene, "none", "ribbons", 6.0f, "pbr:mode=transmittance,spp=1"));
+  const sb::RenderResult out = sb::runRender(
+      pbrRequest(scene, "none", "ribbons", 6.0f, "pbr:mode=transmittance,spp=1", backend));
   ASSERT_EQ(out.moreReferences.size(), 1u);
   ASSERT_TRUE(out.eyeComplexity);
   const sb::Image& pbr = out.moreReferences[0].referenceImage;
   const Interior agree = interiorDifference(out, out.referenceImage, pbr, interiorOnly);
   const Interior control = interiorDifference(out, out.image, pbr, interiorOnly);
-  std::cout << "[ measured ] " << scene << ": " << agree.covered
+  std::cout << "[ measured ] " << backend << ", " << scene << ": " << agree.covered
             << " interior covered pixels, mean max-channel |exact - pbr| " << agree.mean
             << "; control (no shadows - pbr) " << control.mean << "; whole-image RMSE "
             << sb::compareImages(out.referenceImage, pbr).rmse << "\n";
@@ -115,23 +118,26 @@ void expectAgreement(const std::string& scene, double tolerance, bool interiorOn
   EXPECT_GT(control.mean, tolerance);  // the control fails the bound
 }
 
+// The raster reference on both APIs (the CPU reference is the same for both).
 TEST(PbrReference, TransmittanceAgreesWithTheExactReferenceOnWideSyntheticRibbons) {
-  if (!glAvailable()) GTEST_SKIP() << "gl unavailable";
-  // Measured: mean 7e-6 over 46 interior pixels; the control (no shadows) 0.077.
-  expectAgreement("straight:strands=12,points=5,seed=5,head=1", 0.03, true);
+  for (const std::string backend : {"gl", "vulkan"}) {
+    if (const std::string why = backendMissing(backend); !why.empty()) GTEST_SKIP() << why;
+    expectAgreement("straight:strands=12,points=5,seed=5,head=1", 0.03, true, backend);
+  }
 }
 
-// 150 strands of straight.hair as 6-pixel ribbons, edges included: measured mean 0.014, the
-// no-shadow control 0.13. What is left: ribbons' ends and joins where strands bend towards
-// the eye, and depth ties between crossing strands.
+// 150 strands of straight.hair as 6-pixel ribbons, edges included. What is left: ribbons'
+// ends and joins where strands bend towards the eye, and depth ties between crossing strands.
 TEST(PbrReference, TransmittanceAgreesWithTheExactReferenceOnARealGroom) {
   if (!fs::exists(kModels + "/straight.hair")) GTEST_SKIP() << "../shared/models not found";
-  if (!glAvailable()) GTEST_SKIP() << "gl unavailable";
-  expectAgreement("file:path=" + kModels + "/straight.hair,strands=150", 0.03, false);
+  for (const std::string backend : {"gl", "vulkan"}) {
+    if (const std::string why = backendMissing(backend); !why.empty()) GTEST_SKIP() << why;
+    expectAgreement("file:path=" + kModels + "/straight.hair,strands=150", 0.03, false, backend);
+  }
 }
 
 TEST(PbrReference, ThinLinesDifferByTheirFootprint) {
-  if (!glAvailable()) GTEST_SKIP() << "gl unavailable";
+  if (const std::string why = backendMissing("gl"); !why.empty()) GTEST_SKIP() << why;
   // One-pixel lines: the rasterizer's diamond rule decides a pixel, the ray a one-pixel ribbon
   // about the centre; world widths (thickness 0.005, a tenth of a pixel) cover few pixel
   // centres at all. The footprint model is the larger part of the difference.
@@ -148,7 +154,7 @@ TEST(PbrReference, ThinLinesDifferByTheirFootprint) {
 }
 
 TEST(PbrReference, CacheIsReusedAndKeyed) {
-  if (!glAvailable()) GTEST_SKIP() << "gl unavailable";
+  if (const std::string why = backendMissing("gl"); !why.empty()) GTEST_SKIP() << why;
   CacheDir cache("cache");
   const sb::RenderRequest r =
       pbrRequest("straight:strands=12,points=5,head=0", "exact", "lines", 1, "pbr:mode=path,spp=4");
@@ -169,7 +175,7 @@ TEST(PbrReference, CacheIsReusedAndKeyed) {
 }
 
 TEST(PbrReference, PathNoiseFallsWithSamplesAndIsDeterministic) {
-  if (!glAvailable()) GTEST_SKIP() << "gl unavailable";
+  if (const std::string why = backendMissing("gl"); !why.empty()) GTEST_SKIP() << why;
   ::setenv("SB_PBR_CACHE", "off", 1);
   auto run = [](int spp) {
     return sb::runRender(pbrRequest("straight:strands=30,points=5,head=1,thickness=0.05", "exact",
