@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "base/errors.h"
+#include "base/fnv.h"
 #include "reports/report_data.h"
 #include "reports/stats.h"
 
@@ -74,15 +75,7 @@ std::string contextLine(const json& results, const std::string& command) {
 }  // namespace
 
 std::string figureDigest(const std::string& body) {
-  std::uint64_t h = 14695981039346656037ull;
-  for (unsigned char ch : body) {
-    h ^= ch;
-    h *= 1099511628211ull;
-  }
-  static const char* hex = "0123456789abcdef";
-  std::string out(16, '0');
-  for (int i = 15; i >= 0; --i, h >>= 4) out[std::size_t(i)] = hex[h & 15];
-  return out;
+  return hex64(fnv1a(kFnvOffset, body.data(), body.size()));
 }
 
 std::string figureHeader(const std::string& name, const std::string& command,
