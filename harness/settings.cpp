@@ -30,14 +30,8 @@ std::string referenceNames() {
   std::vector<std::string> names;
   for (const ReferenceKind& k : referenceCatalog()) {
     std::string n = k.name;
-    for (const OptionInfo& o : k.options) {
-      std::string values = numberText(o.min) + ".." + numberText(o.max);
-      if (o.kind == OptionKind::Choice) {  // the names, not a range
-        values.clear();
-        for (const std::string& c : o.choices) values += (values.empty() ? "" : "|") + c;
-      }
-      n += (n == k.name ? ":" : ",") + o.name + "=" + values;
-    }
+    for (const OptionInfo& o : k.options)
+      n += (n == k.name ? ":" : ",") + o.name + "=" + optionRange(o, "|");
     names.push_back(n);
   }
   return joinOr(names);

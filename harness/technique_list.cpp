@@ -37,14 +37,14 @@ const char* heading(Family f) {
                                      : "Hair shading models";
 }
 
-std::string optionRange(const OptionInfo& o) {
+std::string optionRange(const OptionInfo& o, const char* choiceSeparator) {
   switch (o.kind) {
     case OptionKind::Integer:
     case OptionKind::Number:
       return number(o.min) + ".." + number(o.max);
     case OptionKind::Choice:
     case OptionKind::Flag:
-      return joined(o.choices, " | ");
+      return joined(o.choices, choiceSeparator);
     case OptionKind::Text:
       break;
   }

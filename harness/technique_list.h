@@ -16,7 +16,7 @@ namespace sb {
 // "Shadow techniques", "Transparency techniques", "Hair shading models".
 const char* heading(Family f);
 // A typed option's valid values: "1..16384", "on | off", "" (text).
-std::string optionRange(const OptionInfo& o);
+std::string optionRange(const OptionInfo& o, const char* choiceSeparator = " | ");
 nlohmann::json optionsJson(const std::vector<OptionInfo>& options);
 nlohmann::json techniqueJson(const TechniqueDescriptor& d);
 // "  name  help" and one line per option; `detailed` adds paper, folder,
