@@ -290,6 +290,9 @@ void registerCompare(CLI::App& app) {
 
 }  // namespace
 
+// `docs refresh` and `docs check` (cli/docs_command.cpp).
+void registerDocsCommands(CLI::App& app);
+
 void registerCommands(CLI::App& app) {
   registerList(app);
   registerRender(app);
@@ -303,6 +306,7 @@ void registerCommands(CLI::App& app) {
   registerViewCommand(app);
   registerFigureCommand(app);
   registerBsdfProbeCommand(app);
+  registerDocsCommands(app);  // cli/docs_command.cpp
   // Unknown options get the closest valid one, for every command.
   for (CLI::App* cmd : app.get_subcommands([](CLI::App*) { return true; }))
     cmd->parse_complete_callback([cmd] { rejectUnknownArguments(*cmd); });
