@@ -3,18 +3,20 @@
 # reference"): one scene rendered with `--reference --reference aa:samples=S` for S = 1, 2, 4,
 # 8 on GL; per S its cost (wall time, frame time, resources, host memory), the error of the
 # technique and of the aliased reference against it, and its own convergence (the error
-# between S and 2S); and the technique with --msaa 4 against both references. Writes
-# docs/aa-reference-measured.md (or the file given), headed by the command, commit, date and
-# load, and the rows between the markers of docs/ground-truth.md.
-# Usage: scripts/aa-reference.sh [OUT.md]     Needs build/strandbench (scripts/setup.sh).
+# between S and 2S); and the technique with --msaa 4 against both references. Writes the data
+# as JSON to $SB_DOCS_RESULTS (or the file given): record it into the results store with
+#   scripts/docs-record.sh aa-reference scripts/aa-reference.sh
+# and `build/strandbench docs refresh` renders docs/aa-reference-measured.md's and
+# docs/ground-truth.md's blocks from it (docs/results/aa-reference/blocks.json).
+# Usage: scripts/aa-reference.sh [OUT.json]     Needs build/strandbench (scripts/setup.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-out=${1:-docs/aa-reference-measured.md}
+out=${1:-${SB_DOCS_RESULTS:-out/aa-reference.json}}
+mkdir -p "$(dirname "$out")"
 cli=build/strandbench
 [ -x "$cli" ] || { echo "aa-reference.sh: $cli missing: run scripts/setup.sh" >&2; exit 2; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-load_before=$(cut -d' ' -f1-3 /proc/loadavg)
 run=(render --scene curly:strands=500,points=16,seed=2 --shadow dom:layers=3,size=256
      --oit wboit --size 128x128 --warmup 0 --backend gl --reference)
 for s in 1 2 4 8; do
@@ -29,65 +31,35 @@ for s in 1 2 4; do
   "$cli" compare "$tmp/ref-$s.aa.exr" "$tmp/ref-$((s * 2)).aa.exr" > "$tmp/c$s.json"
 done
 "$cli" compare "$tmp/ref-1.exr" "$tmp/ref-8.aa.exr" > "$tmp/aliased.json"
-python3 - "$tmp" "$out" "$load_before" "$(cut -d' ' -f1-3 /proc/loadavg)" "${run[*]}" <<'PY'
-import json, os, re, subprocess, sys, datetime
-tmp, out, load0, load1, run = sys.argv[1:]
-commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
-dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], capture_output=True,
-                       text=True).stdout.strip()
-commit += " (with uncommitted changes)" if dirty else ""
+python3 - "$tmp" "$out" "${run[*]}" <<'PY'
+import json, os, sys
+tmp, out, run = sys.argv[1:]
 r = {s: json.load(open(os.path.join(tmp, f"s{s}.json"))) for s in (1, 2, 4, 8)}
 c = {s: json.load(open(os.path.join(tmp, f"c{s}.json"))) for s in (1, 2, 4)}
 aliased = json.load(open(os.path.join(tmp, "aliased.json")))
-def g(j, *path):
-    for k in path:
-        j = j[k]
-    return j
-rows = ["| S | samples rendered | light map | wall s | frame ms | resources MiB | host MiB | "
-        "technique RMSE / FLIP vs aa | aa at S vs 2S: RMSE / FLIP |",
-        "|---:|---|---|---:|---:|---:|---:|---|---|"]
+msaa = json.load(open(os.path.join(tmp, "msaa4.json")))
+rows = []
 for s in (1, 2, 4, 8):
     a = r[s]["error"]["aa"]
     ref = a["reference"]
-    conv = (f"{g(c[s], 'rmse'):.5f} / {g(c[s], 'flip', 'mean'):.4f}" if s in c else "-")
-    rows.append(f"| {s} | {ref['size'][0]}x{ref['size'][1]} | {ref['light_map_size']}^2 | "
-                f"{ref['wall_ms'] / 1000:.2f} | {ref['frame_ms']:.0f} | {ref['bytes'] / 2**20:.1f} | "
-                f"{ref['host_bytes'] / 2**20:.1f} | {a['rmse']:.5f} / {a['flip']['mean']:.4f} | {conv} |")
-msaa = json.load(open(os.path.join(tmp, "msaa4.json")))
-msaa_rows = ["| technique | error.image RMSE / FLIP (aliased) | error.aa RMSE / FLIP (aa, S = 8) |",
-             "|---|---|---|"]
+    rows.append({"S": s, "samples": f"{ref['size'][0]}x{ref['size'][1]}",
+                 "light_map": ref["light_map_size"], "wall_ms": ref["wall_ms"],
+                 "frame_ms": ref["frame_ms"], "bytes": ref["bytes"], "host_bytes": ref["host_bytes"],
+                 "rmse": a["rmse"], "flip": a["flip"]["mean"],
+                 "next_rmse": c[s]["rmse"] if s in c else None,
+                 "next_flip": c[s]["flip"]["mean"] if s in c else None})
+techniques = []
 for name, j in (("`--msaa 1`", r[8]), ("`--msaa 4`", msaa)):
     e = j["error"]
-    msaa_rows.append(f"| {j['shadow']} + {j['oit']}, {name} | {e['image']['rmse']:.5f} / "
-                     f"{e['image']['flip']['mean']:.4f} | {e['aa']['rmse']:.5f} / {e['aa']['flip']['mean']:.4f} |")
+    techniques.append({"shadow": j["shadow"], "oit": j["oit"], "msaa": name,
+                       "image_rmse": e["image"]["rmse"], "image_flip": e["image"]["flip"]["mean"],
+                       "aa_rmse": e["aa"]["rmse"], "aa_flip": e["aa"]["flip"]["mean"]})
 img = r[1]["error"]["image"]
-summary = (f"The technique against the aliased reference (`error.image`): RMSE {img['rmse']:.5f}, "
-           f"FLIP {img['flip']['mean']:.4f}; the aliased reference against aa at S = 8: RMSE "
-           f"{aliased['rmse']:.5f}, FLIP {aliased['flip']['mean']:.4f}.")
-header = (f"Written by `scripts/aa-reference.sh` (`strandbench {run} --reference aa:samples=S --json` "
-          f"for S = 1, 2, 4, 8; `strandbench compare` for S against 2S) at commit {commit}, "
-          f"{datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC, {os.cpu_count()} cores, "
-          f"load average {load0} before and {load1} after.")
-lines = ["# The anti-aliased reference, measured", "",
-         "<!-- generated by scripts/aa-reference.sh: do not edit by hand -->", header, "",
-         "Per S: the samples the aa reference renders (S x S per pixel) and its light map (S x S "
-         "per texel of the aliased reference's 256^2), its wall time (device, counting, "
-         "pipelines, frame, read back, filter) and its frame's passes, its resources (on a device "
-         "of its own) and its host memory (the read back), the technique's error against it, and "
-         "its own convergence: the aa reference at S against the one at 2S (float images, "
-         "HDR-FLIP; the technique's FLIP is LDR-FLIP as `render` reports it).", ""] + rows + ["", summary, "",
-         "The technique rendered with and without multisampling, against both references:", ""] + msaa_rows + [""]
-open(out, "w").write("\n".join(lines))
-# The same rows in docs/ground-truth.md, between its markers.
-gt = "docs/ground-truth.md"
-text = open(gt).read()
-block = ("<!-- aa-reference:begin (written by scripts/aa-reference.sh; do not edit) -->\n" + header +
-         "\n\n" + "\n".join(rows) + "\n\n" + summary + "\n\n" + "\n".join(msaa_rows) +
-         "\n<!-- aa-reference:end -->")
-text, n = re.subn(r"<!-- aa-reference:begin.*?<!-- aa-reference:end -->", lambda m: block, text,
-                  flags=re.S)
-if n != 1:
-    sys.exit("aa-reference.sh: docs/ground-truth.md has no aa-reference markers")
-open(gt, "w").write(text)
-print("wrote", out, "and", gt)
+data = {"render": "strandbench " + run, "rows": rows, "techniques": techniques,
+        "image": {"rmse": img["rmse"], "flip": img["flip"]["mean"]},
+        "aliased_vs_aa8": {"rmse": aliased["rmse"], "flip": aliased["flip"]["mean"]}}
+with open(out, "w") as f:
+    json.dump(data, f, indent=1)
+    f.write("\n")
+print("wrote", out)
 PY

@@ -42,7 +42,7 @@ fi
 
 start=$(date +%s)
 current="start"
-declare -A took  # seconds per step, for the README's block
+declare -A took  # seconds per step, for the stored run (docs/results/fresh-machine)
 step() {  # step NAME COMMAND...: runs it, prints its time; stops the script at the first failure
   current=$1
   shift
@@ -137,33 +137,48 @@ step "install mmdebstrap" install_mmdebstrap
 step "build a Debian 12 root" build_root
 step "copy the committed tree" copy_tree
 step "mount /proc /dev /sys" mount_system
-# The README's block between the fresh-machine markers, rewritten by a full run that passed:
-# its numbers come from the run that measured them, never from a hand.
-write_readme_block() {
+# The run kept in the results store (docs/results/fresh-machine: results.json and meta.json),
+# by a full run that passed; `strandbench docs refresh` renders it into the README's and
+# docs/testing.md's fresh-machine blocks: its numbers come from the run, never from a hand.
+# The tree that ran is `git archive HEAD`, so the commit is a clean one by construction.
+write_store_entry() {
   local log=$root/root/test.log
   local ctest_line skips
   # The first summary is the test suite's; the last one is the fuzzers'.
   ctest_line=$(grep -E "tests passed|tests failed" "$log" | head -n 1)
   skips=$(sed -n '/^== skipped tests:/,/^== slowest/p' "$log" | sed '1s/^== //;$d' | sed 's/^ *//' |
     paste -sd ';' | sed 's/;/; /g')
-  local block
-  block=$(
-    cat <<TXT
-Measured by \`sudo scripts/fresh-machine-check.sh\` on commit ${commit:0:7}, $(date -u '+%Y-%m-%d %H:%M') UTC,
-$(nproc) cores, load average $load0 before it started: the main command took
-${took["README main command (scripts/main-job.sh)"]} s (report written), the test command
-${took["README test command (scripts/test.sh)"]} s (ctest: "$ctest_line"; $skips; the fuzzers
-included).
-TXT
-  )
-  awk -v block="$block" '
-    /^<!-- fresh-machine:begin/ {print; print block; skip=1; next}
-    /^<!-- fresh-machine:end/ {skip=0}
-    !skip {print}' README.md >README.md.new && mv README.md.new README.md
-  echo "fresh-machine-check: README.md's measured block rewritten (commit it)"
+  python3 - "$commit" "$load0" "$(cut -d' ' -f1-3 /proc/loadavg)" "$ctest_line" "$skips" \
+    "${took["README main command (scripts/main-job.sh)"]}" \
+    "${took["README test command (scripts/test.sh)"]}" <<'PY'
+import json, os, sys, datetime
+commit, load0, load1, ctest, skips, main_s, test_s = sys.argv[1:]
+cpu = next((l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.startswith("model name")), None)
+mem = next((int(l.split()[1]) for l in open("/proc/meminfo") if l.startswith("MemTotal")), 0)
+out = "docs/results/fresh-machine"
+os.makedirs(out, exist_ok=True)
+docs = {
+    "results.json": {"main_s": int(main_s), "test_s": int(test_s), "ctest": ctest, "skips": skips},
+    "meta.json": {"command": "sudo scripts/fresh-machine-check.sh", "commit": commit, "dirty": False,
+                  "date": f"{datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC",
+                  "machine": {"cpu": cpu, "cores": os.cpu_count(), "memory_gib": round(mem / 2**20, 1)},
+                  "driver": None, "load_before": load0, "load_after": load1},
+}
+for name, doc in docs.items():
+    with open(os.path.join(out, name + ".tmp"), "w") as f:
+        json.dump(doc, f, indent=1)
+        f.write("\n")
+    os.replace(os.path.join(out, name + ".tmp"), os.path.join(out, name))
+PY
+  if [ -x build/strandbench ]; then
+    build/strandbench docs refresh
+    echo "fresh-machine-check: docs/results/fresh-machine and the pages' blocks rewritten (commit them)"
+  else
+    echo "fresh-machine-check: docs/results/fresh-machine rewritten: run build/strandbench docs refresh and commit"
+  fi
 }
 
-load0=$(cut -d' ' -f1 /proc/loadavg)
+load0=$(cut -d' ' -f1-3 /proc/loadavg)
 step "README main command (scripts/main-job.sh)" inside "scripts/main-job.sh"
 step "main command wrote its report" test -s "$root/root/strandbench/out/quick/report.html"
 if ((quick)); then
@@ -174,7 +189,7 @@ else
     inside "scripts/test.sh >/root/test.log 2>&1; s=\$?; tail -n 60 /root/test.log
       # The tail may hold only the skips and the fuzzers: name the failed tests too.
       sed -n '/The following tests FAILED/,/^Errors while running/p' /root/test.log; exit \$s"
-  write_readme_block
+  write_store_entry
 fi
 echo "== total: $(($(date +%s) - start)) s"
 echo "fresh machine: OK"

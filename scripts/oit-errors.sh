@@ -13,6 +13,8 @@
 #
 # Prints one line per technique and backend:
 #   backend  technique  rmse  eye-depth-complexity(max/mean)  oit-bytes  passes  [emulated]
+# With SB_DOCS_RESULTS set, also writes them there as JSON (one row per technique, each
+# backend's error) for the results store: scripts/docs-record.sh oit-errors scripts/oit-errors.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BIN=${BIN:-build/strandbench}
@@ -37,6 +39,11 @@ counters = j.get("counters")
 if counters:
     note = (note + " " + " ".join("%s=%s" % kv for kv in counters.items())).strip()
 print("%-8s %-30s %-10.6f %-12s %-10s %-6s %s" % (backend, technique, rmse, complexity, oit, passes, note))
+if len(sys.argv) > 3:
+    with open(sys.argv[3], "a") as f:
+        f.write(json.dumps({"backend": backend, "technique": technique, "rmse": rmse,
+                            "eye_max": eye.get("max"), "eye_mean": eye.get("mean"), "bytes": oit,
+                            "passes": passes, "emulated": bool(j.get("timing_emulated"))}) + "\n")
 '
 [ -x "$BIN" ] || { echo "oit-errors: $BIN not found (build it first, or set BIN)" >&2; exit 2; }
 mapfile -t TECHNIQUES < <("$BIN" list --json |
@@ -44,6 +51,8 @@ mapfile -t TECHNIQUES < <("$BIN" list --json |
 # shellcheck disable=SC2206
 TECHNIQUES+=($EXTRA)
 
+rows=$(mktemp)
+trap 'rm -f "$rows"' EXIT
 echo "scene $SCENE at $SIZE; rmse = error.own.image.rmse against the exact reference (shadows off)"
 printf '%-8s %-30s %-10s %-12s %-10s %-6s %s\n' backend technique rmse complexity oit_bytes passes note
 for backend in $BACKENDS; do
@@ -53,6 +62,31 @@ for backend in $BACKENDS; do
       printf "%-8s %-30s %s\n" "$backend" "$t" "FAILED"
       continue
     fi
-    python3 -c "$SUMMARY" "$backend" "$t" <<<"$out"
+    python3 -c "$SUMMARY" "$backend" "$t" ${SB_DOCS_RESULTS:+"$rows"} <<<"$out"
   done
 done
+[ -n "${SB_DOCS_RESULTS:-}" ] || exit 0
+python3 - "$rows" "$SB_DOCS_RESULTS" "$SCENE" "$SIZE" <<'PY'
+import json, sys
+rows_file, out, scene, size = sys.argv[1:]
+rows = [json.loads(l) for l in open(rows_file)]
+w, h = (int(v) for v in size.split("x"))
+techniques = list(dict.fromkeys(r["technique"] for r in rows))
+def pick(t, backend):
+    m = [r for r in rows if r["technique"] == t and r["backend"] == backend]
+    return m[0] if m else {}
+table = []
+for t in techniques:
+    gl, vk = pick(t, "gl"), pick(t, "vulkan")
+    any_ = gl or vk
+    table.append({"technique": t, "rmse_gl": gl.get("rmse"), "rmse_vulkan": vk.get("rmse"),
+                  "bytes": any_.get("bytes"), "bytes_per_pixel": any_.get("bytes") / (w * h)
+                  if isinstance(any_.get("bytes"), (int, float)) else None,
+                  "passes": any_.get("passes"), "emulated": any_.get("emulated", False)})
+eye = next((r for r in rows if r.get("eye_max") is not None), {})
+data = {"scene": scene, "size": size, "eye_max": eye.get("eye_max"), "eye_mean": eye.get("eye_mean"),
+        "rows": table}
+with open(out, "w") as f:
+    json.dump(data, f, indent=1)
+    f.write("\n")
+PY

@@ -8,6 +8,8 @@
 # run, then each claim per backend with "holds" or "does not hold".
 #
 #   scripts/temporal-claims.sh [SIZE [FRAMES [DEGREES]]]   (defaults 128x128, 8, 30)
+# With SB_DOCS_RESULTS set, also writes the rows and claims there as JSON, for the results
+# store: scripts/docs-record.sh temporal-claims scripts/temporal-claims.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
 size=${1:-128x128}
@@ -27,6 +29,8 @@ flicker() {
     jq -r '"\(.animation.flicker.visibility) \(.animation.flicker.image)"'
 }
 
+json=$(mktemp)
+trap 'rm -f "$json"' EXIT
 echo "animate $animate, size $size ($bin)"
 printf '%-8s %-9s %-26s %14s %14s\n' backend scene shadow "vis flicker" "image flicker"
 declare -A vis
@@ -38,6 +42,7 @@ for backend in gl vulkan; do
     read -r v i < <(flicker "$backend" "$shadow" "${args[@]}")
     vis["$backend $scene ${shadow%%:*}"]=$v
     printf '%-8s %-9s %-26s %14.6f %14.6f\n' "$backend" "$scene" "$shadow" "$v" "$i"
+    printf 'row %s %s %s %s %s\n' "$backend" "$scene" "$shadow" "$v" "$i" >>"$json"
   done
 done
 
@@ -48,9 +53,28 @@ claim() {
   verdict=$(awk -v a="$a" -v b="$b" 'BEGIN{print (a > b) ? "holds" : "does not hold"}')
   printf '%-8s %-9s %s flickers more than %s: %.6f vs %.6f (ratio %.2f): %s\n' "$1" "$2" "$3" \
     "$4" "$a" "$b" "$(awk -v a="$a" -v b="$b" 'BEGIN{print (b > 0) ? a / b : 0}')" "$verdict"
+  printf 'claim %s %s %s %s %s %s %s\n' "$1" "$2" "$3" "$4" "$a" "$b" "${verdict// /_}" >>"$json"
 }
 echo
 for backend in gl vulkan; do
   claim "$backend" straight osm dom
   claim "$backend" stray dom occupancy
 done
+[ -n "${SB_DOCS_RESULTS:-}" ] || exit 0
+python3 - "$json" "$SB_DOCS_RESULTS" "$size" "$animate" <<'PY'
+import json, sys
+src, out, size, animate = sys.argv[1:]
+rows, claims = [], []
+for line in open(src):
+    kind, *f = line.split()
+    if kind == "row":
+        rows.append({"backend": f[0], "scene": f[1], "shadow": f[2], "visibility": float(f[3]),
+                     "image": float(f[4])})
+    else:
+        a, b = float(f[4]), float(f[5])
+        claims.append({"backend": f[0], "scene": f[1], "more": f[2], "less": f[3], "a": a, "b": b,
+                       "ratio": a / b if b > 0 else None, "verdict": f[6].replace("_", " ")})
+with open(out, "w") as fh:
+    json.dump({"size": size, "animate": animate, "rows": rows, "claims": claims}, fh, indent=1)
+    fh.write("\n")
+PY
