@@ -36,9 +36,13 @@ if [ "$(git rev-parse HEAD)" != "$commit" ] || [ -n "$(git status --porcelain --
 fi
 driver=""
 if [ -x build/strandbench ]; then
-  # The default driver's devices, as `strandbench --version` lists them.
+  # The default driver's headless devices, as `strandbench --version` lists them:
+  # "gl (egl): DEVICE; VERSION; ..." -> "gl: DEVICE, VERSION".
   driver=$(build/strandbench --version 2>/dev/null |
-    awk '/\(this process\):$/ {on = 1; next} on && /^[^ ]/ {on = 0} on {sub(/^ +/, ""); printf "%s%s", sep, $0; sep = "; "}')
+    awk '/\(this process\):$/ {on = 1; next} on && /^[^ ]/ {on = 0}
+         on && /^ *(gl \(egl\)|vulkan \(headless\)):/ {
+           sub(/^ +/, ""); sub(/ \([a-z]+\):/, ":"); n = split($0, f, "; ");
+           printf "%s%s, %s", sep, f[1], f[2]; sep = "; "}')
 fi
 python3 - "$tmp" "$dir" "$commit" "$load_before" "$load_after" "$driver" "$@" <<'PY'
 import json, os, sys, datetime, shlex
