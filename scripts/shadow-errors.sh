@@ -3,7 +3,8 @@
 # shadow technique on the straight, curly and stray scenes, on both backends:
 # docs/shadow-techniques.md's "Error against time" table.
 #   scripts/shadow-errors.sh [SIZE] [REPEAT]    (defaults 256 and 5; STRANDBENCH=path
-#   runs another binary; SHADOWS="spec spec ..." measures only those rows)
+#   runs another binary; SHADOWS="spec spec ..." measures only those rows; BACKENDS="gl"
+#   only those backends, default "gl vulkan")
 # With SB_DOCS_RESULTS set, also writes the rows there as JSON, for the results store:
 #   scripts/docs-record.sh shadow-errors scripts/shadow-errors.sh 128 3
 # Shadow time: the median over the timed frames of the technique's own passes
@@ -60,7 +61,7 @@ with open(sys.argv[3], "a") as f:
 echo "| scene | backend | shadow | visibility RMSE | shadow ms |"
 echo "|---|---|---|---:|---:|"
 for scene in "${scenes[@]}"; do
-  for backend in gl vulkan; do
+  for backend in ${BACKENDS:-gl vulkan}; do
     for shadow in "${shadows[@]}"; do row "$scene" "$backend" "$shadow"; done
   done
 done
