@@ -72,6 +72,12 @@ TEST(DocsStore, LooseNumbersAreFoundOutsideBlocksAndAllowedOnlyWhereMarked) {
   EXPECT_EQ(loose("<!-- not-measured:begin (paper: Table 1) -->\n| OSM | 2.3 fps |\n"
                   "<!-- not-measured:end -->\nours: 4 ms\n"),
             1u);
+  // A marker in a fenced code block is an example: no block, and it hides nothing.
+  const std::string example =
+      "```\n<!-- r/b:begin (written by strandbench docs refresh) -->\n"
+      "took 12 ms\n<!-- r/b:end -->\n```\n";
+  EXPECT_TRUE(sb::docs::markedBlocks(example, "x.md").empty());
+  EXPECT_EQ(loose(example), 1u);
   // A marker with another reason allows nothing.
   EXPECT_EQ(loose("took 12 ms <!-- not-measured (I say so) -->\n"), 1u);
 }
