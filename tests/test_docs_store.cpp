@@ -82,8 +82,8 @@ TEST(DocsStore, LooseNumbersAreFoundOutsideBlocksAndAllowedOnlyWhereMarked) {
   EXPECT_EQ(loose("took 12 ms <!-- not-measured (I say so) -->\n"), 1u);
 }
 
-// The acceptance of issue 46: every block of the published pages is what its stored run
-// renders, and no measured number stands outside a block; planted edits fail both.
+// Every block of the published pages is what its stored run renders, and no measured number
+// stands outside a block; planted edits fail both.
 TEST(DocsStore, PublishedPagesAreRenderedFromTheStoreWithNoLooseNumber) {
   const fs::path store = kRoot / "docs/results";
   int blocks = 0;
