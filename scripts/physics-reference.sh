@@ -125,7 +125,7 @@ lines = [
     "",
     "**Read with care:** the raster side here is Kajiya-Kay on pixel-wide lines, the tracer's "
     "fibre is Chiang's on world widths. Until the raster Chiang model and the world-width "
-    "primitive (issue 45, another branch) are merged, the rung-2 column measures the shading "
+    "primitive (built on another branch) are merged, the rung-2 column measures the shading "
     "model and the rasterization together, not rasterization alone; the merger reruns this "
     "script with `shading: chiang` and `primitive: world`.",
     "",
@@ -180,13 +180,17 @@ for l in lights:
                      f"{r['clean']:.4f} | {r['scaled']:.4f} ({r['scale']:.3f}) | "
                      f"{r['mimg']:.4f} / {r['mref']:.4f} | {cmp} |")
     rho = spearman([r["r1"] for r in rows], [mean(r["r2"]) for r in rows])
+    rhoScaled = spearman([r["r1"] for r in rows], [r["scaled"] for r in rows])
     quarter = "meets" if smallest is not None and noise <= smallest / 4 else "does not meet"
     lines += ["",
               f"Adjacent pairs ordered at 95%: {decided} of {len(rows) - 1}. Rank correlation "
-              f"(Spearman) of the rung-1 and rung-2 orders: {rho:.3f}. The reference's noise "
+              f"(Spearman) of the rung-1 and rung-2 orders: {rho:.3f} (of rung 1 and rung 2 at "
+              f"the best scale: {rhoScaled:.3f}). The reference's noise "
               f"(RMSE of one seed's reference against its converged self): {noise:.5f}; the "
               f"smallest adjacent difference {smallest:.5f}: the noise {quarter} the bound of a "
-              "quarter of it (an interval over the seeds decides a pair either way).", ""]
+              "quarter of it. (The noise adds almost equally to every technique's error, so a "
+              "difference moves far less than the noise from seed to seed: the intervals over "
+              "the seeds are what decide a pair.)", ""]
 open(out, "w").write("\n".join(lines) + "\n")
 print("wrote", out)
 PY
