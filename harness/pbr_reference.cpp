@@ -21,8 +21,9 @@ namespace fs = std::filesystem;
 namespace {
 
 // Bumped when the pbr code changes what it renders: every cached image is then stale (2: the
-// tracer drops Embree's end caps and near-origin misses, shadow rays start at texel centres).
-constexpr const char* kPbrCodeVersion = "pbr-2";
+// tracer drops Embree's end caps and near-origin misses, shadow rays start at texel centres;
+// 3: h's sign, stratified pixel samples, the noise target on the RMS standard error).
+constexpr const char* kPbrCodeVersion = "pbr-3";
 constexpr const char* kCacheMagic = "strandbench pbr reference 1\n";
 
 float strandWidthPixels(const RenderSettings& s) {
@@ -308,6 +309,12 @@ RenderResult::MoreReference renderPbrReference(const Scene& scene, const RenderS
   RenderResult::MoreReference::Pbr info;
   info.mode = spec.mode;
   info.width = pbrWidthModel(spec);
+  // The tracer has no environment light: the raster's ambient term (its strength here) is
+  // part of what the two differ by unless the render turns it off.
+  info.rasterAmbient = s.ambient ? double(s.shading.material.w) : 0.0;
+  info.shadowRays = spec.mode == "transmittance" ? "shadow_alpha per strand"
+                    : spec.mode == "single"      ? "attenuated by each fibre's transmittance"
+                                                 : "opaque (transmission is scattering)";
   if (info.width == "world") {
     // The strands' own widths where they have them (their mean), else the fallback.
     double sum = 0;
@@ -346,7 +353,9 @@ RenderResult::MoreReference renderPbrReference(const Scene& scene, const RenderS
       }
     }
     pbr::RenderOptions o;
-    o.mode = spec.mode == "path" ? pbr::Mode::Path : pbr::Mode::Transmittance;
+    o.mode = spec.mode == "path"     ? pbr::Mode::Path
+             : spec.mode == "single" ? pbr::Mode::Single
+                                     : pbr::Mode::Transmittance;
     o.spp = static_cast<uint32_t>(spec.spp);
     o.bounces = static_cast<uint32_t>(spec.bounces);
     o.noiseTarget = static_cast<float>(spec.noise);

@@ -31,15 +31,17 @@ const std::vector<ReferenceKind>& referenceCatalog() {
       {"pbr",
        "the CPU strand reference over Embree's curves (pbr/, docs/physics-reference.md): "
        "mode=transmittance shades with the scene's model, each light's visibility the exact "
-       "transmittance through every strand crossed; mode=path path-traces the hair BSDF with "
-       "multiple scattering. Cached by a hash of its inputs (error.pbr)",
+       "transmittance through every strand crossed; mode=single traces the hair BSDF's single "
+       "scattering, every fibre crossed attenuating the light by its forward transmittance; "
+       "mode=path path-traces the hair BSDF with multiple scattering. Cached by a hash of its "
+       "inputs (error.pbr)",
        {{"mode",
          "path",
-         "transmittance or path",
+         "transmittance, single or path",
          OptionKind::Choice,
          0,
          0,
-         {"transmittance", "path"}},
+         {"transmittance", "single", "path"}},
         {"spp",
          "16",
          "samples per pixel at most, 1..65536 (transmittance: 1 = the pixel centre)",
@@ -47,12 +49,18 @@ const std::vector<ReferenceKind>& referenceCatalog() {
          1,
          kMaxPbrSpp,
          {}},
-        {"bounces", "8", "path: scattering events at most, 1..64", OptionKind::Integer, 1, 64, {}},
+        {"bounces",
+         "64",
+         "path: scattering events at most, 1..1024 (Russian roulette ends most paths first)",
+         OptionKind::Integer,
+         1,
+         1024,
+         {}},
         {"width",
          "auto",
          "the strands' width: footprint (the raster's: ribbon_width pixels from the eye, "
          "ribbon_width light texels from each light), world (the file's thickness, else "
-         "thickness=), auto (footprint for transmittance, world for path)",
+         "thickness=), auto (footprint for transmittance, world for single and path)",
          OptionKind::Choice,
          0,
          0,
@@ -66,7 +74,8 @@ const std::vector<ReferenceKind>& referenceCatalog() {
          {}},
         {"noise",
          "0",
-         "stop at this mean standard error per pixel (0: run all spp)",
+         "stop once the noise (the RMS over pixels of each pixel's standard error) is below "
+         "this, after at least 8 samples (0: run all spp)",
          OptionKind::Number,
          0,
          1,

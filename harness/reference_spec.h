@@ -4,7 +4,7 @@
 // shadows and transparency at one sample per pixel), the default and always
 // rendered when any reference is asked for; `aa:samples=S` the same techniques
 // at S x S samples per pixel, box-filtered (harness/render_steps.h,
-// renderAaReference); `pbr:mode=transmittance|path,...` the CPU strand references
+// renderAaReference); `pbr:mode=transmittance|single|path,...` the CPU strand references
 // over Embree (pbr/, harness/pbr_reference.h). A later reference adds itself to
 // referenceCatalog().
 #pragma once
@@ -28,16 +28,16 @@ const std::vector<ReferenceKind>& referenceCatalog();
 struct ReferenceSpec {
   std::string name = "exact";
   int samples = 1;  // aa: samples per pixel along each axis (S x S per pixel)
-  // pbr: the mode (transmittance, path), samples per pixel, the path's scattering events at
-  // most, the strands' width model (auto: footprint in transmittance mode, world in path
-  // mode), the world width of strands without one (0: one pixel at the scene's centre),
-  // the noise target (mean standard error; 0: all spp) and the seed.
+  // pbr: the mode (transmittance, single, path), samples per pixel, the path's scattering
+  // events at most, the strands' width model (auto: footprint in transmittance mode, world
+  // otherwise), the world width of strands without one (0: one pixel at the scene's centre),
+  // the noise target (RMS standard error; 0: all spp) and the seed.
   std::string mode = "path";
-  int spp = 16, bounces = 8;
+  int spp = 16, bounces = 64;
   std::string width = "auto";
   double thickness = 0, noise = 0;
   int seed = 1;
-  // Canonical text: "exact", "aa:samples=4", "pbr:mode=path,spp=16,bounces=8,...".
+  // Canonical text: "exact", "aa:samples=4", "pbr:mode=path,spp=16,bounces=64,...".
   std::string str() const;
   bool operator==(const ReferenceSpec&) const = default;
 };

@@ -221,10 +221,15 @@ struct RenderResult {
     // Means over pixels and RGB of the image and of the reference (pbr's JSON: how much
     // brighter or darker one is, the part of the error a scale would explain).
     double imageMean = 0, referenceMean = 0;
+    // The exposure scale s that brings the image nearest the reference (least squares over
+    // pixels and RGB: sum(image reference) / sum(image^2)), and the RMSE of s * image.
+    double bestScale = 1, scaledRmse = 0;
     Image referenceImage;  // the filtered reference, the image's size
     // pbr (harness/pbr_reference.h): what it rendered, its noise and its disk cache.
     struct Pbr {
       std::string mode, width;      // width: footprint or world (auto resolved)
+      double rasterAmbient = 0;     // the raster's ambient term in this render (the tracer: none)
+      std::string shadowRays;       // how a strand between a point and a light counts
       double thickness = 0;         // world: the strands' mean width
       std::string thicknessSource;  // world: "strands" (the file's or scene's) or "fallback"
       uint32_t spp = 0;             // samples per pixel rendered

@@ -55,13 +55,20 @@ nlohmann::json errorJson(const RenderResult& r) {
       // The reference's own noise: sqrt(mean stderr^2) is the RMSE a perfect image would
       // score against it, so rmse^2 - noise^2 estimates the error without it.
       const RenderResult::MoreReference::Pbr& p = *m.pbr;
-      e["noise"] = {
-          {"rmse", p.noiseRmse},
-          {"mean_stderr", p.meanStderr},
-          {"rmse_without_noise",
-           std::sqrt(std::max(0.0, m.image.rmse * m.image.rmse - p.noiseRmse * p.noiseRmse))}};
+      auto withoutNoise = [&p](double rmse) {
+        return std::sqrt(std::max(0.0, rmse * rmse - p.noiseRmse * p.noiseRmse));
+      };
+      e["noise"] = {{"rmse", p.noiseRmse},
+                    {"mean_stderr", p.meanStderr},
+                    {"rmse_without_noise", withoutNoise(m.image.rmse)}};
+      // At the best exposure scale: the error a brightness difference does not explain.
+      e["scaled"] = {{"scale", m.bestScale},
+                     {"rmse", m.scaledRmse},
+                     {"rmse_without_noise", withoutNoise(m.scaledRmse)}};
       e["mean"] = {{"image", m.imageMean}, {"reference", m.referenceMean}};
       e["reference"]["pbr"] = {{"mode", p.mode},
+                               {"ambient", {{"tracer", "none"}, {"raster", p.rasterAmbient}}},
+                               {"shadow_rays", p.shadowRays},
                                {"width", p.width},
                                {"thickness", p.thickness},
                                {"thickness_source", p.thicknessSource},

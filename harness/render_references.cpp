@@ -3,8 +3,11 @@
 // against it (error.aa), docs/ground-truth.md "The anti-aliased reference"; the
 // CPU strand references (error.pbr, harness/pbr_reference.h).
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <string>
+#include <tuple>
+#include <utility>
 
 #include "backends/device.h"
 #include "harness/pbr_reference.h"
@@ -24,6 +27,30 @@ double meanRgb(const Image& im) {
     for (int x = 0; x < im.width; ++x)
       for (int c = 0; c < 3; ++c) sum += im.pixels[im.index(x, y, c)];
   return im.width && im.height ? sum / (3.0 * im.width * im.height) : 0.0;
+}
+
+// The least-squares exposure scale of `image` against `ref` over pixels and RGB, and the
+// RMSE at that scale (1 and the plain RMSE for a black image).
+std::pair<double, double> bestScale(const Image& image, const Image& ref) {
+  double ir = 0, ii = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x)
+      for (int c = 0; c < 3; ++c) {
+        const double a = image.pixels[image.index(x, y, c)], b = ref.pixels[ref.index(x, y, c)];
+        ir += a * b;
+        ii += a * a;
+      }
+  const double scale = ii > 0 ? ir / ii : 1.0;
+  double sum = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x)
+      for (int c = 0; c < 3; ++c) {
+        const double d =
+            scale * image.pixels[image.index(x, y, c)] - ref.pixels[ref.index(x, y, c)];
+        sum += d * d;
+      }
+  const double n = 3.0 * image.width * image.height;
+  return {scale, n > 0 ? std::sqrt(sum / n) : 0.0};
 }
 
 }  // namespace
@@ -171,6 +198,7 @@ std::vector<RenderResult::MoreReference> moreReferences(
     m.flip = computeFlip(out.image, m.referenceImage);
     m.imageMean = meanRgb(out.image);
     m.referenceMean = meanRgb(m.referenceImage);
+    std::tie(m.bestScale, m.scaledRmse) = bestScale(out.image, m.referenceImage);
     list.push_back(std::move(m));
   }
   return list;

@@ -77,6 +77,25 @@ glm::vec3 sigmaAFromReflectance(glm::vec3 color, float betaN) {
   return sigma;
 }
 
+glm::vec3 fibreTransmittance(glm::vec3 sigmaA, float eta, float h, float sinTheta) {
+  const double s = std::clamp(double(sinTheta), -1.0, 1.0);
+  const double hc = std::clamp(double(h), -1.0, 1.0);
+  const glm::dvec3 t = hair::crossingTransmittance(s, eta, hc, glm::dvec3(sigmaA));
+  return glm::vec3(hair::Ap(safeSqrt(1.0 - s * s), eta, hc, t)[1]);
+}
+
+glm::vec3 meanFibreTransmittance(glm::vec3 sigmaA, float eta, float sinTheta) {
+  // Midpoint rule over h: the integrand is smooth but for sqrt(1 - h^2) at the edges, where
+  // F -> 1 and it goes to 0; 256 points leave an error below 1e-4.
+  constexpr int kSteps = 256;
+  glm::dvec3 sum(0.0);
+  for (int i = 0; i < kSteps; ++i) {
+    const float h = float(-1.0 + (i + 0.5) * 2.0 / kSteps);
+    sum += glm::dvec3(fibreTransmittance(sigmaA, eta, h, sinTheta));
+  }
+  return glm::vec3(sum / double(kSteps));
+}
+
 namespace hair {
 
 double logI0(double x) {
@@ -151,6 +170,18 @@ double sampleTrimmedLogistic(double u, double s) {
   return std::clamp(x, -kPi, kPi);
 }
 
+glm::dvec3 crossingTransmittance(double sinThetaO, double eta, double h, glm::dvec3 sigmaA) {
+  sinThetaO = std::clamp(sinThetaO, -1.0, 1.0);
+  const double cosThetaO = safeSqrt(1.0 - sinThetaO * sinThetaO);
+  const double sinThetaT = sinThetaO / eta;
+  const double cosThetaT = safeSqrt(1.0 - sinThetaT * sinThetaT);
+  // gamma_t from the Bravais index of the projection on the normal plane.
+  const double etaP = std::sqrt(eta * eta - sinThetaO * sinThetaO) / std::max(cosThetaO, 1e-12);
+  const double sinGammaT = std::clamp(h / etaP, -1.0, 1.0);
+  const double cosGammaT = safeSqrt(1.0 - sinGammaT * sinGammaT);
+  return glm::exp(-sigmaA * (2.0 * cosGammaT / cosThetaT));
+}
+
 double Np(double phi, int p, double s, double gammaO, double gammaT) {
   const double dphi = std::remainder(phi - exitPhi(p, gammaO, gammaT), 2.0 * kPi);
   return trimmedLogistic(dphi, s);
@@ -183,10 +214,14 @@ HairBsdf::HairBsdf(const HairParams& params) : params_(params) {
   }
 }
 
-// The scales shift the lobes' centres to theta_i + theta_o = -2 alpha (R), alpha (TT) and
-// 4 alpha (TRT), pbrt-v3's signs. pbrt-v3 rotates theta_i; rotating theta_o instead, by the
-// opposite angle, puts the centres in the same place and keeps each Mp normalised over wi, so
-// energy is conserved for any alpha and sample() draws exactly the density pdf() returns.
+// The scales' tilt (docs/physics-reference.md "Scales"): pbrt-v4's equations (HairBxDF::f
+// rotates theta_o per lobe and evaluates Mp(theta_i, theta_o')), with pbrt-v3's sign of alpha:
+// the lobes' centres at theta_i + theta_o = -2 alpha (R, toward the root when x points to the
+// tip, as Marschner et al. 2003 observe), alpha (TT) and 4 alpha (TRT). So f here is pbrt-v4's
+// f with alpha negated. pbrt-v3 rotates theta_i instead: the same centres, but Mp is then not
+// normalised over wi (its values differ by up to a third at alpha = 2 degrees); rotating
+// theta_o keeps every Mp normalised, so energy is conserved for any alpha and sample() draws
+// exactly the density pdf() returns.
 void HairBsdf::tiltedThetaO(int p, double sinThetaO, double cosThetaO, double& sinOut,
                             double& cosOut) const {
   double sinShift = 0.0, cosShift = 1.0;  // theta_o' = theta_o + shift
@@ -213,15 +248,10 @@ HairBsdf::Outgoing HairBsdf::outgoing(glm::dvec3 wo) const {
   const double eta = params_.eta, h = params_.h;
   // The refracted ray: its longitudinal angle (Snell in theta), and its azimuthal angle
   // gamma_t inside the fibre from the Bravais index of the projection on the normal plane.
-  const double sinThetaT = o.sinThetaO / eta;
-  const double cosThetaT = safeSqrt(1.0 - sinThetaT * sinThetaT);
   const double etaP = std::sqrt(eta * eta - o.sinThetaO * o.sinThetaO) / o.cosThetaO;
-  const double sinGammaT = std::clamp(h / etaP, -1.0, 1.0);
-  const double cosGammaT = safeSqrt(1.0 - sinGammaT * sinGammaT);
-  o.gammaT = std::asin(sinGammaT);
+  o.gammaT = std::asin(std::clamp(h / etaP, -1.0, 1.0));
   // One crossing of a fibre of radius 1: path length 2 cos(gamma_t) / cos(theta_t).
-  const glm::dvec3 sigma(params_.sigmaA);
-  const glm::dvec3 t = glm::exp(-sigma * (2.0 * cosGammaT / cosThetaT));
+  const glm::dvec3 t = hair::crossingTransmittance(o.sinThetaO, eta, h, glm::dvec3(params_.sigmaA));
   o.ap = hair::Ap(o.cosThetaO, eta, h, t);
   double sum = 0;
   for (const glm::dvec3& a : o.ap) sum += luminance(a);

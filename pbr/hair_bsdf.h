@@ -45,6 +45,18 @@ glm::vec3 sigmaAFromConcentration(float eumelanin, float pheomelanin);
 // multiple scattering in a head of hair, by the paper's fit in beta_n (its eq. 9).
 glm::vec3 sigmaAFromReflectance(glm::vec3 color, float betaN);
 
+// How much light a fibre lets through (docs/physics-reference.md "Fibres that attenuate"): the
+// TT lobe's attenuation A1 = (1 - F)^2 T for a ray crossing the fibre at offset h (in [-1, 1])
+// and at sin(theta) = sinTheta to its normal plane (F: Fresnel at cos(theta) cos(gamma); T: one
+// crossing of the refracted path, exp(-sigma_a 2 cos(gamma_t) / cos(theta_t)), radius 1). It
+// is what rung 2's shadow and camera rays keep through each fibre they cross, treated as going
+// straight on. Even in h and in sinTheta.
+glm::vec3 fibreTransmittance(glm::vec3 sigmaA, float eta, float h, float sinTheta);
+// The same averaged over h uniform in [-1, 1] (over the fibre's projected width): a fibre's
+// transmittance as a raster sees it, so 1 - this (per channel, or its luminance) is a physical
+// shadow_alpha for a strand covering the whole of a texel.
+glm::vec3 meanFibreTransmittance(glm::vec3 sigmaA, float eta, float sinTheta);
+
 // The lobe terms, exposed so that tests can check each one against the paper's equations.
 namespace hair {
 // log of the modified Bessel function I0, finite for large x where I0 overflows.
@@ -64,6 +76,9 @@ std::array<glm::dvec3, kHairPMax + 1> Ap(double cosThetaO, double eta, double h,
 double Np(double phi, int p, double s, double gammaO, double gammaT);
 double trimmedLogistic(double x, double s);  // on [-pi, pi], normalised there
 double sampleTrimmedLogistic(double u, double s);
+// Transmittance of one crossing of the fibre (radius 1) by the ray refracted at offset h, the
+// outside ray at sin(theta_o) to the normal plane: exp(-sigma_a 2 cos(gamma_t) / cos(theta_t)).
+glm::dvec3 crossingTransmittance(double sinThetaO, double eta, double h, glm::dvec3 sigmaA);
 }  // namespace hair
 
 class HairBsdf {

@@ -45,6 +45,21 @@ class Rng {
   uint64_t state_ = 0, inc_ = 1;
 };
 
+// Sample k's position in pixel i: the R2 sequence (Roberts 2018, the plastic number's
+// additive recurrence), whose every prefix is spread evenly over the pixel, shifted by a
+// random offset per pixel (Cranley-Patterson rotation) so pixels do not share a pattern. Any
+// number of samples is stratified, so rendering can stop at a noise target. The standard
+// error, computed as if samples were independent, then overstates the noise: conservative.
+glm::vec2 pixelSample(uint64_t seed, uint64_t pixel, uint32_t k) {
+  Rng shift(seed, pixel, ~0ull);
+  const glm::vec2 base = shift.uniform2();
+  const double a1 = 0.7548776662466927, a2 = 0.5698402909980532;  // 1/g, 1/g^2
+  const double x = double(base.x) + a1 * double(k), y = double(base.y) + a2 * double(k);
+  constexpr float kBelowOne = 0.99999994f;  // the float rounding of a fraction may reach 1
+  return {std::min(float(x - std::floor(x)), kBelowOne),
+          std::min(float(y - std::floor(y)), kBelowOne)};
+}
+
 glm::vec3 ndcOf(const glm::mat4& m, glm::vec3 p, bool& inside) {
   const glm::vec4 c = m * glm::vec4(p, 1.0f);
   const glm::vec3 ndc = glm::vec3(c) / c.w;
@@ -187,6 +202,94 @@ Nearest nearest(const StrandTracer& t, glm::vec3 o, glm::vec3 d, float tnear, fl
   return {};
 }
 
+// The hair BSDF's parameters at a strand hit: absorption from the strand's colour.
+glm::vec3 hitColor(const StrandScene& s, const StrandTracer& tr, const StrandHit& h) {
+  const uint32_t a = tr.segmentStart()[h.segment];
+  return glm::clamp(glm::mix(s.colors[a], s.colors[a + 1], h.u), 1e-3f, 1.0f);
+}
+HairParams hairParams(const StrandScene& s, const StrandTracer& tr, const StrandHit& h,
+                      const RenderOptions& o) {
+  HairParams hp;
+  hp.h = h.h;
+  hp.betaM = o.betaM;
+  hp.betaN = o.betaN;
+  hp.alphaDeg = o.alphaDeg;
+  hp.eta = o.eta;
+  hp.sigmaA = sigmaAFromReflectance(hitColor(s, tr, h), o.betaN);
+  return hp;
+}
+
+// What a ray keeps through the strand it crosses at h (single mode's attenuation).
+glm::vec3 throughFibre(const StrandScene& s, const StrandTracer& tr, const StrandHit& h,
+                       const RenderOptions& o, glm::vec3 dir) {
+  return fibreTransmittance(sigmaAFromReflectance(hitColor(s, tr, h), o.betaN), o.eta, h.h,
+                            glm::dot(dir, h.tangent));
+}
+
+// Single mode: the light reaching p from a light at distance dist along wi, through every
+// fibre on the way but the one p is on (its own crossing is the BSDF's); the mesh stops it.
+glm::vec3 attenuatedVisibility(const StrandScene& s, const StrandTracer& tr, const RenderOptions& o,
+                               glm::vec3 p, glm::vec3 wi, float dist, float eps,
+                               int64_t skipStrand) {
+  const RayHits h = tr.trace(p, wi, eps, dist);
+  if (h.mesh) return glm::vec3(0.0f);
+  glm::vec3 t(1.0f);
+  for (const StrandHit& sh : h.strands)
+    if (int64_t(tr.segmentStrand()[sh.segment]) != skipStrand) t *= throughFibre(s, tr, sh, o, wi);
+  return t;
+}
+
+glm::vec3 lambertMesh(const StrandScene& s, const StrandTracer& tr, uint32_t triangle, glm::vec3 p,
+                      glm::vec3 wo, glm::vec3& nrm) {
+  nrm = meshNormal(s, tr, triangle, p);
+  if (glm::dot(nrm, wo) < 0) nrm = -nrm;  // two-sided, as the raster shades it
+  return s.meshAlbedo / kPi;
+}
+
+// Single mode: one camera ray through (px, py). Every fibre it crosses is lit directly (the
+// hair BSDF, each light seen through attenuatedVisibility) and passes on what
+// fibreTransmittance lets through, to the fibres, mesh or background behind: single
+// scattering with fibres that attenuate, the rung the raster's Chiang model with exact
+// visibility and world-width strands is compared with (docs/physics-reference.md).
+glm::vec3 singleSample(const StrandScene& s, const StrandTracer& tr, const RenderOptions& o,
+                       float eps, float px, float py) {
+  const glm::vec3 dir = primaryDirection(s, px, py), wo = -dir;
+  const RayHits hits = tr.trace(s.eye, dir, 0.0f, std::numeric_limits<float>::infinity());
+  glm::vec3 color(0.0f), through(1.0f);
+  for (const StrandHit& h : hits.strands) {
+    const glm::vec3 p = s.eye + h.t * dir;
+    const HairBsdf bsdf(hairParams(s, tr, h, o));
+    const Frame fr = hairFrame(h.tangent, wo);
+    const glm::vec3 woL = fr.toLocal(wo);
+    const int64_t strand = int64_t(tr.segmentStrand()[h.segment]);
+    for (const TraceLight& l : s.lights) {
+      float dist = 0;
+      const glm::vec3 wi = toLight(l, p, dist);
+      const glm::vec3 f = bsdf.fCos(woL, fr.toLocal(wi));
+      if (f.r + f.g + f.b <= 0) continue;
+      color +=
+          through * f * (kPi * l.color) * attenuatedVisibility(s, tr, o, p, wi, dist, eps, strand);
+    }
+    through *= throughFibre(s, tr, h, o, dir);
+    if (std::max({through.r, through.g, through.b}) < 1e-6f) return color;
+  }
+  if (hits.mesh) {
+    const glm::vec3 p = s.eye + hits.meshT * dir;
+    glm::vec3 nrm;
+    const glm::vec3 brdf = lambertMesh(s, tr, hits.triangle, p, wo, nrm);
+    for (const TraceLight& l : s.lights) {
+      float dist = 0;
+      const glm::vec3 wi = toLight(l, p, dist);
+      const float c = std::max(0.0f, glm::dot(nrm, wi));
+      if (c > 0)
+        color += through * brdf * c * (kPi * l.color) *
+                 attenuatedVisibility(s, tr, o, p, wi, dist, eps, -1);
+    }
+    return color;
+  }
+  return color + through * s.background;
+}
+
 // Path mode: one path through (px, py).
 glm::vec3 pathSample(const StrandScene& s, const StrandTracer& tr, const RenderOptions& o,
                      float eps, Rng& rng, float px, float py) {
@@ -212,25 +315,14 @@ glm::vec3 pathSample(const StrandScene& s, const StrandTracer& tr, const RenderO
       radiance += throughput * f * (kPi * l.color);
     };
     if (n.mesh) {
-      glm::vec3 nrm = meshNormal(s, tr, n.triangle, p);
-      if (glm::dot(nrm, wo) < 0) nrm = -nrm;  // two-sided, as the raster shades it
-      const glm::vec3 brdf = s.meshAlbedo / kPi;
+      glm::vec3 nrm;
+      const glm::vec3 brdf = lambertMesh(s, tr, n.triangle, p, wo, nrm);
       for (const TraceLight& l : s.lights)
         lit(l, [&](glm::vec3 wi) { return brdf * std::max(0.0f, glm::dot(nrm, wi)); });
       dir = cosineSample(nrm, rng.uniform2());
       throughput *= s.meshAlbedo;
     } else {
-      const uint32_t a = tr.segmentStart()[n.strand.segment];
-      const glm::vec3 c =
-          glm::clamp(glm::mix(s.colors[a], s.colors[a + 1], n.strand.u), 1e-3f, 1.0f);
-      HairParams hp;
-      hp.h = n.strand.h;
-      hp.betaM = o.betaM;
-      hp.betaN = o.betaN;
-      hp.alphaDeg = o.alphaDeg;
-      hp.eta = o.eta;
-      hp.sigmaA = sigmaAFromReflectance(c, o.betaN);
-      const HairBsdf bsdf(hp);
+      const HairBsdf bsdf(hairParams(s, tr, n.strand, o));
       const Frame fr = hairFrame(n.strand.tangent, wo);
       const glm::vec3 woL = fr.toLocal(wo);
       for (const TraceLight& l : s.lights)
@@ -264,6 +356,12 @@ double RenderImage::rmsStderr() const {
   double sum = 0;
   for (float e : stderror) sum += double(e) * e;
   return stderror.empty() ? 0.0 : std::sqrt(sum / double(stderror.size()));
+}
+
+glm::vec3 lightThroughFibres(const StrandScene& s, const StrandTracer& tracer,
+                             const RenderOptions& o, glm::vec3 p, glm::vec3 wi, float dist,
+                             int64_t skipStrand) {
+  return attenuatedVisibility(s, tracer, o, p, wi, dist, epsilonOf(tracer), skipStrand);
 }
 
 float lightTransmittance(const StrandScene& s, const StrandTracer& tracer, std::size_t l,
@@ -336,12 +434,16 @@ RenderImage renderStrands(const StrandScene& s, const StrandTracer& eye,
         for (uint32_t x = 0; x < s.width; ++x) {
           const std::size_t i = std::size_t(y) * s.width + x;
           Rng rng(o.seed, i, k);
-          // One sample: the pixel's centre; more: uniformly over the pixel (a box filter).
-          const glm::vec2 j = spp == 1 ? glm::vec2(0.5f) : rng.uniform2();
+          // One sample: the pixel's centre; more: over the pixel (a box filter), stratified.
+          const glm::vec2 j = spp == 1 ? glm::vec2(0.5f) : pixelSample(o.seed, i, k);
           const float px = float(x) + j.x, py = float(y) + j.y;
-          const glm::vec3 v = o.mode == Mode::Transmittance
-                                  ? transmittanceSample(s, eye, light, shade, px, py)
-                                  : pathSample(s, eye, o, eps, rng, px, py);
+          glm::vec3 v;
+          if (o.mode == Mode::Transmittance)
+            v = transmittanceSample(s, eye, light, shade, px, py);
+          else if (o.mode == Mode::Single)
+            v = singleSample(s, eye, o, eps, px, py);
+          else
+            v = pathSample(s, eye, o, eps, rng, px, py);
           const glm::dvec3 d(std::isfinite(v.r + v.g + v.b) ? v : glm::vec3(0));
           sum[i] += d;
           sum2[i] += d * d;
@@ -354,9 +456,9 @@ RenderImage renderStrands(const StrandScene& s, const StrandTracer& eye,
     const bool last = k + 1 == spp;
     if (o.noiseTarget > 0 || last || progress) finish(k + 1);
     std::ostringstream line;
-    line << "pass " << (k + 1) << "/" << spp << ", mean standard error " << img.meanStderr();
+    line << "pass " << (k + 1) << "/" << spp << ", noise " << img.rmsStderr();
     if (progress) progress(line.str());
-    if (o.noiseTarget > 0 && k >= 1 && img.meanStderr() < o.noiseTarget) {
+    if (o.noiseTarget > 0 && k + 1 >= kMinSamplesForTarget && img.rmsStderr() < o.noiseTarget) {
       img.stoppedAtTarget = !last;
       break;
     }

@@ -1,8 +1,10 @@
 // The CPU strand references over Embree (docs/physics-reference.md): the transmittance mode
 // (the scene's own shading model, each hit's light visibility the exact transmittance
-// (1 - shadow_alpha)^n through the strands crossed on the way to the light) and the path
-// traced mode (the hair BSDF of hair_bsdf.h with multiple scattering). Both render
-// progressively, with deterministic per-sample seeds, and report each pixel's standard error.
+// (1 - shadow_alpha)^n through the strands crossed on the way to the light), the single
+// scattering mode (the hair BSDF of hair_bsdf.h lit directly, every fibre a ray crosses, on
+// its way to the eye or to a light, attenuating it by fibreTransmittance) and the path traced
+// mode (the hair BSDF with multiple scattering). All render progressively, with stratified
+// pixel samples and deterministic per-sample seeds, and report each pixel's standard error.
 // Plain data in: the harness fills StrandScene from its Scene and settings.
 #pragma once
 
@@ -47,18 +49,24 @@ struct StrandScene {
   uint32_t width = 64, height = 64;
 };
 
-enum class Mode { Transmittance, Path };
+enum class Mode { Transmittance, Single, Path };
+
+// The fewest samples per pixel whose variance a noise target trusts.
+inline constexpr uint32_t kMinSamplesForTarget = 8;
 
 struct RenderOptions {
   Mode mode = Mode::Transmittance;
   uint32_t spp = 1;       // samples per pixel at most (transmittance, 1: the pixel's centre)
-  uint32_t bounces = 8;   // path: scattering events at most
-  float noiseTarget = 0;  // stop once the mean standard error is below it (0: run all spp)
+  uint32_t bounces = 64;  // path: scattering events at most (Russian roulette ends most first)
+  // Stop once the noise (RenderImage::rmsStderr) is below it, after kMinSamplesForTarget
+  // samples (0: run all spp).
+  float noiseTarget = 0;
   uint64_t seed = 1;
   uint32_t threads = 0;                                            // 0: the hardware's
   float betaM = 0.3f, betaN = 0.3f, alphaDeg = 2.0f, eta = 1.55f;  // the hair BSDF's
-  // Path mode: the lights' colour is the radiance a Lambertian surface facing them reflects
-  // (the raster shading's convention: albedo * colour * cos), so the irradiance is pi times it.
+  // Single and path modes: the lights' colour is the radiance a Lambertian surface facing them
+  // reflects (the raster shading's convention: albedo * colour * cos), so the irradiance is pi
+  // times it.
 };
 
 // A hit seen by the camera, for the transmittance mode's shading callback.
@@ -89,6 +97,14 @@ RenderImage renderStrands(const StrandScene& scene, const StrandTracer& eye,
                           const std::vector<const StrandTracer*>& lights,
                           const RenderOptions& options, const ShadeFn& shade,
                           const std::function<void(const std::string&)>& progress);
+
+// Single mode's light arriving at p from a light at distance dist along wi (unit): the product
+// of fibreTransmittance (hair_bsdf.h) over the strands crossed, but skipStrand's (the one p
+// lies on; -1: none), at each crossing's h and angle; 0 where the mesh is in the way. Exposed
+// for tests.
+glm::vec3 lightThroughFibres(const StrandScene& scene, const StrandTracer& tracer,
+                             const RenderOptions& options, glm::vec3 p, glm::vec3 wi, float dist,
+                             int64_t skipStrand);
 
 // The transmittance toward light l from point p (transmittance mode's rule), exposed for tests.
 float lightTransmittance(const StrandScene& scene, const StrandTracer& tracer, std::size_t l,

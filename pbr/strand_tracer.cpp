@@ -173,10 +173,12 @@ RayHits StrandTracer::trace(glm::vec3 origin, glm::vec3 dir, float tnear, float 
     h.u = std::clamp(us[i], 0.0f, 1.0f);
     h.tangent = glm::dot(d, d) > 1e-30f ? glm::normalize(d) : glm::vec3(0, 1, 0);
     // The offset across the ribbon: from the axis, along the ribbon's width (perpendicular
-    // to the ray and the tangent), in units of the radius there.
+    // to the ray and the tangent), in units of the radius there. Its sign is the hair BSDF's:
+    // positive along its frame's y = z x x, with x the tangent and z toward the ray's origin
+    // (-dir), i.e. along tangent x dir (the R lobe then leaves at phi = -2 asin(h)).
     const glm::vec3 axis = p0 + h.u * d;
     const float r = glm::mix(g_.radius[first], g_.radius[first + 1], h.u);
-    const glm::vec3 across = glm::cross(dir, h.tangent);
+    const glm::vec3 across = glm::cross(h.tangent, dir);
     const float len = glm::length(across);
     if (r > 0 && len > 1e-12f)
       h.h = std::clamp(glm::dot(origin + t * dir - axis, across / len) / r, -1.0f, 1.0f);

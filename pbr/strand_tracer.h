@@ -29,7 +29,7 @@ struct StrandHit {
   float t = 0;              // distance along the (unit) direction
   uint32_t segment = 0;     // index into StrandTracer::segmentStart()
   float u = 0;              // along the segment, 0 at its first point
-  float h = 0;              // across the ribbon, -1..1 (the hair BSDF's h)
+  float h = 0;              // across the ribbon, -1..1, along tangent x dir (the BSDF's h)
   glm::vec3 tangent{0.0f};  // the segment's direction, root to tip
 };
 

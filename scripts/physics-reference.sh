@@ -1,86 +1,197 @@
 #!/usr/bin/env bash
-# The model error measured (docs/physics-reference.md "The model error"): suites/physics.json
-# run twice into fresh folders with one cache folder; the first run path-traces the reference
-# (once per scene and view: every case shares it), the second takes it from the cache (its
-# time shows it). Writes docs/physics-measured.md (or the file given): per shading model and
-# shadow technique the RMSE against the rasterized exact reference (the technique's error) and
-# against the path-traced reference (technique plus model), the latter also without the
-# reference's own noise; the exact reference's row is its own distance from physics.
+# The error ladder measured (docs/physics-reference.md "The ladder"): suites/physics.json run
+# once per reference seed (SEEDS, default 4) with one cache folder; each run's rung-2
+# reference (pbr:mode=single, SPP samples per pixel, default 64) is an independent render, so
+# the spread of a difference between two techniques' rung-2 errors over the seeds gives its
+# 95% interval (Student's t). Writes docs/physics-measured.md (or the file given): per light
+# placement and shadow technique the rung-1 error (against the rasterized exact reference), the
+# rung-2 error (raw, reference noise removed, at the best exposure scale), the order of
+# adjacent techniques against rung 2 with its interval or "undecided", and the rank
+# correlation of the rung-1 and rung-2 orders.
 # Usage: scripts/physics-reference.sh [OUT.md]   Needs build/strandbench and ../shared/models.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-docs/physics-measured.md}
+seeds=${SEEDS:-4}
+spp=${SPP:-64}
 cli=build/strandbench
 [ -x "$cli" ] || { echo "physics-reference.sh: $cli missing: run scripts/setup.sh" >&2; exit 2; }
 [ -f ../shared/models/straight.hair ] || {
   echo "physics-reference.sh: ../shared/models/straight.hair missing" >&2; exit 2; }
+[[ "$seeds" =~ ^[0-9]+$ && "$seeds" -ge 2 && "$seeds" -le 10 ]] || {
+  echo "physics-reference.sh: SEEDS=$seeds: must be 2..10" >&2; exit 2; }
+[[ "$spp" =~ ^[0-9]+$ && "$spp" -ge 8 ]] || {
+  echo "physics-reference.sh: SPP=$spp: must be a whole number >= 8" >&2; exit 2; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 export SB_PBR_CACHE="$tmp/cache"
 load_before=$(cut -d' ' -f1-3 /proc/loadavg)
-t0=$(date +%s.%N)
-"$cli" sweep suites/physics.json --out "$tmp/first" > "$tmp/first.log" 2>&1
-t1=$(date +%s.%N)
-"$cli" sweep suites/physics.json --out "$tmp/second" > "$tmp/second.log" 2>&1
-t2=$(date +%s.%N)
-python3 - "$tmp" "$out" "$load_before" "$(cut -d' ' -f1-3 /proc/loadavg)" "$t0" "$t1" "$t2" <<'PY'
-import json, os, subprocess, sys, datetime
-tmp, out, load0, load1, t0, t1, t2 = sys.argv[1:]
-commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
-dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], capture_output=True,
-                       text=True).stdout.strip()
+t0=$(date +%s)
+for k in $(seq 1 "$seeds"); do
+  # The suite with this seed's reference, its model path made absolute (the copy is elsewhere).
+  python3 - "$spp" "$k" "$tmp/suite$k.json" <<'PY'
+import json, os, sys
+spp, seed, path = sys.argv[1:]
+s = json.load(open("suites/physics.json"))
+d = s["defaults"]
+d["scene"] = d["scene"].replace("../shared", os.path.abspath("../shared"))
+d["reference"] = ["exact", f"pbr:mode=single,spp={spp},seed={seed}"]
+json.dump(s, open(path, "w"), indent=1)
+PY
+  if ! "$cli" sweep "$tmp/suite$k.json" --out "$tmp/run$k" > "$tmp/run$k.log" 2>&1; then
+    tail -20 "$tmp/run$k.log" >&2
+    echo "physics-reference.sh: the sweep of seed $k failed" >&2
+    exit 1
+  fi
+done
+t1=$(date +%s)
+python3 - "$tmp" "$out" "$seeds" "$spp" "$load_before" "$(cut -d' ' -f1-3 /proc/loadavg)" \
+  "$((t1 - t0))" <<'PY'
+import datetime, json, math, os, subprocess, sys
+tmp, out, seeds, spp, load0, load1, secs = sys.argv[1:]
+seeds = int(seeds)
+commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True,
+                        text=True).stdout.strip()
+dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"],
+                       capture_output=True, text=True).stdout.strip()
 commit += " (with uncommitted changes)" if dirty else ""
-def load(run):
-    return json.load(open(os.path.join(tmp, run, "results.json")))["results"]
-first, second = load("first"), load("second")
-def pbr(r):
-    return r["error"]["pbr"]
-def ms(rs, key):
-    return sum(pbr(r)["reference"]["pbr"][key] for r in rs if not pbr(r)["reference"]["cached"])
-hits = lambda rs: sum(1 for r in rs if pbr(r)["reference"]["pbr"]["cache"]["hit"])
-renders = lambda rs: sum(1 for r in rs if not pbr(r)["reference"]["cached"] and not pbr(r)["reference"]["pbr"]["cache"]["hit"])
-p0 = pbr(first[0])
-ref = p0["reference"]
+# Student's t, two-sided 95%, by degrees of freedom.
+T95 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306, 9: 2.262}
+runs = [json.load(open(os.path.join(tmp, f"run{k}", "results.json")))["results"]
+        for k in range(1, seeds + 1)]
+placement = {"0,-0.3,-1": "front", "-1,-0.3,0": "side", "0,-0.3,1": "behind"}
+def params(r):
+    return r["case"]["params"]
+def light(r):
+    v = params(r)["light_direction"]
+    key = ",".join(f"{x:g}" for x in v) if isinstance(v, list) else str(v)
+    return placement.get(key, key)
+cases = {}  # (light, shadow) -> per seed result
+for run in runs:
+    for r in run:
+        cases.setdefault((light(r), params(r)["shadow"]), []).append(r)
+lights = [p for p in ["front", "side", "behind"] if any(l == p for l, _ in cases)]
+shadows = []
+for r in runs[0]:
+    if params(r)["shadow"] not in shadows:
+        shadows.append(params(r)["shadow"])
+def mean(v):
+    return sum(v) / len(v)
+def sd(v):
+    m = mean(v)
+    return math.sqrt(sum((x - m) ** 2 for x in v) / (len(v) - 1))
+def ranks(v):
+    order = sorted(range(len(v)), key=lambda i: v[i])
+    r = [0.0] * len(v)
+    i = 0
+    while i < len(order):
+        j = i
+        while j + 1 < len(order) and v[order[j + 1]] == v[order[i]]:
+            j += 1
+        for k in range(i, j + 1):
+            r[order[k]] = (i + j) / 2 + 1
+        i = j + 1
+    return r
+def spearman(a, b):
+    ra, rb = ranks(a), ranks(b)
+    ma, mb = mean(ra), mean(rb)
+    num = sum((x - ma) * (y - mb) for x, y in zip(ra, rb))
+    den = math.sqrt(sum((x - ma) ** 2 for x in ra) * sum((y - mb) ** 2 for y in rb))
+    return num / den if den else float("nan")
+first = runs[0][0]["error"]["pbr"]
+ref = first["reference"]
 lines = [
-    "# The model error, measured",
+    "# The error ladder, measured",
+    "",
+    "<!-- generated by scripts/physics-reference.sh: do not edit by hand -->",
     "",
     "<!-- generated by scripts/physics-reference.sh: do not edit by hand -->",
     "Written by `scripts/physics-reference.sh` (suite `suites/physics.json`, GL on llvmpipe). "
     f"Commit {commit}, {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC, "
-    f"load {load0} before, {load1} after.",
+    f"load {load0} before, {load1} after; {secs} s.",
     "",
     "```sh",
-    "scripts/physics-reference.sh   # = build/strandbench sweep suites/physics.json --out DIR, twice",
+    f"SEEDS={seeds} SPP={spp} scripts/physics-reference.sh"
+    "   # = build/strandbench sweep suites/physics.json, once per reference seed",
     "```",
     "",
-    f"The path-traced reference: `{ref['spec']}` on `{first[0]['scene']['spec']}` at "
-    f"{ref['size'][0]}x{ref['size'][1]}, strands {ref['pbr']['width']} width "
-    f"({ref['pbr']['thickness_source']}, mean {ref['pbr']['thickness']:.3g}), {ref['pbr']['spp']} samples "
-    f"per pixel; its own noise: RMSE {p0['noise']['rmse']:.4f} (the root mean square of the "
-    f"per-pixel standard error; mean standard error {p0['noise']['mean_stderr']:.4f}).",
+    f"Scene `{runs[0][0]['scene']['spec']}` at {ref['size'][0]}x{ref['size'][1]}, shading "
+    f"`{params(runs[0][0]).get('shading', 'kajiya-kay')}`, exact transparency. Rung 1: the "
+    "rasterized exact reference (same shading model). Rung 2: "
+    f"`pbr:mode=single,spp={spp}` (traced single scattering, the Chiang fibre, world widths "
+    f"({ref['pbr']['thickness_source']}, mean {ref['pbr']['thickness']:.3g}), shadow rays "
+    f"{ref['pbr']['shadow_rays']}; tracer ambient {ref['pbr']['ambient']['tracer']}, raster "
+    f"ambient {ref['pbr']['ambient']['raster']:g}), rendered {seeds} times with independent "
+    "seeds.",
     "",
-    f"Cache: the first run path-traced it {renders(first)} time(s) ({ms(first, 'render_ms') / 1000:.2f} s of "
-    f"rendering) and took it from the disk cache {hits(first)} time(s); the second run path-traced it "
-    f"{renders(second)} time(s) and took it from the cache {hits(second)} time(s). Wall time of the whole "
-    f"sweep: first {float(t1) - float(t0):.1f} s, second {float(t2) - float(t1):.1f} s.",
+    "**Read with care:** the raster side here is Kajiya-Kay on pixel-wide lines, the tracer's "
+    "fibre is Chiang's on world widths. Until the raster Chiang model and the world-width "
+    "primitive (built on another branch) are merged, the rung-2 column measures the shading "
+    "model and the rasterization together, not rasterization alone; the merger reruns this "
+    "script with `shading: chiang` and `primitive: world`.",
     "",
-    "RMSE of the image (linear RGB): against the rasterized exact reference (the technique's error), "
-    "against the path-traced reference (technique plus model), and the latter with the reference's noise "
-    "taken out (sqrt(rmse^2 - noise^2)). The row `exact` is the rasterized exact reference itself: its "
-    "distance from physics is the model's error alone.",
+    "Columns: RMSE (linear RGB) against rung 1; against rung 2, the mean over the seeds and its "
+    "95% half-width, the same with the reference's noise removed (sqrt(rmse^2 - noise^2)), and "
+    "at the best exposure scale (the least-squares factor, given); the image means. Order: "
+    "techniques by their rung-2 error; each adjacent pair's difference (this row minus the "
+    "row above) with its 95% interval over the seeds, or *undecided* where the interval holds 0.",
     "",
-    f"Brightness: the path-traced image's mean (over pixels and RGB, linear) is "
-    f"{p0['mean']['reference']:.4f}; each row's own mean is in the last column. A model whose mean is far "
-    "from it is off by a scale (its radiometry) as much as by its shadows.",
-    "",
-    "| shading | shadow | vs exact | vs path traced | vs path traced, noise removed | mean |",
-    "|---|---|---|---|---|---|",
 ]
-for r in first:
-    e = r["error"]
-    lines.append(f"| {r['case']['params']['shading']} | {r['case']['params']['shadow']} | "
-                 f"{e['image']['rmse']:.4f} | {e['pbr']['rmse']:.4f} | {e['pbr']['noise']['rmse_without_noise']:.4f} | "
-                 f"{e['pbr']['mean']['image']:.4f} |")
+for l in lights:
+    rows = []
+    for s in shadows:
+        rs = cases.get((l, s), [])
+        if len(rs) != seeds:
+            continue
+        e2 = [r["error"]["pbr"] for r in rs]
+        rows.append({
+            "shadow": s,
+            "r1": rs[0]["error"]["image"]["rmse"],
+            "r2": [e["rmse"] for e in e2],
+            "clean": mean([e["noise"]["rmse_without_noise"] for e in e2]),
+            "scaled": mean([e["scaled"]["rmse"] for e in e2]),
+            "scale": mean([e["scaled"]["scale"] for e in e2]),
+            "noise": mean([e["noise"]["rmse"] for e in e2]),
+            "mimg": e2[0]["mean"]["image"], "mref": mean([e["mean"]["reference"] for e in e2]),
+        })
+    if not rows:
+        continue
+    rows.sort(key=lambda r: mean(r["r2"]))
+    t = T95[seeds - 1]
+    noise = mean([r["noise"] for r in rows])
+    lines += [f"## Light {l}", "",
+              "| shadow | vs rung 1 | vs rung 2 | rung 2, noise removed | rung 2 at best scale "
+              "(scale) | mean image / reference | vs the row above (95%) |",
+              "|---|---|---|---|---|---|---|"]
+    smallest = None
+    decided = 0
+    for i, r in enumerate(rows):
+        half = t * sd(r["r2"]) / math.sqrt(seeds)
+        cmp = ""
+        if i > 0:
+            d = [a - b for a, b in zip(r["r2"], rows[i - 1]["r2"])]
+            dm, dh = mean(d), t * sd(d) / math.sqrt(seeds)
+            if dm - dh > 0 or dm + dh < 0:
+                cmp = f"+{dm:.5f} [{dm - dh:.5f}, {dm + dh:.5f}]"
+                decided += 1
+            else:
+                cmp = f"undecided ({dm:+.5f} +- {dh:.5f})"
+            smallest = abs(dm) if smallest is None else min(smallest, abs(dm))
+        lines.append(f"| {r['shadow']} | {r['r1']:.4f} | {mean(r['r2']):.4f} +- {half:.4f} | "
+                     f"{r['clean']:.4f} | {r['scaled']:.4f} ({r['scale']:.3f}) | "
+                     f"{r['mimg']:.4f} / {r['mref']:.4f} | {cmp} |")
+    rho = spearman([r["r1"] for r in rows], [mean(r["r2"]) for r in rows])
+    rhoScaled = spearman([r["r1"] for r in rows], [r["scaled"] for r in rows])
+    quarter = "meets" if smallest is not None and noise <= smallest / 4 else "does not meet"
+    lines += ["",
+              f"Adjacent pairs ordered at 95%: {decided} of {len(rows) - 1}. Rank correlation "
+              f"(Spearman) of the rung-1 and rung-2 orders: {rho:.3f} (of rung 1 and rung 2 at "
+              f"the best scale: {rhoScaled:.3f}). The reference's noise "
+              f"(RMSE of one seed's reference against its converged self): {noise:.5f}; the "
+              f"smallest adjacent difference {smallest:.5f}: the noise {quarter} the bound of a "
+              "quarter of it. (The noise adds almost equally to every technique's error, so a "
+              "difference moves far less than the noise from seed to seed: the intervals over "
+              "the seeds are what decide a pair.)", ""]
 open(out, "w").write("\n".join(lines) + "\n")
 print("wrote", out)
 PY
