@@ -131,8 +131,7 @@ std::optional<UnavailableError> missingPart(const SweepCase& c) {
   try {
     checkDriver(d);
   } catch (const InputError& e) {
-    return UnavailableError(
-        e.what(), "scripts/drivers.sh (fetches " + d + " into drivers/; docs/drivers.md)");
+    return UnavailableError(e.what(), "scripts/drivers.sh (docs/drivers.md)");
   }
   return std::nullopt;
 }

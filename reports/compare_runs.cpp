@@ -462,7 +462,7 @@ RunOverlap runOverlap(const RunResults& oldRun, const RunResults& newRun) {
   for (const json& r : newRun.results) o.shared += oldIds.count(caseId(r));
   auto label = [](const RunResults& run) {
     return run.source + " (" + (run.suite.empty() ? "" : "suite " + run.suite + ", ") +
-           std::to_string(run.results.size()) + " cases)";
+           std::to_string(run.results.size()) + (run.results.size() == 1 ? " case)" : " cases)");
   };
   if (o.shared == 0 && !oldRun.results.empty() && !newRun.results.empty())
     throw InputError("the runs share no case: " + label(oldRun) + " and " + label(newRun) +
