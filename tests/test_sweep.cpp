@@ -457,7 +457,9 @@ TEST(Sweep, CasesOnAMissingDriverAreListedAndFailOnlyWhenRequired) {
     if (res["case"]["group"] != "g") continue;
     const bool isMissing = res["case"]["id"] == missing;
     EXPECT_EQ(res.contains("failed"), isMissing) << res.dump();
-    if (isMissing) EXPECT_EQ(res["failed"]["unavailable"], true);
+    if (isMissing) {
+      EXPECT_EQ(res["failed"]["unavailable"], true);
+    }
   }
   EXPECT_NE(readFile(dir / "a" / "report.md").find("scripts/drivers.sh"), std::string::npos);
 
