@@ -7,6 +7,8 @@
 
 #include <csignal>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 namespace sb {
 
@@ -14,6 +16,15 @@ namespace sb {
 // message and exits with status 2. The message names the file/option and the problem.
 struct InputError : std::runtime_error {
   using std::runtime_error::runtime_error;
+};
+
+// Input that names an optional part this machine lacks (a driver scripts/drivers.sh has not
+// fetched, ray queries the device does not offer): bad input for one run (exit 2), a case
+// not run in a sweep (harness/sweep.h). `enable` says what provides the part.
+struct UnavailableError : InputError {
+  UnavailableError(const std::string& what, std::string how)
+      : InputError(what), enable(std::move(how)) {}
+  std::string enable;
 };
 
 // Any failure of a backend (no device, shader compile error, API error).

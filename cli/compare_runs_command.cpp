@@ -58,7 +58,9 @@ void registerCompareRunsCommand(CLI::App& app) {
       "are 'not counted'; counters null in either run (samples_passed without device queries)\n"
       "are not compared, nor are cases added, removed or redefined.\n"
       "Cases are matched by case.id; cases in only one run are listed as added/removed and do not\n"
-      "fail. A case whose scene, shadow, oit, size or primitive differ is 'definition changed' "
+      "fail. Runs of different suites, or that share less than half of the larger run's cases,\n"
+      "get a 'warning:' line (the exit status is unchanged); runs that share no case are refused\n"
+      "(exit 2). A case whose scene, shadow, oit, size or primitive differ is 'definition changed' "
       "and\n"
       "is not judged. For the rest, change = new/old frame_ms median - 1, and the repetitions\n"
       "(frame_ms.samples) get a one-sided Mann-Whitney U test in the direction of the change\n"
@@ -83,7 +85,7 @@ void registerCompareRunsCommand(CLI::App& app) {
       "pairs); at alpha 0.05, 5 pairs are the fewest that can be judged. Passes are not listed;\n"
       "work is compared between the first pair.\n"
       "Exit status: 0 no regression, 1 a case SLOWER (or, with --fail-on-work-change, a work\n"
-      "change), 2 bad input.");
+      "change), 2 bad input (runs that share no case included).");
   cmd->callback([=] {
     runGuarded("compare-runs", [&] {
       CompareRunsOptions opt;

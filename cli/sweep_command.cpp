@@ -4,6 +4,7 @@
 
 #include <cstdlib>
 #include <memory>
+#include <string>
 
 #include "backends/driver_env.h"
 #include "cli/commands.h"
@@ -29,6 +30,10 @@ void registerSweepCommands(CLI::App& app) {
     cmd->add_flag(
         "--fail-fast", o->failFast,
         "stop at the first failed case (default: record it and go on; exit 1 at the end)");
+    cmd->add_flag("--require-drivers", o->requireParts,
+                  "fail (exit 1) when a case could not run for a part this machine lacks (a "
+                  "driver not installed, ray queries); default: list those cases and go on "
+                  "(exit 0 for them). CI=true sets it");
     cmd->add_option("--min-reps", o->minReps,
                     "interleaved rounds always taken (each renders every case of a group once); "
                     "default: the group's largest `repeat`");
@@ -55,6 +60,9 @@ void registerSweepCommands(CLI::App& app) {
           std::tie(o->shardIndex, o->shardCount) = parseShard(*shard);
         }
         o->progressBar = ::isatty(STDOUT_FILENO) != 0;
+        // In CI a missing part fails, as a test that cannot find its backend does.
+        const char* ci = std::getenv("CI");
+        if (ci && std::string(ci) == "true") o->requireParts = true;
         return runSweep(*o);
       });
     });

@@ -182,17 +182,34 @@ void appendFrames(RenderResult& into, const RenderResult& more) {
   into.repeat += more.repeat;
 }
 
-// The result file of a case that failed: what it was and why, so the reports
-// count it and --resume runs it again.
-ojson failedCase(const fs::path& dir, const SweepCase& c, const std::string& reason) {
+// The result file of a case that failed, or was not run for a part this machine lacks
+// (`missing`): what it was and why, so the reports list it and --resume runs it again.
+ojson failedCase(const fs::path& dir, const SweepCase& c, const std::string& reason,
+                 const UnavailableError* missing = nullptr) {
   const RenderRequest& q = c.request;
-  ojson result = {{"backend", q.backend},        {"scene", {{"spec", q.scene}}},
-                  {"shadow", q.shadow},          {"oit", q.oit},
-                  {"size", {q.width, q.height}}, {"failed", {{"reason", reason}}}};
+  ojson failed = {{"reason", reason}};
+  if (missing) {
+    failed["reason"] = "not run: " + reason + " (to run it: " + missing->enable + ")";
+    failed["unavailable"] = true;
+    failed["enable"] = missing->enable;
+  }
+  ojson result = {{"backend", q.backend}, {"scene", {{"spec", q.scene}}}, {"shadow", q.shadow},
+                  {"oit", q.oit},         {"size", {q.width, q.height}},  {"failed", failed}};
   result["case"] = {{"id", c.id}, {"group", c.group}, {"index", c.index}, {"params", c.params}};
   result["images"] = ojson::object();
   writeFileAtomic(caseFile(dir, c), result.dump(1) + "\n");
   return result;
+}
+
+// Removes what a case that did not finish left (its images and trace): a case is there whole,
+// with its result file, or not at all.
+void removeCaseFiles(const fs::path& dir, const SweepCase& c) {
+  std::error_code ec;
+  fs::remove(dir / "traces" / (c.stem + ".json"), ec);
+  std::vector<fs::path> images;
+  for (fs::directory_iterator it(dir / "images", ec), end; !ec && it != end; it.increment(ec))
+    if (it->path().filename().string().rfind(c.stem + ".", 0) == 0) images.push_back(it->path());
+  for (const fs::path& p : images) fs::remove(p, ec);
 }
 
 // Failures of a case's invariants, one line each naming the case, technique,
@@ -320,6 +337,10 @@ int runSweep(const SweepOptions& o) {
       selected.push_back(&c);
   if (selected.empty())
     throw InputError("suite " + o.suitePath + ": no case matches the filter and shard");
+  // Every file the cases name is read before anything runs or is written (a child sweep's
+  // parent has read them).
+  if (!o.driverCasesOnly) checkSuiteFiles(o.suitePath, selected);
+  const std::vector<const SweepCase*> allSelected = selected;  // this process's and children's
   std::vector<std::string> failedDrivers;  // child sweeps of other drivers that failed
   if (std::any_of(selected.begin(), selected.end(),
                   [](const SweepCase* c) { return c->request.image; }))
@@ -354,12 +375,56 @@ int runSweep(const SweepOptions& o) {
     writeFileAtomic(sweepFile, sweepDoc.dump(2) + "\n");
   }
 
-  // One process, one driver: the cases of other drivers go to a child sweep per driver.
+  // What a stop leaves, counted from the files: the cases kept, which --resume skips.
+  auto stopped = [&](const std::vector<const SweepCase*>& cases) {
+    const auto kept = std::count_if(cases.begin(), cases.end(), [&](const SweepCase* c) {
+      return caseDone(caseFile(dir, *c));
+    });
+    std::cout << "stopped: " << kept << " of " << cases.size() << " cases kept in "
+              << (dir / "cases").string() << "; continue with --resume (it runs the other "
+              << cases.size() - static_cast<std::size_t>(kept) << ")\n"
+              << std::flush;
+  };
+  // Cases that need a part this machine lacks, from their result files (this process's and
+  // the child sweeps'): listed with what provides the part; they fail only with requireParts.
+  auto notRunSummary = [&](int status) {
+    std::vector<std::string> lines;
+    std::vector<std::string> enable;
+    for (const auto* c : allSelected) {
+      if (!fs::is_regular_file(caseFile(dir, *c))) continue;
+      const ojson f = readJsonFile<ojson>(caseFile(dir, *c)).value("failed", ojson::object());
+      if (!f.value("unavailable", false)) continue;
+      const std::string reason = f.value("reason", "");
+      lines.push_back(c->id + ": " + reason.substr(0, reason.find('\n')));
+      const std::string how = f.value("enable", "");
+      if (std::find(enable.begin(), enable.end(), how) == enable.end()) enable.push_back(how);
+    }
+    if (lines.empty()) return status;
+    std::cout << lines.size() << " case" << (lines.size() == 1 ? "" : "s")
+              << " not run (a part this machine lacks; in results.json and the report):\n";
+    for (const auto& line : lines) std::cout << "  " << line << "\n";
+    for (const auto& how : enable) std::cout << "to run them: " << how << "\n";
+    if (!o.requireParts) {
+      std::cout << "(not a failure: --require-drivers, or CI=true, makes it one)\n";
+      return status;
+    }
+    std::cout << "--require-drivers (or CI=true): the cases not run fail the sweep\n";
+    return std::max(status, 1);
+  };
+
+  // One process, one driver: the cases of other drivers go to a child sweep per driver, or,
+  // when that driver is not installed, are recorded as not run.
   std::vector<std::string> otherDrivers;
   {
     std::vector<const SweepCase*> own;
     for (const auto* c : selected) {
       const std::string& d = c->request.driver;
+      if (const auto missing = missingPart(*c)) {
+        // (A case an earlier run finished keeps its result.)
+        if (!o.driverCasesOnly && !(o.resume && caseDone(caseFile(dir, *c))))
+          failedCase(dir, *c, missing->what(), &*missing);
+        continue;
+      }
       const bool mine =
           o.driverCasesOnly ? !d.empty() && isCurrentDriver(d) : d.empty() || isCurrentDriver(d);
       if (mine)
@@ -379,6 +444,7 @@ int runSweep(const SweepOptions& o) {
         "--shard",  std::to_string(o.shardIndex) + "/" + std::to_string(o.shardCount)};
     if (!o.filter.empty()) args.insert(args.end(), {"--filter", o.filter});
     if (o.failFast) args.push_back("--fail-fast");
+    if (o.requireParts) args.push_back("--require-drivers");
     if (!o.interleave) args.push_back("--no-interleave");
     for (const auto& [flag, v] :
          {std::pair{"--min-reps", o.minReps}, std::pair{"--max-reps", o.maxReps}})
@@ -387,23 +453,30 @@ int runSweep(const SweepOptions& o) {
     std::cout << "sweep " << suite.name << ": the cases on driver " << d
               << " in a process of its own\n";
     const int status = runSelfOnDriver(d, args);
-    if (status == 130 || status == 143) throw Interrupted(status == 130 ? 2 : 15);
+    if (status == 130 || status == 143) {
+      stopped(allSelected);
+      throw Interrupted(status == 130 ? 2 : 15);
+    }
     if (status == 2)
       throw InputError("the sweep of the cases on driver " + d + " refused its input");
     if (status != 0)
       failedDrivers.push_back("the cases on driver " + d + " (exit status " +
                               std::to_string(status) + ", above)");
   }
-  if (selected.empty() && !otherDrivers.empty()) {
+  if (selected.empty() && !o.driverCasesOnly) {
     const int n = writeSweepReport(o.out);
     std::cout << "wrote " << (dir / "results.json").string() << " (" << n << " results)\n";
     for (const auto& f : failedDrivers) std::cout << "failed: " << f << "\n";
-    return failedDrivers.empty() ? 0 : 1;
+    return notRunSummary(failedDrivers.empty() ? 0 : 1);
   }
 
   std::vector<const SweepCase*> todo;
   for (const auto* c : selected)
     if (!(o.resume && caseDone(caseFile(dir, *c)))) todo.push_back(c);
+  // What an earlier run killed inside a case left (its images) goes before the case runs again.
+  if (o.resume)
+    for (const auto* c : todo)
+      if (!fs::is_regular_file(caseFile(dir, *c))) removeCaseFiles(dir, *c);
   const int total = static_cast<int>(selected.size());
   int done = total - static_cast<int>(todo.size());
   std::cout << "sweep " << suite.name << ": " << total << " cases";
@@ -435,17 +508,26 @@ int runSweep(const SweepOptions& o) {
       std::vector<int> number(batch.size(), 0);        // "[number/total]" in its line
       std::vector<double> seconds(batch.size(), 0.0);  // over all its rounds
       // A case's result file is written once its rounds are done: at once when the group
-      // takes one round (a stopped sweep then resumes at the case), else at the group's end.
-      // Its line is printed then, from the result: the median the report shows, not the
-      // first round's time.
-      auto writeResult = [&](std::size_t i) {
-        const ojson result =
-            writeCaseResult(dir, *batch[i], runs[i], measurementJson(o, runs[i].out, startS[i]));
+      // takes one round (a stopped sweep then resumes at the case), else at the group's end,
+      // or at a stop with the rounds it had. Its line is printed then, from the result: the
+      // median the report shows, not the first round's time.
+      auto writeResult = [&](std::size_t i, bool stoppedEarly = false) {
+        ojson measurement = measurementJson(o, runs[i].out, startS[i]);
+        if (stoppedEarly) {
+          const int rounds = static_cast<int>(startS[i].size());
+          measurement["stopped"] = {{"rounds", rounds}, {"min_rounds", reps.minReps}};
+          runs[i].out.warnings.push_back(
+              "timed in " + std::to_string(rounds) + " interleaved round" +
+              (rounds == 1 ? "" : "s") + " of the " + std::to_string(reps.minReps) +
+              " or more its group takes: the sweep was stopped (SIGINT or SIGTERM) during it");
+        }
+        const ojson result = writeCaseResult(dir, *batch[i], runs[i], measurement);
         written[i] = true;
         if (!o.progressBar)
           std::cout << "[" << number[i] << "/" << total << "] " << batch[i]->id << "  "
                     << caseSummary(result) << "  (" << std::fixed << std::setprecision(1)
-                    << seconds[i] << " s)\n"
+                    << seconds[i] << " s)" << (stoppedEarly ? "  (stopped: fewer rounds)" : "")
+                    << "\n"
                     << std::flush;
         for (const auto& line : invariantFailures(result)) {
           if (o.progressBar) std::cout << "\n";
@@ -463,6 +545,7 @@ int runSweep(const SweepOptions& o) {
           const double t = elapsed();
           throwIfStopped();
           std::string reason;
+          std::optional<UnavailableError> missing;
           try {
             if (first) {
               RenderRequest q = c.request;
@@ -476,9 +559,11 @@ int runSweep(const SweepOptions& o) {
             } else {
               appendFrames(runs[i].out, runRender(timingRequest(c.request), &cache));
             }
-          } catch (const InputError& e) {
-            if (o.progressBar) std::cout << "\n";
-            throw InputError("case " + c.id + ": " + e.what());
+          } catch (const UnavailableError& e) {  // a part the device lacks: not run
+            missing = e;
+            reason = e.what();
+          } catch (const InputError& e) {  // input only running finds bad: the case fails
+            reason = e.what();
           } catch (const DeviceError& e) {  // out of memory included
             reason = e.what();
           } catch (const std::bad_alloc&) {
@@ -488,15 +573,17 @@ int runSweep(const SweepOptions& o) {
           seconds[i] += elapsed() - t;
           if (!reason.empty()) {
             failed[i] = true;
-            failedCase(dir, c, reason);
+            removeCaseFiles(dir, c);  // a later round's failure drops the first round's images
+            failedCase(dir, c, reason, missing ? &*missing : nullptr);
             if (o.progressBar) std::cout << "\n";
             // One line here; the whole message (resources, hint) is in the case file.
-            const std::string line = "case " + c.id +
-                                     " failed: " + reason.substr(0, reason.find('\n')) +
+            const std::string line = "case " + c.id + (missing ? " not run: " : " failed: ") +
+                                     reason.substr(0, reason.find('\n')) +
                                      (reason.find('\n') != std::string::npos
                                           ? " (the rest in " + caseFile(dir, c).string() + ")"
                                           : "");
             std::cout << line << "\n" << std::flush;
+            if (missing) return std::numeric_limits<double>::quiet_NaN();
             failures.push_back(line);
             if (o.failFast) throw StopAtFailure{};
             return std::numeric_limits<double>::quiet_NaN();
@@ -505,7 +592,21 @@ int runSweep(const SweepOptions& o) {
           if (first && reps.maxReps == 1) writeResult(i);
           return runs[i].out.frameMs.empty() ? 0.0 : median(runs[i].out.frameMs);
         });
-      measureInterleaved(rounds, reps, /*leastMinReps=*/1);
+      try {
+        measureInterleaved(rounds, reps, /*leastMinReps=*/1);
+      } catch (const Interrupted&) {
+        // Stopped inside the group: a case whose first round is done has its images and
+        // errors, and is kept with the rounds it had; the others leave nothing behind.
+        if (o.progressBar) std::cout << "\n";
+        for (std::size_t i = 0; i < batch.size(); ++i) {
+          if (failed[i] || written[i]) continue;
+          if (!startS[i].empty())
+            writeResult(i, /*stoppedEarly=*/true);
+          else
+            removeCaseFiles(dir, *batch[i]);
+        }
+        throw;
+      }
       int measured = 0;
       for (std::size_t i = 0; i < batch.size(); ++i) {
         if (failed[i]) continue;
@@ -520,10 +621,7 @@ int runSweep(const SweepOptions& o) {
   } catch (const StopAtFailure&) {
     std::cout << "--fail-fast: stopping at the first failed case\n";
   } catch (const Interrupted&) {
-    if (o.progressBar) std::cout << "\n";
-    std::cout << "stopped after " << done << " of " << total
-              << " cases (a case of several rounds is written once its group's rounds are "
-                 "done); continue with --resume\n";
+    stopped(o.driverCasesOnly ? selected : allSelected);
     throw;
   }
   if (o.progressBar) {
@@ -537,7 +635,15 @@ int runSweep(const SweepOptions& o) {
     context["load_after"] = loadAverage();
     writeFileAtomic(dir / "context.json", context.dump(2) + "\n");
   }
-  if (o.driverCasesOnly) return failures.empty() ? 0 : 1;  // the parent writes the reports
+  if (o.driverCasesOnly) {  // the parent writes the reports and lists the cases not run
+    if (!failures.empty()) return 1;
+    const bool notRun = std::any_of(selected.begin(), selected.end(), [&](const SweepCase* c) {
+      return fs::is_regular_file(caseFile(dir, *c)) && readJsonFile<ojson>(caseFile(dir, *c))
+                                                           .value("failed", ojson::object())
+                                                           .value("unavailable", false);
+    });
+    return notRun && o.requireParts ? 1 : 0;
+  }
   const int n = writeSweepReport(o.out);
   std::cout << "wrote " << (dir / "results.json").string() << " (" << n
             << " results), results.csv, passes.csv, cost_model.json, report.md, report.html\n";
@@ -551,9 +657,8 @@ int runSweep(const SweepOptions& o) {
   if (!failures.empty()) {
     std::cout << failures.size() << " failures (failed cases, invariants):\n";
     for (const auto& line : failures) std::cout << "  " << line << "\n";
-    return 1;
   }
-  return 0;
+  return notRunSummary(failures.empty() ? 0 : 1);
 }
 
 int writeSweepReport(const std::string& dirText) {

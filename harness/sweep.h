@@ -22,6 +22,10 @@ struct SweepOptions {
   std::string shardSource;             // where --shard auto found it ("SLURM_ARRAY_TASK_ID")
   bool progressBar = false;            // a terminal: one updating line
   bool failFast = false;               // stop at the first failed case (else record it, go on)
+  // A case that needs a part this machine lacks (a driver not installed, ray queries the device
+  // does not offer) is not run: recorded with the reason and what provides the part, listed at
+  // the end. It fails the sweep (exit 1) only with requireParts (--require-drivers, CI=true).
+  bool requireParts = false;
   // Timing (harness/measure.h): a group's cases are measured in interleaved rounds, each
   // round rendering every case of the group once (a fresh device, its warm-up frames, one
   // timed frame); the first round also makes the case's images and errors. Back to back
@@ -38,10 +42,14 @@ struct SweepOptions {
 
 // Runs the cases and writes the reports; returns the exit status: 0, or 1
 // when an invariant failed (cases with "invariants": true) or a case failed (out
-// of memory, a device error: recorded in its result file with the reason, and
-// the sweep goes on unless failFast). Throws InputError for a bad suite, filter,
-// shard or folder, and Interrupted when stopped (SIGINT, SIGTERM) between cases
-// or inside one: what is done stays, and --resume continues.
+// of memory, a device error, input only a run finds bad: recorded in its result file
+// with the reason, and the sweep goes on unless failFast), or, with requireParts, a case
+// was not run for a missing part. Throws InputError for a bad suite, filter, shard or
+// folder, or a file a case names that is missing or broken (all checked before anything
+// runs or is written), and Interrupted when stopped (SIGINT, SIGTERM) between cases or
+// inside one: every finished case stays (a case of an interleaved group whose first round
+// is done is kept with the rounds it had, marked in its measurement), the files of the
+// unfinished ones are removed, and --resume runs only the cases not kept.
 int runSweep(const SweepOptions& o);
 
 // Joins a sweep folder's cases into DIR/results.json and writes the reports.

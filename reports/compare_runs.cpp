@@ -112,6 +112,9 @@ RunResults loadResultsFile(const fs::path& file) {
   if (!doc.contains("results") || !doc["results"].is_array())
     throw InputError(run.source + ": not a results.json (no \"results\" array)");
   if (doc.contains("context")) run.context = doc["context"];
+  if (doc.contains("suite") && doc["suite"].is_object() && doc["suite"].contains("name") &&
+      doc["suite"]["name"].is_string())
+    run.suite = doc["suite"]["name"].get<std::string>();
   for (std::size_t i = 0; i < doc["results"].size(); ++i) {
     json& r = doc["results"][i];
     validateResult(r, run.source + ": results[" + std::to_string(i) + "]");
@@ -145,6 +148,12 @@ RunResults loadCaseFiles(const fs::path& folder, const fs::path& cases) {
                    [&](const json& a, const json& b) { return index(a) < index(b); });
   if (fs::is_regular_file(folder / "context.json"))
     run.context = readJsonFile(folder / "context.json");
+  if (fs::is_regular_file(folder / "sweep.json")) {
+    const json sweep = readJsonFile(folder / "sweep.json");
+    if (sweep.contains("suite") && sweep["suite"].is_object() && sweep["suite"].contains("name") &&
+        sweep["suite"]["name"].is_string())
+      run.suite = sweep["suite"]["name"].get<std::string>();
+  }
   return run;
 }
 
@@ -446,6 +455,30 @@ RunResults loadRunResults(const std::string& path) {
   return run;
 }
 
+RunOverlap runOverlap(const RunResults& oldRun, const RunResults& newRun) {
+  RunOverlap o;
+  std::set<std::string> oldIds;
+  for (const json& r : oldRun.results) oldIds.insert(caseId(r));
+  for (const json& r : newRun.results) o.shared += oldIds.count(caseId(r));
+  auto label = [](const RunResults& run) {
+    return run.source + " (" + (run.suite.empty() ? "" : "suite " + run.suite + ", ") +
+           std::to_string(run.results.size()) + (run.results.size() == 1 ? " case)" : " cases)");
+  };
+  if (o.shared == 0 && !oldRun.results.empty() && !newRun.results.empty())
+    throw InputError("the runs share no case: " + label(oldRun) + " and " + label(newRun) +
+                     " have no case.id in common, so nothing can be compared (compare two "
+                     "runs of the same suite)");
+  if (!oldRun.suite.empty() && !newRun.suite.empty() && oldRun.suite != newRun.suite)
+    o.warnings.push_back("the runs are of different suites (old " + oldRun.suite + ", new " +
+                         newRun.suite + ")");
+  const std::size_t larger = std::max(oldRun.results.size(), newRun.results.size());
+  if (o.shared * 2 < larger)
+    o.warnings.push_back("the runs share only " + std::to_string(o.shared) + " of " +
+                         std::to_string(larger) +
+                         " cases: the rest are cases added or removed, not compared");
+  return o;
+}
+
 TimingChange compareTiming(const json& oldMs, const json& newMs, const CompareRunsOptions& opt) {
   TimingChange t;
   const double oldMedian = oldMs.at("median").get<double>();
@@ -674,6 +707,7 @@ int runCompareRuns(const std::string& oldPath, const std::string& newPath,
   if (!(opt.alpha > 0 && opt.alpha < 1)) throw InputError("--alpha must be between 0 and 1");
   const RunResults oldRun = loadRunResults(oldPath);
   const RunResults newRun = loadRunResults(newPath);
+  const RunOverlap overlap = runOverlap(oldRun, newRun);
   std::vector<CaseComparison> cases;
   if (morePairs.empty()) {
     cases = compareRuns(oldRun, newRun, opt);
@@ -711,6 +745,8 @@ int runCompareRuns(const std::string& oldPath, const std::string& newPath,
     j["alpha"] = opt.alpha;
     j["correction"] = opt.correction == Correction::Holm ? "holm" : "none";
     j["context_differs"] = contextDiff;
+    j["shared_cases"] = overlap.shared;
+    j["warnings"] = overlap.warnings;
     j["fail_on_work_change"] = opt.failOnWorkChange;
     // Work first, as in the text: exact changes, apart from the timing verdicts.
     json work = {{"changed_cases", workChanged},
@@ -780,6 +816,7 @@ int runCompareRuns(const std::string& oldPath, const std::string& newPath,
   if (!morePairs.empty())
     out << "paired: " << morePairs.size() + 1
         << " pairs of runs; change = median new/old ratio, p = signed-rank test over the pairs\n";
+  for (const auto& w : overlap.warnings) out << "warning: " << w << "\n";
   if (!contextDiff.empty()) {
     out << "note: the runs' contexts differ in";
     for (const auto& k : contextDiff) out << " " << k;

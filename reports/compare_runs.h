@@ -16,6 +16,7 @@ namespace sb {
 // with only cases/*.json (one result object each, ordered by case.index).
 struct RunResults {
   std::string source;                   // the file (or cases/ folder) the results came from
+  std::string suite;                    // the suite's name ("" when the run does not say)
   nlohmann::json context;               // the run's context block; null when there is none
   std::vector<nlohmann::json> results;  // validated: case.id, frame_ms {median, samples?}, ...
 };
@@ -141,8 +142,19 @@ std::vector<CaseComparison> comparePairedRuns(const std::vector<RunResults>& old
 // is decided again with its adjusted p (threshold unchanged). No-op with Correction::None.
 void applyCorrection(std::vector<CaseComparison>& cases, const CompareRunsOptions& options);
 
+// How much two runs have in common: the cases in both (by case.id), and a warning when they
+// are runs of different suites or share less than half of the larger run's cases (their
+// comparison is mostly cases added and removed). Throws InputError when they share no case:
+// nothing can be compared.
+struct RunOverlap {
+  std::size_t shared = 0;
+  std::vector<std::string> warnings;
+};
+RunOverlap runOverlap(const RunResults& oldRun, const RunResults& newRun);
+
 // Prints the work changes and the timing table (or one JSON object with asJson) and returns the
-// exit status: 1 when a case is Slower, or (with failOnWorkChange) when work changed, else 0. With
+// exit status: 1 when a case is Slower, or (with failOnWorkChange) when work changed, else 0;
+// runs that share no case are refused (InputError); a small overlap only warns. With
 // morePairs, OLD NEW is the first of several paired runs (comparePairedRuns). Throws InputError for
 // bad input or options.
 int runCompareRuns(const std::string& oldPath, const std::string& newPath,

@@ -347,6 +347,43 @@ TEST(CompareRunsCli, ThresholdOption) {
   std::filesystem::remove_all(dir);
 }
 
+// Runs of different suites, or with few cases in common, say so (exit status unchanged); runs
+// with no case in common are refused (exit 2). Control: two runs of one suite get no warning.
+TEST(CompareRunsCli, UnrelatedRunsWarnOrAreRefused) {
+  const auto dir = tempDir("cmpruns");
+  const std::string base = write(dir / "old.json", makeRun());
+  const auto same = runCli(compareRuns(base, base));
+  EXPECT_EQ(same.status, 0) << same.out << same.err;
+  EXPECT_EQ(same.out.find("warning:"), std::string::npos) << same.out;
+
+  // Another suite with one of the three cases and two of its own: 1 of 3 shared.
+  json other = makeRun();
+  other["suite"]["name"] = "elsewhere";
+  other["results"][1]["case"]["id"] = "g/shadow=none,backend=gl";
+  other["results"][2]["case"]["id"] = "g/shadow=osm,backend=gl";
+  const std::string few = write(dir / "few.json", other);
+  const auto r = runCli(compareRuns(base, few));
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("warning: the runs are of different suites (old synthetic, new elsewhere)"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("warning: the runs share only 1 of 3 cases"), std::string::npos) << r.out;
+  const auto j = runCli(compareRuns(base, few) + " --json");
+  EXPECT_EQ(j.status, 0) << j.err;
+  const json doc = json::parse(j.out);
+  EXPECT_EQ(doc["shared_cases"], 1);
+  EXPECT_EQ(doc["warnings"].size(), 2u);
+
+  // No case in common: nothing to compare.
+  other["results"][0]["case"]["id"] = "g/shadow=dom,backend=gl";
+  const std::string none = write(dir / "none.json", other);
+  const auto refused = runCli(compareRuns(base, none));
+  EXPECT_EQ(refused.status, 2) << refused.out;
+  EXPECT_NE(refused.err.find("the runs share no case"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("suite elsewhere, 3 cases"), std::string::npos) << refused.err;
+  std::filesystem::remove_all(dir);
+}
+
 TEST(CompareRunsCli, AddedRemovedAndDefinitionChanged) {
   const auto dir = tempDir("cmpruns");
   json changed = makeRun();

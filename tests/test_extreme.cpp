@@ -134,6 +134,9 @@ TEST_P(ExtremeSuite, EveryInvariantHoldsOnBothBackends) {
   EXPECT_GT(doc["results"].size(), 150u);
   std::set<std::string> backends;
   for (const auto& r : doc["results"]) {
+    // A case on drivers/mesa-25.0 where it is not installed is listed as not run (exit 0 outside
+    // CI; under CI=true the sweep exits 1 above).
+    if (r.contains("failed") && r["failed"].value("unavailable", false)) continue;
     backends.insert(r["backend"].get<std::string>());
     ASSERT_TRUE(r.contains("invariants")) << r["case"]["id"];
     ASSERT_TRUE(r.contains("error")) << r["case"]["id"];  // reported, not hidden

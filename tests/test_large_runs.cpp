@@ -7,8 +7,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <thread>
 
 #include "test_util.h"
@@ -225,6 +227,64 @@ TEST(LargeRuns, SigintStopsASweepAndResumeFinishesIt) {
   EXPECT_NE(resumed.out.find(std::to_string(done) + " already done"), std::string::npos)
       << resumed.out;
   EXPECT_EQ(json::parse(readFile(out / "results.json"))["results"].size(), 6u);
+}
+
+// One group of four cases timed in three interleaved rounds, each case a fraction of a second.
+const char* kSlowRounds = R"({
+  "name": "rounds",
+  "defaults": {"scene": "clustered:strands=400,points=6,head=0,alpha=0.2", "size": "48x48",
+               "repeat": 3, "warmup": 0, "oit": "peel"},
+  "groups": [{"name": "g", "backends": ["gl"], "axes": {"scene.seed": [1, 2, 3, 4]}}]
+})";
+
+// SIGINT inside an interleaved group (its cases' files are written when its rounds are done):
+// every case whose first round is done is kept with the rounds it had, the message counts the
+// case files, no image of an unfinished case is left, and --resume runs only the others.
+TEST(LargeRuns, SigintInsideAnInterleavedGroupKeepsItsFinishedCasesAndResumeRunsTheRest) {
+  const fs::path dir = tempDir("sigint-rounds");
+  std::ofstream(dir / "rounds.json") << kSlowRounds;
+  const fs::path out = dir / "out";
+  const Child c =
+      startCli(dir, "sweep " + (dir / "rounds.json").string() + " --out " + out.string());
+  // Stopped once the first case's images are there (its first round done).
+  const auto t0 = Clock::now();
+  while (Clock::now() - t0 < std::chrono::seconds(120)) {
+    std::error_code ec;
+    if (fs::is_directory(out / "images", ec) && !fs::is_empty(out / "images", ec)) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  const auto [status, seconds] = stopAndWait(c, SIGINT);
+  EXPECT_EQ(status, 130) << readFile(c.err);
+  EXPECT_LT(seconds, 3.0);
+  EXPECT_TRUE(temporaries(out).empty());
+  std::vector<std::string> kept;
+  for (const auto& e : fs::directory_iterator(out / "cases")) {
+    const json r = json::parse(readFile(e.path()));
+    EXPECT_GE(r["measurement"]["stopped"]["rounds"].get<int>(), 1) << e.path();
+    EXPECT_NE(r["warnings"].dump().find("the sweep was stopped"), std::string::npos);
+    kept.push_back(e.path().stem().string());
+  }
+  ASSERT_GE(kept.size(), 1u);
+  ASSERT_LT(kept.size(), 4u) << "the stop came after the first round of every case";
+  const std::string message = "stopped: " + std::to_string(kept.size()) + " of 4 cases kept";
+  EXPECT_NE(readFile(c.out).find(message), std::string::npos) << readFile(c.out);
+  for (const auto& e : fs::directory_iterator(out / "images")) {
+    const std::string name = e.path().filename().string();
+    EXPECT_TRUE(std::any_of(kept.begin(), kept.end(),
+                            [&](const std::string& k) { return name.rfind(k + ".", 0) == 0; }))
+        << name << ": the image of a case not kept";
+  }
+
+  const CliResult resumed =
+      runCli("sweep " + (dir / "rounds.json").string() + " --out " + out.string() + " --resume");
+  EXPECT_EQ(resumed.status, 0) << resumed.err;
+  EXPECT_NE(resumed.out.find(std::to_string(kept.size()) + " already done"), std::string::npos)
+      << resumed.out;
+  std::size_t ran = 0;  // one "[n/4] <id>" line per case run
+  std::istringstream lines(resumed.out);
+  for (std::string line; std::getline(lines, line);) ran += line.rfind("[", 0) == 0;
+  EXPECT_EQ(ran, 4 - kept.size()) << resumed.out;
+  EXPECT_EQ(json::parse(readFile(out / "results.json"))["results"].size(), 4u);
 }
 
 // One case that cannot run (a memory limit of 1 byte) between two that can.

@@ -351,6 +351,135 @@ TEST(Sweep, CaseLineShowsTheReportsMedian) {
   fs::remove_all(dir);
 }
 
+// A suite whose scene axis names a file: SCENE is the second scene's spec.
+std::string fileSuite(const std::string& scene) {
+  return R"({
+  "name": "files",
+  "defaults": {"size": "16x16", "repeat": 1, "warmup": 0, "backends": ["gl"]},
+  "groups": [{"name": "g", "axes": {"scene": ["straight:strands=20,points=4,head=0", ")" +
+         scene + R"(", "curly:strands=20,points=4,head=0"]}}]
+})";
+}
+
+// Every file a suite names is read before anything runs: a missing or truncated one refuses
+// the sweep (exit 2, the case and the file named, no folder, no case run).
+TEST(Sweep, AMissingOrBrokenFileIsRefusedBeforeAnythingRuns) {
+  const fs::path dir = tempDir("sweep-files");
+  std::ofstream(dir / "cut.hair", std::ios::binary) << std::string("HAIR\x05\x00", 6);
+  for (const std::string& scene :
+       {"file:path=" + (dir / "missing.hair").string(), "file:path=" + (dir / "cut.hair").string(),
+        "straight:strands=20,points=4,mesh=" + (dir / "missing.obj").string()}) {
+    const fs::path suite = writeSuite(dir, fileSuite(scene), "files.json");
+    const CliResult r = runCli("sweep " + suite.string() + " --out " + (dir / "o").string());
+    EXPECT_EQ(r.status, 2) << scene << "\n" << r.out << r.err;
+    EXPECT_NE(r.err.find("case g/scene=" + scene), std::string::npos) << r.err;
+    const std::string file = scene.substr(scene.rfind('=') + 1);
+    EXPECT_NE(r.err.find(file), std::string::npos) << r.err;
+    EXPECT_EQ(r.out.find("[1/"), std::string::npos) << "a case ran:\n" << r.out;
+    EXPECT_FALSE(fs::exists(dir / "o")) << scene;
+  }
+  fs::remove_all(dir);
+}
+
+// A case that fails only when it runs (points=1 is refused by the scene's generator) is recorded
+// with its message; the other cases run, results.json and the reports list the failure, exit 1.
+TEST(Sweep, ACaseThatFailsAtRunTimeIsRecordedAndTheOthersFinish) {
+  const fs::path dir = tempDir("sweep-runfail");
+  const fs::path suite =
+      writeSuite(dir, fileSuite("straight:strands=20,points=1,head=0"), "files.json");
+  const fs::path out = dir / "o";
+  const CliResult r = runCli("sweep " + suite.string() + " --out " + out.string());
+  EXPECT_EQ(r.status, 1) << r.out << r.err;
+  const std::string bad = "g/scene=straight:strands=20,points=1,head=0,backend=gl";
+  EXPECT_NE(r.out.find("case " + bad + " failed: "), std::string::npos) << r.out;
+  const json doc = results(out);
+  ASSERT_EQ(doc["results"].size(), 3u);
+  int failed = 0;
+  for (const auto& res : doc["results"]) {
+    if (res["case"]["id"] == bad) {
+      ASSERT_TRUE(res.contains("failed")) << res.dump();
+      EXPECT_NE(res["failed"]["reason"].get<std::string>().find("points"), std::string::npos)
+          << res["failed"].dump();
+      ++failed;
+    } else {
+      EXPECT_FALSE(res.contains("failed")) << res.dump();
+      EXPECT_TRUE(res["frame_ms"]["median"].is_number());
+    }
+  }
+  EXPECT_EQ(failed, 1);
+  for (const char* report : {"report.md", "report.html"}) {
+    const std::string text = readFile(out / report);
+    EXPECT_NE(text.find("Failed cases"), std::string::npos) << report;
+    EXPECT_NE(text.find("points=1"), std::string::npos) << report;
+  }
+  fs::remove_all(dir);
+}
+
+// A case on a driver this machine lacks (drivers/ empty here) is not run: listed with the reason
+// and scripts/drivers.sh, the others run, exit 0; --require-drivers or CI=true make it exit 1.
+// Control: a name scripts/drivers.sh does not fetch is a mistake, refused before anything runs.
+TEST(Sweep, CasesOnAMissingDriverAreListedAndFailOnlyWhenRequired) {
+  const fs::path dir = tempDir("sweep-nodriver");
+  fs::create_directories(dir / "drivers");
+  const std::string env = "-u CI SB_DRIVERS_DIR=" + (dir / "drivers").string();
+  const std::string suiteText = R"({
+    "name": "drivers",
+    "defaults": {"scene": "straight:strands=20,points=4,head=0", "size": "16x16", "repeat": 1,
+                 "warmup": 0, "backends": ["gl"]},
+    "groups": [{"name": "g", "drivers": ["system", "DRIVER"]},
+               {"name": "rq", "backends": ["vulkan"], "shadow": "rt:tier=ray_query"}]
+  })";
+  auto withDriver = [&](const std::string& d) {
+    return std::regex_replace(suiteText, std::regex("DRIVER"), d);
+  };
+  const fs::path suite = writeSuite(dir, withDriver("mesa-25.0"), "d.json");
+  const std::string missing = "g/driver=mesa-25.0,backend=gl";
+
+  const CliResult r = runCli("sweep " + suite.string() + " --out " + (dir / "a").string(), env);
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  const json doc = results(dir / "a");
+  ASSERT_EQ(doc["results"].size(), 3u);
+  // Ray queries: not run where the device lacks them (the system's Mesa 22.3 lavapipe), else run.
+  bool noRayQueries = false;
+  for (const auto& res : doc["results"]) {
+    if (res["case"]["group"] != "rq" || !res.contains("failed")) continue;
+    noRayQueries = true;
+    EXPECT_EQ(res["failed"]["unavailable"], true) << res.dump();
+    EXPECT_NE(res["failed"]["enable"].get<std::string>().find("VK_KHR_ray_query"),
+              std::string::npos);
+  }
+  EXPECT_NE(r.out.find(noRayQueries ? "2 cases not run" : "1 case not run"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("  " + missing + ": not run: unknown driver 'mesa-25.0'"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("to run them: scripts/drivers.sh"), std::string::npos) << r.out;
+  for (const auto& res : doc["results"]) {
+    if (res["case"]["group"] != "g") continue;
+    const bool isMissing = res["case"]["id"] == missing;
+    EXPECT_EQ(res.contains("failed"), isMissing) << res.dump();
+    if (isMissing) {
+      EXPECT_EQ(res["failed"]["unavailable"], true);
+    }
+  }
+  EXPECT_NE(readFile(dir / "a" / "report.md").find("scripts/drivers.sh"), std::string::npos);
+
+  const CliResult required =
+      runCli("sweep " + suite.string() + " --require-drivers --out " + (dir / "b").string(), env);
+  EXPECT_EQ(required.status, 1) << required.out << required.err;
+  EXPECT_EQ(results(dir / "b")["results"].size(), 3u);
+  const CliResult ci = runCli("sweep " + suite.string() + " --out " + (dir / "c").string(),
+                              "CI=true SB_DRIVERS_DIR=" + (dir / "drivers").string());
+  EXPECT_EQ(ci.status, 1) << ci.out << ci.err;
+  EXPECT_NE(ci.out.find("the cases not run fail the sweep"), std::string::npos) << ci.out;
+
+  const fs::path typo = writeSuite(dir, withDriver("mesa-25.O"), "typo.json");
+  const CliResult t = runCli("sweep " + typo.string() + " --out " + (dir / "t").string(), env);
+  EXPECT_EQ(t.status, 2) << t.out;
+  EXPECT_NE(t.err.find("unknown driver 'mesa-25.O'"), std::string::npos) << t.err;
+  EXPECT_FALSE(fs::exists(dir / "t"));
+  fs::remove_all(dir);
+}
+
 TEST(Sweep, BadInputExitsTwoAndWritesNothing) {
   const fs::path dir = tempDir("sweep-bad");
   const fs::path bad =

@@ -32,8 +32,11 @@ TierOptions readTierOptions(const OptionReader& o) {
 
 bool useRayQueries(Tier tier, const DeviceInfo& info, const std::string& technique) {
   if (tier == Tier::RayQuery && !info.rayQuery)
-    throw InputError(technique + ": tier=ray_query: this device (" + info.backend + ", " +
-                     info.device + ") offers no VK_KHR_ray_query (use tier=software or auto)");
+    throw UnavailableError(technique + ": tier=ray_query: this device (" + info.backend + ", " +
+                               info.device +
+                               ") offers no VK_KHR_ray_query (use tier=software or auto)",
+                           "a Vulkan device with VK_KHR_ray_query, e.g. Mesa 25.0's lavapipe "
+                           "(--driver mesa-25.0; scripts/drivers.sh fetches it)");
   return tier == Tier::RayQuery || (tier == Tier::Auto && info.rayQuery);
 }
 
