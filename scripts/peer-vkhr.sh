@@ -6,7 +6,8 @@
 # in rounds, and writes the table into docs/peer-vkhr-measured.md. docs/peers.md says more.
 #
 #   scripts/peer-vkhr.sh VKHR_SRC [peer-vkhr.py options: --rounds N --frames N --repeat N
-#                                  --rows LIST --hair FILE --raymarch --doc FILE|--no-doc]
+#     --rows matched:640x360,thin:640x360,raymarch:320x180,... --hair FILE --alpha A
+#     --block NAME --doc FILE | --no-doc]   (scripts/peer-vkhr.py --help says each)
 #
 # VKHR_SRC: a vkhr source checkout (git clone https://github.com/CaffeineViking/vkhr; its
 # submodules and large files are not needed). strandbench is not in it and it is not changed:
@@ -15,7 +16,7 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
 
-usage() { sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//' >&2; }
+usage() { sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//' >&2; }
 if [ $# -lt 1 ] || [ "${1:-}" = "-h" ] || [ "${1:-}" = "--help" ]; then
   usage
   exit 2
