@@ -45,6 +45,32 @@ def render(binary, args):
     return d["frame_ms"]["median"], {p["name"]: p["ms"]["median"] for p in d["passes"]}
 
 
+# Two-sided 95% quantiles of Student's t for 1..30 degrees of freedom (beyond: 1.96 + 2.4/df).
+T975 = [12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228, 2.201, 2.179,
+        2.160, 2.145, 2.131, 2.120, 2.110, 2.101, 2.093, 2.086, 2.080, 2.074, 2.069, 2.064,
+        2.060, 2.056, 2.052, 2.048, 2.045, 2.042]
+
+
+def t975(df):
+    return T975[df - 1] if df <= len(T975) else 1.96 + 2.4 / df
+
+
+def mean_interval(values):
+    """Mean and its 95% t-interval over rounds (None, None for the bounds with one value)."""
+    m = statistics.fmean(values)
+    if len(values) < 2:
+        return m, None, None
+    h = t975(len(values) - 1) * statistics.stdev(values) / math.sqrt(len(values))
+    return m, m - h, m + h
+
+
+def ratio_interval(ratios):
+    """Geometric mean of paired ratios (one per interleaved round) and its 95% t-interval,
+    taken on the log ratios: a ratio and its inverse get mirrored intervals."""
+    m, lo, hi = mean_interval([math.log(r) for r in ratios])
+    return math.exp(m), (math.exp(lo) if lo is not None else None), (math.exp(hi) if hi is not None else None)
+
+
 def signed_rank_p(logs):
     """One-sided exact Wilcoxon signed-rank p-value for 'logs are > 0'."""
     d = [x for x in logs if x != 0.0]
