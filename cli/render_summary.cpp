@@ -46,7 +46,7 @@ void printRenderSummary(std::ostream& out, const RenderRequest& req, const Rende
       << req.height << "\n";
   if (!r.tier.empty()) out << "  tier " << r.tier << " (" << r.tierReason << ")\n";
   if (!r.scene.up.empty())
-    out << "  file turned to y-up from " << r.scene.up << " (" << r.scene.upReason
+    out << "  file's up axis " << r.scene.up << ", turned to +y (" << r.scene.upReason
         << "); thickness: " << r.scene.thicknessSource << "\n";
   std::size_t width = 5;  // "frame"
   for (const PassTimes& p : r.passes) width = std::max(width, p.name.size());
