@@ -313,6 +313,9 @@ struct DeviceInfo {
   // queue's timestampValidBits; GL: core since 3.3). Pipeline statistics: `counters`.
   bool rayQuery = false;
   bool meshShaders = false;
+  // A device that runs on the CPU (Vulkan: VK_PHYSICAL_DEVICE_TYPE_CPU, lavapipe; GL:
+  // llvmpipe or softpipe): what is fast there differs from a GPU (rt's tier=auto).
+  bool cpuDevice = false;
   bool timestamps = false;
   // The sample counts a texture may have, as a mask of the counts themselves
   // (bit value 4 = 4 samples, like VkSampleCountFlags): those every float and

@@ -14,6 +14,7 @@
 #include "backends/device.h"
 #include "backends/driver_env.h"
 #include "cli/render_summary.h"
+#include "harness/reference_spec.h"
 #include "harness/render.h"
 #include "harness/settings.h"
 #include "harness/stop.h"
@@ -162,9 +163,10 @@ void registerRender(CLI::App& app) {
                   "write the timed frames' passes as a Chrome/Perfetto trace (.json; open in "
                   "ui.perfetto.dev or chrome://tracing)");
   cmd->add_option("--reference-out", *referenceOut,
-                  "with --reference: write the reference image; each further reference "
-                  "(--reference aa:samples=4) beside it, its name before the extension "
-                  "(exact.png: exact.aa.png)");
+                  "with --reference: write the reference asked for (the exact one; with "
+                  "only further ones, --reference aa:samples=4, the first of those); each "
+                  "other one asked for beside it, its name before the extension (ref.png: "
+                  "ref.aa.png)");
   cmd->add_option("--strip", *strip,
                   "with --animate: write up to four frames side by side, the technique's above "
                   "the reference's");
@@ -214,14 +216,27 @@ void registerRender(CLI::App& app) {
       };
       try {
         write(*out, [&]() -> const Image& { return result.image; });
-        write(*referenceOut, [&]() -> const Image& { return result.referenceImage; });
+        // --reference-out holds the reference the user asked for: the exact one when
+        // named (bare --reference, or exact), else the first further one; the exact one
+        // is then rendered only to measure against, and not written.
+        const CLI::Option* asked = cmd->get_option("--reference");
+        bool exactAsked = asked->results().size() < asked->count();  // bare, no value
+        for (const std::string& t : asked->results())
+          exactAsked |= t.empty() || parseReferenceSpec(t).name == "exact";
+        std::vector<std::pair<std::string, const Image*>> refs;  // name, image
+        if (exactAsked || result.moreReferences.empty())
+          refs.emplace_back("exact", &result.referenceImage);
         for (const RenderResult::MoreReference& m : result.moreReferences)
-          if (!referenceOut->empty()) {
-            const fs::path p(*referenceOut);
-            write((p.parent_path() / (p.stem().string() + "." + m.name + p.extension().string()))
-                      .string(),
-                  [&]() -> const Image& { return m.referenceImage; });
-          }
+          refs.emplace_back(m.name, &m.referenceImage);
+        if (!referenceOut->empty()) {
+          const fs::path p(*referenceOut);
+          for (std::size_t i = 0; i < refs.size(); ++i)
+            write(i == 0 ? p.string()
+                         : (p.parent_path() /
+                            (p.stem().string() + "." + refs[i].first + p.extension().string()))
+                               .string(),
+                  [&]() -> const Image& { return *refs[i].second; });
+        }
         write(*heatmap, [&] { return diffHeatmap(result.image, result.referenceImage, 0.25); });
         write(*flipMap, [&] { return flipErrorImage(*result.flip); });
         write(*strip, [&] { return animationStrip(*result.animation); });

@@ -310,6 +310,7 @@ int runFigure(const FigureOptions& o) {
     SweepOptions so;
     so.suitePath = suiteFile.string();
     so.out = tmp.string();
+    so.shownOut = out.string();  // tmp is renamed to it when the figure is done
     so.progressBar = o.progressBar;
     so.minReps = o.minReps;
     const int status = runSweep(so);

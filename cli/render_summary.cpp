@@ -44,6 +44,10 @@ void printRenderSummary(std::ostream& out, const RenderRequest& req, const Rende
       << r.device.backend << "/" << r.device.platform << " (" << r.device.device << ") | "
       << r.scene.segments << " segments | " << req.primitive << " | " << req.width << "x"
       << req.height << "\n";
+  if (!r.tier.empty()) out << "  tier " << r.tier << " (" << r.tierReason << ")\n";
+  if (!r.scene.up.empty())
+    out << "  file's up axis " << r.scene.up << ", turned to +y (" << r.scene.upReason
+        << "); thickness: " << r.scene.thicknessSource << "\n";
   std::size_t width = 5;  // "frame"
   for (const PassTimes& p : r.passes) width = std::max(width, p.name.size());
   auto row = [&](const std::string& name, const std::string& median, const std::string& range) {

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "base/fnv.h"
+#include "harness/setting_values.h"
 #include "harness/stop.h"
 #include "reports/files.h"
 #include "techniques/common/unit.h"
@@ -73,7 +74,8 @@ std::string cacheKeyText(const Scene& scene, const RenderSettings& s, const Spec
   h = fnvVector(h, st.pointCount);
   h = fnvVector(h, st.points);
   h = fnvVector(h, st.colors);
-  h = fnvVector(h, st.thickness);
+  // A fallback thickness is not drawn (the world width takes the reference's own).
+  if (!st.thicknessFallback) h = fnvVector(h, st.thickness);
   h = fnvVector(h, st.transparency);
   h = fnvVector(h, scene.mesh.positions);
   h = fnvVector(h, scene.mesh.normals);
@@ -273,7 +275,7 @@ pbr::TraceGeometry pbrGeometry(const Scene& scene, const RenderSettings& s, cons
   if (pbrWidthModel(spec) == "world") {
     const float fallback = static_cast<float>(pbrThickness(scene, s, spec));
     for (std::size_t i = 0; i < st.points.size(); ++i) {
-      const float t = i < st.thickness.size() ? st.thickness[i] : 0.0f;
+      const float t = i < st.thickness.size() && !st.thicknessFallback ? st.thickness[i] : 0.0f;
       g.radius[i] = 0.5f * (t > 0 ? t : fallback);
     }
     return g;
@@ -316,16 +318,25 @@ RenderResult::MoreReference renderPbrReference(const Scene& scene, const RenderS
                     : spec.mode == "single"      ? "attenuated by each fibre's transmittance"
                                                  : "opaque (transmission is scattering)";
   if (info.width == "world") {
-    // The strands' own widths where they have them (their mean), else the fallback.
+    // The strands' own widths where they have them (their mean), else the fallback; a
+    // loader's stand-in for a width the file did not give is not the strands' own.
     double sum = 0;
     std::size_t own = 0;
-    for (float t : scene.strands.thickness)
-      if (t > 0) {
-        sum += t;
-        ++own;
-      }
+    if (!scene.strands.thicknessFallback)
+      for (float t : scene.strands.thickness)
+        if (t > 0) {
+          sum += t;
+          ++own;
+        }
     info.thicknessSource = own ? "strands" : "fallback";
     info.thickness = own ? sum / double(own) : pbrThickness(scene, s, spec);
+    if (scene.strands.thicknessFallback)
+      m.warnings.push_back(
+          "the strand file gives no thickness: the path reference's strands are " +
+          setting_values::numberText(info.thickness) + " world units wide, its fallback (" +
+          (spec.thickness > 0 ? "thickness="
+                              : "one pixel at the scene's centre; thickness= sets it") +
+          ")");
   }
   if (info.width == "footprint") m.lightSize = static_cast<uint32_t>(mapSize(refShadow));
 

@@ -265,8 +265,12 @@ class RenderProgress {
   RenderProgress& operator=(const RenderProgress&) = delete;
 
   // A new piece of work ("frame 3/10"); `layers` from the counting pass (0: none).
-  void phase(std::string text, uint32_t layers = 0) {
-    if (passes_) lastPasses_ = passes_;
+  // `frame`: a warm-up or timed frame, which does the same passes as the frame before
+  // it, so that one's count is this one's total; other work (setup, the reference) has
+  // passes of its own, with no total known.
+  void phase(std::string text, uint32_t layers = 0, bool frame = false) {
+    lastPasses_ = frame && frame_ ? passes_ : 0;
+    frame_ = frame;
     phase_ = std::move(text);
     layers_ = layers;
     passes_ = layer_ = 0;
@@ -281,7 +285,7 @@ class RenderProgress {
     // ".advance" dispatch.
     if (pass.size() > 8 && pass.compare(pass.size() - 8, 8, ".advance") == 0) ++layer_;
     std::string text = phase_ + ", pass " + std::to_string(passes_);
-    if (lastPasses_) text += "/" + std::to_string(lastPasses_);
+    if (lastPasses_ >= passes_) text += "/" + std::to_string(lastPasses_);
     if (layer_) {
       text += ", layer " + std::to_string(layer_);
       if (layers_) text += " of up to " + std::to_string(layers_);
@@ -294,6 +298,7 @@ class RenderProgress {
   std::string phase_ = "setup";
   uint32_t layers_ = 0, layer_ = 0;
   std::size_t passes_ = 0, lastPasses_ = 0;
+  bool frame_ = false;  // the current phase is a warm-up or timed frame
 };
 
 uint32_t peelLayers(const std::optional<DepthComplexity>& c) { return c ? c->max : 0; }
@@ -391,12 +396,13 @@ void frames(const RenderRequest& req, Plan& p, const RunDevice& d, RenderProgres
   };
   for (int i = 0; i < req.warmup; ++i) {
     progress.phase("warm-up frame " + std::to_string(i + 1) + "/" + std::to_string(req.warmup),
-                   p.layers);
+                   p.layers, true);
     renderer.renderFrame(p.timed);
     if (d.window) present(nullptr);
   }
   for (int i = 0; i < req.repeat; ++i) {
-    progress.phase("frame " + std::to_string(i + 1) + "/" + std::to_string(req.repeat), p.layers);
+    progress.phase("frame " + std::to_string(i + 1) + "/" + std::to_string(req.repeat), p.layers,
+                   true);
     double total = 0;
     for (const auto& t : renderer.renderFrame(p.timed)) {
       auto pass = std::find_if(out.passes.begin(), out.passes.end(),
@@ -456,10 +462,13 @@ void outputs(const RenderRequest& req, const Validated& v, Plan& p, Device& dev,
     if (!why.empty()) out.timingEmulated += (out.timingEmulated.empty() ? "" : "; ") + why;
   if (!out.timingEmulated.empty())
     out.warnings.push_back("timing emulated, not a real cost: " + out.timingEmulated);
-  const std::string shadowTier = renderer.shadow().tier(), oitTier = renderer.oit().tier();
-  out.tier = shadowTier.empty() || oitTier.empty() || shadowTier == oitTier
-                 ? (shadowTier.empty() ? oitTier : shadowTier)
-                 : "shadow " + shadowTier + ", oit " + oitTier;
+  // One text where the two agree (or one has no tiers), else each named.
+  const auto both = [](const std::string& shadow, const std::string& oit, const char* sep) {
+    return shadow.empty() || oit.empty() || shadow == oit ? (shadow.empty() ? oit : shadow)
+                                                          : "shadow " + shadow + sep + "oit " + oit;
+  };
+  out.tier = both(renderer.shadow().tier(), renderer.oit().tier(), ", ");
+  out.tierReason = both(renderer.shadow().tierReason(), renderer.oit().tierReason(), "; ");
 
   out.device = dev.info();
   out.scene = {req.scene,
@@ -467,7 +476,10 @@ void outputs(const RenderRequest& req, const Validated& v, Plan& p, Device& dev,
                scene.strands.points.size(),
                scene.strands.segmentCount(),
                scene.mesh.triangleCount(),
-               scene.bounds()};
+               scene.bounds(),
+               scene.up,
+               scene.upReason,
+               scene.strands.thicknessFallback ? "fallback" : "strands"};
   out.shadow = v.shadow.str();
   out.oit = v.oit.str();
   out.shading = v.settings.shading.spec;

@@ -114,6 +114,9 @@ struct SceneSummary {
   std::string spec;
   std::size_t strands = 0, points = 0, segments = 0, meshTriangles = 0;
   Bounds bounds;
+  std::string up, upReason;  // files: Scene::up, Scene::upReason
+  // "strands" (the file's or the generator's) or "fallback" (Strands::thicknessFallback)
+  std::string thicknessSource;
 };
 
 // Visibility along the probe ray: the exact curve and the technique's.
@@ -255,7 +258,9 @@ struct RenderResult {
   std::string timingEmulated;
   // The tier the techniques ran (ShadowTechnique::tier, OitTechnique::tier):
   // "software" or "ray_query"; both named when they differ; empty without tiers.
-  std::string tier;
+  // tierReason: why (tier=auto's rule for the device, or the tier asked for), each
+  // technique's named when they differ.
+  std::string tier, tierReason;
 
   // With extra lights: each light's share of the timed frames (the key light
   // first), told apart by the names of passes and resources

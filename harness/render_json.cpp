@@ -137,7 +137,12 @@ nlohmann::json renderJson(const RenderResult& r) {
                 {"points", r.scene.points},
                 {"segments", r.scene.segments},
                 {"mesh_triangles", r.scene.meshTriangles},
-                {"bounds", boundsJson(r.scene.bounds)}};
+                {"bounds", boundsJson(r.scene.bounds)},
+                {"thickness_source", r.scene.thicknessSource}};
+  if (!r.scene.up.empty()) {
+    j["scene"]["up"] = r.scene.up;
+    j["scene"]["up_reason"] = r.scene.upReason;
+  }
   j["shadow"] = r.shadow;
   j["oit"] = r.oit;
   j["shading"] = r.shading;
@@ -221,6 +226,7 @@ nlohmann::json renderJson(const RenderResult& r) {
   }
   if (!r.timingEmulated.empty()) j["timing_emulated"] = r.timingEmulated;
   if (!r.tier.empty()) j["tier"] = r.tier;
+  if (!r.tierReason.empty()) j["tier_reason"] = r.tierReason;
   if (r.validationMessages) j["validation_messages"] = *r.validationMessages;
   if (r.presented) {
     // frame_ms plus the present: the frame time with presentation included.

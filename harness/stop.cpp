@@ -4,6 +4,7 @@
 
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 
 #include "base/errors.h"
 
@@ -14,6 +15,16 @@ volatile std::sig_atomic_t gStop = 0;
 bool gProgressLines = true;
 
 extern "C" void onStopSignal(int sig) { gStop = sig; }
+
+// Off a terminal, a line at most this often: a log of an overnight run stays short.
+constexpr double kPlainProgressSeconds = 5.0;
+
+double plainProgressSeconds() {
+  const char* s = std::getenv("SB_PROGRESS_SECONDS");
+  char* end = nullptr;
+  const double v = s ? std::strtod(s, &end) : -1.0;
+  return s && *s && *end == '\0' && v >= 0.0 ? v : kPlainProgressSeconds;
+}
 
 }  // namespace
 
@@ -40,18 +51,28 @@ void ProgressLine::enable(bool on) { gProgressLines = on; }
 
 ProgressLine::ProgressLine(std::string what)
     : what_(std::move(what)),
-      enabled_(gProgressLines && ::isatty(STDERR_FILENO) != 0),
+      enabled_(gProgressLines),
+      terminal_(::isatty(STDERR_FILENO) != 0),
+      plainSeconds_(terminal_ ? 0.0 : plainProgressSeconds()),
       start_(std::chrono::steady_clock::now()),
       last_(start_) {}
 
 ProgressLine::~ProgressLine() {
-  if (shown_) std::fprintf(stderr, "\r\033[K");
+  if (shown_ && terminal_) std::fprintf(stderr, "\r\033[K");
 }
 
 void ProgressLine::update(const std::string& text) {
   if (!enabled_) return;
   const auto now = std::chrono::steady_clock::now();
   const double elapsed = std::chrono::duration<double>(now - start_).count();
+  if (!terminal_) {
+    // A plain line each plainSeconds_, the first after as long (short work shows nothing).
+    if (std::chrono::duration<double>(now - last_).count() < plainSeconds_) return;
+    last_ = now;
+    std::fprintf(stderr, "%s: %s, %.0f s\n", what_.c_str(), text.c_str(), elapsed);
+    std::fflush(stderr);
+    return;
+  }
   // Short work shows nothing; a shown line is redrawn at most 5 times a second.
   if (elapsed < 2.0 || (shown_ && now - last_ < std::chrono::milliseconds(200))) return;
   last_ = now;

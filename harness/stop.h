@@ -19,9 +19,11 @@ void throwIfStopped();
 // For tests: forget a stop asked for earlier.
 void clearStop();
 
-// One line on stderr, rewritten in place, for work that has taken more than
-// about two seconds, and only when stderr is a terminal (off a terminal it
-// prints nothing, so stdout's JSON and logs stay clean). Cleared when done.
+// Progress of long work on stderr (never stdout: its JSON stays clean). On a
+// terminal: one line rewritten in place once the work has taken about two
+// seconds, cleared when done. Off a terminal (a log, a pipe, a batch job): a
+// plain line every few seconds (kPlainProgressSeconds; SB_PROGRESS_SECONDS=S
+// sets it, 0: every update), so a long run never looks hung.
 class ProgressLine {
  public:
   // Off while a caller draws its own line on the terminal (the sweep's bar).
@@ -37,7 +39,8 @@ class ProgressLine {
 
  private:
   std::string what_;
-  bool enabled_ = false, shown_ = false;
+  bool enabled_ = false, terminal_ = false, shown_ = false;
+  double plainSeconds_ = 0;  // off a terminal: the least time between two lines
   std::chrono::steady_clock::time_point start_, last_;
 };
 

@@ -67,6 +67,9 @@ bool caseDone(const fs::path& file) {
   }
 }
 
+// The folder the messages name (SweepOptions::shownOut).
+fs::path shownDir(const SweepOptions& o) { return o.shownOut.empty() ? o.out : o.shownOut; }
+
 fs::path caseFile(const fs::path& dir, const SweepCase& c) {
   return dir / "cases" / (c.stem + ".json");
 }
@@ -465,7 +468,7 @@ int runSweep(const SweepOptions& o) {
   }
   if (selected.empty() && !o.driverCasesOnly) {
     const int n = writeSweepReport(o.out);
-    std::cout << "wrote " << (dir / "results.json").string() << " (" << n << " results)\n";
+    std::cout << "wrote " << (shownDir(o) / "results.json").string() << " (" << n << " results)\n";
     for (const auto& f : failedDrivers) std::cout << "failed: " << f << "\n";
     return notRunSummary(failedDrivers.empty() ? 0 : 1);
   }
@@ -482,7 +485,7 @@ int runSweep(const SweepOptions& o) {
   std::cout << "sweep " << suite.name << ": " << total << " cases";
   if (o.shardCount > 1) std::cout << " (shard " << o.shardIndex << "/" << o.shardCount << ")";
   if (done) std::cout << ", " << done << " already done";
-  std::cout << " -> " << o.out << "\n" << std::flush;
+  std::cout << " -> " << shownDir(o).string() << "\n" << std::flush;
 
   RenderCache cache;
   std::vector<std::string> failures;
@@ -645,7 +648,7 @@ int runSweep(const SweepOptions& o) {
     return notRun && o.requireParts ? 1 : 0;
   }
   const int n = writeSweepReport(o.out);
-  std::cout << "wrote " << (dir / "results.json").string() << " (" << n
+  std::cout << "wrote " << (shownDir(o) / "results.json").string() << " (" << n
             << " results), results.csv, passes.csv, cost_model.json, report.md, report.html\n";
   for (const auto& f : failedDrivers) failures.push_back("failed: " + f);
   // Cases done by an earlier run count too: a resumed sweep reports them.

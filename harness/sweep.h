@@ -16,6 +16,9 @@ namespace sb {
 struct SweepOptions {
   std::string suitePath;
   std::string out;
+  // The folder the messages name, where the sweep writes into a temporary one that is
+  // renamed to it afterwards (figure); empty: out.
+  std::string shownOut;
   std::string filter;  // regex on case ids; empty: all
   bool resume = false;
   int shardIndex = 1, shardCount = 1;  // --shard I/N, I in 1..N

@@ -144,7 +144,7 @@ CostModel fitOne(const std::string& backend, const std::string& device,
              std::to_string(used.size() + 2) + " needed for " + std::to_string(used.size()) +
              " terms" + (m.note.empty() ? "" : "; " + m.note);
     for (const Sample& s : samples)
-      m.cases.push_back({caseId(*s.r), shortTechniqueOf(*s.r, true), s.ms, {}, {}, false});
+      m.cases.push_back({caseId(*s.r), shortTechniqueOf(*s.r, true, true), s.ms, {}, {}, false});
     return m;
   }
   std::vector<std::vector<double>> rows;
@@ -224,7 +224,7 @@ CostModel fitOne(const std::string& backend, const std::string& device,
   m.fitCases = static_cast<int>(std::count(keep.begin(), keep.end(), true));
   for (std::size_t i = 0; i < n; ++i) {
     CostCase c{caseId(*samples[i].r),
-               shortTechniqueOf(*samples[i].r, true),
+               shortTechniqueOf(*samples[i].r, true, true),
                y[i],
                predicted[i],
                {},

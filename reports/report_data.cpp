@@ -234,7 +234,7 @@ void buildPassesTable(Group& g) {
   std::vector<std::string> params;
   for (const std::string& k : g.params)
     if (k != "backend") params.push_back(k);
-  const bool nameOit = anyTransparency(g.results);
+  const bool nameOit = anyTransparency(g.results), nameShadow = anyShadow(g.results);
   // The case by what varies within the group (its id repeats the group and backend).
   auto labelOf = [&](const json& r) {
     std::string label;
@@ -264,7 +264,7 @@ void buildPassesTable(Group& g) {
     const std::string label = labelOf(*r);
     for (const json& p : *passes) {
       std::vector<Cell> row = {{label}, {backendOf(*r)}};
-      if (techniqueColumn) row.push_back({shortTechniqueOf(*r, nameOit)});
+      if (techniqueColumn) row.push_back({shortTechniqueOf(*r, nameOit, nameShadow)});
       row.insert(row.end(), {{orDefault(text(find(p, {"name"})), kNone)},
                              {orDefault(text(find(p, {"executions"})), kNone), true},
                              num(number(find(p, {"ms", "median"})))});
@@ -393,7 +393,7 @@ BudgetTable buildBudgetTable(const std::string& key, const std::vector<const jso
     for (const Pick& p : *f) budgets.push_back(p.ms);
   std::sort(budgets.begin(), budgets.end());
   budgets.erase(std::unique(budgets.begin(), budgets.end()), budgets.end());
-  const bool nameOit = anyTransparency(results);
+  const bool nameOit = anyTransparency(results), nameShadow = anyShadow(results);
   b.table.header = {"Frame-time budget (ms)", "Most accurate by FLIP", "FLIP mean",
                     "Most accurate by image RMSE", "Image RMSE"};
   // The frontier is sorted by time with falling error: the last that fits is the best.
@@ -407,7 +407,7 @@ BudgetTable buildBudgetTable(const std::string& key, const std::vector<const jso
     std::vector<Cell> row = {{"≤ " + formatSig(budget), true}};
     for (const auto* front : {&byFlip, &byRmse}) {
       const Pick* p = best(*front, budget);
-      row.push_back({p ? shortTechniqueOf(*p->result, nameOit) : kNone});
+      row.push_back({p ? shortTechniqueOf(*p->result, nameOit, nameShadow) : kNone});
       row.push_back(num(p ? std::optional<double>(p->error) : std::nullopt));
     }
     b.table.rows.push_back(std::move(row));
@@ -417,16 +417,23 @@ BudgetTable buildBudgetTable(const std::string& key, const std::vector<const jso
 
 }  // namespace
 
-std::string shortTechniqueOf(const json& r, bool nameOit) {
+std::string shortTechniqueOf(const json& r, bool nameOit, bool nameShadow) {
   const std::string shadow = orDefault(text(find(r, {"shadow"})), "?");
   const std::string oit = orDefault(text(find(r, {"oit"})), "none");
   if (oit == "none" && !nameOit) return shadow;
-  return shadow == "none" ? oit : oit + " + " + shadow;
+  if (shadow == "none" && (!nameShadow || oit == "none")) return oit;
+  return oit + " + " + shadow;
 }
 
 bool anyTransparency(const std::vector<const json*>& results) {
   return std::any_of(results.begin(), results.end(), [](const json* r) {
     return orDefault(text(find(*r, {"oit"})), "none") != "none";
+  });
+}
+
+bool anyShadow(const std::vector<const json*>& results) {
+  return std::any_of(results.begin(), results.end(), [](const json* r) {
+    return orDefault(text(find(*r, {"shadow"})), "none") != "none";
   });
 }
 
@@ -667,11 +674,11 @@ ReportData buildReport(const json& doc) {
   d.animationTable.header = {
       "Case",          "Technique",          "Animation",      "Frames",
       "Flicker image", "Flicker visibility", "FLIP per frame", "Visibility RMSE per frame"};
-  const bool nameOit = anyTransparency(d.results);
+  const bool nameOit = anyTransparency(d.results), nameShadow = anyShadow(d.results);
   for (const json* r : d.results) {
     const json* a = find(*r, {"animation"});
     if (!a || !a->is_object()) continue;
-    Animation an{r, caseId(*r), shortTechniqueOf(*r, nameOit),
+    Animation an{r, caseId(*r), shortTechniqueOf(*r, nameOit, nameShadow),
                  text(find(*a, {"kind"})) + ":frames=" + text(find(*a, {"frames"})) +
                      ",degrees=" + text(find(*a, {"degrees"}))};
     std::string flips, vis;

@@ -56,11 +56,13 @@ std::string failureOf(const json& r);
 // when oit is not none, else the shadow technique; with `nameOit`, "none + dom"
 // then, so that a point without transparency is not read as one with a
 // transparency technique of the shadow's name ("occupancy" beside
-// "occupancy + occupancy").
-std::string shortTechniqueOf(const json& r, bool nameOit = false);
-// Whether any of `results` has a transparency technique: the `nameOit` of the
-// labels shown together with theirs.
+// "occupancy + occupancy"). Likewise with `nameShadow`, "abuffer + none" for a
+// point without shadows beside "abuffer + dom" ones, not "abuffer".
+std::string shortTechniqueOf(const json& r, bool nameOit = false, bool nameShadow = false);
+// Whether any of `results` has a transparency technique / a shadow technique: the
+// `nameOit` / `nameShadow` of the labels shown together with theirs.
 bool anyTransparency(const std::vector<const json*>& results);
+bool anyShadow(const std::vector<const json*>& results);
 // The results' "scene | size | backend": cases whose times and errors compare.
 std::string comparableKey(const json& r);
 // Median frame time in ms / total memory in MiB, when present and finite.

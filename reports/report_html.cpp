@@ -142,11 +142,11 @@ const ErrorMetric kErrorMetrics[] = {
 // frame, at a glance, above the group's table of passes.
 std::string passBars(const Group& g) {
   StackedBars b{g.name + ": frame time by pass", "ms (median per pass)", {}, {}};
-  const bool nameOit = anyTransparency(g.results);
+  const bool nameOit = anyTransparency(g.results), nameShadow = anyShadow(g.results);
   for (const json* r : g.results) {
     const json* passes = find(*r, {"passes"});
     if (!passes || !passes->is_array()) continue;
-    StackedBars::Row row{shortTechniqueOf(*r, nameOit) + ", " + backendOf(*r), {}};
+    StackedBars::Row row{shortTechniqueOf(*r, nameOit, nameShadow) + ", " + backendOf(*r), {}};
     for (const json& p : *passes) {
       const std::string name = text(find(p, {"name"}));
       const auto at = std::find(b.parts.begin(), b.parts.end(), name) - b.parts.begin();
@@ -197,7 +197,7 @@ std::string errorTimeCharts(const ReportData& d) {
   for (const std::string& key : keys) {
     std::ostringstream charts, radios;
     int shown = 0;
-    const bool nameOit = anyTransparency(byKey[key]);
+    const bool nameOit = anyTransparency(byKey[key]), nameShadow = anyShadow(byKey[key]);
     for (std::size_t m = 0; m < std::size(kErrorMetrics); ++m) {
       const ErrorMetric& metric = kErrorMetrics[m];
       Chart c;
@@ -218,7 +218,7 @@ std::string errorTimeCharts(const ReportData& d) {
         ChartPoint p{*ms, *err,
                      techniqueOf(*r) + "\n" + caseId(*r) + "\n" + formatSig(*ms) + " ms, " +
                          metric.label + " " + formatSig(*err),
-                     shortTechniqueOf(*r, nameOit)};
+                     shortTechniqueOf(*r, nameOit, nameShadow)};
         const auto lo = number(find(*r, {"frame_ms", "min"}));
         const auto hi = number(find(*r, {"frame_ms", "max"}));
         if (lo && hi) p.xLo = *lo, p.xHi = *hi;
@@ -255,12 +255,12 @@ std::string errorTimeCharts(const ReportData& d) {
 std::string depthComplexityCharts(const ReportData& d) {
   std::vector<std::string> keys;
   std::map<std::string, std::vector<const json*>> byKey;
-  const bool nameOit = anyTransparency(d.results);
+  const bool nameOit = anyTransparency(d.results), nameShadow = anyShadow(d.results);
   for (const json* r : d.results) {
     const json* buckets = find(*r, {"error", "by_eye_layers"});
     if (!buckets || !buckets->is_array()) continue;
     const std::string key = text(find(*r, {"scene", "spec"})) + " | " + sizeOf(*r) + " | " +
-                            shortTechniqueOf(*r, nameOit);
+                            shortTechniqueOf(*r, nameOit, nameShadow);
     if (!byKey.count(key)) keys.push_back(key);
     byKey[key].push_back(r);
   }
@@ -270,8 +270,26 @@ std::string depthComplexityCharts(const ReportData& d) {
     const char* metric = image ? "flip_mean" : "visibility_mean_abs";
     Chart c{key, "eye layers (bucket's first)", image ? "mean FLIP" : "mean |visibility error|"};
     c.cssClass = "chart-depth-complexity";
+    // A series per case: its backend, and what else tells it from the key's other cases
+    // (the legend names each once: not "gl, vulkan, gl").
+    std::vector<std::string> differ;
+    for (const json* r : byKey[key])
+      if (const json* params = find(*r, {"case", "params"}); params && params->is_object())
+        for (const auto& [k, v] : params->items())
+          if (k != "backend" && std::find(differ.begin(), differ.end(), k) == differ.end() &&
+              std::any_of(byKey[key].begin(), byKey[key].end(),
+                          [&, &k = k, &v = v](const json* other) {
+                            const json* ov = find(*other, {"case", "params", k});
+                            return !ov || *ov != v;
+                          }))
+            differ.push_back(k);
+    std::sort(differ.begin(), differ.end());
+    std::map<std::string, int> named;
     for (const json* r : byKey[key]) {
-      ChartSeries s{backendOf(*r)};
+      std::string name = backendOf(*r);
+      if (!differ.empty()) name += ", " + paramsLabel(*r, differ);
+      if (const int n = ++named[name]; n > 1) name += " (" + std::to_string(n) + ")";
+      ChartSeries s{name};
       for (const json& b : *find(*r, {"error", "by_eye_layers"})) {
         const json* layers = find(b, {"layers"});
         if (!layers || !layers->is_array() || layers->size() != 2) continue;

@@ -149,15 +149,18 @@ std::string renderPassesCsv(const ReportData& d) {
   o << "case_id,backend,technique,pass,executions,ms_median";
   for (const WorkColumn& c : kWorkColumns) o << "," << c.key;
   o << "\n";
-  const bool nameOit = anyTransparency(d.results);
+  const bool nameOit = anyTransparency(d.results), nameShadow = anyShadow(d.results);
   for (const json* r : d.results) {
     const json* passes = find(*r, {"passes"});
     if (!passes || !passes->is_array()) continue;
     for (const json& p : *passes) {
       auto n = [](const json* v) { return v && v->is_number() ? text(v) : std::string(); };
-      std::vector<std::string> row = {text(find(*r, {"case", "id"})), backendOf(*r),
-                                      shortTechniqueOf(*r, nameOit),  text(find(p, {"name"})),
-                                      n(find(p, {"executions"})),     n(find(p, {"ms", "median"}))};
+      std::vector<std::string> row = {text(find(*r, {"case", "id"})),
+                                      backendOf(*r),
+                                      shortTechniqueOf(*r, nameOit, nameShadow),
+                                      text(find(p, {"name"})),
+                                      n(find(p, {"executions"})),
+                                      n(find(p, {"ms", "median"}))};
       for (const WorkColumn& c : kWorkColumns) row.push_back(n(find(p, {"work", c.key})));
       for (std::size_t i = 0; i < row.size(); ++i) o << (i ? "," : "") << csvField(row[i]);
       o << "\n";

@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <functional>
 #include <limits>
 #include <new>
@@ -109,7 +111,9 @@ std::vector<SceneInfo> buildCatalog() {
                 {"shadow_alpha", "0.5", "per-fragment shadow opacity in [0,1]"},
                 {"up", "auto",
                  "the file's up axis, turned to +y: auto (z for .hair, Yuksel's models are "
-                 "z-up; y for .tfx and .ply), y, z, -y or -z"},
+                 "z-up; y for .tfx, TressFX's; for .ply, which does not say, the axis "
+                 "along which the roots lie above the tips, as hanging hair's do, else y), y, "
+                 "z, -y or -z; the render JSON's scene.up and up_reason"},
                 {"color", "file",
                  "strand colours: file (the file's own, where it has them) or R/G/B in [0,1] "
                  "for every strand (color=0.45/0.3/0.18)"}}});
@@ -495,6 +499,7 @@ void applyScaleAndZeroSegments(const Options& o, Scene& scene) {
   }
   if (o.integer("zero_segments", 0, 1) == 0) return;
   Strands in = std::move(scene.strands), out;
+  out.thicknessFallback = in.thicknessFallback;
   reserve(out, in.strandCount(), 2 * in.points.size() / std::max<std::size_t>(1, in.strandCount()));
   for (std::size_t k = 0; k < in.strandCount(); ++k) {
     out.firstPoint.push_back(uint32_t(out.points.size()));
@@ -618,6 +623,42 @@ glm::vec3 colorOption(const Options& o, const std::string& key) {
   return {c[0], c[1], c[2]};
 }
 
+// up=auto for a format that does not say which way is up (PLY): the axis among y, z, -y
+// and -z along which the strands' roots lie above their tips (hanging hair), when it is
+// clear: the roots-to-tips offsets along it sum to at least kClearlyHanging of their
+// lengths. Else y. Sets `why`.
+constexpr double kClearlyHanging = 0.3;
+
+std::string upFromRootsAndTips(const Strands& s, std::string& why) {
+  glm::dvec3 sum(0.0);
+  double length = 0;
+  for (std::size_t i = 0; i < s.strandCount(); ++i) {
+    if (s.pointCount[i] < 2) continue;
+    const glm::dvec3 d = glm::dvec3(s.points[s.firstPoint[i]]) -
+                         glm::dvec3(s.points[s.firstPoint[i] + s.pointCount[i] - 1]);
+    sum += d;
+    length += glm::length(d);
+  }
+  const std::pair<const char*, double> axes[] = {
+      {"y", sum.y}, {"-y", -sum.y}, {"z", sum.z}, {"-z", -sum.z}};
+  const auto* best = &axes[0];
+  for (const auto& a : axes)
+    if (a.second > best->second) best = &a;
+  const double share = length > 0 ? best->second / length : 0.0;
+  char pct[16];
+  std::snprintf(pct, sizeof pct, "%.0f%%", 100.0 * std::max(share, 0.0));
+  if (share < kClearlyHanging) {
+    why = std::string(
+              "auto: the format does not say, and roots and tips give no clear "
+              "direction (the most, along ") +
+          best->first + ", is " + pct + " of the strands' root-to-tip lengths): y";
+    return "y";
+  }
+  why = std::string("auto: the format does not say; the roots lie above the tips along ") +
+        best->first + " (" + pct + " of the strands' root-to-tip lengths), as hanging hair's";
+  return best->first;
+}
+
 Scene makeFile(const Options& o) {
   Scene scene;
   const std::string path = o.text("path");
@@ -631,14 +672,28 @@ Scene makeFile(const Options& o) {
     pointsPerStrand = uint32_t(o.integer("points_per_strand", 2, kMaxPointsPerStrand));
   }
   std::string up = o.choice("up", {"auto", "y", "z", "-y", "-z"});
-  if (up == "auto")
-    up = path.size() > 5 && path.compare(path.size() - 5, 5, ".hair") == 0 ? "z" : "y";
   std::optional<glm::vec3> color;
   if (o.text("color") != "file") color = colorOption(o, "color");
   scene.frameByBox = true;
   const std::string mesh = o.text("mesh");
   if (!mesh.empty()) scene.mesh = loadMesh(mesh);
   Strands all = loadStrandFile(path, pointsPerStrand, &scene.warnings);
+  const auto extension = [&](const char* e) {
+    const std::size_t n = std::strlen(e);
+    return path.size() > n && path.compare(path.size() - n, n, e) == 0;
+  };
+  if (up != "auto") {
+    scene.upReason = "up=" + up + " asked for";
+  } else if (extension(".hair")) {
+    up = "z";
+    scene.upReason = "auto: the HAIR format's models (Yuksel's) are z-up";
+  } else if (extension(".tfx")) {
+    up = "y";
+    scene.upReason = "auto: TressFX's models are y-up";
+  } else {
+    up = upFromRootsAndTips(all, scene.upReason);
+  }
+  scene.up = up;
   // The file's up axis turned to +y (a rotation about x, so handedness holds), the
   // strands and the mesh alike; its colours replaced where asked.
   const auto turn = [&](glm::vec3 p) {
@@ -663,6 +718,7 @@ Scene makeFile(const Options& o) {
                   std::to_string(all.strandCount()) + " strands in " + path);
   }
   Strands& out = scene.strands;
+  out.thicknessFallback = all.thicknessFallback;
   const uint64_t total = all.strandCount();
   for (uint64_t i = 0; i < uint64_t(keep); ++i) {
     const std::size_t s = std::size_t(i * total / uint64_t(keep));

@@ -219,6 +219,11 @@ Header parseHeader(const uint8_t* data, std::size_t size, const std::string& nam
       haveEnd = true;
       break;
     }
+    // A last line with no end of line is a file cut inside its header: say so, not what
+    // the cut line's remnant would mean ("unknown property type ''").
+    if (eol == size)
+      fail(name, "truncated: the file ends inside its header, at " + where + " ('" +
+                     line.substr(0, 40) + "'), before end_header");
     if (kw == "format") {
       std::string f, v;
       ls >> f >> v;
@@ -271,8 +276,8 @@ Header parseHeader(const uint8_t* data, std::size_t size, const std::string& nam
       fail(name, where + ": unknown header keyword '" + kw.substr(0, 40) + "'");
     }
   }
+  if (!haveEnd) fail(name, "truncated: the file ends inside its header (no end_header line)");
   if (!haveFormat) fail(name, "PLY header has no format line");
-  if (!haveEnd) fail(name, "PLY header has no end_header line");
 
   h.body = pos;
   return h;
@@ -467,6 +472,7 @@ Strands parsePly(const uint8_t* data, std::size_t size, const std::string& name,
   const std::size_t n = s.points.size();
   if (!hasColor) s.colors.assign(n, detail::kDefaultHairColor);
   s.thickness.assign(n, detail::kDefaultThickness);
+  s.thicknessFallback = true;  // the format has none we read
   if (ia < 0) s.transparency.assign(n, 0.0f);
   return s;
 }

@@ -282,6 +282,7 @@ Strands parseTfxText(const uint8_t* data, std::size_t size, const std::string& n
   const std::size_t n = s.points.size();
   s.colors.assign(n, detail::kDefaultHairColor);
   s.thickness.assign(n, detail::kDefaultThickness);
+  s.thicknessFallback = true;  // the format has none we read
   s.transparency.assign(n, 0.0f);
   return s;
 }
@@ -389,6 +390,7 @@ Strands parseTfx(const uint8_t* data, std::size_t size, const std::string& name,
   if (version == 4.0f) warnCutBlocks(data, size, numStrands, numPoints, name, warnings);
   s.colors.assign(numPoints, detail::kDefaultHairColor);
   s.thickness.assign(numPoints, detail::kDefaultThickness);
+  s.thicknessFallback = true;  // the format has none we read
   s.transparency.assign(numPoints, 0.0f);
   return s;
 }

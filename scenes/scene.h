@@ -22,6 +22,11 @@ struct Strands {
   std::vector<glm::vec3> colors;    // per point, linear RGB
   std::vector<float> thickness;     // per point, world units
   std::vector<float> transparency;  // per point (HAIR semantics: 0 = opaque)
+  // The file gave no thickness (TressFX, PLY): `thickness` holds the loaders' fallback
+  // (detail::kDefaultThickness world units), not a width of the strands; the render JSON's
+  // scene.thickness_source says "fallback", and the path reference's world width takes
+  // its own (harness/pbr_reference.cpp).
+  bool thicknessFallback = false;
 
   std::size_t strandCount() const { return pointCount.size(); }
   std::size_t segmentCount() const;  // sum over strands of max(pointCount-1, 0)
@@ -53,6 +58,9 @@ struct Scene {
   // Input accepted with a defect worth knowing (e.g. a file cut inside a block that is
   // not read); `render` reports them under "warnings".
   std::vector<std::string> warnings;
+  // Files: the up axis the file was turned from ("y", "z", "-y", "-z") and why
+  // ("up=z asked for", "auto: ..."); empty for generated scenes (y up by construction).
+  std::string up, upReason;
   Bounds bounds() const;  // strands and mesh together
 };
 

@@ -197,6 +197,29 @@ TEST(AaReferenceCli, RenderGivesBothErrorsAndRefusesBadSpecs) {
   EXPECT_NE(noImage.err.find("--no-image"), std::string::npos) << noImage.err;
 }
 
+// --reference-out holds the reference asked for: with `--reference aa:samples=2` alone, the
+// anti-aliased one (and nothing beside it); with the exact one named too, the exact one there
+// and the aa one beside it (the control: the two files differ, and the aa ones are the same).
+TEST(AaReferenceCli, ReferenceOutHoldsTheReferenceAskedFor) {
+  const auto dir = sbtest::tempDir("ref-out");
+  const std::string render =
+      "render --scene straight:strands=20,points=4 --shadow exact:size=32 --size 16x16 "
+      "--warmup 0 --repeat 1 ";
+  const auto aaOnly =
+      runCli(render + "--reference aa:samples=2 --reference-out " + (dir / "a.png").string());
+  ASSERT_EQ(aaOnly.status, 0) << aaOnly.err;
+  EXPECT_TRUE(fs::is_regular_file(dir / "a.png"));
+  EXPECT_FALSE(fs::exists(dir / "a.aa.png"));
+  EXPECT_FALSE(fs::exists(dir / "a.exact.png"));
+  const auto both = runCli(render + "--reference --reference aa:samples=2 --reference-out " +
+                           (dir / "b.png").string());
+  ASSERT_EQ(both.status, 0) << both.err;
+  ASSERT_TRUE(fs::is_regular_file(dir / "b.aa.png"));
+  EXPECT_EQ(sbtest::readFile(dir / "a.png"), sbtest::readFile(dir / "b.aa.png"));
+  EXPECT_NE(sbtest::readFile(dir / "b.png"), sbtest::readFile(dir / "b.aa.png"));
+  fs::remove_all(dir);
+}
+
 TEST(AaReferenceCli, ASuiteAsksForItAndTheReportsShowIt) {
   // The suite key "reference" takes the specs; the aa reference is rendered
   // once for the two cases that share scene, view and light map size.

@@ -140,6 +140,11 @@ TEST_P(FigureSmall, WritesItsGridAndTableOnBothBackends) {
     int entries = 0;
     for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++entries;
     EXPECT_EQ(entries, 1) << "a temporary folder was left in " << dir;
+    // What it says it wrote is there (the sweep runs in a temporary folder renamed at the
+    // end: its messages name the final one).
+    EXPECT_EQ(r.out.find(".tmp-"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("wrote " + (out / "results.json").string()), std::string::npos) << r.out;
+    EXPECT_TRUE(fs::is_regular_file(out / "results.json"));
     fs::remove_all(dir);
   }
 }

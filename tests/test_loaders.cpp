@@ -655,6 +655,19 @@ TEST(PlyParser, BadHeaders) {
                    {"mem.ply", "zero strands"});
 }
 
+// A file cut anywhere inside its header says "truncated", whatever the cut line's
+// remnant would mean ("property " is no "unknown property type ''"); the control, the whole
+// header and body, loads.
+TEST(PlyParser, CutInsideTheHeaderIsTruncated) {
+  const std::string a = kAsciiPly;
+  const std::size_t end = a.find("end_header");
+  for (std::size_t n = 4; n < end + 10; ++n) {
+    SCOPED_TRACE(n);
+    expectInputError([&] { ply(text(a.substr(0, n))); }, {"mem.ply", "truncated", "header"});
+  }
+  EXPECT_EQ(ply(text(a)).strandCount(), 2u);
+}
+
 TEST(PlyParser, BadBodies) {
   // Segment counts disagree with the vertex count.
   expectInputError([] { ply(binaryPly(false, 3)); }, {"mem.ply", "nsegs"});
@@ -949,6 +962,74 @@ TEST(FileSceneOptions, PointsPerStrand) {
     if (info.name == "file")
       for (const sb::OptionInfo& o : info.options) listed |= o.name == "points_per_strand";
   EXPECT_TRUE(listed);
+  std::filesystem::remove_all(dir);
+}
+
+// A PLY file says nothing of which way is up: up=auto turns it so that the strands' roots
+// lie above their tips (hanging hair), and says so; where roots and tips give no clear
+// direction, y. Written here: three strands of 4 points, roots at `root`, tips at `tip`
+// (offset per strand), as a NeuralHaircut file of points_per_strand=4 would hold them.
+TEST(FileSceneOptions, UpAutoTurnsAPlyByItsRootsAndTips) {
+  const auto dir = sbtest::tempDir("up-auto");
+  auto write = [&](const std::string& name, glm::vec3 root, glm::vec3 tip) {
+    std::string t =
+        "ply\nformat ascii 1.0\nelement vertex 12\nproperty float x\nproperty float y\n"
+        "property float z\nend_header\n";
+    for (int s = 0; s < 3; ++s)
+      for (int k = 0; k < 4; ++k) {
+        const glm::vec3 p = root + (tip - root) * (float(k) / 3.0f) + glm::vec3(0.1f * s, 0, 0);
+        t += std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z) + "\n";
+      }
+    const std::string path = (dir / name).string();
+    std::ofstream(path, std::ios::binary) << t;
+    return "file:path=" + path + ",points_per_strand=4";
+  };
+  struct Case {
+    const char* name;
+    glm::vec3 root, tip;
+    const char* up;
+    const char* why;
+  };
+  for (const Case& c :
+       {Case{"hanging.ply", {0, 1, 0}, {0, 0, 0}, "y", "roots lie above"},
+        Case{"upside-down.ply", {0, 0, 0}, {0, 1, 0.2f}, "-y", "roots lie above"},
+        Case{"z-up.ply", {0, 0.1f, 1}, {0, 0, 0}, "z", "roots lie above"},
+        Case{"sideways.ply", {0, 0, 0}, {1, 0.05f, 0}, "y", "no clear direction"}}) {
+    SCOPED_TRACE(c.name);
+    const sb::Scene s = sb::makeScene(sb::Spec::parse(write(c.name, c.root, c.tip)));
+    EXPECT_EQ(s.up, c.up);
+    EXPECT_NE(s.upReason.find(c.why), std::string::npos) << s.upReason;
+    EXPECT_NE(s.upReason.find("auto"), std::string::npos) << s.upReason;
+    if (std::string(c.why) == "roots lie above") {  // turned: the root above the tip in +y
+      EXPECT_GT(s.strands.points[0].y, s.strands.points[3].y);
+    }
+  }
+  // Asked for: kept as given, even upside down (the control: auto turns it).
+  const sb::Scene asked =
+      sb::makeScene(sb::Spec::parse(write("asked.ply", {0, 0, 0}, {0, 1, 0}) + ",up=y"));
+  EXPECT_EQ(asked.up, "y");
+  EXPECT_EQ(asked.upReason, "up=y asked for");
+  EXPECT_LT(asked.strands.points[0].y, asked.strands.points[3].y);
+  // The formats that say keep their axis: generated scenes have none to say.
+  EXPECT_EQ(sb::makeScene(sb::Spec::parse("straight:strands=2")).up, "");
+  std::filesystem::remove_all(dir);
+}
+
+// TressFX and PLY files give no thickness: the loaders' stand-in is marked as one (the
+// render JSON's scene.thickness_source "fallback"); HAIR files and generated scenes give one.
+TEST(FileSceneOptions, ThicknessTheFileDidNotGiveIsAFallback) {
+  const sb::Strands p = ply(text(kAsciiPly));
+  EXPECT_TRUE(p.thicknessFallback);
+  EXPECT_FLOAT_EQ(p.thickness[0], 0.005f);  // still drawn where a technique reads it
+  EXPECT_TRUE(tfx(tfxWithUvs(0)).thicknessFallback);
+  EXPECT_FALSE(hair(smallHair()).thicknessFallback);
+  EXPECT_FALSE(sb::makeScene(sb::Spec::parse("curly:strands=2")).strands.thicknessFallback);
+  // Kept through strands= and zero_segments=, which rebuild the strands.
+  const auto dir = sbtest::tempDir("thickness");
+  const std::string path = (dir / "a.ply").string();
+  std::ofstream(path, std::ios::binary) << kAsciiPly;
+  EXPECT_TRUE(sb::makeScene(sb::Spec::parse("file:path=" + path + ",strands=1,zero_segments=1"))
+                  .strands.thicknessFallback);
   std::filesystem::remove_all(dir);
 }
 

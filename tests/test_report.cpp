@@ -459,6 +459,39 @@ TEST(ReportWriterInput, PointWithoutTransparencyNamesItBesideTransparencyTechniq
   fs::remove_all(dir);
 }
 
+// The same technique's point without shadows beside its points with shadows is labelled
+// "abuffer + none", not "abuffer"; and the depth-complexity chart's legend names each case
+// once, with what tells it from the others ("gl, primitive=lines"), not "gl, vulkan, gl".
+TEST(ReportWriterInput, LabelsAndLegendsNameEachCaseOnce) {
+  const fs::path dir = sbtest::tempDir("report-legend");
+  json results = json::array();
+  int index = 0;
+  for (const char* shadow : {"none", "dom:layers=3"})
+    for (const char* primitive : {"lines", "ribbons"})
+      for (const char* backend : {"gl", "vulkan"}) {
+        json r = makeResult("g", {{"backend", backend}, {"primitive", primitive}}, index,
+                            2.0 + index, 1.0);
+        r["shadow"] = shadow;
+        r["oit"] = "abuffer";
+        results.push_back(r);
+        ++index;
+      }
+  sb::writeReports({{"results", results}}, dir);
+  const std::string html = sbtest::readFile(dir / "report.html");
+  EXPECT_NE(html.find(">abuffer + none</text>"), std::string::npos);
+  EXPECT_NE(html.find(">abuffer + dom:layers=3</text>"), std::string::npos);
+  EXPECT_EQ(html.find(">abuffer</text>"), std::string::npos);
+  for (const char* legend : {">gl, primitive=lines</text>", ">vulkan, primitive=ribbons</text>"})
+    EXPECT_NE(html.find(legend), std::string::npos) << legend;
+  EXPECT_EQ(html.find(">gl</text>"), std::string::npos);  // a bare backend repeats
+  // Control: with one case per backend a chart's legend is the backend alone.
+  sb::writeReports({{"results", json::array({results[0], results[1]})}}, dir);
+  const std::string two = sbtest::readFile(dir / "report.html");
+  EXPECT_NE(two.find(">gl</text>"), std::string::npos);
+  EXPECT_NE(two.find(">vulkan</text>"), std::string::npos);
+  fs::remove_all(dir);
+}
+
 TEST(ReportWriterInput, UnwritableFolderIsAnInputError) {
   const fs::path dir = sbtest::tempDir("report-bad");
   sbtest::expectInputError([&] { sb::writeReports(json::object(), dir / "missing"); },

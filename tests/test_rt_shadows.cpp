@@ -4,9 +4,11 @@
 // agree; with one ray per point and no cap rt matches the exact reference on a
 // tie-free scene of wide ribbons; its error against the anti-aliased reference
 // falls as rays per point rise. On Mesa 25.0.7's lavapipe (drivers/mesa-25.0,
-// through the CLI: one process, one driver): the ray-query tier renders, agrees
-// with the software tier, and tier=auto picks it; elsewhere tier=ray_query is
-// bad input. Each comparison also shows it can fail.
+// through the CLI: one process, one driver): the ray-query tier renders and
+// agrees with the software tier, and tier=auto picks the software tier there (a
+// CPU device, where ray queries are far slower), with progress lines when
+// stdout and stderr are files; elsewhere tier=ray_query is bad input. Each
+// comparison also shows it can fail.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,7 +16,9 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <random>
+#include <regex>
 #include <set>
+#include <sstream>
 #include <tuple>
 
 #include "gpu_test_util.h"
@@ -403,11 +407,60 @@ TEST(RtTiers, BothTiersAgreeOnMesa25) {
   }
 }
 
-// tier=auto: ray queries on Mesa 25.0.7's Vulkan, the software tier on its GL
-// and on the system's Mesa 22.3 (no VK_KHR_ray_query there).
-TEST(RtTiers, AutoPicksRayQueriesWhereTheDeviceOffersThem) {
+// tier=auto: the software tier on every device here: Mesa 25.0.7's Vulkan offers
+// ray queries but is a CPU device (far slower there), its GL and the system's Mesa
+// 22.3 have none; tier_reason says which. tier=ray_query still runs them there.
+TEST(RtTiers, AutoPicksTheFasterTierAndSaysWhy) {
   if (const std::string why = sbtest::mesa25Missing(); !why.empty()) GTEST_SKIP() << why;
-  sbtest::expectAutoPicksRayQueriesWhereOffered(tinyTier);
+  sbtest::expectAutoPicksTheFasterTier(tinyTier);
+}
+
+// Both ray-traced techniques with tier=auto, stdout and stderr redirected to
+// files (as a batch job's): the software tier runs, and stderr gets plain
+// progress lines (no carriage returns), "pass N/M" only where M is the pass
+// count of the frame before (no "pass 744/6" while the reference peels), while
+// stdout stays one JSON object. SB_PROGRESS_SECONDS=0 prints every update of
+// this small run; the control, an interval longer than the run, prints none.
+// On the system's driver too, so that the progress lines are tested without
+// drivers/.
+TEST(RtTiers, AutoRunsTheFasterTierAndShowsProgressOffATerminal) {
+  std::vector<std::string> drivers{"system"};
+  if (sbtest::mesa25Missing().empty()) drivers.push_back("mesa-25.0");
+  const std::string render =
+      "render --backend vulkan --scene curly:strands=10 --size 32x32 --warmup 1 --repeat 2 "
+      "--shadow rt:size=32 --oit rt --reference --json --driver ";
+  for (const std::string& driver : drivers) {
+    SCOPED_TRACE(driver);
+    const sbtest::CliResult r = sbtest::runCli(render + driver, "SB_PROGRESS_SECONDS=0");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);  // stdout: the JSON alone
+    EXPECT_EQ(j["tier"], "software");
+    EXPECT_NE(j.value("tier_reason", "").find("auto: "), std::string::npos) << j.dump();
+    EXPECT_EQ(r.err.find('\r'), std::string::npos) << "a terminal's line off a terminal";
+    int lines = 0;
+    bool timedFrame = false, reference = false;
+    std::istringstream in(r.err);
+    for (std::string l; std::getline(in, l);) {
+      if (!l.starts_with("render: ")) continue;
+      ++lines;
+      timedFrame |= l.find("render: frame 2/2, pass ") != std::string::npos;
+      reference |= l.starts_with("render: reference, pass ");
+      static const std::regex count(R"(pass (\d+)/(\d+))");
+      std::smatch m;
+      if (std::regex_search(l, m, count)) {
+        EXPECT_LE(std::stoi(m[1]), std::stoi(m[2])) << l;
+      }
+      if (l.starts_with("render: reference")) {
+        EXPECT_FALSE(std::regex_search(l, m, count)) << l;
+      }
+    }
+    EXPECT_GT(lines, 5) << r.err;
+    EXPECT_TRUE(timedFrame) << r.err;
+    EXPECT_TRUE(reference) << r.err;
+    const sbtest::CliResult quiet = sbtest::runCli(render + driver, "SB_PROGRESS_SECONDS=1000");
+    ASSERT_EQ(quiet.status, 0) << quiet.err;
+    EXPECT_EQ(quiet.err.find("render: "), std::string::npos) << quiet.err;
+  }
 }
 
 // tier=ray_query where the device has no ray queries (the system's Mesa 22.3,

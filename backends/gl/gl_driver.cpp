@@ -119,9 +119,9 @@ class GLDriver final : public Driver {
     // between passes) on GPUs; on llvmpipe the CPU clock around each pass, since its
     // timer queries miss vertex work. SB_GL_GPU_TIMING=1 / SB_GL_CPU_TIMING=1 force one.
     const std::string renderer = info_.device;
-    const bool cpuDevice = renderer.find("llvmpipe") != std::string::npos ||
-                           renderer.find("softpipe") != std::string::npos;
-    gpuTiming_ = !envSet("SB_GL_CPU_TIMING") && (!cpuDevice || envSet("SB_GL_GPU_TIMING"));
+    info_.cpuDevice = renderer.find("llvmpipe") != std::string::npos ||
+                      renderer.find("softpipe") != std::string::npos;
+    gpuTiming_ = !envSet("SB_GL_CPU_TIMING") && (!info_.cpuDevice || envSet("SB_GL_GPU_TIMING"));
     info_.timing = gpuTiming_ ? "gpu timestamps (glQueryCounter)"
                               : "cpu clock per pass (glFinish before and after)";
     info_.lines = "aliased (diamond exit)";
@@ -194,9 +194,7 @@ class GLDriver final : public Driver {
       if (kib[0] > 0) return {std::size_t(kib[0]) * 1024, "GL_ATI_meminfo"};
     }
     gl_.GetError();  // a query the context did not take leaves no error behind
-    if (info_.device.find("llvmpipe") != std::string::npos ||
-        info_.device.find("softpipe") != std::string::npos)
-      return hostMemoryBudget();
+    if (info_.cpuDevice) return hostMemoryBudget();
     return {};
   }
 

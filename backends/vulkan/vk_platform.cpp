@@ -243,6 +243,7 @@ void VulkanPlatform::pickPhysicalDevice() {
   // rasterizing it (measured: 0.6 ms by timestamps vs 33 ms by wall clock for
   // a 30k-segment pass), so CPU devices are timed per pass on the CPU, as GL is.
   cpuDevice = pick->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+  info.cpuDevice = cpuDevice;
   cpuTiming =
       timestampBits == 0 || envFlag("SB_VULKAN_CPU_TIMING") ||
       (pick->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU && !envFlag("SB_VULKAN_GPU_TIMING"));

@@ -157,8 +157,10 @@ class ShadowTechnique {
   // without fragment-shader interlock), as OitTechnique::timingEmulated.
   virtual std::string timingEmulated() const { return {}; }
   // Techniques with tiers (rt: "software" | "ray_query"): the one in use,
-  // known after setup (render JSON "tier"); empty for the others.
+  // known after setup (render JSON "tier"); empty for the others. tierReason:
+  // why that one (render JSON "tier_reason").
   virtual std::string tier() const { return {}; }
+  virtual std::string tierReason() const { return {}; }
   // The lookup, declared once: its shader, defines and inputs.
   virtual ShadowLookup lookup() const = 0;
 };
@@ -198,8 +200,9 @@ class OitTechnique {
   // cost is not the technique's real cost (mlab without fragment-shader
   // interlock): the JSON and the reports mark the timing "emulated".
   virtual std::string timingEmulated() const { return {}; }
-  // As ShadowTechnique::tier.
+  // As ShadowTechnique::tier and tierReason.
   virtual std::string tier() const { return {}; }
+  virtual std::string tierReason() const { return {}; }
   // Whether it renders into multisampled frame targets (--msaa N > 1). Those
   // that keep per-pixel data (fragment lists, peeled layers, accumulation
   // targets, occupancy maps) say no and the renderer refuses --msaa for them.

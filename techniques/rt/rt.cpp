@@ -24,7 +24,9 @@ RayTracedShadow::Options RayTracedShadow::readOptions(const OptionReader& o) {
 }
 
 void RayTracedShadow::setup(Device& dev, const GpuScene& scene, const RenderSettings& s) {
-  rayQuery_ = rt::useRayQueries(opt_.walk.tier, dev.info(), "shadow technique 'rt'");
+  const rt::TierChoice tier = rt::chooseTier(opt_.walk.tier, dev.info(), "shadow technique 'rt'");
+  rayQuery_ = tier.rayQuery;
+  tierReason_ = tier.reason;
   const ViewUniforms view = setupLight(dev, scene, s, opt_.size);
   const glm::mat4 proj = s.light.projection(), lightV = s.light.view();
   // One texel is 2 / size of the NDC square: 2 w / (size P00) world units at clip w.

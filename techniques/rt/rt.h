@@ -38,12 +38,14 @@ class RayTracedShadow : public LightMapShadow {
   ShadowLookup lookup() const override;
   std::vector<Counter> counters(Device& dev) override;
   std::string tier() const override { return rayQuery_ ? "ray_query" : "software"; }
+  std::string tierReason() const override { return tierReason_; }
 
  private:
   Pass clearPass() const;
 
   Options opt_;
-  bool rayQuery_ = false;  // the tier in use (after setup)
+  bool rayQuery_ = false;   // the tier in use (after setup)
+  std::string tierReason_;  // why (rt::chooseTier)
   Buffer params_, status_;
   rt::WalkBuffers walk_;  // the tier's BVH or acceleration structure, and the segments
   double buildMs_ = 0;

@@ -15,8 +15,10 @@ std::vector<OptionInfo> withTierOptions(std::vector<OptionInfo> own) {
                        "BVH splits: sah (binned surface area heuristic) | median (of the "
                        "longest axis)"),
            opt::choice("tier", "auto", {"auto", "software", "ray_query"},
-                       "auto (ray_query where the device offers VK_KHR_ray_query, else "
-                       "software) | software (BVH in shader code) | ray_query (refused, "
+                       "auto (ray_query on a GPU that offers VK_KHR_ray_query; software "
+                       "elsewhere, CPU devices such as lavapipe included, where ray queries "
+                       "run in shader code and are far slower) | software (BVH in shader code) | "
+                       "ray_query (refused, "
                        "exit 2, on devices without it); the JSON's tier")})
     own.push_back(std::move(o));
   return own;
@@ -30,14 +32,25 @@ TierOptions readTierOptions(const OptionReader& o) {
   return t;
 }
 
-bool useRayQueries(Tier tier, const DeviceInfo& info, const std::string& technique) {
+TierChoice chooseTier(Tier tier, const DeviceInfo& info, const std::string& technique) {
   if (tier == Tier::RayQuery && !info.rayQuery)
     throw UnavailableError(technique + ": tier=ray_query: this device (" + info.backend + ", " +
                                info.device +
                                ") offers no VK_KHR_ray_query (use tier=software or auto)",
                            "a Vulkan device with VK_KHR_ray_query, e.g. Mesa 25.0's lavapipe "
                            "(--driver mesa-25.0; scripts/drivers.sh fetches it)");
-  return tier == Tier::RayQuery || (tier == Tier::Auto && info.rayQuery);
+  if (tier == Tier::RayQuery) return {true, "tier=ray_query asked for"};
+  if (tier == Tier::Software) return {false, "tier=software asked for"};
+  if (!info.rayQuery) return {false, "auto: the device offers no VK_KHR_ray_query"};
+  // Measured on Mesa 25.0.7's lavapipe (docs/shadow-techniques.md, rt's cost table): ray
+  // queries there are a shader-code walk of every box on the ray, 4x to 50x the software
+  // tier's frame; a CPU device has no ray-tracing hardware to make up for it.
+  if (info.cpuDevice)
+    return {false,
+            "auto: a CPU device (" + info.device +
+                "), where ray queries run in shader code and are far slower than the software "
+                "tier's BVH walk"};
+  return {true, "auto: the GPU offers VK_KHR_ray_query"};
 }
 
 std::vector<Segment> sceneSegments(Device& dev, const GpuScene& scene, const glm::mat4& viewProj,

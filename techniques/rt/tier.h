@@ -1,7 +1,9 @@
 // The two tiers of the ray-traced techniques (--shadow rt and --oit rt), in
 // one place: their options (bvh=, tier=), the choice of tier on a device
-// (tier=auto takes ray queries where the device offers them; tier=ray_query is
-// bad input where it does not), and the data each tier's walk reads. The
+// (tier=auto takes ray queries where a GPU offers them, and the software tier
+// on a CPU device, where ray queries run in shader code and are far slower;
+// tier=ray_query is bad input where the device has none), and the data each
+// tier's walk reads. The
 // software tier walks a BVH built here on the CPU (bvh.h) in shader code; the
 // ray-query tier asks ray queries over an acceleration structure of the
 // segments' boxes (Device::createAccelerationStructure), box i segment i.
@@ -31,8 +33,13 @@ std::vector<OptionInfo> withTierOptions(std::vector<OptionInfo> own);
 TierOptions readTierOptions(const OptionReader& o);
 
 // Whether `technique` ("shadow technique 'rt'") traces with ray queries on
-// this device; tier=ray_query without them is an InputError saying why.
-bool useRayQueries(Tier tier, const DeviceInfo& info, const std::string& technique);
+// this device, and why (the render JSON's tier_reason); tier=ray_query without
+// them is an InputError saying why.
+struct TierChoice {
+  bool rayQuery = false;
+  std::string reason;
+};
+TierChoice chooseTier(Tier tier, const DeviceInfo& info, const std::string& technique);
 
 // The scene's segments, index i segment i, each `width` units wide at its midpoint, one unit
 // being `worldPerUnitPerW` world units per unit of clip w under `viewProj` (a pixel of the

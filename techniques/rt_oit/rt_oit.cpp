@@ -33,7 +33,10 @@ RayTracedOit::Options RayTracedOit::readOptions(const OptionReader& o) {
 
 void RayTracedOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
                          const HairShading& shading, const OitTargets& targets) {
-  rayQuery_ = rt::useRayQueries(o_.walk.tier, dev.info(), "transparency technique 'rt'");
+  const rt::TierChoice tier =
+      rt::chooseTier(o_.walk.tier, dev.info(), "transparency technique 'rt'");
+  rayQuery_ = tier.rayQuery;
+  tierReason_ = tier.reason;
   if (scene.segmentCount > kMaxSegments)
     throw InputError("transparency technique 'rt': " + std::to_string(scene.segmentCount) +
                      " segments; at most " + std::to_string(kMaxSegments) +
