@@ -788,6 +788,7 @@ std::vector<uint8_t> Device::readBuffer(Buffer b) {
   BufferRec& r = buffer(b, "readBuffer");
   requireContents(r, "readBuffer");
   requireFrame(quoted("readBuffer", r.desc.name), false, false);
+  if (!r.object && !r.pending.empty()) return r.pending;  // its contents, not made yet
   DriverObject* object = created(r);
   return namingAllocation("reading back buffer '" + r.desc.name + "'", r.desc.bytes,
                           [&] { return driver_->readBuffer(*object, r.desc); });

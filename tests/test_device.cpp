@@ -534,7 +534,9 @@ TEST_P(DeviceTest, DeferredMakingKeepsContentsUntilTheBufferIsMade) {
   EXPECT_EQ(dev_->allocationsAfterUsing(dev_->resourceIdsFrom(first)).size(), 2u);
   std::vector<uint8_t> expected(16);
   std::memcpy(expected.data(), words.data(), 16);
-  EXPECT_EQ(dev_->readBuffer(a), expected);  // made when first used
+  EXPECT_EQ(dev_->readBuffer(a), expected);  // its contents, still not made
+  EXPECT_TRUE(dev_->allocations().empty());
+  dev_->fillBuffer(a, 7);  // made when first used
   EXPECT_EQ(dev_->allocations().size(), 1u);
   dev_->makeDeferredBuffers();
   EXPECT_EQ(dev_->allocations().size(), 2u);
