@@ -402,8 +402,7 @@ class Device {
   // A group's pipelines that were compiled (name, technique), in creation order.
   std::vector<std::pair<std::string, std::string>> compiledPipelines(uint32_t group) const;
   // While on, a buffer created with data keeps a copy of it and is made, like
-  // any other, when first used (readBuffer returns those contents without
-  // making it) or by makeDeferredBuffers(): the renderer
+  // any other, when first used or by makeDeferredBuffers(): the renderer
   // declares everything, scene included, and asks the memory guard about its
   // whole plan before anything is made.
   void setDeferMaking(bool defer) { deferMaking_ = defer; }
