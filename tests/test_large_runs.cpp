@@ -103,7 +103,7 @@ TEST(LargeRuns, AHostAllocationThatFailsUnderAnAddressSpaceLimitExitsTwoOnBothBa
 TEST(LargeRuns, ARunOverTheHostBudgetIsRefusedBeforeItsResourcesAreMade) {
   if (sbtest::kAsan) GTEST_SKIP() << sbtest::kNoLimitUnderAsan;
   // The CPU drivers' budget is host memory, here the address-space limit: 64
-  // opacity maps of 2048x2048 (1 GiB of light maps, no storage buffer over
+  // opacity maps of 4096x4096 (4 GiB of light maps, no storage buffer over
   // the device's range) need more than is left of 2.2 GB. The drivers (and
   // the Vulkan validation layer) map 1.4 to 1.7 GB before the check. The
   // renderer puts its whole plan, the scene included, to the budget before
@@ -112,7 +112,7 @@ TEST(LargeRuns, ARunOverTheHostBudgetIsRefusedBeforeItsResourcesAreMade) {
   const std::string scene = "render --scene straight:strands=4000,points=16,alpha=0.3,head=0 ";
   for (const std::string backend : {"gl", "vulkan"}) {
     const CliResult r =
-        runCliLimited(2200000, scene + "--shadow osm:maps=64,size=2048 --oit abuffer --warmup 0 " +
+        runCliLimited(2200000, scene + "--shadow osm:maps=64,size=4096 --oit abuffer --warmup 0 " +
                                    "--size 256x256 --backend " + backend + " --out " +
                                    (dir / "big.png").string());
     EXPECT_EQ(r.status, 2) << backend << ": " << r.err;
