@@ -46,6 +46,8 @@ struct Device::BufferRec {
   // An acceleration structure's boxes (usage AccelerationStructure).
   Buffer aabbs;
   uint32_t boxes = 0;
+  // The contents it was created with, kept until it is made (setDeferMaking).
+  std::vector<uint8_t> pending;
 };
 struct Device::TextureRec {
   TextureDesc desc;
@@ -254,8 +256,10 @@ DriverObject* Device::created(BufferRec& r) {
     }
     guardMaking(r.desc.name, r.desc.owner, r.desc.bytes);
     checkStorageRange(r.desc);
-    r.object = namingAllocation(what, r.desc.bytes,
-                                [&] { return driver_->createBuffer(r.desc, nullptr); });
+    r.object = namingAllocation(what, r.desc.bytes, [&] {
+      return driver_->createBuffer(r.desc, r.pending.empty() ? nullptr : r.pending.data());
+    });
+    std::vector<uint8_t>().swap(r.pending);
   }
   return r.object.get();
 }
@@ -295,17 +299,23 @@ Buffer Device::createBuffer(const BufferDesc& given, const void* data) {
   if (desc.bytes == 0) throw DeviceError(where + ": zero size");
   if (desc.usage == BufferUsage::AccelerationStructure)
     throw DeviceError(where + ": usage AccelerationStructure (use createAccelerationStructure)");
-  if (data) {
+  const bool now = data && !deferMaking_;
+  if (now) {
     guardMaking(desc.name, desc.owner, desc.bytes);
     checkStorageRange(desc);
   }
-  // Created now only when it has contents to take; otherwise when first used.
+  // Created now only when it has contents to take (and making is not
+  // deferred); otherwise when first used.
   auto rec = std::make_unique<BufferRec>(BufferRec{
       desc,
-      data ? namingAllocation("making buffer '" + desc.name + "' (" + desc.owner + ")", desc.bytes,
-                              [&] { return driver_->createBuffer(desc, data); })
-           : nullptr,
+      now ? namingAllocation("making buffer '" + desc.name + "' (" + desc.owner + ")", desc.bytes,
+                             [&] { return driver_->createBuffer(desc, data); })
+          : nullptr,
       group_});
+  if (data && !now) {
+    const auto* bytes = static_cast<const uint8_t*>(data);
+    rec->pending.assign(bytes, bytes + desc.bytes);
+  }
   const uint32_t id = nextId_++;
   buffers_.emplace(id, std::move(rec));
   return Buffer{id};
@@ -476,6 +486,7 @@ void Device::setBufferSize(Buffer b, std::size_t bytes) {
   const std::string where = quoted("setBufferSize", r.desc.name);
   if (bytes == 0) throw DeviceError(where + ": zero size");
   if (r.object) throw DeviceError(where + ": already made (sizes change only before first use)");
+  if (!r.pending.empty()) throw DeviceError(where + ": created with contents of its own size");
   r.desc.bytes = bytes;
 }
 
@@ -777,6 +788,7 @@ std::vector<uint8_t> Device::readBuffer(Buffer b) {
   BufferRec& r = buffer(b, "readBuffer");
   requireContents(r, "readBuffer");
   requireFrame(quoted("readBuffer", r.desc.name), false, false);
+  if (!r.object && !r.pending.empty()) return r.pending;  // its contents, not made yet
   DriverObject* object = created(r);
   return namingAllocation("reading back buffer '" + r.desc.name + "'", r.desc.bytes,
                           [&] { return driver_->readBuffer(*object, r.desc); });
@@ -831,6 +843,11 @@ std::vector<ResourceBytes> Device::resources(bool createdOnly,
   std::vector<ResourceBytes> out;
   for (auto& [id, r] : all) out.push_back(std::move(r));
   return out;
+}
+
+void Device::makeDeferredBuffers() {
+  for (auto& [id, r] : buffers_)
+    if (!r->object && !r->pending.empty()) created(*r);
 }
 
 std::vector<ResourceBytes> Device::allocations() const { return resources(true, {}); }

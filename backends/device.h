@@ -325,8 +325,10 @@ struct DeviceInfo {
   // multisampled.
   uint32_t sampleCounts = 1;
   // The most bytes one storage buffer may have where a shader can see all of
-  // it (Vulkan: maxStorageBufferRange, 128 MiB on lavapipe; a larger one would
-  // be bound in part). 0: no limit enforced (GL binds whole buffers).
+  // it (Vulkan: maxStorageBufferRange, 128 MiB on lavapipe; GL:
+  // GL_MAX_SHADER_STORAGE_BLOCK_SIZE, 128 MiB on llvmpipe): a larger one would
+  // be bound in part, so it is refused, and fragment pools that may grow past
+  // it are split into pages (techniques/common/fragment_lists.h). 0: no limit.
   std::size_t maxStorageBufferBytes = 0;
 };
 
@@ -402,6 +404,12 @@ class Device {
   void compilePipelines(const std::set<uint32_t>& ids);
   // A group's pipelines that were compiled (name, technique), in creation order.
   std::vector<std::pair<std::string, std::string>> compiledPipelines(uint32_t group) const;
+  // While on, a buffer created with data keeps a copy of it and is made, like
+  // any other, when first used or by makeDeferredBuffers(): the renderer
+  // declares everything, scene included, and asks the memory guard about its
+  // whole plan before anything is made.
+  void setDeferMaking(bool defer) { deferMaking_ = defer; }
+  void makeDeferredBuffers();
   // A null handle is ignored; an unknown one is an error.
   void destroy(Buffer b);
   void destroy(Texture t);
@@ -539,6 +547,7 @@ class Device {
   std::string labelPrefix_;
   uint32_t nextGroup_ = 1, group_ = 0;
   bool deferPipelines_ = false;
+  bool deferMaking_ = false;
   DriverObject* compiled(PipelineRec& p);
   MemoryGuard memoryGuard_;
   void guardMaking(const std::string& name, const std::string& owner, std::size_t bytes) const;

@@ -217,20 +217,50 @@ void checkMemory(const std::vector<ResourceBytes>& planned, const std::vector<Re
   std::vector<ResourceBytes> largest = planned;
   if (need > total)  // over the budget, which counts the host's image
     largest.push_back({"image read back", "host", host});
-  std::sort(largest.begin(), largest.end(),
-            [](const ResourceBytes& a, const ResourceBytes& b) { return a.bytes > b.bytes; });
-  std::string m = "memory: " + what + " needs " + std::to_string(total) + " bytes (" + mib(total) +
+  auto bigger = [](const ResourceBytes& a, const ResourceBytes& b) { return a.bytes > b.bytes; };
+  std::stable_sort(largest.begin(), largest.end(), bigger);
+  // The same bytes by owner: what each part of the run takes, and what shrinks it.
+  std::vector<ResourceBytes> owners;
+  for (const auto& r : largest) {
+    auto o = std::find_if(owners.begin(), owners.end(),
+                          [&](const ResourceBytes& x) { return x.owner == r.owner; });
+    if (o == owners.end()) o = owners.insert(owners.end(), {r.owner, r.owner, 0});
+    o->bytes += r.bytes;
+  }
+  std::stable_sort(owners.begin(), owners.end(), bigger);
+  std::string m = "memory: " + what + " needs " + std::to_string(need) + " bytes (" + mib(need) +
                   "), " + over +
                   "; refused before they were made (made so far: " + std::to_string(already) +
-                  " bytes), nothing written. Largest resources:";
+                  " bytes), nothing written.\nBy owner:";
+  for (const auto& o : owners)
+    m += " " + o.owner + " " + mib(o.bytes) + " (" +
+         std::to_string(need ? (o.bytes * 100 + need / 2) / need : 0) + "%);";
+  m.back() = '.';
+  m += "\nLargest resources:";
   for (std::size_t i = 0; i < largest.size() && i < 8; ++i)
     m += "\n  " + largest[i].name + " (" + largest[i].owner + "): " + mib(largest[i].bytes);
-  const double shrink = double(need) / double(fit);
-  char factor[64] = "";
-  if (shrink > 1.0) std::snprintf(factor, sizeof factor, " (%.1fx less memory)", shrink);
-  m += std::string("\nTo fit") + factor +
-       ": a smaller --size (frame and fragment lists scale with its pixels), a smaller map "
-       "size= (light maps and lists scale with its texels), or fewer layers=, maps=, slices=.";
+  char factor[96];
+  std::snprintf(factor, sizeof factor, "%.1fx less memory: %s needed, %s allowed",
+                fit ? double(need) / double(fit) : 0.0, mib(need).c_str(), mib(fit).c_str());
+  m += std::string("\nTo fit (") + factor + "), shrink";
+  static const std::map<std::string, std::string> kAdvice = {
+      {"shadow",
+       "the shadow technique's maps and lists: a smaller map size= (they scale with its "
+       "texels) or fewer of its maps=, layers= or slices="},
+      {"oit",
+       "the transparency technique's lists and targets: a smaller --size (they scale with its "
+       "pixels and depth complexity)"},
+      {"frame", "the frame's targets: a smaller --size (they scale with its pixels)"},
+      {"host", "the image read back: a smaller --size"},
+      {"scene", "the scene: fewer strands or points"}};
+  for (const auto& o : owners) {
+    const auto advice = kAdvice.find(o.owner);
+    if (advice == kAdvice.end() || o.bytes * 20 < need) continue;  // under 5%: cannot help much
+    m += "\n  " + advice->second + " (" + mib(o.bytes) + ")";
+    // Where the rest alone is over, this owner is not enough by itself.
+    if (need - o.bytes > fit)
+      m += "; the rest alone needs " + mib(need - o.bytes) + ", so not this alone";
+  }
   throw OutOfMemoryError(m);
 }
 

@@ -9,7 +9,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <bit>
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -88,6 +90,92 @@ TEST(MemoryPlan, ARunOverTheLimitIsRefusedWithItsLargestResources) {
   const sbtest::CliResult at = sbtest::runCli(base + " --memory-limit " + std::to_string(estimate));
   EXPECT_EQ(at.status, 0) << at.err;
   EXPECT_TRUE(fs::exists(dir / "image.png"));
+}
+
+// The whole plan is put to the limit before anything is made, the scene's own
+// buffers included: the refusal names the plan's total (the run's estimate:
+// an osm run declares every resource up front), the owner that takes most of
+// it, and the true factor over the limit. It used to refuse at the scene's
+// buffers with "1.0x less memory" and name no map.
+TEST(MemoryPlan, ARefusalNamesTheWholePlansTotalAndATrueFactor) {
+  const std::string base =
+      "render --scene straight:strands=2000 --shadow osm:maps=64 --size 128x128 --repeat 1 "
+      "--warmup 0 --json";
+  const sbtest::CliResult ok = sbtest::runCli(base);
+  ASSERT_EQ(ok.status, 0) << ok.err;
+  const auto estimate = nlohmann::json::parse(ok.out)["memory"]["estimated_bytes"].get<long long>();
+  const long long limit = 1000000;
+  ASSERT_GT(estimate, 10 * limit);
+  const sbtest::CliResult over = sbtest::runCli(base + " --memory-limit " + std::to_string(limit));
+  EXPECT_EQ(over.status, 2);
+  const std::string err = over.err;
+  EXPECT_NE(err.find("needs " + std::to_string(estimate) + " bytes"), std::string::npos) << err;
+  EXPECT_NE(err.find("made so far: 0 bytes"), std::string::npos) << err;
+  EXPECT_NE(err.find("osm.maps (shadow)"), std::string::npos) << err;
+  EXPECT_NE(err.find("By owner: shadow"), std::string::npos) << err;  // the largest first
+  char factor[32];
+  std::snprintf(factor, sizeof factor, "(%.1fx less memory", double(estimate) / double(limit));
+  EXPECT_NE(err.find(factor), std::string::npos) << factor << " in " << err;
+  // Advice for the owner that takes most, and none for what cannot help.
+  EXPECT_NE(err.find("the shadow technique's maps"), std::string::npos) << err;
+  EXPECT_EQ(err.find("the scene: fewer strands"), std::string::npos) << err;
+  // Control: a limit the plan fits runs.
+  const sbtest::CliResult at = sbtest::runCli(base + " --memory-limit " + std::to_string(estimate));
+  EXPECT_EQ(at.status, 0) << at.err;
+}
+
+// A fragment pool larger than one storage binding is split into pages
+// (abuffer.glsl). Forced by SB_POOL_PAGE_BYTES (pages of about half the pool),
+// a small scene's pool splits, and the image is the unsplit one, pixel for
+// pixel, on both APIs, for every technique on those lists; a pool that needs
+// more pages than are bound is refused, naming its size.
+TEST(MemoryPlan, AFragmentPoolSplitIntoPagesGivesTheSameImage) {
+  auto bytesOf = [](const RenderResult& r, const std::string& name) {
+    for (const auto& x : r.resources)
+      if (x.name == name) return x.bytes;
+    return std::size_t{0};
+  };
+  const std::string scene = "straight:strands=40,points=6,head=1,alpha=0.5";
+  for (const std::string backend : {"gl", "vulkan"}) {
+    for (const std::string oit : {"abuffer", "kbuffer", "mlab"}) {
+      SCOPED_TRACE(backend + " " + oit);
+      const RenderRequest req = sbtest::smallRender(backend, scene, "exact", oit, 24);
+      const RenderResult whole = runRender(req);
+      const std::size_t bytes = bytesOf(whole, oit + ".fragments");
+      ASSERT_GT(bytes, 32u * 16);
+      const std::size_t page = 32 * std::bit_floor(bytes / 32 / 2);
+      ::setenv("SB_POOL_PAGE_BYTES", std::to_string(page).c_str(), 1);
+      const RenderResult split = runRender(req);
+      ::unsetenv("SB_POOL_PAGE_BYTES");
+      // It split: the first page is full, the second holds the next entries.
+      EXPECT_EQ(bytesOf(split, oit + ".fragments"), page);
+      EXPECT_GT(bytesOf(split, oit + ".fragments.page1"), 32u);
+      std::size_t pages = 0;
+      for (const auto& x : split.resources)
+        if (x.name.rfind(oit + ".fragments", 0) == 0) pages += x.bytes;
+      EXPECT_GE(pages, bytes);  // the pages unused hold 32 bytes each
+      EXPECT_LE(pages, bytes + 4 * 32);
+      EXPECT_EQ(split.warnings, whole.warnings);
+      ASSERT_FALSE(whole.image.pixels.empty());
+      EXPECT_TRUE(split.image.pixels == whole.image.pixels);
+    }
+  }
+  // Control: the comparison sees another technique's image as different.
+  const RenderResult abuffer = runRender(sbtest::smallRender("gl", scene, "exact", "abuffer", 24));
+  const RenderResult k1 = runRender(sbtest::smallRender("gl", scene, "exact", "kbuffer:k=1", 24));
+  EXPECT_FALSE(abuffer.image.pixels == k1.image.pixels);
+  // One entry a page: more pages than are bound.
+  ::setenv("SB_POOL_PAGE_BYTES", "32", 1);
+  try {
+    runRender(sbtest::smallRender("vulkan", scene, "none", "abuffer", 24));
+    ADD_FAILURE() << "a pool over every page bound ran";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("abuffer: the fragment pool"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("storage bindings of at most 32 bytes"), std::string::npos)
+        << e.what();
+  }
+  ::unsetenv("SB_POOL_PAGE_BYTES");
 }
 
 // The limit holds from the first resource on: a run whose light maps alone

@@ -132,6 +132,11 @@ class GLDriver final : public Driver {
     gl_.GetIntegerv(GL_MAX_COLOR_ATTACHMENTS, &colorAttachments);
     info_.maxColorAttachments =
         static_cast<uint32_t>(std::max(0, std::min(drawBuffers, colorAttachments)));
+    // The largest shader storage block, as Vulkan's maxStorageBufferRange
+    // (128 MiB on llvmpipe): larger pools are split into pages below it.
+    GLint64 storageBlock = 0;
+    gl_.GetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &storageBlock);
+    info_.maxStorageBufferBytes = static_cast<std::size_t>(std::max<GLint64>(0, storageBlock));
     GLint extensions = 0;
     gl_.GetIntegerv(GL_NUM_EXTENSIONS, &extensions);
     for (GLint i = 0; i < extensions; ++i) {

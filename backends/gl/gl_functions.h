@@ -9,6 +9,7 @@
   X(PFNGLGETSTRINGPROC, GetString)                                       \
   X(PFNGLGETSTRINGIPROC, GetStringi)                                     \
   X(PFNGLGETINTEGERVPROC, GetIntegerv)                                   \
+  X(PFNGLGETINTEGER64VPROC, GetInteger64v)                               \
   X(PFNGLGETERRORPROC, GetError)                                         \
   X(PFNGLENABLEPROC, Enable)                                             \
   X(PFNGLDISABLEPROC, Disable)                                           \

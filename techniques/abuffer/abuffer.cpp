@@ -14,6 +14,13 @@ constexpr uint32_t kOffsets = SB_SLOT_ABUFFER_OFFSETS, kCursor = SB_SLOT_ABUFFER
                    kFragments = SB_SLOT_ABUFFER_FRAGMENTS, kStatus = SB_SLOT_ABUFFER_STATUS;
 constexpr uint32_t kSize = SB_SLOT_ABUFFER_SIZE;  // the resolve's size uniform
 constexpr std::size_t kFragmentBytes = 32;
+constexpr uint32_t kPageSlots[] = {kFragments, SB_SLOT_ABUFFER_PAGE1, SB_SLOT_ABUFFER_PAGE2,
+                                   SB_SLOT_ABUFFER_PAGE3, SB_SLOT_ABUFFER_PAGE4};
+
+std::string bytesText(uint64_t bytes) {
+  return std::to_string(bytes) + " bytes" +
+         (bytes >> 20 ? " (" + std::to_string(bytes >> 20) + " MiB)" : std::string());
+}
 }  // namespace
 
 void ABufferOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
@@ -23,14 +30,26 @@ void ABufferOit::setup(Device& dev, const GpuScene& scene, const RenderSettings&
   cursor_ = dev.createBuffer({name() + ".cursor", "oit", BufferUsage::Storage, pixels() * 4ull});
   status_ = dev.createBuffer({name() + ".status", "oit", BufferUsage::Storage, 16});
   // Sized by prepare()'s count.
-  fragments_ =
-      dev.createBuffer({name() + ".fragments", "oit", BufferUsage::Storage, kFragmentBytes});
+  pageShift_ = poolPageShift(dev.info(), kFragmentBytes);
+  for (uint32_t page = 0; page < kPages; ++page)
+    pages_[page] = dev.createBuffer(
+        {name() + ".fragments" + (page ? ".page" + std::to_string(page) : std::string()), "oit",
+         BufferUsage::Storage, kFragmentBytes});
   const AbufferSize size{glm::uvec4(pixels(), s.width, s.height, 0)};
   sizeUbo_ =
       dev.createBuffer({name() + ".size", "frame", BufferUsage::Uniform, sizeof size}, &size);
-  fill_ = hairPipeline(dev, fillPass(), "techniques/abuffer/fill.frag", {});
+  makePipelines(dev);
+}
 
-  const ShaderCode comp = loadShader(resolveShader(), resolveDefines());
+// The fill and the resolve, compiled for the pages the pool uses (abuffer.glsl).
+void ABufferOit::makePipelines(Device& dev) {
+  dev.destroy(fill_);
+  dev.destroy(resolve_);
+  ShaderDefines pool;
+  pool.defines = {{"SB_ABUFFER_PAGES", std::to_string(pagesUsed_)},
+                  {"SB_ABUFFER_PAGE_SHIFT", std::to_string(pageShift_)}};
+  fill_ = hairPipeline(dev, fillPass(), "techniques/abuffer/fill.frag", pool);
+  const ShaderCode comp = loadShader(resolveShader(), resolveDefines().add(pool));
   PipelineDesc c = resolvePass().pipeline(dev, name() + ".resolve", name());
   c.compute = &comp;
   resolve_ = dev.createPipeline(c);
@@ -59,7 +78,20 @@ void ABufferOit::prepare(Device& dev) {
     dev.updateBuffer(counts_, capacity.data(), capacity.size() * 4);
   }
   dev.updateBuffer(offsets_, layout.offsets.data(), layout.offsets.size() * 4);
-  dev.setBufferSize(fragments_, std::max<uint64_t>(pool_, 1) * kFragmentBytes);
+  // The pool in pages that each fit one storage binding.
+  const uint64_t entries = std::max<uint64_t>(pool_, 1), perPage = 1ull << pageShift_;
+  const uint64_t pages = (entries + perPage - 1) / perPage;
+  if (pages > kPages)
+    throw InputError(name() + ": the fragment pool, " + bytesText(entries * kFragmentBytes) +
+                     ", needs " + std::to_string(pages) + " storage bindings of at most " +
+                     bytesText(perPage * kFragmentBytes) + " on this device; " +
+                     std::to_string(kPages) + " are bound: lower the resolution");
+  for (uint64_t page = 0; page < pages; ++page)
+    dev.setBufferSize(pages_[page], std::min(perPage, entries - page * perPage) * kFragmentBytes);
+  if (pages != pagesUsed_) {
+    pagesUsed_ = static_cast<uint32_t>(pages);
+    makePipelines(dev);
+  }
 }
 
 // The lists: the fill appends to them, the resolve sorts and accumulates them.
@@ -69,8 +101,8 @@ Inputs ABufferOit::lists() const {
       .storage(kCountsBinding, counts_)
       .storage(kOffsets, offsets_)
       .storage(kCursor, cursor_)
-      .storage(kFragments, fragments_)
       .storage(kStatus, status_);
+  for (uint32_t page = 0; page < kPages; ++page) in.storage(kPageSlots[page], pages_[page]);
   return in;
 }
 

@@ -8,9 +8,62 @@ layout(std430, binding = SB_SLOT_OIT_ACCUM) buffer Accum { vec4 accum[]; };
 layout(std430, binding = SB_SLOT_OIT_COUNTS) buffer Counts { uint counts[]; };
 layout(std430, binding = SB_SLOT_ABUFFER_OFFSETS) buffer Offsets { uint offsets[]; };
 layout(std430, binding = SB_SLOT_ABUFFER_CURSOR) buffer Cursor { uint cursor[]; };
+// The pool, in SB_ABUFFER_PAGES pages of 2^SB_ABUFFER_PAGE_SHIFT entries, each
+// within one storage binding (abuffer.cpp; one page unless the pool is larger
+// than the device binds at once): read and written by entry through
+// fragmentAt and setFragment.
+#ifndef SB_ABUFFER_PAGES
+#define SB_ABUFFER_PAGES 1
+#endif
 layout(std430, binding = SB_SLOT_ABUFFER_FRAGMENTS) buffer Fragments { Fragment fragments[]; };
+#if SB_ABUFFER_PAGES > 1
+layout(std430, binding = SB_SLOT_ABUFFER_PAGE1) buffer Fragments1 { Fragment fragments1[]; };
+#endif
+#if SB_ABUFFER_PAGES > 2
+layout(std430, binding = SB_SLOT_ABUFFER_PAGE2) buffer Fragments2 { Fragment fragments2[]; };
+#endif
+#if SB_ABUFFER_PAGES > 3
+layout(std430, binding = SB_SLOT_ABUFFER_PAGE3) buffer Fragments3 { Fragment fragments3[]; };
+#endif
+#if SB_ABUFFER_PAGES > 4
+layout(std430, binding = SB_SLOT_ABUFFER_PAGE4) buffer Fragments4 { Fragment fragments4[]; };
+#endif
 layout(std430, binding = SB_SLOT_ABUFFER_STATUS) buffer Status {
   uint overflow;  // more fragments than counted
   uint dropped;   // fragments past a pixel's capacity (kbuffer: a full node pool)
   uint resolveCounter;
 };
+
+#if SB_ABUFFER_PAGES == 1
+Fragment fragmentAt(uint i) { return fragments[i]; }
+void setFragment(uint i, Fragment f) { fragments[i] = f; }
+#else
+Fragment fragmentAt(uint i) {
+  uint page = i >> SB_ABUFFER_PAGE_SHIFT, j = i & ((1u << SB_ABUFFER_PAGE_SHIFT) - 1u);
+#if SB_ABUFFER_PAGES > 4
+  if (page == 4u) return fragments4[j];
+#endif
+#if SB_ABUFFER_PAGES > 3
+  if (page == 3u) return fragments3[j];
+#endif
+#if SB_ABUFFER_PAGES > 2
+  if (page == 2u) return fragments2[j];
+#endif
+  if (page == 1u) return fragments1[j];
+  return fragments[j];
+}
+void setFragment(uint i, Fragment f) {
+  uint page = i >> SB_ABUFFER_PAGE_SHIFT, j = i & ((1u << SB_ABUFFER_PAGE_SHIFT) - 1u);
+#if SB_ABUFFER_PAGES > 4
+  if (page == 4u) fragments4[j] = f;
+#endif
+#if SB_ABUFFER_PAGES > 3
+  if (page == 3u) fragments3[j] = f;
+#endif
+#if SB_ABUFFER_PAGES > 2
+  if (page == 2u) fragments2[j] = f;
+#endif
+  if (page == 1u) fragments1[j] = f;
+  if (page == 0u) fragments[j] = f;
+}
+#endif

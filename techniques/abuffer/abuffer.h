@@ -1,5 +1,7 @@
 #pragma once
 
+#include <array>
+
 #include "techniques/common/hair_oit.h"
 
 namespace sb {
@@ -36,8 +38,15 @@ class ABufferOit : public HairOit {
   Pass fillPass() const;
   Pass resolvePass() const;
 
+  void makePipelines(Device& dev);
+
   uint64_t maxFragments_;
-  Buffer offsets_, cursor_, fragments_, status_, sizeUbo_;
+  Buffer offsets_, cursor_, status_, sizeUbo_;
+  // The fragment pool's pages (poolPageShift): the first is "<name>.fragments";
+  // the others hold 32 bytes until a pool larger than one binding needs them.
+  static constexpr uint32_t kPages = 5;
+  std::array<Buffer, kPages> pages_;
+  uint32_t pageShift_ = 0, pagesUsed_ = 1;
   Pipeline fill_, resolve_;
 };
 

@@ -22,6 +22,6 @@ void main() {
     atomicAdd(dropped, 1u);
     return;
   }
-  fragments[offsets[p] + i] =
-      Fragment(vec4(shadeHair(vWorldPos, vTangent, vColor.rgb), vColor.a), uvec4(fragmentKey(), 0u, 0u));
+  setFragment(offsets[p] + i, Fragment(vec4(shadeHair(vWorldPos, vTangent, vColor.rgb), vColor.a),
+                                       uvec4(fragmentKey(), 0u, 0u)));
 }

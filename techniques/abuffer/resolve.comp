@@ -13,17 +13,17 @@ void main() {
   uint base = offsets[p];
   uint n = min(cursor[p], counts[p]);
   for (uint i = 1u; i < n; ++i) {
-    Fragment f = fragments[base + i];
+    Fragment f = fragmentAt(base + i);
     uint j = i;
-    while (j > 0u && keyLess(f.key.xy, fragments[base + j - 1u].key.xy)) {
-      fragments[base + j] = fragments[base + j - 1u];
+    while (j > 0u && keyLess(f.key.xy, fragmentAt(base + j - 1u).key.xy)) {
+      setFragment(base + j, fragmentAt(base + j - 1u));
       --j;
     }
-    fragments[base + j] = f;
+    setFragment(base + j, f);
   }
   vec4 acc = vec4(0.0);
   for (uint i = 0u; i < n; ++i) {
-    Fragment f = fragments[base + i];
+    Fragment f = fragmentAt(base + i);
     acc = acc + (1.0 - acc.a) * vec4(f.color.rgb * f.color.a, f.color.a);
   }
   accum[p] = acc;

@@ -1,5 +1,6 @@
 #include "techniques/common/fragment_lists.h"
 
+#include <cstdlib>
 #include <cstring>
 
 #include "techniques/common/shader_library.h"
@@ -30,6 +31,15 @@ ListLayout layoutFromCounts(const std::vector<uint8_t>& countBytes) {
   l.complexity.mean =
       covered ? static_cast<double>(l.complexity.total) / static_cast<double>(covered) : 0.0;
   return l;
+}
+
+uint32_t poolPageShift(const DeviceInfo& device, std::size_t entryBytes) {
+  uint64_t most = device.maxStorageBufferBytes ? device.maxStorageBufferBytes : ~0ull;
+  if (const char* hook = std::getenv("SB_POOL_PAGE_BYTES"); hook && *hook)
+    most = std::min<uint64_t>(most, std::strtoull(hook, nullptr, 10));
+  uint32_t shift = 0;
+  while (shift < 31 && (uint64_t(entryBytes) << (shift + 1)) <= most) ++shift;
+  return shift;
 }
 
 Pipeline makeHairCountPipeline(Device& dev, const RenderSettings& s, const Pass& pass,

@@ -19,6 +19,14 @@ struct ListLayout {
 // From the read-back per-pixel counts (uint32 each).
 ListLayout layoutFromCounts(const std::vector<uint8_t>& countBytes);
 
+// A fragment pool larger than one storage binding (DeviceInfo::
+// maxStorageBufferBytes) is split into pages: page p holds the entries
+// [p << shift, (p + 1) << shift). The shift is the largest whose page of
+// `entryBytes` entries fits one binding (31 at most: indices are 32-bit).
+// SB_POOL_PAGE_BYTES, where set, is a smaller limit in bytes: a test hook
+// that makes a small scene's pool split.
+uint32_t poolPageShift(const DeviceInfo& device, std::size_t entryBytes);
+
 // A pipeline for `pass` (Pass::pipeline: its slots, no colour targets) that
 // counts the hair fragments of every pixel into the storage buffer at
 // `countsBinding`, depth-tested (never written) against an opaque depth when

@@ -60,6 +60,12 @@
 #define SB_SLOT_ABUFFER_CURSOR 19
 #define SB_SLOT_ABUFFER_FRAGMENTS 20
 #define SB_SLOT_ABUFFER_STATUS 21
+// the fragment pool's further pages, where it is larger than one storage
+// binding (abuffer.glsl): page 0 is SB_SLOT_ABUFFER_FRAGMENTS
+#define SB_SLOT_ABUFFER_PAGE1 22
+#define SB_SLOT_ABUFFER_PAGE2 23
+#define SB_SLOT_ABUFFER_PAGE3 24
+#define SB_SLOT_ABUFFER_PAGE4 25
 #define SB_SLOT_ABUFFER_SIZE 0  // resolve.comp only
 
 // peel: the peeling state (also common/peel_advance.comp)

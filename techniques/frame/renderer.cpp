@@ -1,6 +1,7 @@
 #include "techniques/frame/renderer.h"
 
 #include <algorithm>
+#include <optional>
 
 #include "techniques/common/composite.h"
 #include "techniques/common/unit.h"
@@ -39,6 +40,19 @@ class DeferredPipelines {
   ~DeferredPipelines() { dev_.setDeferPipelines(false); }
   DeferredPipelines(const DeferredPipelines&) = delete;
   DeferredPipelines& operator=(const DeferredPipelines&) = delete;
+
+ private:
+  Device& dev_;
+};
+
+// Buffers created with data in its lifetime are made when first used
+// (Device::setDeferMaking); leaving it makes nothing.
+class DeferredMaking {
+ public:
+  explicit DeferredMaking(Device& dev) : dev_(dev) { dev_.setDeferMaking(true); }
+  ~DeferredMaking() { dev_.setDeferMaking(false); }
+  DeferredMaking(const DeferredMaking&) = delete;
+  DeferredMaking& operator=(const DeferredMaking&) = delete;
 
  private:
   Device& dev_;
@@ -87,6 +101,9 @@ Renderer::Renderer(Device& dev, const Scene& scene, const RenderSettings& settin
                    std::vector<Techniques> techniques, const std::set<std::string>& outputs)
     : dev_(dev), group_(dev), settings_(settings), graph_(resourceNamer(dev)) {
   GroupScope owned(dev_, group_);
+  // Nothing is made, the scene's buffers included, until the whole plan has
+  // been put to the memory guard.
+  std::optional<DeferredMaking> making(std::in_place, dev_);
   upload(scene);
   for (std::size_t i = 0; i < techniques.size(); ++i) {
     auto light = std::make_unique<LightChain>();
@@ -130,10 +147,31 @@ Renderer::Renderer(Device& dev, const Scene& scene, const RenderSettings& settin
     sumPipelines = dev_.pipelineIdsFrom(first);
   }
   passes_ = graph_.compile(resources(outputs));
+  guardPlan(outputs);
+  dev_.makeDeferredBuffers();
+  making.reset();
   for (std::size_t i = 0; i < lights_.size(); ++i) buildLight(*lights_[i], i);
   if (lights_.size() > 1 &&
       kept({Unit::Kind::Outputs, lights_.back()->endNode, graph_.nodes().size(), {}}))
     dev_.compilePipelines(sumPipelines);
+}
+
+// The whole plan before anything is made: what the kept passes use and what
+// the kept techniques declared (their preparations' too), lists that a counting
+// pass sizes at their declared size.
+void Renderer::guardPlan(const std::set<std::string>& outputs) const {
+  std::set<uint32_t> ids = graphResources(outputs);
+  bool counted = false;
+  for (const auto& light : lights_) {
+    if (kept(light->units[0])) ids.insert(light->shadowIds.begin(), light->shadowIds.end());
+    if (kept(light->units[2])) {
+      ids.insert(light->oitIds.begin(), light->oitIds.end());
+      counted = counted || light->oit->needsPrepare();
+    }
+  }
+  dev_.guardMemory(ids, counted ? "this run (its whole plan; the fragment lists before the "
+                                  "counting pass that sizes them)"
+                                : "this run (its whole plan)");
 }
 
 bool Renderer::kept(const Unit& unit) const {

@@ -120,6 +120,7 @@ class Renderer {
   void declareLight(LightChain& light, std::size_t index);
   void buildLight(LightChain& light, std::size_t index);
   bool kept(const Unit& unit) const;
+  void guardPlan(const std::set<std::string>& outputs) const;
   void addSumPass();
   void upload(const Scene& scene);
   // The graph resources behind the outputs "color", "visibility" and "probe".

@@ -18,7 +18,9 @@ void main() {
   uint n = min(cursor[p], counts[p]);
   sortBySubmission(base, n);
   KBuffer kb = kbufferEmpty();
-  for (uint i = 0u; i < n; ++i)
-    kbufferInsert(kb, SB_KBUFFER_K, fragments[base + i].color, fragments[base + i].key.xy);
+  for (uint i = 0u; i < n; ++i) {
+    Fragment f = fragmentAt(base + i);
+    kbufferInsert(kb, SB_KBUFFER_K, f.color, f.key.xy);
+  }
   accum[p] = kbufferResolve(kb);
 }

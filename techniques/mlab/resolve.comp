@@ -20,8 +20,10 @@ void main() {
   uint n = min(cursor[p], counts[p]);
   sortBySubmission(base, n);
   MlabLayers m = mlabEmpty();
-  for (uint i = 0u; i < n; ++i)
-    mlabInsert(m, SB_MLAB_LAYERS, fragments[base + i].color, fragments[base + i].key.xy);
+  for (uint i = 0u; i < n; ++i) {
+    Fragment f = fragmentAt(base + i);
+    mlabInsert(m, SB_MLAB_LAYERS, f.color, f.key.xy);
+  }
   accum[p] = mlabResolve(m);
   if (n > 0u) atomicAdd(resolveCounter, n);
 }
