@@ -9,6 +9,8 @@
 #include "../marschner/marschner.glsl"
 #elif SB_SHADING_MODEL == 2
 #include "../sadeghi/sadeghi.glsl"
+#elif SB_SHADING_MODEL == 3
+#include "../chiang/chiang.glsl"
 #endif
 
 vec3 shadeHair(vec3 worldPos, vec3 tangent, vec3 color) {
@@ -19,6 +21,9 @@ vec3 shadeHair(vec3 worldPos, vec3 tangent, vec3 color) {
 #if SB_SHADING_MODEL == 0
   vec2 kk = kajiyaKay(T, L, V, hairMaterial.z);
   vec3 direct = (hairMaterial.x * kk.x * color + hairMaterial.y * kk.y) * lightColor.rgb;
+#elif SB_SHADING_MODEL == 3
+  // The fibre alone: no diffuse term (the tracer's single scattering).
+  vec3 direct = chiang(T, L, V, color, lobeShift, lobeWidth, lobeIntensity) * lightColor.rgb;
 #else
   // Both papers' models add a Kajiya-Kay diffuse term (the thesis, Listing 2, line 3).
   float tl = dot(T, L);
