@@ -106,9 +106,9 @@ Agreement agreement(const std::string& modelSpec, float betaM, float betaN, floa
 }
 
 // The table's steps (64 azimuths, 32 sines, 32 absorptions, trilinear) and float arithmetic
-// leave a few percent: 5% is the bound, relative where a probe's value is at least 2% of the
-// brightest.
-constexpr double kTolerance = 0.05;
+// leave 0.2% at these probes (measured on the first run); 1% is the bound, relative where a
+// probe's value is at least 2% of the brightest. The controls miss it by 38% and more.
+constexpr double kTolerance = 0.01;
 
 TEST(ChiangShading, AgreesWithThePbrBsdfAveragedOverTheFibre) {
   const Agreement a = agreement("chiang", 0.3f, 0.3f, 2.0f);
