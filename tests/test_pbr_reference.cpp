@@ -149,7 +149,8 @@ TEST(PbrReference, TransmittanceAgreesWithTheExactReferenceOnARealGroom) {
 // image of the model with its tilt mirrored, fails the same bound.
 TEST(PbrReference, ChiangShadingOnBothApisMatchesItsCpuForm) {
   const std::string scene = "straight:strands=12,points=5,seed=5,head=1";
-  constexpr double kTolerance = 0.02;
+  // 7e-5 measured on llvmpipe and lavapipe (the control: 0.76).
+  constexpr double kTolerance = 0.002;
   for (const std::string backend : {"gl", "vulkan"}) {
     if (const std::string why = backendMissing(backend); !why.empty()) GTEST_SKIP() << why;
     SCOPED_TRACE(backend);

@@ -23,12 +23,8 @@
 #define SB_CHIANG_X 32
 #define SB_CHIANG_LOBES 4
 
-#ifndef SB_CHIANG_CPU
-#include "slots.h"
-layout(std430, binding = SB_SLOT_CHIANG_TABLE) readonly buffer ChiangTable {
-  float chiangTable[];
-};
-#endif
+// The table: chiangTable[], a storage buffer the includer declares (shading/hair_shading.glsl),
+// a pointer on the CPU (chiang.h).
 
 // log I0(x) for x >= 0, finite where I0 overflows float: the power series below 12, the
 // asymptotic series above (three terms, relative error below 1e-4 there).

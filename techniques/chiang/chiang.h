@@ -38,9 +38,7 @@ using glm::vec4;
 // The shader's storage buffer, here a pointer set by chiangShade for the calling thread.
 inline thread_local const float* chiangTable = nullptr;
 #define SB_INLINE inline
-#define SB_CHIANG_CPU 1
 #include "techniques/chiang/chiang.glsl"
-#undef SB_CHIANG_CPU
 #undef SB_INLINE
 }  // namespace glsl
 

@@ -4,11 +4,11 @@
 #include <cmath>
 
 #include "techniques/chiang/chiang.h"
-#include "techniques/chiang/slots.h"
 #include "techniques/common/shader_library.h"
 #include "techniques/kajiya_kay/kajiya_kay.h"
 #include "techniques/marschner/marschner.h"
 #include "techniques/sadeghi/sadeghi.h"
+#include "techniques/shading/slots.h"
 
 namespace sb {
 
@@ -97,7 +97,7 @@ ShaderDefines HairShading::hairDefines() const {
 Inputs HairShading::hairInputs() const {
   Inputs in = Geometry::inputs(*scene_, viewUbo_);
   in.uniform(bind::kShading, shadingUbo_).add(shadow_->lookup().inputs);
-  if (lobeTable_) in.readStorage(SB_SLOT_CHIANG_TABLE, lobeTable_);
+  if (lobeTable_) in.readStorage(SB_SLOT_SHADING_TABLE, lobeTable_);
   return in;
 }
 

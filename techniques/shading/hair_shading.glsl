@@ -10,6 +10,10 @@
 #elif SB_SHADING_MODEL == 2
 #include "../sadeghi/sadeghi.glsl"
 #elif SB_SHADING_MODEL == 3
+#include "slots.h"
+layout(std430, binding = SB_SLOT_SHADING_TABLE) readonly buffer ShadingTable {
+  float chiangTable[];  // the model's h-averaged lobes (techniques/chiang/chiang_table.cpp)
+};
 #include "../chiang/chiang.glsl"
 #endif
 
