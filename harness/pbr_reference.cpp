@@ -80,7 +80,8 @@ std::string cacheKeyText(const Scene& scene, const RenderSettings& s, const Spec
   h = fnvVector(h, scene.mesh.positions);
   h = fnvVector(h, scene.mesh.normals);
   h = fnvVector(h, scene.mesh.indices);
-  k << std::hex << h << std::dec << "|" << scene.hairAlpha << "," << scene.shadowAlpha << ";";
+  k << std::hex << h << std::dec << "|" << scene.hairAlpha << "," << s.shading.shadowAlpha(scene)
+    << ";";
   v3(scene.hairColor);
   k << s.width << "x" << s.height << "|" << int(s.primitive) << "," << s.ribbonWidth << "|";
   v3(s.camera.eye);
@@ -238,7 +239,7 @@ pbr::StrandScene pbrScene(const Scene& scene, const RenderSettings& s, const Spe
     out.alpha[i] = scene.hairAlpha * (1.0f - transparency);
   }
   out.meshNormals = scene.mesh.normals;
-  out.shadowAlpha = scene.shadowAlpha;
+  out.shadowAlpha = s.shading.shadowAlpha(scene);
   out.background = s.background;
   out.meshAlbedo = glm::vec3(HairShading::kMeshMaterial);
   const float bias = static_cast<float>(mapBias(refShadow));

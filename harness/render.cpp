@@ -15,6 +15,8 @@
 
 #include "backends/device.h"
 #include "backends/window.h"
+#include "harness/pbr_reference.h"
+#include "harness/reference_spec.h"
 #include "harness/render_steps.h"
 #include "harness/settings.h"
 #include "harness/stop.h"
@@ -50,7 +52,9 @@ RenderSettings makeRenderSettings(const RenderRequest& req, const Scene& scene) 
   RenderSettings s;
   s.width = req.width;
   s.height = req.height;
-  s.primitive = req.primitive == "ribbons" ? Primitive::Ribbons : Primitive::Lines;
+  s.primitive = req.primitive == "ribbons" ? Primitive::Ribbons
+                : req.primitive == "world" ? Primitive::World
+                                           : Primitive::Lines;
   s.ribbonWidth = req.ribbonWidth;
   s.shading = ShadingModel::fromSpec(req.shading);
   s.msaa = static_cast<uint32_t>(req.msaa);
@@ -86,6 +90,10 @@ RenderSettings makeRenderSettings(const RenderRequest& req, const Scene& scene) 
     l.intensity = e.intensity;
     s.extraLights.push_back(l);
   }
+  // World strands without a thickness of their own: one pixel at the scene's centre, the
+  // path-traced reference's width for them too.
+  if (s.primitive == Primitive::World)
+    s.worldThickness = static_cast<float>(pbrThickness(scene, s, ReferenceSpec{}));
   return s;
 }
 

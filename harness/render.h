@@ -85,7 +85,7 @@ struct RenderRequest {
   std::string driver;
   std::string platform;  // empty: egl for gl, headless for vulkan
   uint32_t width = 512, height = 512;
-  std::string primitive = "lines";  // lines | ribbons
+  std::string primitive = "lines";  // lines | ribbons | world
   float ribbonWidth = 1.0f;
   int msaa = 1;  // samples per pixel of the frame targets: 1, 2, 4, 8 (what the device has)
   int repeat = 1;

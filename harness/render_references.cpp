@@ -134,9 +134,12 @@ RenderResult::MoreReference renderAaReference(const RenderRequest& req, const Sc
   // ribbon_width pixels; at samples times the resolution they are samples
   // times as wide, drawn as ribbons (a line's width cannot be set the same way
   // on both APIs).
-  hi.ribbonWidth = (settings.primitive == Primitive::Lines ? 1.0f : settings.ribbonWidth) *
-                   static_cast<float>(samples);
-  hi.primitive = Primitive::Ribbons;
+  // World strands keep their world width (and coverage) at any resolution.
+  if (settings.primitive != Primitive::World) {
+    hi.ribbonWidth = (settings.primitive == Primitive::Lines ? 1.0f : settings.ribbonWidth) *
+                     static_cast<float>(samples);
+    hi.primitive = Primitive::Ribbons;
+  }
   Spec shadow = refShadow;
   shadow.options["size"] = std::to_string(size);
   m.width = hi.width;

@@ -166,9 +166,12 @@ std::vector<Setting> buildTable() {
     };
   }
   {
-    Setting& s = add(make("primitive", "--primitive", T::Enum, "lines",
-                          "strands drawn as lines or camera-facing ribbons", "ribbons", "points"));
-    s.choices = {"lines", "ribbons"};
+    Setting& s =
+        add(make("primitive", "--primitive", T::Enum, "lines",
+                 "strands drawn as lines, camera-facing ribbons (--ribbon-width pixels) or "
+                 "ribbons of their world width with analytic coverage",
+                 "ribbons", "points"));
+    s.choices = {"lines", "ribbons", "world"};
     plain(s, &RenderRequest::primitive);
   }
   plainFloat(add(ranged(make("ribbon_width", "--ribbon-width", T::Float, "1",

@@ -185,7 +185,7 @@ namespace {
 // (max_abs 0.002), and the models differ from each other (the option reaches the shaders).
 TEST(ShadingModelsRender, BothBackendsAgreeAndTheModelsDiffer) {
   std::map<std::string, sb::Image> gl;
-  for (const char* spec : {"kajiya-kay", "marschner", "sadeghi"}) {
+  for (const char* spec : {"kajiya-kay", "marschner", "sadeghi", "chiang"}) {
     std::map<std::string, sb::Image> images;
     for (const char* backend : {"gl", "vulkan"}) {
       sb::RenderRequest req;
@@ -212,6 +212,7 @@ TEST(ShadingModelsRender, BothBackendsAgreeAndTheModelsDiffer) {
   }
   EXPECT_GT(sb::compareImages(gl["kajiya-kay"], gl["marschner"]).maxAbs, 0.05);
   EXPECT_GT(sb::compareImages(gl["marschner"], gl["sadeghi"]).maxAbs, 0.05);
+  EXPECT_GT(sb::compareImages(gl["sadeghi"], gl["chiang"]).maxAbs, 0.05);
 }
 
 }  // namespace

@@ -40,7 +40,7 @@ std::string what(const TechniqueDescriptor& d) {
 TEST(TechniqueUnits, EveryDescriptorIsComplete) {
   EXPECT_GE(sb::techniques(Family::Shadow).size(), 13u);
   EXPECT_GE(sb::techniques(Family::Transparency).size(), 15u);
-  EXPECT_EQ(sb::techniques(Family::Shading).size(), 3u);
+  EXPECT_EQ(sb::techniques(Family::Shading).size(), 4u);
   for (const TechniqueDescriptor* d : all()) {
     SCOPED_TRACE(what(*d));
     EXPECT_FALSE(d->help.empty());
@@ -219,7 +219,7 @@ std::vector<std::string> namesOutsideFolders(const fs::path& root) {
       {"techniques/msm/", {"mboit"}},                // MSM is MBOIT's moment math on light maps
       {"techniques/occupancy_oit/", {"occupancy"}},  // the occupancy maps' transparency order
       {"techniques/rt_oit/", {"kbuffer"}},           // k=: the k-buffer's merge of the hits past k
-      {"techniques/shading/", {"marschner", "sadeghi"}}};  // the pass every model runs in
+      {"techniques/shading/", {"marschner", "sadeghi", "chiang"}}};  // the pass every model runs in
   // A name's folders: two descriptors may share one (occupancy: shadow and transparency).
   std::map<std::string, std::set<std::string>> homes;
   for (const TechniqueDescriptor* d : all()) homes[d->name].insert("techniques/" + d->folder + "/");

@@ -11,8 +11,8 @@ ViewUniforms cameraView(const RenderSettings& s) {
   v.viewProj = s.camera.projection(aspect) * s.camera.view();
   v.viewEye = glm::vec4(s.camera.eye, 1.0f);
   v.viewForward = glm::vec4(glm::normalize(s.camera.target - s.camera.eye), 0.0f);
-  v.viewViewport =
-      glm::vec4(static_cast<float>(s.width), static_cast<float>(s.height), s.ribbonWidth, 0);
+  v.viewViewport = glm::vec4(static_cast<float>(s.width), static_cast<float>(s.height),
+                             s.ribbonWidth, s.worldThickness);
   return v;
 }
 
@@ -22,8 +22,8 @@ ViewUniforms lightView(const RenderSettings& s, uint32_t mapWidth, uint32_t mapH
   const bool point = s.light.type == LightType::Point;
   v.viewEye = glm::vec4(s.light.position, point ? 1.0f : 0.0f);
   v.viewForward = glm::vec4(glm::normalize(s.light.direction), 0.0f);
-  v.viewViewport =
-      glm::vec4(static_cast<float>(mapWidth), static_cast<float>(mapHeight), s.ribbonWidth, 0);
+  v.viewViewport = glm::vec4(static_cast<float>(mapWidth), static_cast<float>(mapHeight),
+                             s.ribbonWidth, s.worldThickness);
   return v;
 }
 
@@ -34,18 +34,19 @@ Buffer createLightViewBuffer(Device& dev, const ViewUniforms& view, const std::s
 
 ShaderCode Geometry::strandVertexShader(const RenderSettings& s) {
   ShaderDefines d;
-  if (s.primitive == Primitive::Ribbons) d.defines.push_back({"SB_RIBBONS", "1"});
+  if (s.primitive != Primitive::Lines) d.defines.push_back({"SB_RIBBONS", "1"});
+  if (s.primitive == Primitive::World) d.defines.push_back({"SB_WORLD", "1"});
   return loadShader("techniques/common/strands.vert", d);
 }
 
 ShaderCode Geometry::meshVertexShader() { return loadShader("techniques/common/mesh.vert"); }
 
 Topology Geometry::strandTopology(const RenderSettings& s) {
-  return s.primitive == Primitive::Ribbons ? Topology::Triangles : Topology::Lines;
+  return s.primitive == Primitive::Lines ? Topology::Lines : Topology::Triangles;
 }
 
 uint32_t Geometry::strandVertexCount(const GpuScene& g, const RenderSettings& s) {
-  return g.segmentCount * (s.primitive == Primitive::Ribbons ? 6u : 2u);
+  return g.segmentCount * (s.primitive == Primitive::Lines ? 2u : 6u);
 }
 
 Inputs Geometry::inputs(const GpuScene& g, Buffer viewUbo) {

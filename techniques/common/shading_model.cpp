@@ -43,8 +43,19 @@ float ShadingModel::maxSpecular() const {
     }
     case ShadingKind::Sadeghi:
       return (intensity.x + intensity.y + intensity.z * (1.0f + intensity.w)) / kMinCos2;
+    case ShadingKind::Chiang:
+      return specularBound;
   }
   return 1.0f;
+}
+
+float ShadingModel::shadowAlpha(const Scene& scene) const {
+  if (!fibreShadowAlpha) return scene.shadowAlpha;
+  const std::vector<glm::vec3>& colors = scene.strands.colors;
+  glm::dvec3 sum(0.0);
+  for (const glm::vec3& c : colors) sum += glm::dvec3(c);
+  const glm::vec3 mean = colors.empty() ? scene.hairColor : glm::vec3(sum / double(colors.size()));
+  return fibreShadowAlpha(mean);
 }
 
 }  // namespace sb

@@ -1,6 +1,9 @@
 // Strands pulled from storage buffers by gl_VertexIndex: 2 vertices per segment
 // as lines, or 6 per segment as a camera-facing ribbon (SB_RIBBONS) whose width
-// is set in pixels, so both APIs rasterize the same triangles.
+// is set in pixels, so both APIs rasterize the same triangles. SB_WORLD: the
+// ribbon is the strand's world width as projected at each end, at least one
+// pixel, and its alpha is multiplied by the coverage, projected width / pixel
+// clamped to 1 (analytic coverage, as production strand renderers draw hair).
 #include "bindings.glsl"
 
 layout(location = 0) out vec3 vWorldPos;
@@ -34,8 +37,19 @@ void main() {
   vec2 dir = dot(s, s) > 1e-12 ? normalize(s) : vec2(1.0, 0.0);
   vec2 normal = vec2(-dir.y, dir.x);
   float side = kSide[uint(gl_VertexIndex) % 6u];
+  float widthPx = viewViewport.z;
+#ifdef SB_WORLD
+  // The point's thickness (the view's fallback where the scene has none), in pixels: the
+  // view-projection's y row has the projection's y scale as its length (the view is rigid),
+  // and one pixel is 2 / height of NDC.
+  float thickness = points[first + end].w > 0.0 ? points[first + end].w : viewViewport.w;
+  float yScale = length(vec3(viewProj[0][1], viewProj[1][1], viewProj[2][1]));
+  float projected = thickness * yScale / abs(clip.w) * 0.5 * viewViewport.y;
+  widthPx = max(projected, 1.0);
+  vColor.a *= min(projected, 1.0);
+#endif
   // Half the width in pixels, converted to clip units at this vertex.
-  clip.xy += normal * side * viewViewport.z / viewViewport.xy * clip.w;
+  clip.xy += normal * side * widthPx / viewViewport.xy * clip.w;
 #endif
   gl_Position = clip;
 }

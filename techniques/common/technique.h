@@ -23,13 +23,16 @@
 
 namespace sb {
 
-enum class Primitive { Lines, Ribbons };
+// World: ribbons of the strands' world width, at least a pixel, alpha times coverage.
+enum class Primitive { Lines, Ribbons, World };
 
 struct RenderSettings {
   ShadingModel shading;  // hair shading model of the final passes
   uint32_t width = 512, height = 512;
   Primitive primitive = Primitive::Lines;
   float ribbonWidth = 1.0f;  // pixels of the target being drawn
+  // World: the thickness (world units) of a strand point that has none.
+  float worldThickness = 0.0f;
   // Samples per pixel of the frame's colour and depth (--msaa): 1, or a count
   // the device supports; only techniques that are multisampled() take more.
   uint32_t msaa = 1;

@@ -11,7 +11,8 @@ SB_UNIFORM_BLOCK(ViewUniforms, SB_SLOT_VIEW)
   SB_FIELD(mat4, viewProj)
   SB_FIELD(vec4, viewEye)       // xyz position; w: 1 perspective, 0 orthographic
   SB_FIELD(vec4, viewForward)   // view direction (orthographic views)
-  SB_FIELD(vec4, viewViewport)  // width, height, ribbon width in pixels, 0
+  SB_FIELD(vec4, viewViewport)  // width, height, ribbon width in pixels, world thickness
+                                // where a point has none (--primitive world)
 SB_UNIFORM_BLOCK_END(ViewUniforms)
 // clang-format on
 

@@ -60,6 +60,11 @@ void ComputeRasterOit::setup(Device& dev, const GpuScene& scene, const RenderSet
   tilesX_ = (s.width + o_.tile - 1) / o_.tile;
   tilesY_ = (s.height + o_.tile - 1) / o_.tile;
 
+  // Its own option thickness=on draws world widths with its coverage model.
+  if (s.primitive == Primitive::World)
+    throw InputError(
+        "transparency technique 'compute_raster': --primitive world is not "
+        "supported (its option thickness=on draws the strands' world widths)");
   const Strand st = strand(o_, s.primitive == Primitive::Ribbons ? s.ribbonWidth : 1.0f);
   CRasterParams p{};
   p.crTiles = glm::uvec4(tilesX_, tilesY_, o_.tile, tiles());

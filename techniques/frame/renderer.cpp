@@ -338,7 +338,7 @@ void Renderer::upload(const Scene& scene) {
       makeBuffer(dev_, "scene.mesh_indices", m.indices.data(), m.indices.size() * sizeof(uint32_t));
   gpu_.meshTriangles = static_cast<uint32_t>(m.triangleCount());
   gpu_.hairAlpha = scene.hairAlpha;
-  gpu_.shadowAlpha = scene.shadowAlpha;
+  gpu_.shadowAlpha = settings_.shading.shadowAlpha(scene);
   gpu_.bounds = scene.bounds();
 }
 

@@ -15,11 +15,15 @@ SB_TECHNIQUE(
          {opt::number("eta", "1.55", 1.01, 3, "index of refraction of the fibre, 1.01..3"),
           opt::number("caustic", "0.5", 0.01, 4,
                       "floor on |dphi/dh| bounding the TRT caustic (the paper fades it with a "
-                      "Gaussian), 0.01..4")}),
+                      "Gaussian), 0.01..4"),
+          opt::number("ambient", "0.12", 0, 1,
+                      "ambient term, a fraction of the hair colour (0: none, as the path-traced "
+                      "reference has), 0..1")}),
      .makeShading = [](const OptionReader& o) {
        ShadingModel m = ShadingModel::withLobes(o);
        m.kind = ShadingKind::Marschner;
        m.shift.w = static_cast<float>(o.number("eta"));
        m.width.w = static_cast<float>(o.number("caustic"));
+       m.material.w = static_cast<float>(o.number("ambient"));
        return m;
      }});

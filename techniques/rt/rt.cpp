@@ -1,5 +1,6 @@
 #include "techniques/rt/rt.h"
 
+#include "base/errors.h"
 #include "techniques/common/readback.h"
 #include "techniques/rt/slots.h"
 #include "techniques/rt/uniforms.h"
@@ -31,6 +32,11 @@ void RayTracedShadow::setup(Device& dev, const GpuScene& scene, const RenderSett
   const glm::mat4 proj = s.light.projection(), lightV = s.light.view();
   // One texel is 2 / size of the NDC square: 2 w / (size P00) world units at clip w.
   const float perW = 2.0f / (float(opt_.size) * proj[0][0]);
+  // Its segments are capsules of one width in pixels (texels); world widths with coverage
+  // would need a per-segment radius and alpha it does not have yet.
+  if (s.primitive == Primitive::World)
+    throw InputError(
+        "shadow technique 'rt': --primitive world is not supported (lines or ribbons)");
   const float texels = s.primitive == Primitive::Ribbons ? s.ribbonWidth : 1.0f;
 
   const std::vector<rt::Segment> segs = rt::sceneSegments(dev, scene, view.viewProj, perW, texels);

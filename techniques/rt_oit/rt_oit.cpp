@@ -43,6 +43,11 @@ void RayTracedOit::setup(Device& dev, const GpuScene& scene, const RenderSetting
                      " (2^24: a segment's index is a float in the shader)");
   keepInputs(dev, scene, s, shading, targets);
   const glm::mat4 vp = cameraView(s).viewProj;
+  // Its segments are capsules of one width in pixels (texels); world widths with coverage
+  // would need a per-segment radius and alpha it does not have yet.
+  if (s.primitive == Primitive::World)
+    throw InputError(
+        "transparency technique 'rt': --primitive world is not supported (lines or ribbons)");
   const float pixels = s.primitive == Primitive::Ribbons ? s.ribbonWidth : 1.0f;
 
   // One pixel is 2 |w| / (width * xScale) world units at clip w.

@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "techniques/chiang/chiang.h"
 #include "techniques/common/shader_library.h"
 #include "techniques/kajiya_kay/kajiya_kay.h"
 #include "techniques/marschner/marschner.h"
 #include "techniques/sadeghi/sadeghi.h"
+#include "techniques/shading/slots.h"
 
 namespace sb {
 
@@ -16,6 +18,7 @@ glm::vec3 HairShading::direct(const ShadingModel& m, glm::vec3 T, glm::vec3 L, g
     const glm::vec2 kk = glsl::kajiyaKay(T, L, V, m.material.z);
     return m.material.x * kk.x * c + glm::vec3(m.material.y * kk.y);
   }
+  if (m.kind == ShadingKind::Chiang) return chiangShade(m, T, L, V, c);
   const float tl = glm::dot(T, L);
   const float diffuse = std::sqrt(std::max(0.0f, 1.0f - tl * tl));
   const glm::vec3 specular =
@@ -64,6 +67,12 @@ void HairShading::setup(Device& dev, const GpuScene& scene, const RenderSettings
   u.lobeWidth = s.shading.width;
   u.lobeIntensity = s.shading.intensity;
   shadingUbo_ = dev.createBuffer({"shading.params", "frame", BufferUsage::Uniform, sizeof u}, &u);
+  if (s.shading.kind == ShadingKind::Chiang) {
+    const std::vector<float>& table = chiangLobeTable(s.shading.betaN, s.shading.eta);
+    lobeTable_ = dev.createBuffer(
+        {"shading.lobe_table", "frame", BufferUsage::Storage, table.size() * sizeof(float)},
+        table.data());
+  }
 
   if (scene.hasMesh()) {
     const ShaderCode vert = Geometry::meshVertexShader();
@@ -88,6 +97,7 @@ ShaderDefines HairShading::hairDefines() const {
 Inputs HairShading::hairInputs() const {
   Inputs in = Geometry::inputs(*scene_, viewUbo_);
   in.uniform(bind::kShading, shadingUbo_).add(shadow_->lookup().inputs);
+  if (lobeTable_) in.readStorage(SB_SLOT_SHADING_TABLE, lobeTable_);
   return in;
 }
 

@@ -9,6 +9,12 @@
 #include "../marschner/marschner.glsl"
 #elif SB_SHADING_MODEL == 2
 #include "../sadeghi/sadeghi.glsl"
+#elif SB_SHADING_MODEL == 3
+#include "slots.h"
+layout(std430, binding = SB_SLOT_SHADING_TABLE) readonly buffer ShadingTable {
+  float chiangTable[];  // the model's h-averaged lobes (techniques/chiang/chiang_table.cpp)
+};
+#include "../chiang/chiang.glsl"
 #endif
 
 vec3 shadeHair(vec3 worldPos, vec3 tangent, vec3 color) {
@@ -19,6 +25,9 @@ vec3 shadeHair(vec3 worldPos, vec3 tangent, vec3 color) {
 #if SB_SHADING_MODEL == 0
   vec2 kk = kajiyaKay(T, L, V, hairMaterial.z);
   vec3 direct = (hairMaterial.x * kk.x * color + hairMaterial.y * kk.y) * lightColor.rgb;
+#elif SB_SHADING_MODEL == 3
+  // The fibre alone: no diffuse term (the tracer's single scattering).
+  vec3 direct = chiang(T, L, V, color, lobeShift, lobeWidth, lobeIntensity) * lightColor.rgb;
 #else
   // Both papers' models add a Kajiya-Kay diffuse term (the thesis, Listing 2, line 3).
   float tl = dot(T, L);

@@ -8,7 +8,7 @@ namespace sb {
 
 // Final shading from the camera: the opaque mesh (Lambert, pass "shading.mesh")
 // and what every hair pass of a transparency technique needs to shade hair with
-// the model chosen by --shading (Kajiya-Kay, Marschner or Sadeghi) through the
+// the model chosen by --shading (Kajiya-Kay, Marschner, Sadeghi or Chiang) through the
 // shadow technique's lookup (hair_shading.glsl).
 class HairShading {
  public:
@@ -43,6 +43,7 @@ class HairShading {
   RenderSettings settings_;
   Texture color_, depth_;
   Buffer viewUbo_, shadingUbo_;
+  Buffer lobeTable_;  // the shading model's table (chiang), or none
   Pipeline meshPipeline_;
 };
 
