@@ -193,6 +193,7 @@ def run_vkhr(a, row, scene, rundir, steps=512):
 
 def sb_args(row, hair_path, alpha, extra=()):
     return (["--scene", f"file:path={hair_path},up=z,alpha={alpha:g},shadow_alpha={alpha:g}", "--shadow", row["sb_shadow"], "--oit", row["sb_oit"],
+             "--primitive", row["sb_primitive"],
              "--backend", "vulkan", "--size", f"{row['w']}x{row['h']}",
              f"--camera-eye={vec(row['eye'])}", f"--camera-target={vec(row['target'])}",
              "--fov", f"{FOV:g}", f"--light-direction={vec(LIGHT_DIR)}"] + list(extra))
@@ -296,10 +297,13 @@ def main():
         else:
             row["sb_shadow"] = f"adsm:size={a.shadow_size},kernel=3"
             row["sb_oit"] = f"kbuffer:k={a.k}"
+        # Thin rows: strandbench's form of the peer's thin strands, the file's world widths drawn
+        # by their coverage (--primitive world); its exact reference draws the same widths.
+        row["sb_primitive"] = "world" if row["mode"] == "thin" else "lines"
         row.update(vk=[], sb=[], ratios=[], refused=None, vk_error=None)
 
-    def sb_key(row):  # thin rows share the matched row's strandbench run of the same round and size
-        return (row["w"], row["h"], row["sb_shadow"], row["sb_oit"])
+    def sb_key(row):  # rows asking strandbench for the same render share its run of a round
+        return (row["w"], row["h"], row["sb_shadow"], row["sb_oit"], row["sb_primitive"])
 
     # The tree as it is when the run starts (edits made while it runs are not what ran).
     dirty = " (with uncommitted changes)" if git("status", "--porcelain", "--untracked-files=no") else ""
@@ -386,7 +390,8 @@ def render_table(a, rows, hair, load_before, load_after, started):
             "|---|---|---|---|---|---|"]
     for row in rows:
         label = {"matched": "1-pixel strands (vkhr thickness 1.0)", "thin": "vkhr as it ships (thickness "
-                 f"{hair['thickness']:g}, coverage) vs strandbench's 1-pixel lines",
+                 f"{hair['thickness']:g} pixels, coverage) vs strandbench `--primitive world` (the file's width "
+                 f"{hair['thickness']:g} in world units, coverage)",
                  "raymarch": "vkhr raymarcher vs strandbench voxel + occupancy (nearest equivalents)"}[row["mode"]]
         vk = interval_text([v["frame"] for v in row["vk"]]) if row["vk"] else f"failed: {row['vk_error']}"
         sb = interval_text([s["frame"] for s in row["sb"]]) if row["sb"] else f"refused: {row['refused']}"

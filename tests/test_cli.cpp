@@ -307,7 +307,7 @@ INSTANTIATE_TEST_SUITE_P(
                       BadInput{"render --shadow shadowmap:size=0 --out @OUT@", "size"},
                       BadInput{"render --backend metal --out @OUT@", "metal"},
                       BadInput{"render --platform glx --out @OUT@", "glx"},
-                      BadInput{"render --primitive points --out @OUT@", "lines or ribbons"},
+                      BadInput{"render --primitive points --out @OUT@", "lines, ribbons or world"},
                       BadInput{"render --scene file:path=/nonexistent/x.hair --out @OUT@",
                                "/nonexistent/x.hair"},
                       BadInput{"render --out /nonexistent-dir/x.png", "/nonexistent-dir"},
