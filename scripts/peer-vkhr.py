@@ -380,7 +380,8 @@ def render_table(a, rows, hair, load_before, load_after, started):
            f"vkhr commit {a.vkhr_commit}; {started:%Y-%m-%d %H:%M} UTC  ",
            f"Machine: {machine()}; device {sb0.get('device') or vk0.get('gpu', '?')}, driver {sb0.get('driver', '?')}  ",
            f"Load average (1, 5, 15 min) before {load_before[0]:.2f}, {load_before[1]:.2f}, {load_before[2]:.2f}; "
-           f"after {load_after[0]:.2f}, {load_after[1]:.2f}, {load_after[2]:.2f}: the machine was shared, not idle.  ",
+           f"after {load_after[0]:.2f}, {load_after[1]:.2f}, {load_after[2]:.2f} (this run's own work included; "
+           f"{'other work shared the machine' if load_before[0] > 1.0 else 'nothing else was running when it started'}).  ",
            f"Strands: `{os.path.basename(a.hair)}`, {hair['strands']} strands, {hair['points'] - hair['strands']} segments. "
            f"{a.rounds} interleaved rounds; vkhr: the mean of its last {a.frames} frames after {a.frames} warm-up frames "
            f"(its Vulkan timestamps; {os.path.basename(a.vkhr)} --benchmark yes); strandbench: the median of {a.repeat} frames "
