@@ -148,3 +148,20 @@ TEST(ChiangShading, FiniteNonNegativeAndBounded) {
 }
 
 }  // namespace
+
+// chiang:opacity=fibre: a clear fibre stops what its two refractions reflect away, so its shadow
+// alpha is 1 - the h-mean of (1 - F)^2 (F at the fibre's surface, cos = sqrt(1 - h^2)), worked
+// here by a fine midpoint rule; absorption (a darker colour) stops more (the control).
+TEST(ChiangShading, FibreShadowAlphaIsWhatAClearFibreReflectsAway) {
+  constexpr double eta = 1.55;
+  constexpr int n = 20000;
+  double kept = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double h = -1.0 + (i + 0.5) * 2.0 / n;
+    const double f = sb::pbr::hair::fresnelDielectric(std::sqrt(1.0 - h * h), eta);
+    kept += (1.0 - f) * (1.0 - f) / n;
+  }
+  const float clear = sb::chiangShadowAlpha(glm::vec3(1.0f), 0.3f, float(eta));
+  EXPECT_NEAR(clear, 1.0 - kept, 1e-3);
+  EXPECT_GT(sb::chiangShadowAlpha(glm::vec3(0.3f, 0.2f, 0.1f), 0.3f, float(eta)), clear + 0.1f);
+}

@@ -73,16 +73,11 @@ float chiangXMax(float betaN) {
 }
 
 float chiangShadowAlpha(glm::vec3 color, float betaN, float eta) {
-  const glm::dvec3 sigma(pbr::sigmaAFromReflectance(glm::clamp(color, kMinColor, 1.0f), betaN));
-  glm::dvec3 sum(0.0);
-  for (int ih = 0; ih < kSteps; ++ih) {
-    const double gammaO = -kPi / 2 + (ih + 0.5) * kPi / kSteps;
-    const double h = std::sin(gammaO);
-    const double cosGT = std::sqrt(1.0 - h * h / (double(eta) * eta));  // normal incidence
-    const auto ap = pbr::hair::Ap(1.0, eta, h, glm::exp(-sigma * 2.0 * cosGT));
-    sum += ap[1] * (std::cos(gammaO) * (kPi / kSteps) / 2.0);
-  }
-  return float(1.0 - (0.2126 * sum.r + 0.7152 * sum.g + 0.0722 * sum.b));
+  // The tracer's own mean transmittance (pbr/hair_bsdf.h) at normal incidence: one definition
+  // of the light a fibre lets through for the raster and the references.
+  const glm::vec3 sigma = pbr::sigmaAFromReflectance(glm::clamp(color, kMinColor, 1.0f), betaN);
+  const glm::vec3 t = pbr::meanFibreTransmittance(sigma, eta, 0.0f);
+  return 1.0f - (0.2126f * t.r + 0.7152f * t.g + 0.0722f * t.b);
 }
 
 const std::vector<float>& chiangLobeTable(float betaN, float eta) {
