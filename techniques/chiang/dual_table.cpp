@@ -15,7 +15,7 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 // Steps of the azimuthal integrals over the table's 64 samples (linear between them).
 constexpr int kHalfSteps = 1024;
-constexpr int kSpreadSteps = 256;
+constexpr int kSpreadSteps = 128;
 // 1 - a_f^2 is kept above this: the paper's series diverge for a fibre that absorbs nothing.
 constexpr double kMinOneMinusAf2 = 1e-3;
 
@@ -23,9 +23,11 @@ std::size_t lobeAt(int p, int x, int s) {
   return ((std::size_t(p) * SB_CHIANG_X + x) * SB_CHIANG_SIN + s) * SB_CHIANG_PHI;
 }
 
-// Lobe row's value at azimuth |phi| (wrapped into [0, pi]), linear between the samples.
+// Lobe row's value at azimuth phi in [-2 pi, 2 pi] (the row is even and 2 pi periodic),
+// linear between the samples.
 double rowAt(const float* row, double phi) {
-  phi = std::abs(std::remainder(phi, 2 * kPi));
+  phi = std::abs(phi);
+  if (phi > kPi) phi = 2 * kPi - phi;
   const double f = std::clamp(phi / kPi, 0.0, 1.0) * (SB_CHIANG_PHI - 1);
   const int i = std::min(int(f), SB_CHIANG_PHI - 2);
   const double t = f - i;
