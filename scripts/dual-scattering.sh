@@ -35,7 +35,7 @@ for l in "${lights[@]}"; do
       "$cli" render --scene "$scene" --size 64x64 --backend gl --oit abuffer --primitive world \
         --shadow "$s" --shading "chiang:opacity=fibre,scattering=$scattering" \
         --light-direction "${direction[$l]}" --reference "pbr:mode=path,spp=$spp" \
-        --warmup 0 --repeat 1 --no-image --json > "$tmp/r.json" 2> "$tmp/err" || {
+        --warmup 0 --repeat 1 --out "$tmp/img.png" --json > "$tmp/r.json" 2> "$tmp/err" || {
         cat "$tmp/err" >&2; echo "dual-scattering.sh: $l $s $scattering failed" >&2; exit 1; }
       python3 - "$l" "$s" "$scattering" "$tmp/r.json" >> "$tmp/rows.jsonl" <<'PY'
 import json, sys
