@@ -15,6 +15,9 @@ layout(std430, binding = SB_SLOT_SHADING_TABLE) readonly buffer ShadingTable {
   float chiangTable[];  // the model's h-averaged lobes (techniques/chiang/chiang_table.cpp)
 };
 #include "../chiang/chiang.glsl"
+#ifdef SB_DUAL_SCATTERING
+#include "../chiang/dual.glsl"
+#endif
 #endif
 
 vec3 shadeHair(vec3 worldPos, vec3 tangent, vec3 color) {
@@ -25,6 +28,12 @@ vec3 shadeHair(vec3 worldPos, vec3 tangent, vec3 color) {
 #if SB_SHADING_MODEL == 0
   vec2 kk = kajiyaKay(T, L, V, hairMaterial.z);
   vec3 direct = (hairMaterial.x * kk.x * color + hairMaterial.y * kk.y) * lightColor.rgb;
+#elif SB_SHADING_MODEL == 3 && defined(SB_DUAL_SCATTERING)
+  // Dual scattering: the visibility feeds its strand count and is inside its value.
+  vec3 direct = chiangDual(T, L, V, color, lobeShift, lobeWidth, lobeIntensity, visibility,
+                           sceneParams.y) *
+                lightColor.rgb;
+  visibility = 1.0f;
 #elif SB_SHADING_MODEL == 3
   // The fibre alone: no diffuse term (the tracer's single scattering).
   vec3 direct = chiang(T, L, V, color, lobeShift, lobeWidth, lobeIntensity) * lightColor.rgb;
