@@ -16,13 +16,20 @@ int Measurement::outlierCount() const {
   return n;
 }
 
+void checkRepetitionOrder(int minReps, int maxReps) {
+  if (maxReps < minReps)
+    throw InputError("--max-reps " + std::to_string(maxReps) + ": below --min-reps " +
+                     std::to_string(minReps));
+}
+
 void checkRepetitionOptions(const RepetitionOptions& o, int leastMinReps) {
   if (o.minReps < leastMinReps)
     throw InputError("--min-reps " + std::to_string(o.minReps) + ": at least " +
                      std::to_string(leastMinReps) +
                      (leastMinReps > 1 ? " (an interval needs two samples)" : ""));
-  // The ranges and the rule between the options are the run-options table's
-  // (harness/run_options.h), checked where they are read.
+  // The options' ranges are the run-options table's (harness/run_options.h), checked where
+  // they are read; the rule between them holds for resolved rounds too.
+  checkRepetitionOrder(o.minReps, o.maxReps);
 }
 
 std::vector<Measurement> measureInterleaved(const std::vector<std::function<double()>>& cases,

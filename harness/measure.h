@@ -42,6 +42,8 @@ std::vector<Measurement> measureInterleaved(const std::vector<std::function<doub
                                             const RepetitionOptions& options, int leastMinReps = 2);
 // leastMinReps: 2 where an interval is always printed (the benchmarks); a sweep allows 1.
 void checkRepetitionOptions(const RepetitionOptions& options, int leastMinReps = 2);
+// --max-reps below --min-reps: InputError (the one message, for given and resolved rounds).
+void checkRepetitionOrder(int minReps, int maxReps);
 
 // The ratio of two cases' medians with a paired bootstrap 95% interval (the rounds resampled
 // together: both samples of a round saw the same state of the machine).

@@ -20,9 +20,7 @@ const OptionTable<RunOptions>& runOptionTable() {
                    "PCT: take rounds until every median's 95% interval is within +-PCT of it (or "
                    "--max-reps); 0: --min-reps rounds")},
       [](R& o) {
-        if (o.minReps && o.maxReps && o.maxReps < o.minReps)
-          throw InputError("--max-reps " + std::to_string(o.maxReps) + ": below --min-reps " +
-                           std::to_string(o.minReps));
+        if (o.minReps && o.maxReps) checkRepetitionOrder(o.minReps, o.maxReps);
       });
   return table;
 }

@@ -45,6 +45,7 @@ struct SceneOptions {
   float amplitude = 0, frequency = 0, radius = 0, spread = 0, droop = 0, offset = 0, wiggle = 0;
   int64_t clusters = 0;
   std::optional<float> density;  // fur: strands per unit area
+  std::string densityText;       // density= as given, for messages
   std::string path, up, color;   // file
   int64_t keep = 0;              // file: strands=; 0: all
   uint32_t pointsPerStrand = 0;  // file: 0 = not given
@@ -492,9 +493,8 @@ Scene makeFur(const SO& o) {
   if (useDensity) {
     const double n = std::round(double(density) * area);
     if (n > double(kMaxStrands)) {
-      throw o.error("density=" + shortestNumber(density) + " over an area of " +
-                    std::to_string(area) + " gives more than " + std::to_string(kMaxStrands) +
-                    " strands");
+      throw o.error("density=" + o.densityText + " over an area of " + std::to_string(area) +
+                    " gives more than " + std::to_string(kMaxStrands) + " strands");
     }
     c.strands = std::max<int64_t>(1, int64_t(n));
   }
@@ -728,8 +728,9 @@ const std::vector<SceneKind>& sceneKinds() {
                     throw UnnamedError("option density=" + r.text("density") +
                                        " is out of range: must be greater than 0");
                   s.density = float(v);
+                  s.densityText = r.text("density");
                 },
-                [](const SO& s) { return s.density ? shortestNumber(*s.density) : ""; }),
+                [](const SO& s) { return s.densityText; }),
             stiff}),
        makeFur},
       {"stray", "one strand between the light and a dense clump (the occupancy-map paper, Fig. 5a)",

@@ -37,7 +37,7 @@ const sb::OptionTable<Settings>& table() {
        sb::opt::number(&S::bias, "bias", "0.002", 0, 1, "bias, 0..1"),
        sb::opt::choice(&S::mode, "mode", "fast", {{"fast", Mode::Fast}, {"exact", Mode::Exact}},
                        "fast | exact"),
-       sb::opt::choice(&S::kind, "kind", "power", {"power", "trig"}, "power | trig"),
+       sb::opt::choice(&S::kind, "kind", "power", {"power", "trig", "log"}, "power | trig | log"),
        sb::opt::flag(&S::jitter, "jitter", false, "on | off"),
        sb::opt::text(&S::note, "note", "", "any text"),
        sb::opt::nested(&S::inner, sb::opt::group<Inner>({sb::opt::choice(
