@@ -123,7 +123,11 @@ OptionReader::OptionReader(const Spec& spec, const std::vector<OptionInfo>& know
 
 std::string shortestNumber(double v) {
   char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  // A float widened (options land in float members): the float's shortest text, "0.002"
+  // rather than "0.0020000000949949026"; it reads back as the same float.
+  const float f = static_cast<float>(v);
+  const auto r = static_cast<double>(f) == v ? std::to_chars(buf, buf + sizeof buf, f)
+                                             : std::to_chars(buf, buf + sizeof buf, v);
   return std::string(buf, r.ptr);
 }
 

@@ -97,10 +97,10 @@ TEST(Options, BadValuesAreRefusedWithTheSameMessages) {
 
 TEST(Options, GivenReadsBackTheSameStruct) {
   EXPECT_TRUE(table().given(read("thing")).empty());
-  const Settings s = read("thing:layers=5,bias=0.25,mode=exact,jitter=on,note=a b,bvh=median");
+  const Settings s = read("thing:layers=4,bias=0.25,mode=exact,jitter=on,note=a b,bvh=median");
   sb::Spec spec{"thing", {}};
   for (const auto& [name, text] : table().given(s)) spec.options[name] = text;
-  EXPECT_EQ(spec.str(), "thing:bias=0.25,bvh=median,jitter=on,layers=5,mode=exact,note=a b");
+  EXPECT_EQ(spec.str(), "thing:bias=0.25,bvh=median,jitter=on,layers=4,mode=exact,note=a b");
   const Settings again = table().read(spec, "thing");
   EXPECT_EQ(again.layers, s.layers);
   EXPECT_EQ(again.bias, s.bias);
@@ -126,7 +126,7 @@ TEST(Options, RunOptionsBecomeAChildsArguments) {
                    {"--max-reps 2: below --min-reps 3"});
   spec.options = {{"target-ci", "101"}};
   expectInputError([&] { sb::runOptionTable().read(spec, "run options"); },
-                   {"target-ci=101 is out of range [0, 100]"});
+                   {"target-ci=101 is out of range [0.000000, 100.000000]"});
   // Defaults resolved: the command's rounds, 15 at most with a target.
   const sb::RepetitionOptions r = sb::repetitions({0, 0, 5}, 4);
   EXPECT_EQ(r.minReps, 4);
