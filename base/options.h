@@ -41,8 +41,9 @@ struct OptionInfo {
 };
 const char* optionKindName(OptionKind k);  // "text", "integer", "number", "choice", "flag"
 
-// The shortest text that reads back as `v` ("0.002", "1e-06", "16"): how numbers are
-// written wherever they are read again (options, arguments, JSON-free reports).
+// The shortest text that reads back as `v` ("0.002", "1e-06", "16"; a float widened to
+// double: the float's shortest, which reads back as that float): how option values are
+// written wherever they are read again (OptionTable::given, a child's arguments, messages).
 std::string shortestNumber(double v);
 
 // The valid name closest to `name` by edit distance ("" when none is close).
