@@ -14,6 +14,7 @@
 #include "cli/commands.h"
 #include "harness/measure.h"
 #include "harness/render.h"
+#include "harness/run_options.h"
 #include "reports/stats.h"
 
 namespace sb {
@@ -23,7 +24,7 @@ namespace {
 struct BenchOptions {
   RenderRequest base;
   std::vector<int> osmMaps = {1, 2, 4, 8, 16, 32};
-  RepetitionOptions reps;
+  RepetitionOptions reps;  // the run options resolved (5 rounds by default)
 };
 
 struct Measured {
@@ -108,7 +109,6 @@ int runBench(const BenchOptions& o) {
   }
   if (std::set<int>(o.osmMaps.begin(), o.osmMaps.end()).size() < 2)
     throw InputError("--osm-maps needs at least two different map counts for the fit");
-  checkRepetitionOptions(o.reps);
   checkCases(o.base, &RenderRequest::shadow, specs);
   std::cout << std::fixed << std::setprecision(2);
   printHeader(o.base, o.reps);
@@ -230,7 +230,6 @@ int runOitBench(const RenderRequest& base, const RepetitionOptions& reps) {
       {"peel", 4.01}, {"occupancy", 51}, {"wavg", 72}, {"wboit", 0}, {"none", 120}};
   std::vector<std::string> oits;
   for (const auto& row : rows) oits.push_back(row.first);
-  checkRepetitionOptions(reps);
   checkCases(base, &RenderRequest::oit, oits);
   std::cout << std::fixed << std::setprecision(2);
   std::cout << "shadow " << base.shadow << "; ";
@@ -269,16 +268,9 @@ int runOitBench(const RenderRequest& base, const RepetitionOptions& reps) {
   return 0;
 }
 
-// --min-reps, --max-reps, --target-ci on a benchmark command.
-void addRepetitionOptions(CLI::App& cmd, RepetitionOptions& reps) {
-  cmd.add_option("--min-reps", reps.minReps, "rounds always taken (each renders every case once)")
-      ->capture_default_str();
-  cmd.add_option("--max-reps", reps.maxReps, "rounds at most")->capture_default_str();
-  cmd.add_option("--target-ci", reps.targetCiPct,
-                 "PCT: take rounds until every median's 95% interval is within +-PCT of it (or "
-                 "--max-reps); 0: --min-reps rounds")
-      ->capture_default_str();
-}
+// The benchmarks' rounds: 5 unless --min-reps says otherwise.
+constexpr int kBenchMinReps = 5;
+constexpr const char* kBenchRounds = "default 5";
 
 // The settings the benchmarks take; the technique under test is theirs.
 std::vector<std::string> benchSettings() {
@@ -301,12 +293,11 @@ void registerBenchCommand(CLI::App& app) {
     std::vector<std::string> keys = benchSettings();
     keys.push_back("shadow");
     auto settings = std::make_shared<CliSettings>(*cmd, keys, *base);
-    auto reps = std::make_shared<RepetitionOptions>();
-    addRepetitionOptions(*cmd, *reps);
-    cmd->callback([base, settings, reps] {
+    auto runs = std::make_shared<CliRunOptions>(*cmd, kBenchRounds);
+    cmd->callback([base, settings, runs] {
       runGuarded("bench-oit", [&] {
         settings->apply(*base);
-        return runOitBench(*base, *reps);
+        return runOitBench(*base, repetitions(runs->read(), kBenchMinReps));
       });
     });
   }
@@ -318,10 +309,11 @@ void registerBenchCommand(CLI::App& app) {
   o->base.repeat = 1;
   auto settings = std::make_shared<CliSettings>(*cmd, benchSettings(), o->base);
   cmd->add_option("--osm-maps", o->osmMaps, "map counts for the OSM time-vs-maps fit");
-  addRepetitionOptions(*cmd, o->reps);
-  cmd->callback([o, settings] {
+  auto runs = std::make_shared<CliRunOptions>(*cmd, kBenchRounds);
+  cmd->callback([o, settings, runs] {
     runGuarded("bench-shadows", [&] {
       settings->apply(o->base);
+      o->reps = repetitions(runs->read(), kBenchMinReps);
       return runBench(*o);
     });
   });

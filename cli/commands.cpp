@@ -13,6 +13,7 @@
 
 #include "backends/device.h"
 #include "backends/driver_env.h"
+#include "base/options.h"
 #include "cli/render_summary.h"
 #include "harness/reference_spec.h"
 #include "harness/render.h"
@@ -23,7 +24,6 @@
 #include "imaging/image.h"
 #include "imaging/metrics.h"
 #include "reports/files.h"
-#include "scenes/options.h"
 #include "scenes/scene.h"
 #include "techniques/common/technique.h"
 

@@ -10,9 +10,11 @@
 #include <memory>
 
 #include "base/errors.h"
+#include "base/options.h"
 #include "cli/commands.h"
 #include "harness/backend_names.h"
 #include "harness/figure.h"
+#include "harness/setting_values.h"
 #include "harness/sweep.h"
 #include "imaging/image.h"
 #include "imaging/metrics.h"
@@ -21,7 +23,6 @@
 #include "reports/files.h"
 #include "reports/json_file.h"
 #include "reports/report_data.h"
-#include "scenes/options.h"
 
 namespace sb {
 
@@ -211,10 +212,16 @@ nlohmann::json composeGrid(const report::FigureGrid& g, const fs::path& dir) {
           {"labels", labels}};
 }
 
+// The run options given, as they are typed: " --min-reps 3".
+std::string runArgumentsText(const RunOptions& o) {
+  std::string s;
+  for (const std::string& a : runOptionArguments(o)) s += " " + a;
+  return s;
+}
+
 std::string commandText(const FigureOptions& o, const std::string& out) {
-  return "strandbench figure " + o.name + (o.small ? " --small" : "") +
-         (o.minReps > 0 ? " --min-reps " + std::to_string(o.minReps) : "") + " --backend " +
-         o.backend + " --out " + out + (o.docs.empty() ? "" : " --docs " + o.docs);
+  return "strandbench figure " + o.name + (o.small ? " --small" : "") + runArgumentsText(o.rounds) +
+         " --backend " + o.backend + " --out " + out + (o.docs.empty() ? "" : " --docs " + o.docs);
 }
 
 // Each cell's banding measure against its reference, where both images are in `dir`.
@@ -312,7 +319,7 @@ int runFigure(const FigureOptions& o) {
     so.out = tmp.string();
     so.shownOut = out.string();  // tmp is renamed to it when the figure is done
     so.progressBar = o.progressBar;
-    so.minReps = o.minReps;
+    so.rounds = o.rounds;
     const int status = runSweep(so);
     // The sweep records the suite file it read; name the figure instead of the temporary file.
     auto sweepDoc = readJsonFile<ojson>(tmp / "sweep.json");
@@ -362,17 +369,19 @@ void registerFigureCommand(CLI::App& app) {
   cmd->add_flag("--list", *list, "list the figures");
   cmd->add_flag("--small", o->small,
                 "the figure's small variant (smaller scene, size, repeats; under a minute)");
-  cmd->add_option("--backend", o->backend, "gl or vulkan (default gl)");
-  cmd->add_option("--min-reps", o->minReps,
-                  "timed rounds per case at least (default: the figure's repeat): the frame "
-                  "samples the 95% intervals and the claims' verdicts are made of")
-      ->check(CLI::Range(1, 100));
+  cmd->add_option("--backend", o->backend, setting_values::joinOr(backendNames()))
+      ->capture_default_str();
+  auto runs = std::make_shared<CliRunOptions>(
+      *cmd,
+      "timed rounds per case; default: the figure's repeat: the frame samples the 95% "
+      "intervals and the claims' verdicts are made of");
   cmd->add_option("--out", o->out, "output folder (default figures/NAME[-small]-BACKEND)");
   cmd->add_option("--docs", o->docs,
                   "also write DIR/NAME.md and DIR/NAME.png, the page the docs include "
                   "(docs/figures; its first line names the command, commit and digest)");
-  cmd->callback([o, list] {
+  cmd->callback([o, list, runs] {
     runGuarded("figure", [&] {
+      o->rounds = runs->read();
       if (*list) {
         for (const std::string& n : figureNames()) {
           std::string title;

@@ -34,22 +34,19 @@ void registerSweepCommands(CLI::App& app) {
                   "fail (exit 1) when a case could not run for a part this machine lacks (a "
                   "driver not installed, ray queries); default: list those cases and go on "
                   "(exit 0 for them). CI=true sets it");
-    cmd->add_option("--min-reps", o->minReps,
-                    "interleaved rounds always taken (each renders every case of a group once); "
-                    "default: the group's largest `repeat`");
-    cmd->add_option("--max-reps", o->maxReps,
-                    "rounds at most; default: --min-reps, or 15 with --target-ci");
-    cmd->add_option("--target-ci", o->targetCiPct,
-                    "PCT: take rounds until every case's median frame time has a 95% interval "
-                    "within +-PCT of it (or --max-reps)");
+    auto runs = std::make_shared<CliRunOptions>(
+        *cmd,
+        "interleaved, each rendering every case of a group once; default: the group's "
+        "largest `repeat`");
     addDriverOption(*cmd);
     // Internal: a child sweep of the cases on its --driver (harness/sweep.h).
     cmd->add_flag("--driver-cases", o->driverCasesOnly)->group("");
     cmd->add_flag("--interleave,!--no-interleave", o->interleave,
                   "measure a group's cases in interleaved rounds (default), or each case's "
                   "`repeat` frames back to back in one run");
-    cmd->callback([o, shard] {
+    cmd->callback([o, shard, runs] {
       runGuarded("sweep", [&] {
+        o->rounds = runs->read();
         if (shard->rfind("auto", 0) == 0) {
           const AutoShard a =
               shardFromEnvironment(*shard, [](const char* name) { return std::getenv(name); });

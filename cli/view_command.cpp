@@ -27,6 +27,7 @@
 #include <thread>
 
 #include "backends/window.h"
+#include "base/options.h"
 #include "cli/commands.h"
 #include "cli/view_overlay.h"
 #include "harness/render.h"
@@ -34,7 +35,6 @@
 #include "imaging/image.h"
 #include "imaging/metrics.h"
 #include "reports/stats.h"
-#include "scenes/options.h"
 #include "techniques/common/unit.h"
 
 namespace sb {

@@ -8,9 +8,9 @@
 #include <memory>
 
 #include "base/errors.h"
+#include "base/options.h"
 #include "harness/render.h"
 #include "harness/technique_list.h"
-#include "scenes/options.h"
 #include "scenes/scene.h"
 
 namespace sb {

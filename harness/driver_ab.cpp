@@ -13,6 +13,7 @@
 #include "backends/driver_env.h"
 #include "harness/expectations.h"
 #include "harness/run_context.h"
+#include "harness/run_options.h"
 #include "imaging/flip.h"
 #include "imaging/image.h"
 #include "imaging/metrics.h"
@@ -262,9 +263,7 @@ int runDriverAb(const DriverAbOptions& o) {
                                      driver,  "--out",     (out / side).string()};
     if (!o.filter.empty()) args.insert(args.end(), {"--filter", o.filter});
     if (o.resume && fs::exists(out / side / "sweep.json")) args.push_back("--resume");
-    const int s = runSelfOnDriver(driver, args);
-    if (s == 130 || s == 143) throw Interrupted(s == 130 ? 2 : 15);
-    if (s == 2) throw InputError("driver A/B: the sweep on " + driver + " refused its input");
+    const int s = childStatus(runSelfOnDriver(driver, args), "driver A/B: the sweep on " + driver);
     if (s != 0) status = 1;
     // The driver's version string, from its first result.
     if (fs::is_regular_file(out / side / "results.json")) {

@@ -11,15 +11,18 @@
 #include <string>
 #include <vector>
 
+#include "harness/backend_names.h"
+#include "harness/run_options.h"
+
 namespace sb {
 
 struct FigureOptions {
   std::string name;    // a figure of figureNames(), or a path to a figure file (.json)
   bool small = false;  // apply the figure's "small" overrides
-  std::string backend = "gl";
-  std::string out;   // the folder written (default: figures/NAME, or NAME-small)
-  int minReps = 0;   // sweep rounds per case at least (0: the figure's repeat)
-  std::string docs;  // also write docs/NAME.md and NAME.png into this folder (docs/figures)
+  std::string backend = defaultBackend();
+  std::string out;    // the folder written (default: figures/NAME, or NAME-small)
+  RunOptions rounds;  // the sweep's rounds (--min-reps 0: the figure's repeat)
+  std::string docs;   // also write docs/NAME.md and NAME.png into this folder (docs/figures)
   bool progressBar = false;
 };
 

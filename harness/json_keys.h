@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "base/errors.h"
-#include "scenes/options.h"
+#include "base/options.h"
 
 namespace sb {
 

@@ -17,6 +17,7 @@
 
 namespace sb {
 
+// The rounds of a run, resolved (run_options.h: repetitions() from the options given).
 struct RepetitionOptions {
   int minReps = 5;         // rounds always taken
   int maxReps = 15;        // rounds at most
@@ -35,12 +36,14 @@ struct Measurement {
 // Runs cases[i]() once per round (each call returns one sample, e.g. a frame time in ms) until
 // minReps rounds are done and every median's interval is within targetCiPct, or maxReps.
 // A case that returns NaN (it failed) is left out of the later rounds and of the target; its
-// samples are the ones before. Throws InputError for inconsistent options (naming --min-reps,
-// --max-reps, --target-ci).
+// samples are the ones before. Throws InputError for too few rounds (naming --min-reps); the
+// options' ranges are checked where they are read (harness/run_options.h).
 std::vector<Measurement> measureInterleaved(const std::vector<std::function<double()>>& cases,
                                             const RepetitionOptions& options, int leastMinReps = 2);
 // leastMinReps: 2 where an interval is always printed (the benchmarks); a sweep allows 1.
 void checkRepetitionOptions(const RepetitionOptions& options, int leastMinReps = 2);
+// --max-reps below --min-reps: InputError (the one message, for given and resolved rounds).
+void checkRepetitionOrder(int minReps, int maxReps);
 
 // The ratio of two cases' medians with a paired bootstrap 95% interval (the rounds resampled
 // together: both samples of a round saw the same state of the machine).

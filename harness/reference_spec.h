@@ -1,6 +1,6 @@
 // The references a render is compared with (`--reference [SPEC]`, the suite key
 // "reference"): a name and key=value options, parsed as technique specs are
-// (Spec::parse, OptionReader). `exact` is the aliased exact reference (exact
+// (Spec::parse, an OptionTable per kind). `exact` is the aliased exact reference (exact
 // shadows and transparency at one sample per pixel), the default and always
 // rendered when any reference is asked for; `aa:samples=S` the same techniques
 // at S x S samples per pixel, box-filtered (harness/render_steps.h,
@@ -15,15 +15,6 @@
 #include "scenes/scene.h"
 
 namespace sb {
-
-struct ReferenceKind {
-  std::string name;
-  std::string help;
-  std::vector<OptionInfo> options;
-};
-
-// Every reference, the default (exact) first.
-const std::vector<ReferenceKind>& referenceCatalog();
 
 struct ReferenceSpec {
   std::string name = "exact";
@@ -41,6 +32,16 @@ struct ReferenceSpec {
   std::string str() const;
   bool operator==(const ReferenceSpec&) const = default;
 };
+
+struct ReferenceKind {
+  std::string name;
+  std::string help;
+  std::vector<OptionInfo> options;                    // table->infos()
+  const OptionTable<ReferenceSpec>* table = nullptr;  // its options, read into the spec
+};
+
+// Every reference, the default (exact) first.
+const std::vector<ReferenceKind>& referenceCatalog();
 
 // Throws InputError ("reference 'aa': option samples=9 is out of range [1, 8]")
 // for a malformed spec, an unknown name, an unknown option or a value out of range.

@@ -10,9 +10,9 @@
 #include <limits>
 #include <sstream>
 
+#include "base/options.h"
 #include "harness/json_keys.h"
 #include "harness/reference_spec.h"
-#include "scenes/options.h"
 
 namespace sb::setting_values {
 

@@ -11,11 +11,11 @@
 #include <sstream>
 
 #include "backends/driver_env.h"
+#include "base/options.h"
 #include "harness/json_keys.h"
 #include "harness/reference_spec.h"
 #include "harness/setting_values.h"
 #include "harness/technique_list.h"
-#include "scenes/options.h"
 
 namespace sb {
 

@@ -6,12 +6,12 @@
 #include <set>
 
 #include "backends/driver_env.h"
+#include "base/options.h"
 #include "harness/json_keys.h"
 #include "harness/settings.h"
 #include "harness/technique_list.h"
 #include "reports/files.h"
 #include "reports/json_file.h"
-#include "scenes/options.h"
 #include "techniques/common/technique.h"
 
 namespace sb {

@@ -276,17 +276,10 @@ namespace {
 // (default: --min-reps, or 15 with --target-ci); back to back: one run of `repeat` frames.
 RepetitionOptions groupRepetitions(const SweepOptions& o,
                                    const std::vector<const SweepCase*>& batch) {
-  RepetitionOptions r;
-  if (!o.interleave) {
-    r.minReps = r.maxReps = 1;
-    return r;
-  }
+  if (!o.interleave) return {1, 1, 0};
   int repeat = 1;
   for (const auto* c : batch) repeat = std::max(repeat, c->request.repeat);
-  r.minReps = o.minReps ? o.minReps : (o.maxReps ? std::min(repeat, o.maxReps) : repeat);
-  r.maxReps = o.maxReps ? o.maxReps : (o.targetCiPct > 0 ? std::max(r.minReps, 15) : r.minReps);
-  r.targetCiPct = o.targetCiPct;
-  return r;
+  return repetitions(o.rounds, repeat);
 }
 
 // How a case's frame times were taken, with the median's bootstrap 95% interval and the
@@ -312,17 +305,10 @@ ojson measurementJson(const SweepOptions& o, const RenderResult& out,
 int runSweep(const SweepOptions& o) {
   const Suite suite = loadSuite(o.suitePath);
   if (o.out.empty()) throw InputError("--out DIR is required");
-  if (!o.interleave && (o.minReps || o.maxReps || o.targetCiPct > 0))
+  if (!o.interleave && !runOptionTable().given(o.rounds).empty())
     throw InputError(
         "--min-reps, --max-reps and --target-ci take interleaved rounds: drop --no-interleave "
         "(back to back, a case takes its `repeat` frames)");
-  if (o.minReps < 0 || o.maxReps < 0)
-    throw InputError("--min-reps and --max-reps: at least 1 (0: the default)");
-  if (o.minReps && o.maxReps && o.maxReps < o.minReps)
-    throw InputError("--max-reps " + std::to_string(o.maxReps) + ": below --min-reps " +
-                     std::to_string(o.minReps));
-  if (!(o.targetCiPct >= 0) || o.targetCiPct > 100)
-    throw InputError("--target-ci: a percentage in 0..100 (0: --min-reps rounds)");
   if (o.shardIndex < 1 || o.shardIndex > o.shardCount) throw InputError("bad --shard");
   std::optional<std::regex> filter;
   if (!o.filter.empty()) {
@@ -449,19 +435,12 @@ int runSweep(const SweepOptions& o) {
     if (o.failFast) args.push_back("--fail-fast");
     if (o.requireParts) args.push_back("--require-drivers");
     if (!o.interleave) args.push_back("--no-interleave");
-    for (const auto& [flag, v] :
-         {std::pair{"--min-reps", o.minReps}, std::pair{"--max-reps", o.maxReps}})
-      if (v) args.insert(args.end(), {flag, std::to_string(v)});
-    if (o.targetCiPct > 0) args.insert(args.end(), {"--target-ci", std::to_string(o.targetCiPct)});
+    for (std::string& a : runOptionArguments(o.rounds)) args.push_back(std::move(a));
     std::cout << "sweep " << suite.name << ": the cases on driver " << d
               << " in a process of its own\n";
-    const int status = runSelfOnDriver(d, args);
-    if (status == 130 || status == 143) {
-      stopped(allSelected);
-      throw Interrupted(status == 130 ? 2 : 15);
-    }
-    if (status == 2)
-      throw InputError("the sweep of the cases on driver " + d + " refused its input");
+    const int status =
+        childStatus(runSelfOnDriver(d, args), "the sweep of the cases on driver " + d,
+                    [&] { stopped(allSelected); });
     if (status != 0)
       failedDrivers.push_back("the cases on driver " + d + " (exit status " +
                               std::to_string(status) + ", above)");

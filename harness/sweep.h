@@ -9,6 +9,7 @@
 #include <string>
 
 #include "harness/run_context.h"
+#include "harness/run_options.h"
 #include "harness/suite.h"
 
 namespace sb {
@@ -34,9 +35,7 @@ struct SweepOptions {
   // timed frame); the first round also makes the case's images and errors. Back to back
   // (interleave false): one run of each case with its `repeat` frames, as `render` does.
   bool interleave = true;
-  int minReps = 0;         // rounds always taken; 0: the group's largest `repeat`
-  int maxReps = 0;         // rounds at most; 0: minReps, or 15 with a target
-  double targetCiPct = 0;  // take rounds until every median's 95% interval is within +-PCT
+  RunOptions rounds;  // --min-reps (0: the group's largest `repeat`), --max-reps, --target-ci
   // Cases on another driver than the process's ("drivers" in the suite) run in a child
   // sweep per driver, started with --driver D and this set: it runs only the cases of its
   // own driver and leaves the reports to the parent.

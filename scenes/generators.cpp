@@ -15,9 +15,9 @@
 #include <optional>
 #include <random>
 
+#include "base/options.h"
 #include "scenes/loader_util.h"
 #include "scenes/mesh_loaders.h"
-#include "scenes/options.h"
 #include "scenes/scene.h"
 
 namespace sb {
@@ -29,143 +29,124 @@ constexpr int64_t kMaxStrands = 50'000'000;
 constexpr int64_t kMaxPointsPerStrand = 100'000;
 constexpr float kPi = std::numbers::pi_v<float>;
 
-// ---------------------------------------------------------------- catalog
-
-std::vector<OptionInfo> commonOptions(const char* strands, const char* points, const char* length,
-                                      const char* lengthHelp) {
-  return {
-      {"strands", strands, "number of strands"},
-      {"points", points, "points per strand (>= 2)"},
-      {"seed", "1", "random seed (same seed, same scene)"},
-      {"length", length, lengthHelp},
-      {"thickness", "0.005", "strand thickness in world units"},
-      {"alpha", "1", "hair opacity in [0,1] for transparency"},
-      {"shadow_alpha", "0.5", "per-fragment shadow opacity in [0,1]"},
-      {"mesh", "", "mesh file drawn opaque (.obj, .ply, .tfxmesh; replaces the generated head)"},
-  };
-}
-
-std::vector<OptionInfo> hairOptions(const char* strands, const char* points, const char* length,
-                                    std::vector<OptionInfo> extra) {
-  std::vector<OptionInfo> o =
-      commonOptions(strands, points, length, "hair length in head radii (head radius is 1)");
-  o.push_back({"head", "1", "1: draw the spherical head as the opaque mesh; 0: no head"});
-  o.insert(o.end(), extra.begin(), extra.end());
-  return o;
-}
-
-std::vector<SceneInfo> buildCatalog() {
-  std::vector<SceneInfo> c;
-  c.push_back({"straight", "straight hair on a spherical head, draped by gravity",
-               hairOptions("2000", "16", "1.5", {})});
-  c.push_back({"wavy", "wavy hair: straight hair with a sinusoidal wave",
-               hairOptions("2000", "24", "1.5",
-                           {{"amplitude", "0.06", "wave amplitude in head radii"},
-                            {"frequency", "3", "waves per unit of hair length"}})});
-  c.push_back({"curly", "curly hair: helical curls around a draped strand",
-               hairOptions("1500", "48", "1.2",
-                           {{"radius", "0.05", "curl radius in head radii"},
-                            {"frequency", "5", "curl turns per unit of hair length"}})});
-  c.push_back({"clustered", "hair grouped into tight clumps that converge to their tips",
-               hairOptions("2000", "16", "1.5",
-                           {{"clusters", "64", "number of clumps (<= strands)"},
-                            {"spread", "0.1", "clump radius at the scalp in head radii"}})});
-  {
-    std::vector<OptionInfo> o = commonOptions(
-        "20000", "6", "0.1", "fur length as a fraction of the base mesh's bounding radius");
-    o[7].help = "mesh to grow fur on (.obj, .ply, .tfxmesh), drawn opaque (default: a unit sphere)";
-    o.push_back({"droop", "0.5", "gravity bend of the fur (0 = straight along the normal)"});
-    o.push_back({"density", "", "strands per unit of mesh area (replaces strands=)"});
-    c.push_back({"fur", "fur grown along a mesh's normals", std::move(o)});
-  }
-  {
-    std::vector<OptionInfo> o =
-        commonOptions("3000", "16", "1", "length of the clump's strands (world units)");
-    o.push_back({"radius", "0.15", "radius of the dense clump"});
-    o.push_back({"offset", "0.45",
-                 "distance of the stray strand from the clump's axis, towards "
-                 "the default light"});
-    c.push_back(
-        {"stray",
-         "one strand between the light and a dense clump (the occupancy-map paper, Fig. 5a)",
-         std::move(o)});
-  }
-  {
-    std::vector<OptionInfo> o = commonOptions("200", "16", "2", "strand length (world units)");
-    o.push_back({"wiggle", "0.1", "zigzag amplitude in the plane (strands cross each other)"});
-    c.push_back({"sheet",
-                 "strands in the plane z = 0: lit along -z, every fragment of a light texel "
-                 "is at one depth (a zero depth range)",
-                 std::move(o)});
-  }
-  c.push_back({"file",
-               "strands from a file (.hair, .tfx, .ply), optionally with a mesh",
-               {{"path", "", "strand file (required): .hair, .tfx or .ply"},
-                {"mesh", "", "mesh file drawn opaque (.obj, .ply, .tfxmesh)"},
-                {"strands", "all", "keep this many strands, evenly spaced (default: all)"},
-                {"points_per_strand", "",
-                 "PLY without a 'strand' element (e.g. NeuralHaircut): strands of N "
-                 "consecutive vertices, 2.." +
-                     std::to_string(kMaxPointsPerStrand)},
-                {"alpha", "1", "hair opacity in [0,1] for transparency"},
-                {"shadow_alpha", "0.5", "per-fragment shadow opacity in [0,1]"},
-                {"up", "auto",
-                 "the file's up axis, turned to +y: auto (z for .hair, Yuksel's models are "
-                 "z-up; y for .tfx, TressFX's; for .ply, which does not say, the axis "
-                 "along which the roots lie above the tips, as hanging hair's do, else y), y, "
-                 "z, -y or -z; the render JSON's scene.up and up_reason"},
-                {"color", "file",
-                 "strand colours: file (the file's own, where it has them) or R/G/B in [0,1] "
-                 "for every strand (color=0.45/0.3/0.18)"}}});
-  // Stiff cases for every scene: extreme scales and degenerate segments.
-  for (SceneInfo& info : c) {
-    info.options.push_back({"scale", "1", "uniform scale of the whole scene, 1e-6..1e6"});
-    info.options.push_back(
-        {"zero_segments", "0", "1: every point doubled (every other segment has zero length)"});
-  }
-  return c;
-}
-
 // ---------------------------------------------------------------- options
 
-std::string shortest(double v) {
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, r.ptr);
+// Every scene's options in one struct; each scene's table (sceneKinds(), below) declares
+// the ones it takes, with their ranges, defaults and help.
+struct SceneOptions {
+  std::string scene;  // the scene's name, for messages
+  int64_t strands = 0;
+  bool strandsGiven = false;  // fur: strands= or density=
+  int points = 0;
+  uint32_t seed = 1;
+  float length = 0, thickness = 0, alpha = 1, shadowAlpha = 0.5f;
+  std::string mesh;
+  bool head = true;
+  float amplitude = 0, frequency = 0, radius = 0, spread = 0, droop = 0, offset = 0, wiggle = 0;
+  int64_t clusters = 0;
+  std::optional<float> density;  // fur: strands per unit area
+  std::string densityText;       // density= as given, for messages
+  std::string path, up, color;   // file
+  int64_t keep = 0;              // file: strands=; 0: all
+  uint32_t pointsPerStrand = 0;  // file: 0 = not given
+  float scale = 1;
+  bool zeroSegments = false;
+  InputError error(const std::string& what) const {
+    return InputError("scene '" + scene + "': " + what);
+  }
+};
+using SO = SceneOptions;
+// Refused while the options are read, before the scene is named: makeScene prefixes it.
+struct UnnamedError : InputError {
+  using InputError::InputError;
+};
+using SceneOption = std::vector<Option<SO>>;
+
+// A number in (0, max]: a range with an open end, refused as "must be greater than 0".
+SceneOption positive(float SO::*m, std::string name, std::string def, double max,
+                     std::string help) {
+  OptionInfo info = opt::number(name, std::move(def), 0.0, max, std::move(help));
+  return {{std::move(info),
+           [m, name](SO& s, const OptionReader& r) {
+             const double v = r.number(name);
+             if (!(v > 0.0))
+               throw UnnamedError("option " + name + "=" + r.text(name) +
+                                  " is out of range: must be greater than 0");
+             s.*m = float(v);
+           },
+           [m](const SO& s) { return shortestNumber(s.*m); }}};
 }
 
-// OptionReader (shared with the techniques) plus what the generators need on top:
-// exclusive lower bounds and errors prefixed with the scene.
-class Options {
- public:
-  Options(const Spec& spec, const SceneInfo& info)
-      : reader_(spec, info.options, "scene '" + info.name + "'"), name_(info.name) {}
+// An option that may be absent (its default empty): read, with its range, only when given.
+SceneOption optional(std::string name, std::string help,
+                     std::function<void(SO&, const OptionReader&)> fill,
+                     std::function<std::string(const SO&)> show) {
+  return {{opt::text(std::move(name), "", std::move(help)), std::move(fill), std::move(show)}};
+}
 
-  bool given(const std::string& key) const { return reader_.has(key); }
-  std::string text(const std::string& key) const { return reader_.text(key); }
-  std::string choice(const std::string& key, const std::vector<std::string>& valid) const {
-    return reader_.choice(key, valid);
-  }
-  int64_t integer(const std::string& key, int64_t lo, int64_t hi) const {
-    return int64_t(reader_.integer(key, lo, hi));
-  }
-  // A finite number in [lo, hi] (or (lo, hi] when loExclusive).
-  float real(const std::string& key, double lo, double hi, bool loExclusive = false) const {
-    const double v = reader_.number(key, lo, hi);
-    if (loExclusive && !(v > lo)) {
-      throw error("option " + key + "=" + text(key) + " is out of range: must be greater than " +
-                  shortest(lo));
-    }
-    return float(v);
-  }
-  InputError error(const std::string& what) const {
-    return InputError("scene '" + name_ + "': " + what);
-  }
+// The 0/1 switches (head, zero_segments).
+SceneOption zeroOne(bool SO::*m, std::string name, bool def, std::string help) {
+  OptionInfo info = opt::integer(name, def ? 1 : 0, 0, 1, std::move(help));
+  return {{std::move(info),
+           [m, name](SO& s, const OptionReader& r) { s.*m = r.integer(name) == 1; },
+           [m](const SO& s) { return std::string(s.*m ? "1" : "0"); }}};
+}
 
- private:
-  OptionReader reader_;
-  std::string name_;
-};
+SceneOption alphas() {
+  return opt::group<SO>(
+      {opt::number(&SO::alpha, "alpha", "1", 0.0, 1.0, "hair opacity in [0,1] for transparency"),
+       opt::number(&SO::shadowAlpha, "shadow_alpha", "0.5", 0.0, 1.0,
+                   "per-fragment shadow opacity in [0,1]")});
+}
+
+SceneOption commonOptions(long long strands, long long points, const char* length,
+                          const char* lengthHelp, const char* meshHelp) {
+  return opt::group<SO>(
+      {opt::integer(&SO::strands, "strands", strands, 1, kMaxStrands, "number of strands"),
+       opt::integer(&SO::points, "points", points, 2, kMaxPointsPerStrand,
+                    "points per strand (>= 2)"),
+       opt::integer(&SO::seed, "seed", 1, 0, std::numeric_limits<uint32_t>::max(),
+                    "random seed (same seed, same scene)"),
+       positive(&SO::length, "length", length, 100.0, lengthHelp),
+       positive(&SO::thickness, "thickness", "0.005", 1000.0, "strand thickness in world units"),
+       alphas(), opt::text(&SO::mesh, "mesh", "", meshHelp)});
+}
+
+constexpr const char* kMeshHelp =
+    "mesh file drawn opaque (.obj, .ply, .tfxmesh; replaces the generated head)";
+
+SceneOption hairOptions(long long strands, long long points, const char* length) {
+  return opt::group<SO>({commonOptions(strands, points, length,
+                                       "hair length in head radii (head radius is 1)", kMeshHelp),
+                         zeroOne(&SO::head, "head", true,
+                                 "1: draw the spherical head as the opaque mesh; 0: no head")});
+}
+
+void checkTotal(const SO& o, uint64_t strands, uint64_t points) {
+  if (strands * points > kMaxTotalPoints) {
+    throw o.error(std::to_string(strands) + " strands x " + std::to_string(points) +
+                  " points = " + std::to_string(strands * points) +
+                  " points exceeds the limit of " + std::to_string(kMaxTotalPoints));
+  }
+}
+
+// "R/G/B", each in [0,1] (a spec's commas separate its options); "file": none.
+std::optional<glm::vec3> colorOption(const SO& o) {
+  const std::string& t = o.color;
+  if (t == "file") return std::nullopt;
+  float c[3];
+  std::size_t at = 0;
+  for (int i = 0; i < 3; ++i) {
+    const std::size_t end = i < 2 ? t.find('/', at) : t.size();
+    char* stop = nullptr;
+    const std::string part = end == std::string::npos ? "" : t.substr(at, end - at);
+    c[i] = std::strtof(part.c_str(), &stop);
+    if (part.empty() || *stop != '\0' || !(c[i] >= 0.0f && c[i] <= 1.0f))
+      throw o.error("color=" + t + ": expected file or R/G/B, three numbers in [0,1]");
+    at = end + 1;
+  }
+  return glm::vec3(c[0], c[1], c[2]);
+}
 
 // ---------------------------------------------------------------- random numbers
 
@@ -316,41 +297,17 @@ void reserve(Strands& s, std::size_t strands, std::size_t points) {
 
 // ---------------------------------------------------------------- scenes
 
-struct Common {
-  int64_t strands = 0;
-  int points = 0;
-  uint32_t seed = 1;
-  float length = 1.0f;
-  float thickness = 0.005f;
-};
-
-void checkTotal(const Options& o, uint64_t strands, uint64_t points) {
-  if (strands * points > kMaxTotalPoints) {
-    throw o.error(std::to_string(strands) + " strands x " + std::to_string(points) +
-                  " points = " + std::to_string(strands * points) +
-                  " points exceeds the limit of " + std::to_string(kMaxTotalPoints));
-  }
+// What every generated scene reads: the alphas into the scene, the total checked.
+void readCommon(const SO& o, Scene& scene) {
+  scene.hairAlpha = o.alpha;
+  scene.shadowAlpha = o.shadowAlpha;
+  checkTotal(o, uint64_t(o.strands), uint64_t(o.points));
 }
 
-Common readCommon(const Options& o, Scene& scene, bool readStrands = true) {
-  Common c;
-  c.strands = readStrands ? o.integer("strands", 1, kMaxStrands) : 0;
-  c.points = int(o.integer("points", 2, kMaxPointsPerStrand));
-  c.seed = uint32_t(o.integer("seed", 0, std::numeric_limits<uint32_t>::max()));
-  c.length = o.real("length", 0.0, 100.0, true);
-  c.thickness = o.real("thickness", 0.0, 1000.0, true);
-  scene.hairAlpha = o.real("alpha", 0.0, 1.0);
-  scene.shadowAlpha = o.real("shadow_alpha", 0.0, 1.0);
-  if (readStrands) checkTotal(o, uint64_t(c.strands), uint64_t(c.points));
-  return c;
-}
-
-void addHeadOrMesh(const Options& o, Scene& scene) {
-  const bool head = o.integer("head", 0, 1) == 1;
-  const std::string mesh = o.text("mesh");
-  if (!mesh.empty()) {
-    scene.mesh = loadMesh(mesh);
-  } else if (head) {
+void addHeadOrMesh(const SO& o, Scene& scene) {
+  if (!o.mesh.empty()) {
+    scene.mesh = loadMesh(o.mesh);
+  } else if (o.head) {
     scene.mesh = makeSphere(1.0f, 48, 24);
   }
 }
@@ -359,24 +316,17 @@ int fineSegments(int points) { return std::max(128, 4 * (points - 1)); }
 
 enum class HairStyle { Straight, Wavy, Curly };
 
-Scene makeHair(const Options& o, HairStyle style) {
+Scene makeHair(const SO& o, HairStyle style) {
   Scene scene;
-  const Common c = readCommon(o, scene);
-  float amplitude = 0, frequency = 0, radius = 0;
-  if (style == HairStyle::Wavy) {
-    amplitude = o.real("amplitude", 0.0, 10.0);
-    frequency = o.real("frequency", 0.0, 1000.0);
-  } else if (style == HairStyle::Curly) {
-    radius = o.real("radius", 0.0, 10.0);
-    frequency = o.real("frequency", 0.0, 1000.0);
-  }
+  readCommon(o, scene);
+  const float amplitude = o.amplitude, frequency = o.frequency, radius = o.radius;
   addHeadOrMesh(o, scene);
-  Rng rng(c.seed);
-  const int M = fineSegments(c.points);
-  reserve(scene.strands, std::size_t(c.strands), std::size_t(c.points));
-  for (int64_t s = 0; s < c.strands; ++s) {
+  Rng rng(o.seed);
+  const int M = fineSegments(o.points);
+  reserve(scene.strands, std::size_t(o.strands), std::size_t(o.points));
+  for (int64_t s = 0; s < o.strands; ++s) {
     const glm::vec3 root = sampleScalp(rng);
-    const float length = c.length * rng.range(0.9f, 1.1f);
+    const float length = o.length * rng.range(0.9f, 1.1f);
     const float layer = rng.range(0.015f, 0.075f);
     const float phase = rng.range(0.0f, 2.0f * kPi);
     const glm::vec3 color = strandColor(rng, scene.hairColor);
@@ -393,28 +343,28 @@ Scene makeHair(const Options& o, HairStyle style) {
                    return radius * (std::cos(a) * b1 + std::sin(a) * b2);
                  });
     }
-    appendStrand(scene.strands, fine, c.points, color, c.thickness);
+    appendStrand(scene.strands, fine, o.points, color, o.thickness);
   }
   return scene;
 }
 
-Scene makeClustered(const Options& o) {
+Scene makeClustered(const SO& o) {
   Scene scene;
-  const Common c = readCommon(o, scene);
-  const int64_t clusters = o.integer("clusters", 1, kMaxStrands);
-  const float spread = o.real("spread", 0.0, 10.0);
-  if (clusters > c.strands) {
+  readCommon(o, scene);
+  const int64_t clusters = o.clusters;
+  const float spread = o.spread;
+  if (clusters > o.strands) {
     throw o.error("clusters=" + std::to_string(clusters) +
-                  " exceeds strands=" + std::to_string(c.strands));
+                  " exceeds strands=" + std::to_string(o.strands));
   }
   addHeadOrMesh(o, scene);
-  Rng rng(c.seed);
-  const int M = fineSegments(c.points);
-  reserve(scene.strands, std::size_t(c.strands), std::size_t(c.points));
+  Rng rng(o.seed);
+  const int M = fineSegments(o.points);
+  reserve(scene.strands, std::size_t(o.strands), std::size_t(o.points));
   for (int64_t k = 0; k < clusters; ++k) {
-    const int64_t members = c.strands / clusters + (k < c.strands % clusters ? 1 : 0);
+    const int64_t members = o.strands / clusters + (k < o.strands % clusters ? 1 : 0);
     const glm::vec3 root = sampleScalp(rng);
-    const float length = c.length * rng.range(0.9f, 1.1f);
+    const float length = o.length * rng.range(0.9f, 1.1f);
     const float layer = rng.range(0.015f, 0.075f);
     const glm::vec3 clumpColor = strandColor(rng, scene.hairColor);
     const std::vector<glm::vec3> guide = growDraped(root, length, layer, M);
@@ -435,7 +385,7 @@ Scene makeClustered(const Options& o) {
         if (i > 0) pushOut(fine[i], 1.01f);
       }
       fine[0] = memberRoot;
-      appendStrand(scene.strands, fine, c.points, color, c.thickness);
+      appendStrand(scene.strands, fine, o.points, color, o.thickness);
     }
   }
   return scene;
@@ -445,20 +395,20 @@ Scene makeClustered(const Options& o) {
 // front of it as seen from the default light (fitLight's direction), a single
 // stray strand whose shadow falls across the clump: a thin occluder far from
 // the others, which layer-based techniques place badly.
-Scene makeStray(const Options& o) {
+Scene makeStray(const SO& o) {
   Scene scene;
-  const Common c = readCommon(o, scene);
-  const float radius = o.real("radius", 0.0, 100.0, true);
-  const float offset = o.real("offset", 0.0, 100.0);
-  if (!o.text("mesh").empty()) scene.mesh = loadMesh(o.text("mesh"));
-  Rng rng(c.seed);
-  reserve(scene.strands, std::size_t(c.strands) + 1, std::size_t(c.points));
+  readCommon(o, scene);
+  const float radius = o.radius;
+  const float offset = o.offset;
+  if (!o.mesh.empty()) scene.mesh = loadMesh(o.mesh);
+  Rng rng(o.seed);
+  reserve(scene.strands, std::size_t(o.strands) + 1, std::size_t(o.points));
   auto vertical = [&](glm::vec2 xz, const glm::vec3& color) {
-    const std::vector<glm::vec3> line = {{xz.x, 0.5f * c.length, xz.y},
-                                         {xz.x, -0.5f * c.length, xz.y}};
-    appendStrand(scene.strands, line, c.points, color, c.thickness);
+    const std::vector<glm::vec3> line = {{xz.x, 0.5f * o.length, xz.y},
+                                         {xz.x, -0.5f * o.length, xz.y}};
+    appendStrand(scene.strands, line, o.points, color, o.thickness);
   };
-  for (int64_t k = 0; k < c.strands; ++k) {
+  for (int64_t k = 0; k < o.strands; ++k) {
     const float r = radius * std::sqrt(rng.u());
     const float phi = rng.range(0.0f, 2.0f * kPi);
     vertical({r * std::cos(phi), r * std::sin(phi)}, strandColor(rng, scene.hairColor));
@@ -469,35 +419,35 @@ Scene makeStray(const Options& o) {
   return scene;
 }
 
-Scene makeSheet(const Options& o) {
+Scene makeSheet(const SO& o) {
   Scene scene;
-  const Common c = readCommon(o, scene);
-  const float wiggle = o.real("wiggle", 0.0, 100.0);
-  if (!o.text("mesh").empty()) scene.mesh = loadMesh(o.text("mesh"));
-  Rng rng(c.seed);
-  reserve(scene.strands, std::size_t(c.strands), std::size_t(c.points));
-  for (int64_t k = 0; k < c.strands; ++k) {
-    const float x = c.strands > 1 ? -1.0f + 2.0f * float(k) / float(c.strands - 1) : 0.0f;
+  readCommon(o, scene);
+  const float wiggle = o.wiggle;
+  if (!o.mesh.empty()) scene.mesh = loadMesh(o.mesh);
+  Rng rng(o.seed);
+  reserve(scene.strands, std::size_t(o.strands), std::size_t(o.points));
+  for (int64_t k = 0; k < o.strands; ++k) {
+    const float x = o.strands > 1 ? -1.0f + 2.0f * float(k) / float(o.strands - 1) : 0.0f;
     std::vector<glm::vec3> zigzag;
-    for (int i = 0; i < c.points; ++i) {
-      const float t = float(i) / float(c.points - 1);
+    for (int i = 0; i < o.points; ++i) {
+      const float t = float(i) / float(o.points - 1);
       const float side = (i % 2 ? 1.0f : -1.0f) * wiggle;
-      zigzag.push_back({x + side, 0.5f * c.length - t * c.length, 0.0f});
+      zigzag.push_back({x + side, 0.5f * o.length - t * o.length, 0.0f});
     }
-    appendStrand(scene.strands, zigzag, c.points, strandColor(rng, scene.hairColor), c.thickness);
+    appendStrand(scene.strands, zigzag, o.points, strandColor(rng, scene.hairColor), o.thickness);
   }
   return scene;
 }
 
 // The stiff-case options every scene has: a uniform scale and doubled points.
-void applyScaleAndZeroSegments(const Options& o, Scene& scene) {
-  const float scale = o.real("scale", 1e-6, 1e6);
+void applyScaleAndZeroSegments(const SO& o, Scene& scene) {
+  const float scale = o.scale;
   if (scale != 1.0f) {
     for (auto& p : scene.strands.points) p *= scale;
     for (auto& t : scene.strands.thickness) t *= scale;
     for (auto& p : scene.mesh.positions) p *= scale;
   }
-  if (o.integer("zero_segments", 0, 1) == 0) return;
+  if (!o.zeroSegments) return;
   Strands in = std::move(scene.strands), out;
   out.thicknessFallback = in.thicknessFallback;
   reserve(out, in.strandCount(), 2 * in.points.size() / std::max<std::size_t>(1, in.strandCount()));
@@ -516,17 +466,15 @@ void applyScaleAndZeroSegments(const Options& o, Scene& scene) {
   scene.strands = std::move(out);
 }
 
-Scene makeFur(const Options& o) {
+Scene makeFur(const SO& o) {
   Scene scene;
-  Common c = readCommon(o, scene, false);
-  const float droop = o.real("droop", 0.0, 100.0);
-  const bool useDensity = o.given("density");
-  const float density = useDensity ? o.real("density", 0.0, 1e12, true) : 0.0f;
-  if (useDensity && o.given("strands")) {
-    throw o.error("give strands= (total) or density= (per unit area), not both");
-  }
-  if (!useDensity) c.strands = o.integer("strands", 1, kMaxStrands);
-  const std::string meshPath = o.text("mesh");
+  scene.hairAlpha = o.alpha;
+  scene.shadowAlpha = o.shadowAlpha;
+  SO c = o;  // strands: given, or from density= and the mesh's area
+  const float droop = o.droop;
+  const bool useDensity = o.density.has_value();
+  const float density = o.density.value_or(0.0f);
+  const std::string meshPath = o.mesh;
   scene.mesh = meshPath.empty() ? makeSphere(1.0f, 64, 32) : loadMesh(meshPath);
   const Mesh& mesh = scene.mesh;
 
@@ -545,7 +493,7 @@ Scene makeFur(const Options& o) {
   if (useDensity) {
     const double n = std::round(double(density) * area);
     if (n > double(kMaxStrands)) {
-      throw o.error("density=" + o.text("density") + " over an area of " + std::to_string(area) +
+      throw o.error("density=" + o.densityText + " over an area of " + std::to_string(area) +
                     " gives more than " + std::to_string(kMaxStrands) + " strands");
     }
     c.strands = std::max<int64_t>(1, int64_t(n));
@@ -606,23 +554,6 @@ Scene makeFur(const Options& o) {
   return scene;
 }
 
-// "R/G/B", each in [0,1] (a spec's commas separate its options).
-glm::vec3 colorOption(const Options& o, const std::string& key) {
-  const std::string t = o.text(key);
-  float c[3];
-  std::size_t at = 0;
-  for (int i = 0; i < 3; ++i) {
-    const std::size_t end = i < 2 ? t.find('/', at) : t.size();
-    char* stop = nullptr;
-    const std::string part = end == std::string::npos ? "" : t.substr(at, end - at);
-    c[i] = std::strtof(part.c_str(), &stop);
-    if (part.empty() || *stop != '\0' || !(c[i] >= 0.0f && c[i] <= 1.0f))
-      throw o.error(key + "=" + t + ": expected file or R/G/B, three numbers in [0,1]");
-    at = end + 1;
-  }
-  return {c[0], c[1], c[2]};
-}
-
 // up=auto for a format that does not say which way is up (PLY): the axis among y, z, -y
 // and -z along which the strands' roots lie above their tips (hanging hair), when it is
 // clear: the roots-to-tips offsets along it sum to at least kClearlyHanging of their
@@ -659,23 +590,18 @@ std::string upFromRootsAndTips(const Strands& s, std::string& why) {
   return best->first;
 }
 
-Scene makeFile(const Options& o) {
+Scene makeFile(const SO& o) {
   Scene scene;
-  const std::string path = o.text("path");
+  const std::string& path = o.path;
   if (path.empty()) throw o.error("path= is required (a .hair, .tfx or .ply strand file)");
-  scene.hairAlpha = o.real("alpha", 0.0, 1.0);
-  scene.shadowAlpha = o.real("shadow_alpha", 0.0, 1.0);
-  int64_t keep = 0;  // 0 = all
-  if (o.text("strands") != "all") keep = o.integer("strands", 1, kMaxStrands);
-  uint32_t pointsPerStrand = 0;  // 0 = not given
-  if (o.given("points_per_strand")) {
-    pointsPerStrand = uint32_t(o.integer("points_per_strand", 2, kMaxPointsPerStrand));
-  }
-  std::string up = o.choice("up", {"auto", "y", "z", "-y", "-z"});
-  std::optional<glm::vec3> color;
-  if (o.text("color") != "file") color = colorOption(o, "color");
+  scene.hairAlpha = o.alpha;
+  scene.shadowAlpha = o.shadowAlpha;
+  const int64_t keep = o.keep;                         // 0 = all
+  const uint32_t pointsPerStrand = o.pointsPerStrand;  // 0 = not given
+  std::string up = o.up;
+  const std::optional<glm::vec3> color = colorOption(o);
   scene.frameByBox = true;
-  const std::string mesh = o.text("mesh");
+  const std::string& mesh = o.mesh;
   if (!mesh.empty()) scene.mesh = loadMesh(mesh);
   Strands all = loadStrandFile(path, pointsPerStrand, &scene.warnings);
   const auto extension = [&](const char* e) {
@@ -737,49 +663,159 @@ Scene makeFile(const Options& o) {
   return scene;
 }
 
+// A scene: its options' table and how it is made.
+struct SceneKind {
+  std::string name, help;
+  OptionTable<SO> options;
+  std::function<Scene(const SO&)> make;
+};
+
+const std::vector<SceneKind>& sceneKinds() {
+  // The stiff cases every scene has: extreme scales and degenerate segments.
+  const SceneOption stiff =
+      opt::group<SO>({opt::number(&SO::scale, "scale", "1", 1e-6, 1e6,
+                                  "uniform scale of the whole scene, 1e-6..1e6"),
+                      zeroOne(&SO::zeroSegments, "zero_segments", false,
+                              "1: every point doubled (every other segment has zero length)")});
+  const auto hair = [&](const char* name, const char* help, long long strands, long long points,
+                        const char* length, SceneOption own, HairStyle style) {
+    return SceneKind{name, help,
+                     OptionTable<SO>({hairOptions(strands, points, length), own, stiff}),
+                     [style](const SO& o) { return makeHair(o, style); }};
+  };
+  const SceneOption frequency =
+      opt::number(&SO::frequency, "frequency", "3", 0.0, 1000.0, "waves per unit of hair length");
+  static const std::vector<SceneKind> kinds = {
+      hair("straight", "straight hair on a spherical head, draped by gravity", 2000, 16, "1.5", {},
+           HairStyle::Straight),
+      hair("wavy", "wavy hair: straight hair with a sinusoidal wave", 2000, 24, "1.5",
+           opt::group<SO>({opt::number(&SO::amplitude, "amplitude", "0.06", 0.0, 10.0,
+                                       "wave amplitude in head radii"),
+                           frequency}),
+           HairStyle::Wavy),
+      hair("curly", "curly hair: helical curls around a draped strand", 1500, 48, "1.2",
+           opt::group<SO>(
+               {opt::number(&SO::radius, "radius", "0.05", 0.0, 10.0, "curl radius in head radii"),
+                opt::number(&SO::frequency, "frequency", "5", 0.0, 1000.0,
+                            "curl turns per unit of hair length")}),
+           HairStyle::Curly),
+      {"clustered", "hair grouped into tight clumps that converge to their tips",
+       OptionTable<SO>({hairOptions(2000, 16, "1.5"),
+                        opt::integer(&SO::clusters, "clusters", 64, 1, kMaxStrands,
+                                     "number of clumps (<= strands)"),
+                        opt::number(&SO::spread, "spread", "0.1", 0.0, 10.0,
+                                    "clump radius at the scalp in head radii"),
+                        stiff}),
+       makeClustered},
+      {"fur", "fur grown along a mesh's normals",
+       OptionTable<SO>(
+           {commonOptions(
+                20000, 6,
+                "0.1", "fur length as a fraction of the base mesh's bounding radius",
+                "mesh to grow fur on (.obj, .ply, .tfxmesh), drawn opaque (default: a unit "
+                "sphere)"),
+            opt::number(&SO::droop, "droop", "0.5", 0.0, 100.0,
+                        "gravity bend of the fur (0 = straight along the normal)"),
+            optional(
+                "density", "strands per unit of mesh area (replaces strands=)",
+                [](SO& s, const OptionReader& r) {
+                  if (!r.has("density")) return;
+                  if (r.has("strands"))
+                    throw UnnamedError(
+                        "give strands= (total) or density= (per unit area), not both");
+                  const double v = r.number("density", 0.0, 1e12);
+                  if (!(v > 0.0))
+                    throw UnnamedError("option density=" + r.text("density") +
+                                       " is out of range: must be greater than 0");
+                  s.density = float(v);
+                  s.densityText = r.text("density");
+                },
+                [](const SO& s) { return s.densityText; }),
+            stiff}),
+       makeFur},
+      {"stray", "one strand between the light and a dense clump (the occupancy-map paper, Fig. 5a)",
+       OptionTable<SO>(
+           {commonOptions(3000, 16, "1", "length of the clump's strands (world units)", kMeshHelp),
+            positive(&SO::radius, "radius", "0.15", 100.0, "radius of the dense clump"),
+            opt::number(&SO::offset, "offset", "0.45", 0.0, 100.0,
+                        "distance of the stray strand from the clump's axis, towards "
+                        "the default light"),
+            stiff}),
+       makeStray},
+      {"sheet",
+       "strands in the plane z = 0: lit along -z, every fragment of a light texel is at one depth "
+       "(a zero depth range)",
+       OptionTable<SO>({commonOptions(200, 16, "2", "strand length (world units)", kMeshHelp),
+                        opt::number(&SO::wiggle, "wiggle", "0.1", 0.0, 100.0,
+                                    "zigzag amplitude in the plane (strands cross each other)"),
+                        stiff}),
+       makeSheet},
+      {"file", "strands from a file (.hair, .tfx, .ply), optionally with a mesh",
+       OptionTable<SO>(
+           {opt::text(&SO::path, "path", "", "strand file (required): .hair, .tfx or .ply"),
+            opt::text(&SO::mesh, "mesh", "", "mesh file drawn opaque (.obj, .ply, .tfxmesh)"),
+            {{opt::text("strands", "all", "keep this many strands, evenly spaced (default: all)"),
+              [](SO& s, const OptionReader& r) {
+                s.keep = r.text("strands") == "all" ? 0 : r.integer("strands", 1, kMaxStrands);
+              },
+              [](const SO& s) { return s.keep ? std::to_string(s.keep) : "all"; }}},
+            optional(
+                "points_per_strand",
+                "PLY without a 'strand' element (e.g. NeuralHaircut): strands of N "
+                "consecutive vertices, 2.." +
+                    std::to_string(kMaxPointsPerStrand),
+                [](SO& s, const OptionReader& r) {
+                  if (r.has("points_per_strand"))
+                    s.pointsPerStrand =
+                        uint32_t(r.integer("points_per_strand", 2, kMaxPointsPerStrand));
+                },
+                [](const SO& s) {
+                  return s.pointsPerStrand ? std::to_string(s.pointsPerStrand) : "";
+                }),
+            alphas(),
+            opt::choice(&SO::up, "up", "auto", {"auto", "y", "z", "-y", "-z"},
+                        "the file's up axis, turned to +y: auto (z for .hair, Yuksel's models are "
+                        "z-up; y for .tfx, TressFX's; for .ply, which does not say, the axis "
+                        "along which the roots lie above the tips, as hanging hair's do, else "
+                        "y), y, z, -y or -z; the render JSON's scene.up and up_reason"),
+            opt::text(&SO::color, "color", "file",
+                      "strand colours: file (the file's own, where it has them) or R/G/B in "
+                      "[0,1] for every strand (color=0.45/0.3/0.18)"),
+            stiff}),
+       makeFile},
+  };
+  return kinds;
+}
+
 }  // namespace
 
 const std::vector<SceneInfo>& sceneCatalog() {
-  static const std::vector<SceneInfo> catalog = buildCatalog();
+  static const std::vector<SceneInfo> catalog = [] {
+    std::vector<SceneInfo> c;
+    for (const SceneKind& k : sceneKinds()) c.push_back({k.name, k.help, k.options.infos()});
+    return c;
+  }();
   return catalog;
 }
 
-namespace {
-// The generator or loader a spec names.
-void buildScene(const Spec& spec, const Options& o, Scene& scene) {
-  if (spec.name == "straight") {
-    scene = makeHair(o, HairStyle::Straight);
-  } else if (spec.name == "wavy") {
-    scene = makeHair(o, HairStyle::Wavy);
-  } else if (spec.name == "curly") {
-    scene = makeHair(o, HairStyle::Curly);
-  } else if (spec.name == "clustered") {
-    scene = makeClustered(o);
-  } else if (spec.name == "fur") {
-    scene = makeFur(o);
-  } else if (spec.name == "stray") {
-    scene = makeStray(o);
-  } else if (spec.name == "sheet") {
-    scene = makeSheet(o);
-  } else {
-    scene = makeFile(o);
-  }
-}
-}  // namespace
-
 Scene makeScene(const Spec& spec) {
-  const std::vector<SceneInfo>& catalog = sceneCatalog();
-  const SceneInfo* info = nullptr;
+  const SceneKind* kind = nullptr;
   std::vector<std::string> names;
-  for (const SceneInfo& s : catalog) {
-    names.push_back(s.name);
-    if (s.name == spec.name) info = &s;
+  for (const SceneKind& k : sceneKinds()) {
+    names.push_back(k.name);
+    if (k.name == spec.name) kind = &k;
   }
-  if (!info) throw InputError(unknownNameMessage("scene", spec.name, names));
-  const Options o(spec, *info);
+  if (!kind) throw InputError(unknownNameMessage("scene", spec.name, names));
+  SO o;
+  try {
+    o = kind->options.read(spec, "scene '" + kind->name + "'");
+  } catch (const UnnamedError& e) {
+    throw InputError("scene '" + kind->name + "': " + e.what());
+  }
+  o.scene = kind->name;
   Scene scene;
   try {
-    buildScene(spec, o, scene);
+    scene = kind->make(o);
   } catch (const std::bad_alloc&) {
     throw OutOfMemoryError("out of memory building scene " + spec.str() +
                            ": a host allocation failed (points, colours and segment arrays; "

@@ -43,67 +43,6 @@ Bounds Scene::bounds() const {
   return b;
 }
 
-namespace {
-
-std::string trim(const std::string& s) {
-  std::size_t a = 0, e = s.size();
-  while (a < e && std::isspace(static_cast<unsigned char>(s[a]))) ++a;
-  while (e > a && std::isspace(static_cast<unsigned char>(s[e - 1]))) --e;
-  return s.substr(a, e - a);
-}
-
-}  // namespace
-
-Spec Spec::parse(const std::string& text) {
-  Spec spec;
-  const std::size_t colon = text.find(':');
-  spec.name = trim(text.substr(0, colon));
-  if (spec.name.empty()) {
-    throw InputError("spec '" + text + "': empty scene name (expected name:key=value,...)");
-  }
-  if (colon == std::string::npos) return spec;
-  const std::string rest = text.substr(colon + 1);
-  if (trim(rest).empty()) return spec;  // "name:" is the same as "name"
-  std::size_t pos = 0;
-  while (pos <= rest.size()) {
-    std::size_t comma = rest.find(',', pos);
-    if (comma == std::string::npos) comma = rest.size();
-    const std::string item = rest.substr(pos, comma - pos);
-    pos = comma + 1;
-    if (trim(item).empty()) {
-      throw InputError("spec '" + text +
-                       "': empty option (two commas in a row or a trailing comma)");
-    }
-    const std::size_t eq = item.find('=');
-    if (eq == std::string::npos) {
-      throw InputError("spec '" + text + "': option '" + trim(item) +
-                       "' has no '=' (expected key=value)");
-    }
-    const std::string key = trim(item.substr(0, eq));
-    const std::string value = trim(item.substr(eq + 1));
-    if (key.empty()) {
-      throw InputError("spec '" + text + "': option '" + trim(item) + "' has an empty key");
-    }
-    if (!spec.options.emplace(key, value).second) {
-      throw InputError("spec '" + text + "': option '" + key + "' is given more than once");
-    }
-  }
-  return spec;
-}
-
-std::string Spec::str() const {
-  std::string s = name;
-  char sep = ':';
-  for (const auto& [key, value] : options) {
-    s += sep;
-    s += key;
-    s += '=';
-    s += value;
-    sep = ',';
-  }
-  return s;
-}
-
 namespace detail {
 
 void fail(const std::string& name, const std::string& what) {

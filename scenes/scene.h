@@ -10,7 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "base/errors.h"  // InputError
+#include "base/errors.h"   // InputError
+#include "base/options.h"  // Spec, OptionInfo
 
 namespace sb {
 
@@ -64,28 +65,6 @@ struct Scene {
   Bounds bounds() const;  // strands and mesh together
 };
 
-// "name:key=value,key=value" (glmark2 style). Values stay strings; helpers
-// below convert them with range checks and clear messages.
-struct Spec {
-  std::string name;
-  std::map<std::string, std::string> options;
-  static Spec parse(const std::string& text);  // throws InputError
-  std::string str() const;
-};
-
-// Description of an option for `strandbench list` and validation. Typed options
-// (techniques, shading models) are validated by OptionReader when it is made, so
-// a bad value is refused before any work; Text options are read as given.
-enum class OptionKind { Text, Integer, Number, Choice, Flag };
-struct OptionInfo {
-  std::string name;
-  std::string defaultValue;
-  std::string help;
-  OptionKind kind = OptionKind::Text;
-  double min = 0, max = 0;           // Integer, Number: the valid range
-  std::vector<std::string> choices;  // Choice ("on", "off" for Flag)
-};
-const char* optionKindName(OptionKind k);  // "text", "integer", "number", "choice", "flag"
 struct SceneInfo {
   std::string name;
   std::string help;

@@ -13,9 +13,9 @@
 #include <iostream>
 #include <random>
 
+#include "base/options.h"
 #include "gpu_test_util.h"
 #include "imaging/metrics.h"
-#include "scenes/options.h"
 #include "scenes/view.h"
 #include "techniques/dc/dc_math.h"
 #include "techniques/frame/renderer.h"

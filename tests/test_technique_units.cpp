@@ -10,7 +10,9 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <set>
+#include <sstream>
 
 #include "harness/baselines.h"
 #include "harness/suite.h"
@@ -271,6 +273,81 @@ TEST(TechniqueUnits, NamesOutsideFoldersAreFound) {
   const std::vector<std::string> found = namesOutsideFolders(root);
   ASSERT_EQ(found.size(), 1u);
   EXPECT_EQ(found[0].rfind("harness/x.cpp: dom", 0), 0u) << found[0];
+}
+
+// "file: line" for each read of an option by its name under `root`, in techniques/ and the
+// references (harness/reference_spec.*): a reader's method called with a string, a reader
+// (a parameter `const OptionReader& r`) used for anything but handing it on, or a
+// readOptions. Every option is declared once in an OptionTable bound to its struct member
+// (base/options.h), and the struct is what the code reads.
+std::vector<std::string> optionReadsByName(const fs::path& root) {
+  static const std::regex literalRead(R"(\.\s*(number|integer|choice|flag|text|has)\s*\(\s*")");
+  static const std::regex readerParam(R"(OptionReader\s*&\s*(\w+))");
+  std::vector<std::string> found;
+  auto scan = [&](const fs::path& file) {
+    const std::string rel = fs::relative(file, root).generic_string();
+    std::string src = sbtest::readFile(file);
+    // Comments say what the code does; they are not reads.
+    src = std::regex_replace(src, std::regex(R"(//[^\n]*)"), "");
+    std::set<std::string> readers;
+    for (std::sregex_iterator it(src.begin(), src.end(), readerParam), end; it != end; ++it)
+      readers.insert((*it)[1]);
+    std::istringstream lines(src);
+    std::string line;
+    for (int n = 1; std::getline(lines, line); ++n) {
+      bool bad =
+          std::regex_search(line, literalRead) || line.find("readOptions") != std::string::npos;
+      for (const std::string& r : readers)
+        bad = bad || std::regex_search(line, std::regex("\\b" + r + R"(\s*\.\s*\w+\s*\()"));
+      if (bad) found.push_back(rel + ":" + std::to_string(n) + ": " + line);
+    }
+  };
+  auto source = [](const fs::path& p) {
+    const std::string ext = p.extension().string();
+    return ext == ".cpp" || ext == ".h";
+  };
+  if (fs::is_directory(root / "techniques"))
+    for (const auto& e : fs::recursive_directory_iterator(root / "techniques"))
+      if (e.is_regular_file() && source(e.path())) scan(e.path());
+  for (const char* f : {"harness/reference_spec.cpp", "harness/reference_spec.h"})
+    if (fs::exists(root / f)) scan(root / f);
+  std::sort(found.begin(), found.end());
+  return found;
+}
+
+TEST(TechniqueUnits, NoOptionIsReadByName) {
+  const std::vector<std::string> found = optionReadsByName(SB_SOURCE_DIR);
+  std::string list;
+  for (const auto& f : found) list += "\n  " + f;
+  EXPECT_TRUE(found.empty()) << "options read by name, not through their OptionTable:" << list;
+}
+
+TEST(TechniqueUnits, OptionReadsByNameAreFound) {
+  // The control: a copy of a technique's unit.cpp and of the references passes, and fails
+  // with a read by name planted in each (a shadow, a shading model, a reference).
+  const fs::path root = sbtest::tempDir("option-reads");
+  const fs::path src(SB_SOURCE_DIR);
+  for (const char* f : {"techniques/shadowmap/unit.cpp", "techniques/kajiya_kay/unit.cpp",
+                        "harness/reference_spec.cpp"}) {
+    fs::create_directories((root / f).parent_path());
+    fs::copy_file(src / f, root / f, fs::copy_options::overwrite_existing);
+  }
+  EXPECT_TRUE(optionReadsByName(root).empty());
+  std::ofstream(root / "techniques" / "shadowmap" / "unit.cpp", std::ios::app)
+      << "float planted(const sb::OptionReader& o) { return o.number(\"bias\"); }\n";
+  std::ofstream(root / "techniques" / "kajiya_kay" / "unit.cpp", std::ios::app)
+      << "float planted2(const OptionReader& reader, const char* n) { return "
+         "float(reader.number(n)); }\n";
+  std::ofstream(root / "harness" / "reference_spec.cpp", std::ios::app)
+      << "// o.integer(\"samples\") in a comment is not a read\n"
+         "int planted3(const sb::OptionReader& x);\n"
+         "int planted4(const Reader& o) { return int(o.integer(\"samples\")); }\n";
+  const std::vector<std::string> found = optionReadsByName(root);
+  ASSERT_EQ(found.size(), 3u);
+  EXPECT_EQ(found[0].rfind("harness/reference_spec.cpp:", 0), 0u) << found[0];
+  EXPECT_NE(found[0].find("o.integer(\"samples\")"), std::string::npos) << found[0];
+  EXPECT_EQ(found[1].rfind("techniques/kajiya_kay/unit.cpp:", 0), 0u) << found[1];
+  EXPECT_EQ(found[2].rfind("techniques/shadowmap/unit.cpp:", 0), 0u) << found[2];
 }
 
 }  // namespace

@@ -3,18 +3,27 @@
 
 #include "techniques/abuffer/abuffer.h"
 
+namespace sb {
+namespace {
+struct O {
+  uint64_t maxFragments;
+};
+const OptionTable<O> kOptions(
+    {opt::integer(&O::maxFragments, "max_fragments", 50000000, 1, 1000000000,
+                  "most fragments stored (32 bytes each), 1..1000000000")});
+}  // namespace
+}  // namespace sb
+
 SB_TECHNIQUE({.name = "abuffer",
               .family = Family::Transparency,
               .folder = "abuffer",
               .paper = "Carpenter 1984",
               .help = "ground truth cross-check: per-pixel fragment lists, sorted and composited",
-              .options = {opt::integer("max_fragments", 50000000, 1, 1000000000,
-                                       "most fragments stored (32 bytes each), 1..1000000000")},
+              .options = kOptions.infos(),
               .caps = {.exact = true,
                        .msaaRefusal = "per-pixel fragment lists sorted and composited per pixel: "
                                       "samples would multiply the lists' memory by N (or need a "
                                       "coverage mask per fragment, not written); not supported"},
-              .makeOit = [](const OptionReader& o) {
-                return std::make_unique<ABufferOit>(
-                    static_cast<uint64_t>(o.integer("max_fragments")));
+              .makeOit = [](const OptionReader& r) {
+                return std::make_unique<ABufferOit>(kOptions.read(r).maxFragments);
               }});

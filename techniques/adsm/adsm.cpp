@@ -27,15 +27,6 @@ float meanRadius(Device& dev, const GpuScene& scene) {
 }
 }  // namespace
 
-ApproximatedDeepShadows::Options ApproximatedDeepShadows::readOptions(const OptionReader& o) {
-  Options opt;
-  opt.spacing = static_cast<float>(o.number("spacing"));
-  opt.kernel = static_cast<uint32_t>(o.integer("kernel"));
-  opt.size = static_cast<uint32_t>(o.integer("size"));
-  opt.bias = static_cast<float>(o.number("bias"));
-  return opt;
-}
-
 void ApproximatedDeepShadows::setup(Device& dev, const GpuScene& scene, const RenderSettings& s) {
   const ViewUniforms view = setupLight(dev, scene, s, opt_.size);
   // Light depth is linear in distance for the directional light's orthographic

@@ -16,15 +16,6 @@ constexpr uint32_t kParams = SB_SLOT_AVSM_PARAMS, kCount = SB_SLOT_AVSM_COUNT,
                    kResolve = SB_SLOT_AVSM_RESOLVE;
 }  // namespace
 
-AdaptiveVolumetricShadowMaps::Options AdaptiveVolumetricShadowMaps::readOptions(
-    const OptionReader& o) {
-  Options opt;
-  opt.nodes = static_cast<uint32_t>(std::stoul(o.choice("nodes")));
-  opt.size = static_cast<uint32_t>(o.integer("size"));
-  opt.bias = static_cast<float>(o.number("bias"));
-  return opt;
-}
-
 // The lists: every fragment kept (no layer cap), in submission order.
 AdaptiveVolumetricShadowMaps::AdaptiveVolumetricShadowMaps(const Options& o)
     : opt_(o), lists_(ExactShadow::Method::ABuffer, o.size, o.bias, 1000000) {

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "scenes/options.h"
+#include "base/options.h"
 #include "techniques/common/opaque_shadow.h"
 #include "techniques/common/technique.h"
 #include "techniques/exact/exact.h"
@@ -32,7 +32,6 @@ class AdaptiveVolumetricShadowMaps : public LightMapShadow {
     uint32_t size = 512;
     float bias = 0.002f;
   };
-  static Options readOptions(const OptionReader& o);  // the registry's options
   explicit AdaptiveVolumetricShadowMaps(const Options& o);
   std::string name() const override { return "avsm"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s) override;

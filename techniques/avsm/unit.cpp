@@ -3,6 +3,16 @@
 
 #include "techniques/avsm/avsm.h"
 
+namespace sb {
+namespace {
+using O = AdaptiveVolumetricShadowMaps::Options;
+const OptionTable<O> kOptions({opt::choice(&O::nodes, "nodes", "8",
+                                           {{"4", 4u}, {"8", 8u}, {"16", 16u}},
+                                           "most nodes per texel curve: 4 | 8 | 16"),
+                               opt::mapSize(&O::size), opt::bias(&O::bias)});
+}  // namespace
+}  // namespace sb
+
 SB_TECHNIQUE(
     {.name = "avsm",
      .family = Family::Shadow,
@@ -11,11 +21,6 @@ SB_TECHNIQUE(
      .help = "adaptive volumetric shadow maps (Salvi et al. 2010): per texel a curve of at most "
              "`nodes` nodes, each fragment streamed in and the least-area node removed (timing "
              "emulated: resolve in primitive order)",
-     .options = {opt::choice("nodes", "8", {"4", "8", "16"},
-                             "most nodes per texel curve: 4 | 8 | 16"),
-                 opt::mapSize(), opt::bias()},
+     .options = kOptions.infos(),
      .caps = {.interlock = true, .emulatedTiming = true},
-     .makeShadow = [](const OptionReader& o) {
-       return std::make_unique<AdaptiveVolumetricShadowMaps>(
-           AdaptiveVolumetricShadowMaps::readOptions(o));
-     }});
+     .makeShadow = build<AdaptiveVolumetricShadowMaps>(kOptions)});

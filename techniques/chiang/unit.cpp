@@ -38,6 +38,27 @@ double dualBound(const sb::ShadingModel& m) {
 
 }  // namespace
 
+namespace sb {
+namespace {
+struct O {
+  float betaM, betaN, alpha, eta, ambient, densityF, densityB;
+  bool fibreOpacity, dual;
+};
+const OptionTable<O> kOptions(
+    {opt::number(&O::betaM, "beta_m", "0.3", 0.01, 1, "longitudinal roughness, 0.01..1"),
+     opt::number(&O::betaN, "beta_n", "0.3", 0.01, 1, "azimuthal roughness, 0.01..1"),
+     opt::number(&O::alpha, "alpha", "2", -45, 45,
+                 "tilt of the cuticle scales in degrees, -45..45"),
+     opt::number(&O::eta, "eta", "1.55", 1.01, 3, "index of refraction of the fibre, 1.01..3"),
+     opt::number(&O::ambient, "ambient", "0", 0, 1,
+                 "ambient term, a fraction of the hair colour (the tracer has none), "
+                 "0..1"),
+     opt::choice(&O::fibreOpacity, "opacity", "scene", {{"scene", false}, {"fibre", true}},
+                 "the strands' shadow alpha: the scene's shadow_alpha, or the light "
+                 "this fibre stops (1 - its mean forward transmittance A_1)")});
+}  // namespace
+}  // namespace sb
+
 SB_TECHNIQUE(
     {.name = "chiang",
      .family = Family::Shading,
@@ -46,36 +67,20 @@ SB_TECHNIQUE(
      .help = "Chiang et al. 2016: the path-traced reference's fibre (pbr/hair_bsdf.h, absorption "
              "from the strand colour as it derives it), longitudinal lobes evaluated, azimuthal "
              "lobes averaged over the fibre's width in a table; no diffuse term",
-     .options =
-         {opt::number("beta_m", "0.3", 0.01, 1, "longitudinal roughness, 0.01..1"),
-          opt::number("beta_n", "0.3", 0.01, 1, "azimuthal roughness, 0.01..1"),
-          opt::number("alpha", "2", -45, 45, "tilt of the cuticle scales in degrees, -45..45"),
-          opt::number("eta", "1.55", 1.01, 3, "index of refraction of the fibre, 1.01..3"),
-          opt::number("ambient", "0", 0, 1,
-                      "ambient term, a fraction of the hair colour (the tracer has none), "
-                      "0..1"),
-          opt::choice("opacity", "scene", {"scene", "fibre"},
-                      "the strands' shadow alpha: the scene's shadow_alpha, or the light "
-                      "this fibre stops (1 - its mean forward transmittance A_1)"),
-          opt::choice("scattering", "single", {"single", "dual"},
-                      "single scattering, or Zinke et al. 2008's dual scattering "
-                      "approximation of multiple scattering, fed by the shadow "
-                      "technique's visibility (techniques/chiang/dual.glsl)"),
-          opt::number("d_f", "0.7", 0, 1, "dual scattering's forward density factor d_f, 0..1"),
-          opt::number("d_b", "0.7", 0, 1, "dual scattering's backward density factor d_b, 0..1")},
-     .makeShading = [](const OptionReader& o) {
-       const auto f = [&](const char* name) { return static_cast<float>(o.number(name)); };
+     .options = kOptions.infos(),
+     .makeShading = [](const OptionReader& r) {
+       const O o = kOptions.read(r);
        pbr::HairParams hp;
-       hp.betaM = f("beta_m");
-       hp.betaN = f("beta_n");
-       hp.alphaDeg = f("alpha");
-       hp.eta = f("eta");
+       hp.betaM = o.betaM;
+       hp.betaN = o.betaN;
+       hp.alphaDeg = o.alpha;
+       hp.eta = o.eta;
        const pbr::HairBsdf bsdf(hp);  // the same variances as the tracer's
        ShadingModel m;
        m.kind = ShadingKind::Chiang;
        m.eta = hp.eta;
        m.betaN = hp.betaN;
-       m.material = {0.0f, 1.0f, 0.0f, f("ambient")};
+       m.material = {0.0f, 1.0f, 0.0f, o.ambient};
        for (int p = 0; p < 4; ++p) m.shift[p] = static_cast<float>(bsdf.variance(p));
        const float a = hp.alphaDeg * kDegree;
        m.width = {std::sin(a), std::cos(a), std::sin(2 * a), std::cos(2 * a)};
@@ -91,13 +96,13 @@ SB_TECHNIQUE(
          bound += mpBound(m.shift[p]) *
                   *std::max_element(table.begin() + p * lobe, table.begin() + (p + 1) * lobe);
        m.specularBound = static_cast<float>(std::numbers::pi * bound);
-       if (o.choice("scattering") == "dual") {
+       if (o.dual) {
          m.dualScattering = true;
-         m.densityF = f("d_f");
-         m.densityB = f("d_b");
+         m.densityF = o.densityF;
+         m.densityB = o.densityB;
          m.specularBound += dualBound(m);
        }
-       if (o.choice("opacity") == "fibre")
+       if (o.fibreOpacity)
          m.fibreShadowAlpha = [betaN = m.betaN, eta = m.eta](glm::vec3 c) {
            return chiangShadowAlpha(c, betaN, eta);
          };

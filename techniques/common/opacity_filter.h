@@ -3,21 +3,28 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
-#include "scenes/options.h"
+#include "base/options.h"
 
 namespace sb {
 namespace glsl {
 #include "techniques/common/opacity_filter.glsl"
 }  // namespace glsl
 
-inline int readFilter(const OptionReader& o) {
-  const std::string f = o.choice("filter");
-  return f == "pcf2x2"   ? glsl::kFilterPcf2x2
-         : f == "pcf6x4" ? glsl::kFilterPcf6x4
-         : f == "pcf6x6" ? glsl::kFilterPcf6x6
-         : f == "box3x3" ? glsl::kFilterBox3x3
-                         : glsl::kFilterNone;
+namespace opt {
+// The opacity lookup filter (osm, dom).
+template <class S>
+std::vector<Option<S>> opacityFilter(int S::*m) {
+  return choice(m, "filter", "none",
+                {{"none", glsl::kFilterNone},
+                 {"pcf2x2", glsl::kFilterPcf2x2},
+                 {"pcf6x4", glsl::kFilterPcf6x4},
+                 {"pcf6x6", glsl::kFilterPcf6x6},
+                 {"box3x3", glsl::kFilterBox3x3}},
+                "lookup kernel on the opacity (Unreal): none | pcf2x2 | pcf6x4 (3x3 pcf2x2, 2 "
+                "apart) | pcf6x6 (36 texels) | box3x3 (the OSM paper's 3x3 average)");
 }
+}  // namespace opt
 
 }  // namespace sb

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "scenes/options.h"
+#include "base/options.h"
 
 namespace sb {
 
@@ -14,15 +14,13 @@ constexpr float kMinCos2 = 1e-2f;
 
 }  // namespace
 
-ShadingModel ShadingModel::withLobes(const OptionReader& o) {
-  const auto f = [&](const char* name) { return static_cast<float>(o.number(name)); };
-  const float alpha = f("alpha") * kDegree;
-  const float beta = f("beta") * kDegree;
+ShadingModel ShadingModel::withLobes(const Lobes& l) {
+  const float alpha = l.alpha * kDegree;
+  const float beta = l.beta * kDegree;
   ShadingModel m;
-  // The paper's relations between the lobes (Marschner et al. 2003, Table 1; kept by Sadeghi).
   m.shift = {alpha, -alpha / 2.0f, -3.0f * alpha / 2.0f, 0.0f};
   m.width = {beta, beta / 2.0f, 2.0f * beta, 0.0f};
-  m.material = {f("diffuse"), f("specular"), 0.0f, 0.12f};
+  m.material = {l.diffuse, l.specular, 0.0f, 0.12f};
   return m;
 }
 

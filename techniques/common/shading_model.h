@@ -15,8 +15,6 @@
 
 namespace sb {
 
-class OptionReader;
-
 enum class ShadingKind {
   KajiyaKay = 0,
   Marschner = 1,
@@ -49,8 +47,12 @@ struct ShadingModel {
   // From the registry (techniques/common/unit.h): throws InputError naming the model and the
   // option (unknown name or option, out of range).
   static ShadingModel fromSpec(const std::string& spec);
-  // Marschner's and Sadeghi's lobes from their options diffuse, specular, alpha and beta.
-  static ShadingModel withLobes(const OptionReader& o);
+  // Marschner's and Sadeghi's lobes from their options diffuse, specular, alpha and beta
+  // (opt::lobes below; the angles in degrees).
+  struct Lobes {
+    float diffuse, specular, alpha, beta;
+  };
+  static ShadingModel withLobes(const Lobes& l);
   // The largest value the specular factor can take (the shader's bounds on cos^2(theta_d)
   // included): the colour invariant's bound.
   float maxSpecular() const;
@@ -60,5 +62,25 @@ struct ShadingModel {
 };
 
 constexpr float kDegree = 3.14159265358979f / 180.0f;
+
+namespace opt {
+// The lobe options of marschner and sadeghi: diffuse, specular, alpha and beta, bound to
+// their Options' Lobes member; the models' own options follow them in their tables.
+template <class S>
+std::vector<Option<S>> lobes(ShadingModel::Lobes S::*m, std::string diffuseHelp,
+                             std::string specularHelp, std::string specularDefault = "0.5") {
+  using L = ShadingModel::Lobes;
+  return nested(
+      m, group<L>({number(&L::diffuse, "diffuse", "0.4", 0, 4, std::move(diffuseHelp)),
+                   number(&L::specular, "specular", std::move(specularDefault), 0, 4,
+                          std::move(specularHelp)),
+                   number(&L::alpha, "alpha", "-7.5", -20, 20,
+                          "R lobe's longitudinal shift in degrees (cuticle tilt; TT -alpha/2, "
+                          "TRT -3alpha/2), -20..20"),
+                   number(&L::beta, "beta", "7.5", 1, 45,
+                          "R lobe's longitudinal width in degrees (TT beta/2, TRT 2beta), "
+                          "1..45")}));
+}
+}  // namespace opt
 
 }  // namespace sb

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "scenes/options.h"
+#include "base/options.h"
 #include "techniques/common/shading_model.h"
 #include "techniques/common/technique.h"
 
@@ -96,28 +96,43 @@ OptionReader readerFor(const TechniqueDescriptor& d, const Spec& spec);
 // own checks between options), without a device. Throws InputError.
 void checkTechniqueSpec(Family f, const std::string& spec);
 
-// Option declarations, so that descriptors state types and ranges once.
+// The factory of a technique made from its Options struct: `table` read, then T(options).
+template <class T, class O>
+auto build(const OptionTable<O>& table) {
+  return [&table](const OptionReader& r) { return std::make_unique<T>(table.read(r)); };
+}
+
+// Option declarations several techniques share, bound to their Options' members
+// (base/options.h): types, ranges, defaults and help stated once.
 namespace opt {
-OptionInfo integer(std::string name, long long def, long long min, long long max, std::string help);
-OptionInfo number(std::string name, std::string def, double min, double max, std::string help);
-OptionInfo choice(std::string name, std::string def, std::vector<std::string> choices,
-                  std::string help);
-OptionInfo flag(std::string name, bool def, std::string help);  // on | off
-OptionInfo text(std::string name, std::string def, std::string help);
 // The light map every map-based shadow technique takes: size (1..16384) and bias.
-OptionInfo mapSize(std::string help = "map resolution (size x size), 1..16384");
-OptionInfo bias();
+template <class S, class M>
+std::vector<Option<S>> mapSize(M S::*m,
+                               std::string help = "map resolution (size x size), 1..16384") {
+  return integer(m, "size", 512, 1, 16384, std::move(help));
+}
+template <class S, class M>
+std::vector<Option<S>> bias(M S::*m) {
+  return number(m, "bias", "0.002", 0.0, 1.0, "depth bias in light depth units [0,1], 0..1");
+}
 // A cap on the layers peeled (peel, dual_peel, peel_classic, exact).
-OptionInfo layersCap();
-// The opacity lookup filter (osm, dom).
-OptionInfo opacityFilter();
-// The moments of msm and mboit.
-OptionInfo moments();
-OptionInfo momentKind();
-// The lobe options ShadingModel::withLobes reads (marschner, sadeghi): diffuse, specular,
-// alpha and beta, the models' own options after them.
-std::vector<OptionInfo> lobes(std::string diffuseHelp, std::string specularHelp,
-                              std::vector<OptionInfo> more, std::string specularDefault = "0.5");
+template <class S, class M>
+std::vector<Option<S>> layersCap(M S::*m) {
+  return integer(m, "layers", 65536, 1, 1000000,
+                 "most layers peeled (a cap that is reported), 1..1000000");
+}
+// The moments of msm and mboit: the count, and whether they are trigonometric.
+template <class S, class M>
+std::vector<Option<S>> moments(M S::*m) {
+  return choice(m, "moments", "6", {{"4", 4}, {"6", 6}, {"8", 8}},
+                "real moments beyond b0: 4 | 6 | 8 (kind=trig: 2, 3, 4 complex trigonometric "
+                "moments)");
+}
+template <class S>
+std::vector<Option<S>> momentKind(bool S::*trig) {
+  return choice(trig, "kind", "power", {{"power", false}, {"trig", true}},
+                "power | trig: power moments of depth or trigonometric moments");
+}
 }  // namespace opt
 
 }  // namespace sb

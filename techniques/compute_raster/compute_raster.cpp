@@ -4,7 +4,7 @@
 #include <cstring>
 
 #include "base/errors.h"
-#include "scenes/options.h"
+#include "base/options.h"
 #include "techniques/common/shader_library.h"
 #include "techniques/compute_raster/slots.h"
 #include "techniques/compute_raster/uniforms.h"
@@ -30,21 +30,10 @@ enum Status : uint32_t {
 };
 }  // namespace
 
-ComputeRasterOit::Options ComputeRasterOit::readOptions(const OptionReader& o) {
-  Options r;
-  r.tile = static_cast<uint32_t>(std::stoul(o.choice("tile")));
-  r.fragments = static_cast<uint32_t>(o.integer("fragments"));
-  r.analytic = o.choice("coverage") == "analytic";
-  r.perPoint = o.choice("shading") == "point";
-  r.width = static_cast<float>(o.number("width"));
-  r.thickness = o.choice("width_from") == "thickness";
-  r.lod = static_cast<float>(o.number("lod"));
-  r.lodWiden = static_cast<float>(o.number("lod_widen"));
-  r.terminate = static_cast<float>(o.number("terminate"));
+void ComputeRasterOit::check(Options& r) {
   if (!(r.lod > 0.0f))
     throw InputError("transparency technique 'compute_raster': lod=" + std::to_string(r.lod) +
                      " keeps no strand; give a share in (0, 1]");
-  return r;
 }
 
 ComputeRasterOit::Strand ComputeRasterOit::strand(const Options& o, float frameWidth) {

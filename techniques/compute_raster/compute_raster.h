@@ -46,7 +46,7 @@ class ComputeRasterOit : public CompositedOit {
     float terminate = 1.0f / 1024;  // early-termination transmittance
   };
   explicit ComputeRasterOit(Options o) : o_(o) {}
-  static Options readOptions(const OptionReader& o);
+  static void check(Options& o);  // between options, after the registry read them
   std::string name() const override { return "compute_raster"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
              const HairShading& shading, const OitTargets& targets) override;

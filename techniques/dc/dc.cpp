@@ -1,6 +1,6 @@
 #include "techniques/dc/dc.h"
 
-#include "scenes/options.h"
+#include "base/options.h"
 #include "techniques/common/shader_library.h"
 #include "techniques/dc/slots.h"
 #include "techniques/dc/uniforms.h"
@@ -14,15 +14,6 @@ constexpr uint32_t kParams = SB_SLOT_DC_PARAMS, kRange = SB_SLOT_DC_RANGE,
                    kSquares = SB_SLOT_DC_SQUARES, kCentres = SB_SLOT_DC_CENTRES;
 
 }  // namespace
-
-DensityClusteringShadow::Options DensityClusteringShadow::readOptions(const OptionReader& o) {
-  Options opts;
-  opts.size = static_cast<uint32_t>(o.integer("size"));
-  opts.bias = static_cast<float>(o.number("bias"));
-  opts.clusters = static_cast<uint32_t>(o.integer("clusters"));
-  opts.iterations = static_cast<uint32_t>(o.integer("iterations"));
-  return opts;
-}
 
 ShadowLookup DensityClusteringShadow::lookup() const {
   ShadowLookup l{"techniques/dc/lookup.glsl"};

@@ -26,7 +26,6 @@ class DensityClusteringShadow : public ShadowTechnique {
     uint32_t iterations = 2;
   };
   // Reads and validates size, bias, clusters, iterations (InputError).
-  static Options readOptions(const OptionReader& o);
   static constexpr uint32_t kMaxClusters = 8;  // 2 layers x 3 arrays: 6 colour attachments
   explicit DensityClusteringShadow(const Options& opts) : opts_(opts) {}
 

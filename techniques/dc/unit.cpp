@@ -3,18 +3,24 @@
 
 #include "techniques/dc/dc.h"
 
+namespace sb {
+namespace {
+using O = DensityClusteringShadow::Options;
+const OptionTable<O> kOptions(
+    {opt::mapSize(&O::size), opt::bias(&O::bias),
+     opt::integer(&O::clusters, "clusters", 4, 1, DensityClusteringShadow::kMaxClusters,
+                  "depth clusters per texel (one channel each, 4 per layer), 1..8"),
+     opt::integer(&O::iterations, "iterations", 2, 1, 64,
+                  "k-means iterations (passes over the hair), 1..64")});
+}  // namespace
+}  // namespace sb
+
 SB_TECHNIQUE(
     {.name = "dc",
      .family = Family::Shadow,
      .folder = "dc",
      .paper = "Mertens et al. 2004",
      .help = "density clustering (Mertens et al. 2004): per-texel k-means of fragment depths",
-     .options = {opt::mapSize(), opt::bias(),
-                 opt::integer("clusters", 4, 1, DensityClusteringShadow::kMaxClusters,
-                              "depth clusters per texel (one channel each, 4 per layer), 1..8"),
-                 opt::integer("iterations", 2, 1, 64,
-                              "k-means iterations (passes over the hair), 1..64")},
+     .options = kOptions.infos(),
      .stepped = SteppedOption{"clusters", false, 1, 8},
-     .makeShadow = [](const OptionReader& o) {
-       return std::make_unique<DensityClusteringShadow>(DensityClusteringShadow::readOptions(o));
-     }});
+     .makeShadow = build<DensityClusteringShadow>(kOptions)});

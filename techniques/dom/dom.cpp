@@ -17,47 +17,27 @@ constexpr uint32_t kParams = SB_SLOT_DOM_PARAMS, kDepth = SB_SLOT_DOM_DEPTH,
 
 }  // namespace
 
-DeepOpacityMaps::Options DeepOpacityMaps::readOptions(const OptionReader& o) {
-  Options opt;
-  opt.layers = static_cast<uint32_t>(o.integer("layers"));
-  const std::string spacing = o.choice("spacing");
-  opt.spacing = spacing == "constant"    ? glsl::kDomConstant
-                : spacing == "pow2"      ? glsl::kDomPow2
-                : spacing == "fibonacci" ? glsl::kDomFibonacci
-                : spacing == "power"     ? glsl::kDomPower
-                                         : glsl::kDomLinear;
-  opt.filter = readFilter(o);
-  if (spacing == "list") {
-    const std::string text = o.text("list");
-    std::size_t begin = 0;
-    while (begin <= text.size()) {
-      const std::size_t end = std::min(text.find(';', begin), text.size());
-      const std::string item = text.substr(begin, end - begin);
-      char* rest = nullptr;
-      const float v = std::strtof(item.c_str(), &rest);
-      if (item.empty() || *rest != '\0' || !(v > 0.0f) || !std::isfinite(v))
-        throw InputError(
-            "shadow technique 'dom': list= wants positive numbers separated by ';', "
-            "got '" +
-            text + "'");
-      opt.list.push_back(v);
-      begin = end + 1;
-    }
-    if (opt.list.size() != opt.layers)
-      throw InputError("shadow technique 'dom': list= has " + std::to_string(opt.list.size()) +
-                       " sizes for " + std::to_string(opt.layers) + " layers");
+void DeepOpacityMaps::finish(Options& opt) {
+  if (opt.spacing != kSpacingList) return;
+  opt.spacing = glsl::kDomLinear;  // the boundaries come from the list
+  const std::string& text = opt.listText;
+  std::size_t begin = 0;
+  while (begin <= text.size()) {
+    const std::size_t end = std::min(text.find(';', begin), text.size());
+    const std::string item = text.substr(begin, end - begin);
+    char* rest = nullptr;
+    const float v = std::strtof(item.c_str(), &rest);
+    if (item.empty() || *rest != '\0' || !(v > 0.0f) || !std::isfinite(v))
+      throw InputError(
+          "shadow technique 'dom': list= wants positive numbers separated by ';', "
+          "got '" +
+          text + "'");
+    opt.list.push_back(v);
+    begin = end + 1;
   }
-  opt.sizeAbs = static_cast<float>(o.number("size_abs"));
-  opt.sizeFrac = static_cast<float>(o.number("size_frac"));
-  const std::string beyond = o.choice("beyond");
-  opt.beyond = beyond == "ignore"   ? glsl::kDomIgnore
-               : beyond == "extend" ? glsl::kDomExtend
-                                    : glsl::kDomLast;
-  opt.depthBits = static_cast<uint32_t>(std::stoi(o.choice("depth_bits")));
-  opt.thesisCounting = o.choice("counting") == "thesis";
-  opt.size = static_cast<uint32_t>(o.integer("size"));
-  opt.bias = static_cast<float>(o.number("bias"));
-  return opt;
+  if (opt.list.size() != opt.layers)
+    throw InputError("shadow technique 'dom': list= has " + std::to_string(opt.list.size()) +
+                     " sizes for " + std::to_string(opt.layers) + " layers");
 }
 
 void DeepOpacityMaps::setup(Device& dev, const GpuScene& scene, const RenderSettings& s) {

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "scenes/options.h"
+#include "base/options.h"
 #include "techniques/common/opaque_shadow.h"
 #include "techniques/common/technique.h"
 
@@ -22,6 +22,7 @@ class DeepOpacityMaps : public LightMapShadow {
     uint32_t layers = 3;
     int spacing = 1;          // kDomConstant | kDomLinear | kDomPow2 | kDomFibonacci | kDomPower
     int filter = 0;           // kFilterNone | kFilterPcf2x2 | kFilterPcf6x4 | kFilterPcf6x6
+    std::string listText;     // spacing=list: the sizes as given ("1;2;3")
     std::vector<float> list;  // spacing=list: layer sizes as multiples of s
     float sizeAbs = 0.0f;     // layer size s in light depth units (0: use sizeFrac)
     float sizeFrac = 0.1f;    // s as a fraction of the hair's depth range from the light
@@ -33,7 +34,9 @@ class DeepOpacityMaps : public LightMapShadow {
   };
   static constexpr uint32_t kMaxLayers = 31;  // 8 targets: the colour attachments a pass may have
 
-  static Options readOptions(const OptionReader& o);  // the registry's options
+  static constexpr int kSpacingList = -1;  // spacing=list, until finish() reads the list
+  // The registry's options after their table filled them: the list read, layers matched.
+  static void finish(Options& o);
   explicit DeepOpacityMaps(const Options& o) : opt_(o) {}
   std::string name() const override { return "dom"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s) override;

@@ -17,15 +17,6 @@ constexpr uint32_t kParams = SB_SLOT_DSM_PARAMS, kKept = SB_SLOT_DSM_KEPT,
 
 }  // namespace
 
-DeepShadowMaps::Options DeepShadowMaps::readOptions(const OptionReader& o) {
-  Options opt;
-  opt.epsilon = static_cast<float>(o.number("epsilon"));
-  opt.maxNodes = static_cast<uint32_t>(o.integer("max_nodes"));
-  opt.size = static_cast<uint32_t>(o.integer("size"));
-  opt.bias = static_cast<float>(o.number("bias"));
-  return opt;
-}
-
 // The lists: every fragment kept (no layer cap), sorted per texel.
 DeepShadowMaps::DeepShadowMaps(const Options& o)
     : opt_(o), lists_(ExactShadow::Method::ABuffer, o.size, o.bias, 1000000) {}

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "scenes/options.h"
+#include "base/options.h"
 #include "techniques/common/opaque_shadow.h"
 #include "techniques/common/technique.h"
 #include "techniques/exact/exact.h"
@@ -25,7 +25,6 @@ class DeepShadowMaps : public LightMapShadow {
     uint32_t size = 512;
     float bias = 0.002f;
   };
-  static Options readOptions(const OptionReader& o);  // the registry's options
   explicit DeepShadowMaps(const Options& o);
   std::string name() const override { return "dsm"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s) override;

@@ -3,6 +3,18 @@
 
 #include "techniques/dsm/dsm.h"
 
+namespace sb {
+namespace {
+using O = DeepShadowMaps::Options;
+const OptionTable<O> kOptions(
+    {opt::number(&O::epsilon, "epsilon", "0.01", 0.0, 1.0,
+                 "greatest visibility error of the compression (0: exact), 0..1"),
+     opt::integer(&O::maxNodes, "max_nodes", 64, 2, 65536,
+                  "most nodes kept per texel (more are cut and reported), 2..65536"),
+     opt::mapSize(&O::size), opt::bias(&O::bias)});
+}  // namespace
+}  // namespace sb
+
 SB_TECHNIQUE(
     {.name = "dsm",
      .family = Family::Shadow,
@@ -11,11 +23,5 @@ SB_TECHNIQUE(
      .help =
          "deep shadow maps (Lokovic & Veach 2000): per texel, the exact visibility compressed to "
          "a piecewise-linear curve within epsilon",
-     .options = {opt::number("epsilon", "0.01", 0.0, 1.0,
-                             "greatest visibility error of the compression (0: exact), 0..1"),
-                 opt::integer("max_nodes", 64, 2, 65536,
-                              "most nodes kept per texel (more are cut and reported), 2..65536"),
-                 opt::mapSize(), opt::bias()},
-     .makeShadow = [](const OptionReader& o) {
-       return std::make_unique<DeepShadowMaps>(DeepShadowMaps::readOptions(o));
-     }});
+     .options = kOptions.infos(),
+     .makeShadow = build<DeepShadowMaps>(kOptions)});

@@ -13,14 +13,6 @@ constexpr uint32_t kTargetsPerPass = 8;
 
 }  // namespace
 
-FourierOpacityMaps::Options FourierOpacityMaps::readOptions(const OptionReader& o) {
-  Options opt;
-  opt.coefficients = static_cast<uint32_t>(o.integer("coefficients"));
-  opt.size = static_cast<uint32_t>(o.integer("size"));
-  opt.bias = static_cast<float>(o.number("bias"));
-  return opt;
-}
-
 void FourierOpacityMaps::setup(Device& dev, const GpuScene& scene, const RenderSettings& s) {
   const ViewUniforms view = setupLight(dev, scene, s, opt_.size);
   // The series' period: the hair's depth range from the light (CPU, from the

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "scenes/options.h"
+#include "base/options.h"
 #include "techniques/common/opaque_shadow.h"
 #include "techniques/common/technique.h"
 
@@ -22,7 +22,6 @@ class FourierOpacityMaps : public LightMapShadow {
   };
   static constexpr uint32_t kMaxCoefficients = 31;  // 63 floats: 16 layers, 2 passes
 
-  static Options readOptions(const OptionReader& o);  // the registry's options
   explicit FourierOpacityMaps(const Options& o) : opt_(o) {}
   std::string name() const override { return "fom"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s) override;

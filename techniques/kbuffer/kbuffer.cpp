@@ -1,15 +1,8 @@
 #include "techniques/kbuffer/kbuffer.h"
 
-#include "scenes/options.h"
+#include "base/options.h"
 
 namespace sb {
-
-KBufferOit::Options KBufferOit::readOptions(const OptionReader& o) {
-  Options r;
-  r.k = static_cast<int>(o.integer("k"));
-  r.nodes = static_cast<uint64_t>(o.integer("nodes"));
-  return r;
-}
 
 ShaderDefines KBufferOit::resolveDefines() const {
   ShaderDefines d;

@@ -24,7 +24,6 @@ class KBufferOit : public ABufferOit {
   };
   static constexpr int kMaxK = 32;  // kbuffer_math.glsl's SB_KBUFFER_MAX
   explicit KBufferOit(Options o) : ABufferOit(~0ull), o_(o) {}
-  static Options readOptions(const OptionReader& o);
   std::string name() const override { return "kbuffer"; }
   std::vector<std::string> warnings(Device& dev) override;
   std::vector<Counter> counters(Device& dev) override;

@@ -3,6 +3,18 @@
 
 #include "techniques/kbuffer/kbuffer.h"
 
+namespace sb {
+namespace {
+using O = KBufferOit::Options;
+const OptionTable<O> kOptions(
+    {opt::integer(&O::k, "k", 8, 1, KBufferOit::kMaxK,
+                  "fragments kept and sorted per pixel, 1..32"),
+     opt::integer(&O::nodes, "nodes", 0, 0, 1000000000,
+                  "node pool entries (32 bytes each); 0: the counted fragments; a full "
+                  "pool drops fragments (counted and reported), 0..1000000000")});
+}  // namespace
+}  // namespace sb
+
 SB_TECHNIQUE(
     {.name = "kbuffer",
      .family = Family::Transparency,
@@ -10,13 +22,7 @@ SB_TECHNIQUE(
      .paper = "TressFX 4 (Bavoil et al. 2007's k-buffer)",
      .help = "k-buffer over per-pixel lists as TressFX 4 resolves them: the k nearest sorted, "
              "the rest blended as a tail",
-     .options = {opt::integer("k", 8, 1, KBufferOit::kMaxK,
-                              "fragments kept and sorted per pixel, 1..32"),
-                 opt::integer("nodes", 0, 0, 1000000000,
-                              "node pool entries (32 bytes each); 0: the counted fragments; a full "
-                              "pool drops fragments (counted and reported), 0..1000000000")},
+     .options = kOptions.infos(),
      .caps = {.msaaRefusal = "per-pixel fragment lists (the A-buffer's) resolved per pixel: "
                              "samples would multiply the lists' memory by N; not supported"},
-     .makeOit = [](const OptionReader& o) {
-       return std::make_unique<KBufferOit>(KBufferOit::readOptions(o));
-     }});
+     .makeOit = build<KBufferOit>(kOptions)});

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "scenes/options.h"
+#include "base/options.h"
 #include "techniques/common/hair_oit.h"
 #include "techniques/mboit/mboit_math.h"
 #include "techniques/mboit/slots.h"
@@ -31,14 +31,6 @@ glm::vec2 depthRange(const Bounds& b, const ViewUniforms& v) {
   return {lo, hi};
 }
 }  // namespace
-
-MomentOit::Options MomentOit::readOptions(const OptionReader& o) {
-  Options r;
-  r.moments = std::stoi(o.choice("moments"));
-  r.bits = std::stoi(o.choice("precision"));
-  r.trig = o.choice("kind") == "trig";
-  return r;
-}
 
 void MomentOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
                       const HairShading& shading, const OitTargets& targets) {

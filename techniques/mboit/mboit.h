@@ -26,7 +26,6 @@ class MomentOit : public OitTechnique {
     int bits = 32;      // 16 or 32
   };
   explicit MomentOit(Options o) : o_(o) {}
-  static Options readOptions(const OptionReader& o);
   std::string name() const override { return "mboit"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
              const HairShading& shading, const OitTargets& targets) override;

@@ -15,15 +15,6 @@ constexpr uint32_t kParams = SB_SLOT_MSM_PARAMS, kB0 = SB_SLOT_MSM_B0, kLow = SB
 int kind(const MomentShadowMaps::Options& o) { return o.trig ? SB_MBOIT_TRIG : SB_MBOIT_POWER; }
 }  // namespace
 
-MomentShadowMaps::Options MomentShadowMaps::readOptions(const OptionReader& o) {
-  Options opt;
-  opt.moments = std::stoi(o.choice("moments"));
-  opt.trig = o.choice("kind") == "trig";
-  opt.size = static_cast<uint32_t>(o.integer("size"));
-  opt.bias = static_cast<float>(o.number("bias"));
-  return opt;
-}
-
 void MomentShadowMaps::setup(Device& dev, const GpuScene& scene, const RenderSettings& s) {
   const ViewUniforms view = setupLight(dev, scene, s, opt_.size);
   // The moments' depth interval: the hair's depth range from the light (as

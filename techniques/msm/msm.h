@@ -1,6 +1,6 @@
 #pragma once
 
-#include "scenes/options.h"
+#include "base/options.h"
 #include "techniques/common/opaque_shadow.h"
 #include "techniques/common/technique.h"
 
@@ -22,7 +22,6 @@ class MomentShadowMaps : public LightMapShadow {
     uint32_t size = 512;  // map size
     float bias = 0.002f;  // lookup depth bias (light window depth)
   };
-  static Options readOptions(const OptionReader& o);  // the registry's options
   explicit MomentShadowMaps(const Options& o) : opt_(o) {}
   std::string name() const override { return "msm"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s) override;

@@ -1,6 +1,6 @@
 #include "techniques/occupancy/occupancy.h"
 
-#include "scenes/options.h"
+#include "base/options.h"
 #include "techniques/common/shader_library.h"
 #include "techniques/occupancy/slots.h"
 #include "techniques/occupancy/uniforms.h"
@@ -13,18 +13,10 @@ constexpr uint32_t kParams = SB_SLOT_OCC_PARAMS, kRange = SB_SLOT_OCC_RANGE,
                    kBits = SB_SLOT_OCC_BITS, kSlabs = SB_SLOT_OCC_SLABS;
 }  // namespace
 
-OccupancyShadow::Options OccupancyShadow::readOptions(const OptionReader& o) {
-  Options opts;
-  opts.size = static_cast<uint32_t>(o.integer("size"));
-  opts.bias = static_cast<float>(o.number("bias"));
-  opts.slices = static_cast<uint32_t>(o.integer("slices"));
-  opts.slabs = static_cast<uint32_t>(o.integer("slabs"));
-  const std::string slabMap = o.choice("slab_map");
-  opts.slabMap = slabMap != "off";
-  opts.countOnly = slabMap == "count";
+void OccupancyShadow::finish(Options& opts) {
+  opts.slabMap = opts.slabMapChoice != Options::SlabMap::Off;
+  opts.countOnly = opts.slabMapChoice == Options::SlabMap::Count;
   if (opts.countOnly) opts.slabs = 1;  // one count per texel: F of the paper's F / S
-  opts.jitter = o.flag("jitter");
-  opts.jitterSamples = static_cast<uint32_t>(o.integer("jitter_samples"));
   const std::string what = "shadow technique 'occupancy': ";
   if (opts.slices % 32 != 0)
     throw InputError(what + "slices=" + std::to_string(opts.slices) +
@@ -32,7 +24,6 @@ OccupancyShadow::Options OccupancyShadow::readOptions(const OptionReader& o) {
   if (opts.slabMap && opts.slices % opts.slabs != 0)
     throw InputError(what + "slabs=" + std::to_string(opts.slabs) + " must divide slices=" +
                      std::to_string(opts.slices) + " (every slab holds the same number of slices)");
-  return opts;
 }
 
 ShadowLookup OccupancyShadow::lookup() const {

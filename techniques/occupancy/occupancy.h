@@ -26,11 +26,12 @@ class OccupancyShadow : public ShadowTechnique {
     // set bit counts F / S, F the texel's fragment count (a count map of one
     // slab), S its set bits.
     bool countOnly = false;
+    enum class SlabMap { On, Off, Count } slabMapChoice = SlabMap::On;  // slab_map=, for finish
     bool jitter = false;         // half-texel jitter of the lookup (the paper's anti-aliasing)
     uint32_t jitterSamples = 1;  // jittered lookups averaged (jitter=on)
   };
   // Reads and validates size, bias, slices, slabs, slab_map, jitter (InputError).
-  static Options readOptions(const OptionReader& o);
+  static void finish(Options& o);  // slab_map= applied, rules between options
   explicit OccupancyShadow(const Options& opts) : opts_(opts) {}
 
   std::string name() const override { return "occupancy"; }

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "scenes/options.h"
+#include "base/options.h"
 #include "techniques/common/shader_library.h"
 #include "techniques/occupancy_oit/slots.h"
 #include "techniques/shading/hair_shading.h"
@@ -17,13 +17,7 @@ constexpr uint32_t kRange = SB_SLOT_OOIT_RANGE, kBits = SB_SLOT_OOIT_BITS,
 constexpr uint32_t kResolveAccum = SB_SLOT_OOIT_ACCUM, kResolveLog2T = SB_SLOT_OOIT_LOG2T;
 }  // namespace
 
-OccupancyOit::Options OccupancyOit::readOptions(const OptionReader& o) {
-  Options opts;
-  opts.slices = static_cast<uint32_t>(o.integer("slices"));
-  opts.slabs = static_cast<uint32_t>(o.integer("slabs"));
-  opts.lambda = o.flag("lambda");
-  const std::string order = o.choice("order");
-  opts.order = order == "paper" ? 1 : order == "printed" ? 2 : 0;
+void OccupancyOit::check(Options& opts) {
   const std::string what = "transparency technique 'occupancy': ";
   if (opts.slices % 32 != 0)
     throw InputError(what + "slices=" + std::to_string(opts.slices) +
@@ -31,7 +25,6 @@ OccupancyOit::Options OccupancyOit::readOptions(const OptionReader& o) {
   if (opts.slices % opts.slabs != 0)
     throw InputError(what + "slabs=" + std::to_string(opts.slabs) + " must divide slices=" +
                      std::to_string(opts.slices) + " (every slab holds the same number of slices)");
-  return opts;
 }
 
 void OccupancyOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,

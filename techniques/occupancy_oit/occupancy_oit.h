@@ -29,7 +29,7 @@ class OccupancyOit : public OitTechnique {
                             // (oitOrderPrinted, with Lambda as printed: oitResolvePrinted)
   };
   // Reads and validates slices, slabs, lambda (InputError).
-  static Options readOptions(const OptionReader& o);
+  static void check(Options& o);  // between options, after the registry read them
   explicit OccupancyOit(const Options& opts) : opts_(opts) {}
 
   std::string name() const override { return "occupancy"; }

@@ -4,6 +4,27 @@
 #include "techniques/occupancy/occupancy_maps.h"
 #include "techniques/occupancy_oit/occupancy_oit.h"
 
+namespace sb {
+namespace {
+using O = OccupancyOit::Options;
+const OptionTable<O> kOptions(
+    {opt::integer(&O::slices, "slices", 128, 32, OccupancyMaps::kMaxSlices,
+                  "occupancy bits per pixel, multiple of 32 (128 per RGBA32UI layer), "
+                  "32..1024"),
+     opt::integer(&O::slabs, "slabs", 4, 1, OccupancyMaps::kMaxSlabs,
+                  "fragment counts per pixel (4 per RGBA32F layer), dividing slices, 1..32"),
+     opt::flag(&O::lambda, "lambda", true,
+               "on | off: renormalise the hair weights to 1 - prod(1 - alpha) (Lambda "
+               "/ hair.a: the printed hair.a / Lambda inverted, see README)"),
+     opt::choice(&O::order, "order", "corrected", {{"corrected", 0}, {"paper", 1}, {"printed", 2}},
+                 "corrected (the fragment's own share taken out, spread within its "
+                 "slice) | paper (the printed F_i / B_total * B_before, not spread) "
+                 "| printed (section 3.2 in full: spread within its slice, its own "
+                 "share kept; with lambda=on Lambda as printed, hair.a / Lambda)")},
+    OccupancyOit::check);
+}  // namespace
+}  // namespace sb
+
 SB_TECHNIQUE(
     {.name = "occupancy",
      .family = Family::Transparency,
@@ -11,23 +32,8 @@ SB_TECHNIQUE(
      .paper = "Sintorn & Assarsson 2009",
      .help = "occupancy-ordered blending (Sintorn & Assarsson 2009): order from eye-space "
              "occupancy maps",
-     .options = {opt::integer("slices", 128, 32, OccupancyMaps::kMaxSlices,
-                              "occupancy bits per pixel, multiple of 32 (128 per RGBA32UI layer), "
-                              "32..1024"),
-                 opt::integer(
-                     "slabs", 4, 1, OccupancyMaps::kMaxSlabs,
-                     "fragment counts per pixel (4 per RGBA32F layer), dividing slices, 1..32"),
-                 opt::flag("lambda", true,
-                           "on | off: renormalise the hair weights to 1 - prod(1 - alpha) (Lambda "
-                           "/ hair.a: the printed hair.a / Lambda inverted, see README)"),
-                 opt::choice("order", "corrected", {"corrected", "paper", "printed"},
-                             "corrected (the fragment's own share taken out, spread within its "
-                             "slice) | paper (the printed F_i / B_total * B_before, not spread) "
-                             "| printed (section 3.2 in full: spread within its slice, its own "
-                             "share kept; with lambda=on Lambda as printed, hair.a / Lambda)")},
+     .options = kOptions.infos(),
      .caps = {.msaaRefusal = "its occupancy bits, slab counts and depth range are per-pixel maps "
                              "that order the fragments: samples would multiply them by N and split "
                              "one pixel's order; not supported"},
-     .makeOit = [](const OptionReader& o) {
-       return std::make_unique<OccupancyOit>(OccupancyOit::readOptions(o));
-     }});
+     .makeOit = build<OccupancyOit>(kOptions)});

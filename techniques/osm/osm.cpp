@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "scenes/options.h"
+#include "base/options.h"
 #include "techniques/common/opacity.h"
 #include "techniques/common/opacity_filter.h"
 #include "techniques/common/shader_library.h"
@@ -56,23 +56,6 @@ OpacityShadowMaps::Layout OpacityShadowMaps::layoutFor(uint32_t maps, bool multi
                      " do not fit in atlases of at most " + std::to_string(kMaxAtlasSize) +
                      " pixels a side (use fewer maps, a smaller size or passes=multi)");
   return l;
-}
-
-OpacityShadowMaps::Options OpacityShadowMaps::readOptions(const OptionReader& o) {
-  Options opt;
-  opt.maps = static_cast<uint32_t>(o.integer("maps"));
-  const std::string slicing = o.choice("slicing");
-  opt.slicing = slicing == "density" ? glsl::kOsmDensity
-                : slicing == "gamma" ? glsl::kOsmGamma
-                                     : glsl::kOsmUniform;
-  opt.gamma = static_cast<float>(o.number("gamma"));
-  opt.multi = o.choice("passes") == "multi";
-  opt.bits = static_cast<uint32_t>(std::stoi(o.choice("bits")));
-  opt.kappa = static_cast<float>(o.number("kappa"));
-  opt.size = static_cast<uint32_t>(o.integer("size"));
-  opt.bias = static_cast<float>(o.number("bias"));
-  opt.filter = readFilter(o);
-  return opt;
 }
 
 OpacityShadowMaps::OpacityShadowMaps(const Options& o)

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "scenes/options.h"
+#include "base/options.h"
 #include "techniques/common/opaque_shadow.h"
 #include "techniques/common/technique.h"
 
@@ -43,7 +43,6 @@ class OpacityShadowMaps : public LightMapShadow {
   };
   static Layout layoutFor(uint32_t maps, bool multi, uint32_t size);
 
-  static Options readOptions(const OptionReader& o);  // the registry's options
   explicit OpacityShadowMaps(const Options& o);
   std::string name() const override { return "osm"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s) override;

@@ -3,6 +3,15 @@
 
 #include "techniques/peel_classic/peel_classic.h"
 
+namespace sb {
+namespace {
+struct O {
+  uint32_t layers;
+};
+const OptionTable<O> kOptions({opt::layersCap(&O::layers)});
+}  // namespace
+}  // namespace sb
+
 SB_TECHNIQUE(
     {.name = "peel_classic",
      .family = Family::Transparency,
@@ -10,10 +19,10 @@ SB_TECHNIQUE(
      .paper = "Everitt 2001",
      .help = "depth peeling as the papers time it (Everitt 2001): one geometry pass per layer, "
              "depth ties lost and counted",
-     .options = {opt::layersCap()},
+     .options = kOptions.infos(),
      .caps = {.msaaRefusal = "its second depth test samples the last layer's single-sampled R32F "
                              "depth copy per pixel: a multisampled peel needs per-sample copies "
                              "and sample-rate shading; not written"},
-     .makeOit = [](const OptionReader& o) {
-       return std::make_unique<ClassicPeelOit>(static_cast<uint32_t>(o.integer("layers")));
+     .makeOit = [](const OptionReader& r) {
+       return std::make_unique<ClassicPeelOit>(kOptions.read(r).layers);
      }});

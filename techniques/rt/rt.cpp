@@ -14,16 +14,6 @@ constexpr uint32_t kParams = SB_SLOT_RT_PARAMS, kNodes = SB_SLOT_RT_NODES,
 
 }  // namespace
 
-RayTracedShadow::Options RayTracedShadow::readOptions(const OptionReader& o) {
-  Options opt;
-  opt.size = static_cast<uint32_t>(o.integer("size"));
-  opt.bias = static_cast<float>(o.number("bias"));
-  opt.rays = static_cast<uint32_t>(o.integer("rays"));
-  opt.maxHits = static_cast<uint32_t>(o.integer("max_hits"));
-  opt.walk = rt::readTierOptions(o);
-  return opt;
-}
-
 void RayTracedShadow::setup(Device& dev, const GpuScene& scene, const RenderSettings& s) {
   const rt::TierChoice tier = rt::chooseTier(opt_.walk.tier, dev.info(), "shadow technique 'rt'");
   rayQuery_ = tier.rayQuery;

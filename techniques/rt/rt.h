@@ -1,6 +1,6 @@
 #pragma once
 
-#include "scenes/options.h"
+#include "base/options.h"
 #include "techniques/common/opaque_shadow.h"
 #include "techniques/common/technique.h"
 #include "techniques/rt/tier.h"
@@ -30,7 +30,6 @@ class RayTracedShadow : public LightMapShadow {
     uint32_t maxHits = 0;
     rt::TierOptions walk;  // tier= and bvh= (techniques/rt/tier.h)
   };
-  static Options readOptions(const OptionReader& o);  // the registry's options
   explicit RayTracedShadow(const Options& o) : opt_(o) {}
   std::string name() const override { return "rt"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s) override;

@@ -9,27 +9,21 @@
 
 namespace sb::rt {
 
-std::vector<OptionInfo> withTierOptions(std::vector<OptionInfo> own) {
-  for (OptionInfo& o : std::vector<OptionInfo>{
-           opt::choice("bvh", "sah", {"sah", "median"},
-                       "BVH splits: sah (binned surface area heuristic) | median (of the "
-                       "longest axis)"),
-           opt::choice("tier", "auto", {"auto", "software", "ray_query"},
-                       "auto (ray_query on a GPU that offers VK_KHR_ray_query; software "
-                       "elsewhere, CPU devices such as lavapipe included, where ray queries "
-                       "run in shader code and are far slower) | software (BVH in shader code) | "
-                       "ray_query (refused, "
-                       "exit 2, on devices without it); the JSON's tier")})
-    own.push_back(std::move(o));
-  return own;
-}
-
-TierOptions readTierOptions(const OptionReader& o) {
-  TierOptions t;
-  t.sah = o.choice("bvh") == "sah";
-  const std::string tier = o.choice("tier");
-  t.tier = tier == "software" ? Tier::Software : tier == "ray_query" ? Tier::RayQuery : Tier::Auto;
-  return t;
+std::vector<Option<TierOptions>> tierOptions() {
+  using O = TierOptions;
+  std::vector<Option<O>> o = opt::choice(&O::sah, "bvh", "sah", {{"sah", true}, {"median", false}},
+                                         "BVH splits: sah (binned surface area heuristic) | "
+                                         "median (of the longest axis)");
+  for (auto& t : opt::choice(
+           &O::tier, "tier", "auto",
+           {{"auto", Tier::Auto}, {"software", Tier::Software}, {"ray_query", Tier::RayQuery}},
+           "auto (ray_query on a GPU that offers VK_KHR_ray_query; software "
+           "elsewhere, CPU devices such as lavapipe included, where ray queries "
+           "run in shader code and are far slower) | software (BVH in shader code) | "
+           "ray_query (refused, "
+           "exit 2, on devices without it); the JSON's tier"))
+    o.push_back(std::move(t));
+  return o;
 }
 
 TierChoice chooseTier(Tier tier, const DeviceInfo& info, const std::string& technique) {

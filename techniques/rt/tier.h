@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "backends/device.h"
-#include "scenes/options.h"
+#include "base/options.h"
 #include "techniques/common/technique.h"
 #include "techniques/rt/bvh.h"
 
@@ -27,10 +27,9 @@ struct TierOptions {
   bool sah = true;  // BVH splits: binned SAH, or at the median
 };
 
-// A technique's own options followed by bvh= and tier=, as the registry
-// declares them; and their reading.
-std::vector<OptionInfo> withTierOptions(std::vector<OptionInfo> own);
-TierOptions readTierOptions(const OptionReader& o);
+// bvh= and tier=, declared once for both techniques (opt::nested binds them to
+// their Options' TierOptions member), after each technique's own options.
+std::vector<Option<TierOptions>> tierOptions();
 
 // Whether `technique` ("shadow technique 'rt'") traces with ray queries on
 // this device, and why (the render JSON's tier_reason); tier=ray_query without

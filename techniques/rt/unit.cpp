@@ -3,6 +3,24 @@
 
 #include "techniques/rt/rt.h"
 
+namespace sb {
+namespace {
+using O = RayTracedShadow::Options;
+const OptionTable<O> kOptions(
+    {opt::mapSize(&O::size,
+                  "the light texel the strand width and the rays' jitter are "
+                  "measured in (and the opaque mesh's map), 1..16384"),
+     opt::bias(&O::bias),
+     opt::integer(&O::rays, "rays", 1, 1, 256,
+                  "rays per point, jittered over the light texel at the point "
+                  "(1: the point itself), 1..256"),
+     opt::integer(&O::maxHits, "max_hits", 0, 0, 1000000,
+                  "stop a ray after this many strands (0: no cap); counted in "
+                  "rt.max_hits_reached, 0..1000000"),
+     opt::nested(&O::walk, rt::tierOptions())});
+}  // namespace
+}  // namespace sb
+
 SB_TECHNIQUE(
     {.name = "rt",
      .family = Family::Shadow,
@@ -13,17 +31,6 @@ SB_TECHNIQUE(
              "(1-shadow_alpha) per strand crossed; software tier (BVH walked in the shader) or "
              "ray-query tier (VK_KHR_ray_query over an acceleration structure of the segments' "
              "boxes)",
-     .options = rt::withTierOptions(
-         {opt::mapSize("the light texel the strand width and the rays' jitter are "
-                       "measured in (and the opaque mesh's map), 1..16384"),
-          opt::bias(),
-          opt::integer("rays", 1, 1, 256,
-                       "rays per point, jittered over the light texel at the point "
-                       "(1: the point itself), 1..256"),
-          opt::integer("max_hits", 0, 0, 1000000,
-                       "stop a ray after this many strands (0: no cap); counted in "
-                       "rt.max_hits_reached, 0..1000000")}),
+     .options = kOptions.infos(),
      .stepped = SteppedOption{"rays", true, 1, 256},
-     .makeShadow = [](const OptionReader& o) {
-       return std::make_unique<RayTracedShadow>(RayTracedShadow::readOptions(o));
-     }});
+     .makeShadow = build<RayTracedShadow>(kOptions)});

@@ -1,7 +1,7 @@
 #include "techniques/rt_oit/rt_oit.h"
 
 #include "base/errors.h"
-#include "scenes/options.h"
+#include "base/options.h"
 #include "techniques/common/readback.h"
 #include "techniques/common/shader_library.h"
 #include "techniques/rt_oit/slots.h"
@@ -18,17 +18,12 @@ constexpr uint32_t kTile = 8;  // trace.comp's workgroup side
 
 }  // namespace
 
-RayTracedOit::Options RayTracedOit::readOptions(const OptionReader& o) {
-  Options r;
-  r.k = static_cast<uint32_t>(o.integer("k"));
-  r.maxHits = static_cast<uint32_t>(o.integer("max_hits"));
-  r.walk = rt::readTierOptions(o);
+void RayTracedOit::check(Options& r) {
   if (r.k > 0 && r.maxHits > 0)
     throw InputError(
         "transparency technique 'rt': max_hits caps the walks of k=0 (every hit); "
         "with k=" +
         std::to_string(r.k) + " every hit is kept or merged: give one");
-  return r;
 }
 
 void RayTracedOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,

@@ -34,7 +34,7 @@ class RayTracedOit : public CompositedOit {
   static constexpr uint32_t kMaxK = 32;
   static constexpr uint32_t kMaxSegments = 1u << 24;
   explicit RayTracedOit(Options o) : o_(o) {}
-  static Options readOptions(const OptionReader& o);
+  static void check(Options& o);  // between options, after the registry read them
   std::string name() const override { return "rt"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
              const HairShading& shading, const OitTargets& targets) override;

@@ -3,6 +3,22 @@
 
 #include "techniques/rt_oit/rt_oit.h"
 
+namespace sb {
+namespace {
+using O = RayTracedOit::Options;
+const OptionTable<O> kOptions(
+    {opt::integer(&O::k, "k", 0, 0, RayTracedOit::kMaxK,
+                  "0: every hit in order (a walk per hit); k: one walk keeping the k "
+                  "nearest sorted, the rest merged behind them in walk order "
+                  "(counted in rt.oit_pixels_merged), 0..32"),
+     opt::integer(&O::maxHits, "max_hits", 0, 0, 1000000,
+                  "with k=0: hits composited per pixel at most (0: no cap); capped "
+                  "pixels are counted and warned about, 0..1000000"),
+     opt::nested(&O::walk, rt::tierOptions())},
+    RayTracedOit::check);
+}  // namespace
+}  // namespace sb
+
 SB_TECHNIQUE(
     {.name = "rt",
      .family = Family::Transparency,
@@ -13,16 +29,7 @@ SB_TECHNIQUE(
              "with the shadow technique and composited front to back in depth order; software "
              "tier (BVH walked in a compute shader) or ray-query tier (VK_KHR_ray_query over an "
              "acceleration structure of the segments' boxes)",
-     .options = rt::withTierOptions(
-         {opt::integer("k", 0, 0, RayTracedOit::kMaxK,
-                       "0: every hit in order (a walk per hit); k: one walk keeping the k "
-                       "nearest sorted, the rest merged behind them in walk order "
-                       "(counted in rt.oit_pixels_merged), 0..32"),
-          opt::integer("max_hits", 0, 0, 1000000,
-                       "with k=0: hits composited per pixel at most (0: no cap); capped "
-                       "pixels are counted and warned about, 0..1000000")}),
+     .options = kOptions.infos(),
      .caps = {.msaaRefusal = "one primary ray per pixel centre: samples would need a ray "
                              "each; not supported"},
-     .makeOit = [](const OptionReader& o) {
-       return std::make_unique<RayTracedOit>(RayTracedOit::readOptions(o));
-     }});
+     .makeOit = build<RayTracedOit>(kOptions)});

@@ -3,15 +3,25 @@
 
 #include "techniques/shadowmap/shadowmap.h"
 
+namespace sb {
+namespace {
+struct O {
+  uint32_t size;
+  float bias;
+};
+const OptionTable<O> kOptions(
+    {opt::mapSize(&O::size, "shadow map resolution (size x size), 1..16384"), opt::bias(&O::bias)});
+}  // namespace
+}  // namespace sb
+
 SB_TECHNIQUE({.name = "shadowmap",
               .family = Family::Shadow,
               .folder = "shadowmap",
               .paper = "Williams 1978",
               .help = "hard shadow map (Williams 1978) cast by the mesh and the hair onto both",
-              .options = {opt::mapSize("shadow map resolution (size x size), 1..16384"),
-                          opt::bias()},
+              .options = kOptions.infos(),
               .stepped = SteppedOption{"size", true, 16, 4096},
-              .makeShadow = [](const OptionReader& o) {
-                return std::make_unique<ShadowMap>(static_cast<uint32_t>(o.integer("size")),
-                                                   static_cast<float>(o.number("bias")));
+              .makeShadow = [](const OptionReader& r) {
+                const O o = kOptions.read(r);
+                return std::make_unique<ShadowMap>(o.size, o.bias);
               }});

@@ -3,6 +3,16 @@
 
 #include "techniques/shortcut/shortcut.h"
 
+namespace sb {
+namespace {
+struct O {
+  int k;
+};
+const OptionTable<O> kOptions({opt::integer(
+    &O::k, "k", 3, 1, ShortCutOit::kMaxK, "nearest fragments blended in order per pixel, 1..16")});
+}  // namespace
+}  // namespace sb
+
 SB_TECHNIQUE(
     {.name = "shortcut",
      .family = Family::Transparency,
@@ -10,10 +20,9 @@ SB_TECHNIQUE(
      .paper = "TressFX ShortCut",
      .help = "TressFX ShortCut: the k nearest depths by atomic min, those fragments blended in "
              "order, the rest as a weighted average under the product of (1 - alpha)",
-     .options = {opt::integer("k", 3, 1, ShortCutOit::kMaxK,
-                              "nearest fragments blended in order per pixel, 1..16")},
+     .options = kOptions.infos(),
      .caps = {.msaaRefusal = "the k nearest depths of each pixel are atomic mins in per-pixel "
                              "storage buffers: samples would multiply them by N; not supported"},
-     .makeOit = [](const OptionReader& o) {
-       return std::make_unique<ShortCutOit>(static_cast<int>(o.integer("k")));
+     .makeOit = [](const OptionReader& r) {
+       return std::make_unique<ShortCutOit>(kOptions.read(r).k);
      }});

@@ -1,6 +1,6 @@
 #include "techniques/stochastic/stochastic.h"
 
-#include "scenes/options.h"
+#include "base/options.h"
 #include "techniques/common/composite.h"
 #include "techniques/shading/hair_shading.h"
 #include "techniques/stochastic/slots.h"
@@ -12,13 +12,6 @@ namespace {
 constexpr uint32_t kParams = SB_SLOT_STOCH_PARAMS, kDepths = SB_SLOT_STOCH_DEPTHS,
                    kAccum = SB_SLOT_STOCH_ACCUM, kAlpha = SB_SLOT_STOCH_ALPHA;
 }  // namespace
-
-StochasticOit::Options StochasticOit::readOptions(const OptionReader& o) {
-  Options out;
-  out.samples = static_cast<uint32_t>(o.integer("samples"));
-  out.seed = static_cast<uint32_t>(o.integer("seed"));
-  return out;
-}
 
 void StochasticOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
                           const HairShading& shading, const OitTargets& targets) {

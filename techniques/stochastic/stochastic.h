@@ -29,7 +29,6 @@ class StochasticOit : public OitTechnique {
     uint32_t seed = 1;
   };
   static constexpr uint32_t kMaxSamples = 64;
-  static Options readOptions(const class OptionReader& o);
   explicit StochasticOit(Options o) : options_(o) {}
   std::string name() const override { return "stochastic"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,

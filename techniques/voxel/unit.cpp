@@ -3,6 +3,21 @@
 
 #include "techniques/voxel/voxel.h"
 
+namespace sb {
+namespace {
+using O = VoxelDensityShadow::Options;
+const OptionTable<O> kOptions(
+    {opt::integer(&O::grid, "grid", 128, 4, 256,
+                  "slices over the hair's depth range, columns per side (<= size), 4..256"),
+     opt::integer(&O::steps, "steps", 128, 1, 4096,
+                  "march steps over the hair's depth range from the light, 1..4096"),
+     opt::number(&O::densityScale, "density_scale", "1", 0.0, 100.0,
+                 "scale of the marched hair count (1: w per fragment), 0..100"),
+     opt::mapSize(&O::size, "resolution the hair is splatted at (size x size fragments), 1..16384"),
+     opt::bias(&O::bias)});
+}  // namespace
+}  // namespace sb
+
 SB_TECHNIQUE(
     {.name = "voxel",
      .family = Family::Shadow,
@@ -12,15 +27,5 @@ SB_TECHNIQUE(
          "voxelized hair density (as Unreal ships it): fragment counts splatted into a volume of "
          "uint counters over the light's view, visibility exp(-density_scale w n), n the hair "
          "count marched to the light",
-     .options =
-         {opt::integer("grid", 128, 4, 256,
-                       "slices over the hair's depth range, columns per side (<= size), 4..256"),
-          opt::integer("steps", 128, 1, 4096,
-                       "march steps over the hair's depth range from the light, 1..4096"),
-          opt::number("density_scale", "1", 0.0, 100.0,
-                      "scale of the marched hair count (1: w per fragment), 0..100"),
-          opt::mapSize("resolution the hair is splatted at (size x size fragments), 1..16384"),
-          opt::bias()},
-     .makeShadow = [](const OptionReader& o) {
-       return std::make_unique<VoxelDensityShadow>(VoxelDensityShadow::readOptions(o));
-     }});
+     .options = kOptions.infos(),
+     .makeShadow = build<VoxelDensityShadow>(kOptions)});

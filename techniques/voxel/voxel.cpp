@@ -14,16 +14,6 @@ constexpr uint32_t kParams = SB_SLOT_VOXEL_PARAMS, kGrid = SB_SLOT_VOXEL_GRID;
 
 }  // namespace
 
-VoxelDensityShadow::Options VoxelDensityShadow::readOptions(const OptionReader& o) {
-  Options opt;
-  opt.grid = static_cast<uint32_t>(o.integer("grid"));
-  opt.steps = static_cast<uint32_t>(o.integer("steps"));
-  opt.densityScale = static_cast<float>(o.number("density_scale"));
-  opt.size = static_cast<uint32_t>(o.integer("size"));
-  opt.bias = static_cast<float>(o.number("bias"));
-  return opt;
-}
-
 void VoxelDensityShadow::setup(Device& dev, const GpuScene& scene, const RenderSettings& s) {
   const ViewUniforms view = setupLight(dev, scene, s, opt_.size);
   // The volume's depth: the hair's range from the light (from the hair

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "scenes/options.h"
+#include "base/options.h"
 #include "techniques/common/opaque_shadow.h"
 #include "techniques/common/technique.h"
 
@@ -26,7 +26,6 @@ class VoxelDensityShadow : public LightMapShadow {
     uint32_t size = 512;
     float bias = 0.002f;
   };
-  static Options readOptions(const OptionReader& o);  // the registry's options
   explicit VoxelDensityShadow(const Options& o) : opt_(o) {}
   std::string name() const override { return "voxel"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s) override;

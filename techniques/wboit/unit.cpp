@@ -3,20 +3,31 @@
 
 #include "techniques/wboit/wboit.h"
 
+namespace sb {
+namespace {
+struct O {
+  int weight;
+  int precision;
+};
+const OptionTable<O> kOptions(
+    {opt::choice(&O::weight, "weight", "eq10",
+                 {{"const", 0}, {"eq7", 7}, {"eq8", 8}, {"eq9", 9}, {"eq10", 10}},
+                 "const | eq7 | eq8 | eq9 | eq10: the paper's depth weight w(z, a) "
+                 "(eq10: window depth)"),
+     opt::choice(&O::precision, "precision", "32", {{"16", 16}, {"32", 32}},
+                 "accumulation target bits: 16 (RGBA16F) | 32 (RGBA32F)")});
+}  // namespace
+}  // namespace sb
+
 SB_TECHNIQUE(
     {.name = "wboit",
      .family = Family::Transparency,
      .folder = "wboit",
      .paper = "McGuire & Bavoil 2013",
      .help = "weighted blended OIT (McGuire & Bavoil 2013): depth-weighted average, exact coverage",
-     .options = {opt::choice("weight", "eq10", {"const", "eq7", "eq8", "eq9", "eq10"},
-                             "const | eq7 | eq8 | eq9 | eq10: the paper's depth weight w(z, a) "
-                             "(eq10: window depth)"),
-                 opt::choice("precision", "32", {"16", "32"},
-                             "accumulation target bits: 16 (RGBA16F) | 32 (RGBA32F)")},
+     .options = kOptions.infos(),
      .caps = {.multisampling = true},
-     .makeOit = [](const OptionReader& o) {
-       return std::make_unique<WeightedBlendedOit>(
-           WeightedBlendedOit::weightFromName(o.choice("weight")),
-           o.choice("precision") == "16" ? 16 : 32);
+     .makeOit = [](const OptionReader& r) {
+       const O o = kOptions.read(r);
+       return std::make_unique<WeightedBlendedOit>(o.weight, o.precision);
      }});

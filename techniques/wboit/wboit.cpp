@@ -2,14 +2,6 @@
 
 namespace sb {
 
-int WeightedBlendedOit::weightFromName(const std::string& name) {
-  if (name == "eq7") return 7;
-  if (name == "eq8") return 8;
-  if (name == "eq9") return 9;
-  if (name == "eq10") return 10;
-  return 0;
-}
-
 BlendedOitBase::Config WeightedBlendedOit::config() const {
   Config c;
   c.accumulateShader = "techniques/wboit/accumulate.frag";

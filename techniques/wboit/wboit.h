@@ -15,8 +15,6 @@ class WeightedBlendedOit : public BlendedOitBase {
   WeightedBlendedOit(int weightEq, int precisionBits)
       : weightEq_(weightEq), precisionBits_(precisionBits) {}
   std::string name() const override { return "wboit"; }
-  // "const" | "eq7" | "eq8" | "eq9" | "eq10" -> 0, 7, 8, 9, 10.
-  static int weightFromName(const std::string& name);
 
  protected:
   Config config() const override;

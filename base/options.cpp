@@ -1,11 +1,74 @@
-#include "scenes/options.h"
+#include "base/options.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 
 namespace sb {
+
+namespace {
+
+std::string trim(const std::string& s) {
+  std::size_t a = 0, e = s.size();
+  while (a < e && std::isspace(static_cast<unsigned char>(s[a]))) ++a;
+  while (e > a && std::isspace(static_cast<unsigned char>(s[e - 1]))) --e;
+  return s.substr(a, e - a);
+}
+
+}  // namespace
+
+Spec Spec::parse(const std::string& text) {
+  Spec spec;
+  const std::size_t colon = text.find(':');
+  spec.name = trim(text.substr(0, colon));
+  if (spec.name.empty()) {
+    throw InputError("spec '" + text + "': empty scene name (expected name:key=value,...)");
+  }
+  if (colon == std::string::npos) return spec;
+  const std::string rest = text.substr(colon + 1);
+  if (trim(rest).empty()) return spec;  // "name:" is the same as "name"
+  std::size_t pos = 0;
+  while (pos <= rest.size()) {
+    std::size_t comma = rest.find(',', pos);
+    if (comma == std::string::npos) comma = rest.size();
+    const std::string item = rest.substr(pos, comma - pos);
+    pos = comma + 1;
+    if (trim(item).empty()) {
+      throw InputError("spec '" + text +
+                       "': empty option (two commas in a row or a trailing comma)");
+    }
+    const std::size_t eq = item.find('=');
+    if (eq == std::string::npos) {
+      throw InputError("spec '" + text + "': option '" + trim(item) +
+                       "' has no '=' (expected key=value)");
+    }
+    const std::string key = trim(item.substr(0, eq));
+    const std::string value = trim(item.substr(eq + 1));
+    if (key.empty()) {
+      throw InputError("spec '" + text + "': option '" + trim(item) + "' has an empty key");
+    }
+    if (!spec.options.emplace(key, value).second) {
+      throw InputError("spec '" + text + "': option '" + key + "' is given more than once");
+    }
+  }
+  return spec;
+}
+
+std::string Spec::str() const {
+  std::string s = name;
+  char sep = ':';
+  for (const auto& [key, value] : options) {
+    s += sep;
+    s += key;
+    s += '=';
+    s += value;
+    sep = ',';
+  }
+  return s;
+}
 
 std::string closestName(const std::string& name, const std::vector<std::string>& valid) {
   std::string best;
@@ -56,6 +119,16 @@ OptionReader::OptionReader(const Spec& spec, const std::vector<OptionInfo>& know
     throw InputError(msg);
   }
   for (const auto& o : known_) validate(o);
+}
+
+std::string shortestNumber(double v) {
+  char buf[32];
+  // A float widened (options land in float members): the float's shortest text, "0.002"
+  // rather than "0.0020000000949949026"; it reads back as the same float.
+  const float f = static_cast<float>(v);
+  const auto r = static_cast<double>(f) == v ? std::to_chars(buf, buf + sizeof buf, f)
+                                             : std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
 }
 
 const char* optionKindName(OptionKind k) {
@@ -161,5 +234,39 @@ std::string OptionReader::choice(const std::string& name,
   if (!near.empty()) msg += " (did you mean '" + near + "'?)";
   throw InputError(msg);
 }
+
+namespace opt {
+
+OptionInfo integer(std::string name, long long def, long long min, long long max,
+                   std::string help) {
+  return {std::move(name),
+          std::to_string(def),
+          std::move(help),
+          OptionKind::Integer,
+          static_cast<double>(min),
+          static_cast<double>(max),
+          {}};
+}
+
+OptionInfo number(std::string name, std::string def, double min, double max, std::string help) {
+  return {std::move(name), std::move(def), std::move(help), OptionKind::Number, min, max, {}};
+}
+
+OptionInfo choice(std::string name, std::string def, std::vector<std::string> choices,
+                  std::string help) {
+  return {std::move(name),   std::move(def), std::move(help), OptionKind::Choice, 0, 0,
+          std::move(choices)};
+}
+
+OptionInfo flag(std::string name, bool def, std::string help) {
+  return {std::move(name), def ? "on" : "off", std::move(help), OptionKind::Flag, 0, 0,
+          {"on", "off"}};
+}
+
+OptionInfo text(std::string name, std::string def, std::string help) {
+  return {std::move(name), std::move(def), std::move(help), OptionKind::Text, 0, 0, {}};
+}
+
+}  // namespace opt
 
 }  // namespace sb
