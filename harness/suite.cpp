@@ -12,7 +12,7 @@
 #include "reports/files.h"
 #include "reports/json_file.h"
 #include "scenes/options.h"
-#include "techniques/common/technique.h"
+#include "render/common/technique.h"
 
 namespace sb {
 

@@ -13,8 +13,8 @@
 #include "gpu_test_util.h"
 #include "imaging/metrics.h"
 #include "scenes/view.h"
-#include "techniques/common/opacity.h"
-#include "techniques/frame/renderer.h"
+#include "render/common/opacity.h"
+#include "render/frame/renderer.h"
 
 namespace sb {
 namespace {

@@ -1,4 +1,4 @@
-// The techniques as self-describing units (techniques/common/unit.h): every
+// The techniques as self-describing units (render/common/unit.h): every
 // descriptor is complete, its options drive validation, and what is generated
 // from the registry (list, docs/techniques.md) and the catalog (baselines, the
 // quick suite, the error and memory scripts) covers every registered technique.
@@ -15,7 +15,7 @@
 #include "harness/baselines.h"
 #include "harness/suite.h"
 #include "harness/technique_list.h"
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 #include "test_util.h"
 
 namespace {
@@ -219,7 +219,7 @@ std::vector<std::string> namesOutsideFolders(const fs::path& root) {
       {"techniques/msm/", {"mboit"}},                // MSM is MBOIT's moment math on light maps
       {"techniques/occupancy_oit/", {"occupancy"}},  // the occupancy maps' transparency order
       {"techniques/rt_oit/", {"kbuffer"}},           // k=: the k-buffer's merge of the hits past k
-      {"techniques/shading/", {"marschner", "sadeghi", "chiang"}}};  // the pass every model runs in
+      {"render/shading/", {"marschner", "sadeghi", "chiang"}}};  // the pass every model runs in
   // A name's folders: two descriptors may share one (occupancy: shadow and transparency).
   std::map<std::string, std::set<std::string>> homes;
   for (const TechniqueDescriptor* d : all()) homes[d->name].insert("techniques/" + d->folder + "/");

@@ -1,9 +1,9 @@
 // dom's parameters (its passes and lookup).
-// Declared once for the C++ and the GLSL (techniques/common/uniform_block.h).
+// Declared once for the C++ and the GLSL (render/common/uniform_block.h).
 #ifndef SB_DOM_UNIFORMS_H
 #define SB_DOM_UNIFORMS_H
 
-#include "techniques/common/uniform_block.h"
+#include "render/common/uniform_block.h"
 #include "techniques/dom/slots.h"
 
 // clang-format off

@@ -1,5 +1,5 @@
 // --shadow dom: deep opacity maps.
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 #include "techniques/dom/dom.h"
 

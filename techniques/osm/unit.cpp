@@ -1,5 +1,5 @@
 // --shadow osm: opacity shadow maps.
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 #include "techniques/osm/osm.h"
 
