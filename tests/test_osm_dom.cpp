@@ -12,9 +12,10 @@
 
 #include "gpu_test_util.h"
 #include "imaging/metrics.h"
-#include "scenes/view.h"
-#include "render/common/opacity.h"
 #include "render/frame/renderer.h"
+#include "scenes/view.h"
+#include "techniques/dom/layers.h"
+#include "techniques/osm/slicing.h"
 
 namespace sb {
 namespace {

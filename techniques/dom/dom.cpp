@@ -3,9 +3,9 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "render/common/opacity.h"
 #include "render/common/opacity_filter.h"
 #include "render/common/shader_library.h"
+#include "techniques/dom/layers.h"
 #include "techniques/dom/slots.h"
 #include "techniques/dom/uniforms.h"
 

@@ -15,7 +15,7 @@ ivec2 domTexel;
 float domChannel(int j) { return texelFetch(domMaps, ivec3(domTexel, j / 4), 0)[j % 4]; }
 
 #define SB_DOM_LAYER(k) domChannel(k)
-#include "render/common/opacity.glsl"
+#include "layers.glsl"
 
 float domZ;  // the point's light depth, less the bias
 

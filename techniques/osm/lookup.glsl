@@ -19,7 +19,7 @@ float osmStored(int m) {
 }
 
 #define SB_OSM_MAP(i) osmStored((i)-1)
-#include "render/common/opacity.glsl"
+#include "slicing.glsl"
 
 float osmZ;  // the point's light depth, less the bias
 

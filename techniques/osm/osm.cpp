@@ -2,11 +2,11 @@
 
 #include <cmath>
 
-#include "scenes/options.h"
-#include "render/common/opacity.h"
 #include "render/common/opacity_filter.h"
 #include "render/common/shader_library.h"
+#include "scenes/options.h"
 #include "techniques/osm/pass_uniforms.h"
+#include "techniques/osm/slicing.h"
 #include "techniques/osm/slots.h"
 #include "techniques/osm/uniforms.h"
 
