@@ -24,8 +24,8 @@
 #include "render/common/shader_library.h"
 #include "render/common/technique.h"
 #include "render/common/unit.h"
-#include "techniques/occupancy_oit/slots.h"
 #include "render/outputs/probe/slots.h"
+#include "techniques/occupancy_oit/slots.h"
 
 namespace {
 

@@ -273,4 +273,31 @@ TEST(TechniqueUnits, NamesOutsideFoldersAreFound) {
   EXPECT_EQ(found[0].rfind("harness/x.cpp: dom", 0), 0u) << found[0];
 }
 
+// The folders under `root`/techniques that are no registered unit's (infrastructure
+// lives in render/), and any loose file there.
+std::vector<std::string> foldersNotUnits(const fs::path& root) {
+  std::set<std::string> units;
+  for (const TechniqueDescriptor* d : all()) units.insert(d->folder);
+  std::vector<std::string> found;
+  for (const auto& e : fs::directory_iterator(root / "techniques"))
+    if (!e.is_directory() || !units.count(e.path().filename().string()))
+      found.push_back("techniques/" + e.path().filename().string());
+  std::sort(found.begin(), found.end());
+  return found;
+}
+
+TEST(TechniqueUnits, TechniquesHoldsUnitFoldersOnly) {
+  const std::vector<std::string> found = foldersNotUnits(SB_SOURCE_DIR);
+  std::string list;
+  for (const auto& f : found) list += "\n  " + f;
+  EXPECT_TRUE(found.empty()) << "not a unit's folder (shared code goes in render/):" << list;
+  // The check itself: an infrastructure folder or a loose file is found, a unit's folder is not.
+  const fs::path root = sbtest::tempDir("units-only");
+  fs::create_directories(root / "techniques" / "dom");
+  fs::create_directories(root / "techniques" / "common");
+  std::ofstream(root / "techniques" / "loose.h") << "\n";
+  EXPECT_EQ(foldersNotUnits(root),
+            (std::vector<std::string>{"techniques/common", "techniques/loose.h"}));
+}
+
 }  // namespace

@@ -1,8 +1,8 @@
 // Loads a technique's GLSL (embedded in the binary at build time) and resolves
 // #include "file" (relative to the including file; "techniques/..." and
-// "render/..." from the source root), #include <alias> (#includes under `#ifdef __cplusplus` are left
-// out: the C++'s, in a header both languages read), keeping
-// #line numbers so compile errors name the right file and line.
+// "render/..." from the source root), #include <alias> (#includes under `#ifdef __cplusplus` are
+// left out: the C++'s, in a header both languages read), keeping #line numbers so compile errors
+// name the right file and line.
 #pragma once
 
 #include <map>
