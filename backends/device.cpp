@@ -11,6 +11,7 @@
 #include <malloc.h>
 #endif
 
+#include "backends/device_records.h"
 #include "backends/driver.h"
 #include "backends/driver_env.h"
 
@@ -37,41 +38,13 @@ bool isDepthFormat(Format f) { return info(f).depth; }
 bool isIntegerFormat(Format f) { return info(f).integer; }
 const char* formatName(Format f) { return info(f).name; }
 
-// ---- the front end: handle tables, frame/pass state, contract checks ----
+// ---- the front end: handle tables, frame/pass state, contract checks (making
+// resources and counting their memory: device_memory.cpp) ----
 
-struct Device::BufferRec {
-  BufferDesc desc;
-  std::unique_ptr<DriverObject> object;
-  uint32_t group = 0;  // the ResourceGroup current at creation (0: none)
-  // An acceleration structure's boxes (usage AccelerationStructure).
-  Buffer aabbs;
-  uint32_t boxes = 0;
-  // The contents it was created with, kept until it is made (setDeferMaking).
-  std::vector<uint8_t> pending;
-};
-struct Device::TextureRec {
-  TextureDesc desc;
-  std::unique_ptr<DriverObject> object;
-  uint32_t group = 0;
-};
-struct Device::PipelineRec {
-  PipelineDesc desc;  // fixed state only: the shader pointers are not kept
-  std::unique_ptr<DriverObject> object;
-  bool compute = false;
-  uint32_t group = 0;
-  // A deferred pipeline's shaders (vertex, fragment or compute alone) until it is compiled.
-  std::vector<ShaderCode> shaders;
-};
-struct Device::OpenPass {
-  std::string name;
-  std::vector<uint32_t> attachments, sampled;
-  std::vector<uint32_t> attachmentLayers;  // the layer of each attachment
-  std::vector<Format> colorFormats;
-  bool hasDepth = false;
-  uint32_t samples = 0;  // of its attachments (0 until the first)
-  PassWork work;         // the front end's counts (PassWork)
-  std::set<std::tuple<char, uint32_t, uint32_t>> touched;
-};
+using device_detail::namingAllocation;
+using device_detail::quoted;
+using device_detail::record;
+using device_detail::textureBytes;
 
 namespace {
 // Counts a resource once per pass execution: the first access kind it was
@@ -124,10 +97,6 @@ PassWork& PassWork::operator+=(const PassWork& o) {
 }
 
 namespace {
-std::string quoted(const std::string& op, const std::string& name) {
-  return op + "('" + name + "')";
-}
-
 // A pass or a pipeline has at most the device's colour targets.
 void checkColorCount(const std::string& where, std::size_t count, uint32_t limit) {
   if (count > limit)
@@ -174,47 +143,12 @@ DeviceInfo Device::info() const {
 }
 
 namespace {
-// Every sample of a multisampled texture counts.
-std::size_t textureBytes(const TextureDesc& d) {
-  return std::size_t{d.width} * d.height * d.layers * d.samples * bytesPerPixel(d.format);
-}
-
-std::string mib(std::size_t bytes) {
-  char text[48];
-  std::snprintf(text, sizeof text, "%zu bytes (%.2f MiB)", bytes, double(bytes) / (1 << 20));
-  return text;
-}
-
-// Runs an allocation; a failed one (the host's std::bad_alloc, or the API's
-// out-of-memory error that the driver threw as OutOfMemoryError) becomes one
-// OutOfMemoryError that names what was being allocated and its size.
-template <class F>
-auto namingAllocation(const std::string& what, std::size_t bytes, F&& allocate) {
-  const std::string size = bytes ? ", " + mib(bytes) : "";
-  try {
-    return allocate();
-  } catch (const std::bad_alloc&) {
-    throw OutOfMemoryError("out of memory " + what + size + ": a host allocation failed");
-  } catch (const OutOfMemoryError& e) {
-    throw OutOfMemoryError("out of memory " + what + size + ": " + e.what());
-  }
-}
-
 // Multisampled textures are render targets only: their samples leave them by a resolve.
 void requireSingleSampled(const TextureDesc& d, const char* call) {
   if (d.samples != 1)
     throw DeviceError(quoted(call, d.name) + ": a multisampled texture (" +
                       std::to_string(d.samples) +
                       " samples); resolve it into a single-sampled one");
-}
-
-// The record behind a handle, or a DeviceError naming the call and the handle.
-template <class Table>
-auto& record(Table& table, uint32_t id, const char* kind, const std::string& where) {
-  auto it = table.find(id);
-  if (it == table.end())
-    throw DeviceError(where + ": unknown " + kind + " handle " + std::to_string(id));
-  return *it->second;
 }
 }  // namespace
 
@@ -238,49 +172,12 @@ Device::PipelineRec& Device::pipeline(Pipeline p, const std::string& where) {
   return record(pipelines_, p.id, "pipeline", where);
 }
 
-// Resources are declared by create*() and made on the device when a pass, a
-// binding, an update or a read first uses them: what only culled passes use is
-// never allocated, and allocations() counts exactly what was made.
-DriverObject* Device::created(BufferRec& r) {
-  if (!r.object) {
-    const std::string what = "making buffer '" + r.desc.name + "' (" + r.desc.owner + ")";
-    if (r.desc.usage == BufferUsage::AccelerationStructure) {
-      // Its boxes first (their own accounting), then the structure built from them.
-      DriverObject* boxes =
-          created(buffer(r.aabbs, quoted("createAccelerationStructure", r.desc.name)));
-      guardMaking(r.desc.name, r.desc.owner, r.desc.bytes);
-      r.object = namingAllocation(what, r.desc.bytes, [&] {
-        return driver_->createAccelerationStructure(r.desc, *boxes, r.boxes);
-      });
-      return r.object.get();
-    }
-    guardMaking(r.desc.name, r.desc.owner, r.desc.bytes);
-    checkStorageRange(r.desc);
-    r.object = namingAllocation(what, r.desc.bytes, [&] {
-      return driver_->createBuffer(r.desc, r.pending.empty() ? nullptr : r.pending.data());
-    });
-    std::vector<uint8_t>().swap(r.pending);
-  }
-  return r.object.get();
-}
-
 // Buffers of usage AccelerationStructure are built by the device, never
 // written or read by calls.
 void Device::requireContents(const BufferRec& r, const char* call) const {
   if (r.desc.usage == BufferUsage::AccelerationStructure)
     throw DeviceError(quoted(call, r.desc.name) +
                       ": an acceleration structure (the device builds its contents)");
-}
-
-DriverObject* Device::created(TextureRec& t) {
-  if (!t.object) guardMaking(t.desc.name, t.desc.owner, textureBytes(t.desc));
-  if (!t.object)
-    t.object = namingAllocation(
-        "making texture '" + t.desc.name + "' (" + t.desc.owner + ", " + formatName(t.desc.format) +
-            " " + std::to_string(t.desc.width) + "x" + std::to_string(t.desc.height) + "x" +
-            std::to_string(t.desc.layers) + ")",
-        textureBytes(t.desc), [&] { return driver_->createTexture(t.desc); });
-  return t.object.get();
 }
 
 // inFrame/inPass: what the call needs (a frame open; a pass open, or none).
@@ -478,16 +375,6 @@ std::set<uint32_t> Device::pipelineIdsFrom(uint32_t first) const {
   std::set<uint32_t> ids;
   for (auto it = pipelines_.lower_bound(first); it != pipelines_.end(); ++it) ids.insert(it->first);
   return ids;
-}
-
-void Device::setBufferSize(Buffer b, std::size_t bytes) {
-  BufferRec& r = buffer(b, "setBufferSize");
-  requireContents(r, "setBufferSize");
-  const std::string where = quoted("setBufferSize", r.desc.name);
-  if (bytes == 0) throw DeviceError(where + ": zero size");
-  if (r.object) throw DeviceError(where + ": already made (sizes change only before first use)");
-  if (!r.pending.empty()) throw DeviceError(where + ": created with contents of its own size");
-  r.desc.bytes = bytes;
 }
 
 void Device::destroyGroup(uint32_t group) noexcept {
@@ -829,69 +716,5 @@ bool Device::present(Texture t, PresentedImage* capture) {
 TextureDesc Device::describe(Texture t) const { return texture(t, "describe").desc; }
 
 BufferDesc Device::describe(Buffer b) const { return buffer(b, "describe").desc; }
-
-std::vector<ResourceBytes> Device::resources(bool createdOnly,
-                                             const std::set<uint32_t>& alsoIds) const {
-  std::vector<std::pair<uint32_t, ResourceBytes>> all;
-  for (const auto& [id, r] : buffers_)
-    if (r->object || !createdOnly || alsoIds.count(id))
-      all.push_back({id, {r->desc.name, r->desc.owner, r->desc.bytes}});
-  for (const auto& [id, t] : textures_)
-    if (t->object || !createdOnly || alsoIds.count(id))
-      all.push_back({id, {t->desc.name, t->desc.owner, textureBytes(t->desc)}});
-  std::sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  std::vector<ResourceBytes> out;
-  for (auto& [id, r] : all) out.push_back(std::move(r));
-  return out;
-}
-
-void Device::makeDeferredBuffers() {
-  for (auto& [id, r] : buffers_)
-    if (!r->object && !r->pending.empty()) created(*r);
-}
-
-std::vector<ResourceBytes> Device::allocations() const { return resources(true, {}); }
-
-std::vector<ResourceBytes> Device::allocationsAfterUsing(const std::set<uint32_t>& ids) const {
-  return resources(true, ids);
-}
-
-std::vector<ResourceBytes> Device::declared() const { return resources(false, {}); }
-
-void Device::guardMemory(const std::set<uint32_t>& ids, const std::string& what) const {
-  if (memoryGuard_) memoryGuard_(resources(true, ids), what);
-  for (const uint32_t id : ids)
-    if (auto it = buffers_.find(id); it != buffers_.end()) checkStorageRange(it->second->desc);
-}
-
-// Refused before any work rather than bound in part (a shader would lose what
-// lies beyond). Checked after the memory guard: a run over the budget hears
-// that first, with every resource listed, since fitting it fixes both.
-void Device::checkStorageRange(const BufferDesc& desc) const {
-  const std::size_t most = driver_->info().maxStorageBufferBytes;
-  if (desc.usage != BufferUsage::Storage || most == 0 || desc.bytes <= most) return;
-  throw DeviceError(quoted("createBuffer", desc.name) + ": " + std::to_string(desc.bytes) +
-                    " bytes, more than this device binds as one storage buffer (" +
-                    std::to_string(most) + " bytes" +
-                    (desc.owner.empty() ? "" : ", owner " + desc.owner) +
-                    "); a smaller --size, map size=, scene or samples= would fit");
-}
-
-void Device::guardMaking(const std::string& name, const std::string& owner,
-                         std::size_t bytes) const {
-  if (!memoryGuard_) return;
-  std::vector<ResourceBytes> planned = allocations();
-  planned.push_back({name, owner, bytes});
-  memoryGuard_(planned, "making '" + name + "' (" + owner + ")");
-}
-
-std::set<uint32_t> Device::resourceIdsFrom(uint32_t first) const {
-  std::set<uint32_t> ids;
-  for (auto it = buffers_.lower_bound(first); it != buffers_.end(); ++it) ids.insert(it->first);
-  for (auto it = textures_.lower_bound(first); it != textures_.end(); ++it) ids.insert(it->first);
-  return ids;
-}
-
-MemoryBudget Device::memoryBudget() const { return driver_->memoryBudget(); }
 
 }  // namespace sb

@@ -328,7 +328,7 @@ struct DeviceInfo {
   // it (Vulkan: maxStorageBufferRange, 128 MiB on lavapipe; GL:
   // GL_MAX_SHADER_STORAGE_BLOCK_SIZE, 128 MiB on llvmpipe): a larger one would
   // be bound in part, so it is refused, and fragment pools that may grow past
-  // it are split into pages (techniques/common/fragment_lists.h). 0: no limit.
+  // it are split into pages (render/common/fragment_lists.h). 0: no limit.
   std::size_t maxStorageBufferBytes = 0;
 };
 

@@ -25,7 +25,7 @@
 #include "imaging/metrics.h"
 #include "reports/files.h"
 #include "scenes/scene.h"
-#include "techniques/common/technique.h"
+#include "render/common/technique.h"
 
 namespace sb {
 namespace {

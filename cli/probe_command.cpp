@@ -9,7 +9,7 @@
 #include "cli/commands.h"
 #include "harness/render.h"
 #include "reports/files.h"
-#include "techniques/frame/renderer.h"
+#include "render/frame/renderer.h"
 
 namespace sb {
 

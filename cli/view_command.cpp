@@ -35,7 +35,7 @@
 #include "imaging/image.h"
 #include "imaging/metrics.h"
 #include "reports/stats.h"
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 namespace sb {
 namespace {

@@ -4,8 +4,8 @@
 
 #include <algorithm>
 
-#include "techniques/common/composite.h"
-#include "techniques/common/slots.h"
+#include "render/common/composite.h"
+#include "render/common/slots.h"
 
 namespace sb {
 namespace {
@@ -129,7 +129,7 @@ Texture ViewOverlay::compose(Device& dev, Texture shown, uint64_t shownVersion,
                           .sample(SB_SLOT_OVERLAY_TEXT, text_);
     if (!pipeline_)
       pipeline_ = fullScreenPipeline(dev, pass, "view.overlay", "view",
-                                     "techniques/common/overlay.frag", {}, {});
+                                     "render/common/overlay.frag", {}, {});
     dev.beginFrame();
     pass.draw(dev, pipeline_, 3);
     dev.endFrame();

@@ -1,7 +1,7 @@
 // The viewer's state drawn over the image it shows (`strandbench view`, key O):
 // text from stb_easy_font rasterized on the CPU into an RGBA8 image (a dark
 // translucent box in the top-left corner, the text over it), and a full-screen
-// pass (techniques/common/overlay.frag) that mixes it over a copy of the shown
+// pass (render/common/overlay.frag) that mixes it over a copy of the shown
 // image into the texture the window presents. The shown image itself, which
 // screenshots write and the numbers describe, is never touched.
 #pragma once

@@ -12,8 +12,8 @@
 #include "harness/setting_values.h"
 #include "harness/stop.h"
 #include "reports/files.h"
-#include "techniques/common/unit.h"
-#include "techniques/shading/hair_shading.h"
+#include "render/common/unit.h"
+#include "render/shading/hair_shading.h"
 
 namespace sb {
 
@@ -167,7 +167,7 @@ bool readCache(const fs::path& file, const std::string& key, pbr::RenderImage& i
 }
 
 // The scene's shading model on the CPU: the hair passes' shadeHair and the mesh pass
-// (techniques/shading/hair_shading.glsl, mesh.frag), every light's term weighted by its
+// (render/shading/hair_shading.glsl, mesh.frag), every light's term weighted by its
 // visibility, the ambient term once.
 pbr::ShadeFn shadingOf(const RenderSettings& s) {
   const std::vector<Light> lights = allLights(s);

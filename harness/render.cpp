@@ -22,7 +22,7 @@
 #include "harness/stop.h"
 #include "imaging/metrics.h"
 #include "reports/stats.h"
-#include "techniques/frame/renderer.h"
+#include "render/frame/renderer.h"
 
 namespace sb {
 

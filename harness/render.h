@@ -16,8 +16,8 @@
 #include "imaging/metrics.h"
 #include "scenes/scene.h"
 #include "scenes/view.h"
-#include "techniques/common/technique.h"
-#include "techniques/common/unit.h"
+#include "render/common/technique.h"
+#include "render/common/unit.h"
 
 namespace sb {
 
@@ -57,7 +57,7 @@ struct AnimateSpec {
 
 // A light beside the key light (--extra-lights): it gets its own instance of
 // the shadow technique, and the image sums every light's shading
-// (techniques/frame/renderer.h). Its frustum is fitted to the scene.
+// (render/frame/renderer.h). Its frustum is fitted to the scene.
 struct ExtraLight {
   std::string type = "directional";  // directional | point
   glm::vec3 at{0, -1, 0};            // point: its position; directional: the direction it travels

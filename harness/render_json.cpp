@@ -6,7 +6,7 @@
 
 #include "harness/render_steps.h"
 #include "reports/stats.h"
-#include "techniques/frame/renderer.h"
+#include "render/frame/renderer.h"
 
 namespace sb {
 namespace {

@@ -12,7 +12,7 @@
 #include "harness/render_steps.h"
 #include "harness/stop.h"
 #include "imaging/metrics.h"
-#include "techniques/frame/renderer.h"
+#include "render/frame/renderer.h"
 
 namespace sb {
 

@@ -14,8 +14,8 @@
 #include "harness/reference_spec.h"
 #include "harness/render_steps.h"
 #include "imaging/metrics.h"
-#include "techniques/common/unit.h"
-#include "techniques/frame/renderer.h"
+#include "render/common/unit.h"
+#include "render/frame/renderer.h"
 
 namespace sb {
 

@@ -107,7 +107,7 @@ std::vector<Setting> buildTable() {
                  "curly:strands=50,seed=7", "curli")),
         &RenderRequest::scene);
   // The techniques' names, defaults and examples come from their descriptors
-  // (techniques/common/unit.h); a misspelling is an example's name doubled at its end.
+  // (render/common/unit.h); a misspelling is an example's name doubled at its end.
   auto technique = [&](const char* key, const char* flag, Family f, const std::string& what) {
     const std::string example = exampleSpec(f);
     const std::string name = example.substr(0, example.find(':'));

@@ -12,7 +12,7 @@
 #include "harness/technique_list.h"
 #include "reports/files.h"
 #include "reports/json_file.h"
-#include "techniques/common/technique.h"
+#include "render/common/technique.h"
 
 namespace sb {
 

@@ -1,5 +1,5 @@
 // What `strandbench list` prints about techniques, generated from their
-// descriptors (techniques/common/unit.h): text, JSON and the Markdown of
+// descriptors (render/common/unit.h): text, JSON and the Markdown of
 // docs/techniques.md (`strandbench list --markdown`).
 #pragma once
 
@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "harness/settings.h"
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 namespace sb {
 

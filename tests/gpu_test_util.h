@@ -20,7 +20,7 @@
 #include "imaging/image.h"
 #include "imaging/metrics.h"
 #include "scenes/view.h"
-#include "techniques/common/technique.h"
+#include "render/common/technique.h"
 #include "tests/test_util.h"
 
 namespace sbtest {

@@ -295,6 +295,8 @@ TEST(BadInput, ShaderThatFailsToCompile) {
   fs::create_directories(s.dir / "shaders");
   fs::copy(fs::path(SB_SOURCE_DIR) / "techniques", s.dir / "shaders" / "techniques",
            fs::copy_options::recursive);
+  fs::copy(fs::path(SB_SOURCE_DIR) / "render", s.dir / "shaders" / "render",
+           fs::copy_options::recursive);
   const fs::path broken = s.dir / "shaders/techniques/shadowmap/lookup.glsl";
   std::ofstream(broken, std::ios::app) << "this is not glsl;\n";
   int lines = 0;

@@ -22,7 +22,7 @@
 #include "imaging/image.h"
 #include "imaging/metrics.h"
 #include "scenes/scene.h"
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 #include "test_util.h"
 
 namespace fs = std::filesystem;

@@ -14,7 +14,7 @@
 
 #include "pbr/hair_bsdf.h"
 #include "techniques/chiang/chiang.h"
-#include "techniques/common/shading_model.h"
+#include "render/shading/shading_model.h"
 
 namespace {
 

@@ -10,8 +10,8 @@
 
 #include "harness/render.h"
 #include "render_request.h"
-#include "techniques/common/technique.h"
-#include "techniques/common/unit.h"
+#include "render/common/technique.h"
+#include "render/common/unit.h"
 
 namespace sb {
 namespace {

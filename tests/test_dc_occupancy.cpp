@@ -18,7 +18,7 @@
 #include "imaging/metrics.h"
 #include "scenes/view.h"
 #include "techniques/dc/dc_math.h"
-#include "techniques/frame/renderer.h"
+#include "render/frame/renderer.h"
 #include "techniques/occupancy/occupancy_math.h"
 
 namespace sb {

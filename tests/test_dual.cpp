@@ -15,7 +15,7 @@
 #include "imaging/metrics.h"
 #include "pbr/hair_bsdf.h"
 #include "techniques/chiang/dual.h"
-#include "techniques/common/shading_model.h"
+#include "render/shading/shading_model.h"
 
 namespace {
 

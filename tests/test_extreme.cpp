@@ -94,7 +94,9 @@ TEST(Invariants, ABrokenShaderFailsTheSweepNamingCaseTechniqueBackendAndPass) {
   fs::create_directories(dir / "shaders");
   fs::copy(fs::path(SB_SOURCE_DIR) / "techniques", dir / "shaders" / "techniques",
            fs::copy_options::recursive);
-  const fs::path shading = dir / "shaders" / "techniques" / "shading" / "hair_shading.glsl";
+  fs::copy(fs::path(SB_SOURCE_DIR) / "render", dir / "shaders" / "render",
+           fs::copy_options::recursive);
+  const fs::path shading = dir / "shaders" / "render" / "shading" / "hair_shading.glsl";
   std::string text = readFile(shading);
   const std::string ret = "return hairMaterial.w * color + visibility * direct;";
   ASSERT_NE(text.find(ret), std::string::npos);

@@ -1,4 +1,4 @@
-// A pass declared once (techniques/common/pass.h) gives its pipeline slots,
+// A pass declared once (render/graph/pass.h) gives its pipeline slots,
 // draw bindings, device pass and graph edges; the frame graph culls nodes no
 // output needs and rejects a texture read that no earlier node writes.
 // Handles here are plain ids: declaring passes and compiling needs no device.
@@ -6,7 +6,7 @@
 
 #include <map>
 
-#include "techniques/common/frame_graph.h"
+#include "render/graph/frame_graph.h"
 
 namespace sb {
 namespace {

@@ -13,7 +13,7 @@
 #include "imaging/metrics.h"
 #include "scenes/view.h"
 #include "techniques/exact/exact.h"
-#include "techniques/frame/renderer.h"
+#include "render/frame/renderer.h"
 
 namespace sb {
 namespace {

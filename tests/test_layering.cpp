@@ -1,5 +1,5 @@
 // The layers point one way: the build runs cmake/CheckIncludes.cmake over backends/, scenes/,
-// reports/ and techniques/common/ (CMakeLists.txt, sb_check_includes), so a build with an
+// reports/ and render/ (CMakeLists.txt, sb_check_includes), so a build with an
 // include against the layering fails. Here the check itself is shown passing and failing.
 #include <gtest/gtest.h>
 

@@ -15,8 +15,8 @@
 #include "gpu_test_util.h"
 #include "imaging/image.h"
 #include "imaging/metrics.h"
-#include "techniques/common/shader_library.h"
-#include "techniques/frame/renderer.h"
+#include "render/common/shader_library.h"
+#include "render/frame/renderer.h"
 #include "techniques/mboit/mboit.h"
 #include "techniques/mboit/mboit_math.h"
 

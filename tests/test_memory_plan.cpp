@@ -19,7 +19,7 @@
 
 #include "harness/render.h"
 #include "render_request.h"
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 #include "test_util.h"
 
 namespace sb {

@@ -216,7 +216,7 @@ INSTANTIATE_TEST_SUITE_P(Backends, MomentShadows, ::testing::Values("gl", "vulka
 // single-fragment texels), amplified by the solve where a texel has fewer
 // fragments than the moments' support points: the vertex shaders' clip
 // positions rounded differently under the two GLSL front ends. With
-// toViewClip (techniques/common/view.glsl): 7.3e-6 / 4.2e-7 / 1.3e-6.
+// toViewClip (render/common/view.glsl): 7.3e-6 / 4.2e-7 / 1.3e-6.
 TEST(MomentShadowsParity, GlAndVulkanAgree) {
   const sbtest::BothBackends both = sbtest::makeBothBackends();
   if (!both.unavailable.empty()) GTEST_SKIP() << both.unavailable;

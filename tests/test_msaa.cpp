@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 #include "test_util.h"
 
 namespace {

@@ -15,7 +15,7 @@
 #include "imaging/image.h"
 #include "imaging/metrics.h"
 #include "occupancy_maps_cpu.h"
-#include "techniques/frame/renderer.h"
+#include "render/frame/renderer.h"
 #include "techniques/occupancy_oit/occupancy_oit.h"
 #include "techniques/occupancy_oit/occupancy_oit_math.h"
 

@@ -18,7 +18,7 @@
 #include "gpu_test_util.h"
 #include "imaging/image.h"
 #include "imaging/metrics.h"
-#include "techniques/frame/renderer.h"
+#include "render/frame/renderer.h"
 #include "techniques/kbuffer/kbuffer_math.h"
 #include "techniques/mboit/mboit_math.h"
 #include "techniques/mlab/mlab_math.h"

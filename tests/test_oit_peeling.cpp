@@ -13,7 +13,7 @@
 #include "imaging/image.h"
 #include "imaging/metrics.h"
 #include "scenes/scene.h"
-#include "techniques/frame/renderer.h"
+#include "render/frame/renderer.h"
 #include "techniques/stochastic/stochastic_math.h"
 
 namespace sb {

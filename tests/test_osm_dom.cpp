@@ -12,9 +12,10 @@
 
 #include "gpu_test_util.h"
 #include "imaging/metrics.h"
+#include "render/frame/renderer.h"
 #include "scenes/view.h"
-#include "techniques/common/opacity.h"
-#include "techniques/frame/renderer.h"
+#include "techniques/dom/layers.h"
+#include "techniques/osm/slicing.h"
 
 namespace sb {
 namespace {

@@ -11,14 +11,14 @@
 #include "gpu_test_util.h"
 #include "harness/render.h"
 #include "occupancy_maps_cpu.h"
+#include "render/common/light_space.h"
+#include "render/frame/renderer.h"
 #include "scenes/view.h"
-#include "techniques/common/light_space.h"
-#include "techniques/common/opacity.h"
 #include "techniques/dom/dom.h"
 #include "techniques/fake/fake.h"
-#include "techniques/frame/renderer.h"
 #include "techniques/occupancy_oit/occupancy_oit_math.h"
 #include "techniques/osm/osm.h"
+#include "techniques/osm/slicing.h"
 
 namespace sb {
 namespace {

@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "gpu_test_util.h"
-#include "techniques/common/pass.h"
+#include "render/graph/pass.h"
 
 namespace {
 

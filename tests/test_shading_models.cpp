@@ -10,7 +10,7 @@
 #include "base/errors.h"
 #include "harness/render.h"
 #include "imaging/metrics.h"
-#include "techniques/common/shading_model.h"
+#include "render/shading/shading_model.h"
 #include "techniques/marschner/marschner.h"
 #include "techniques/sadeghi/sadeghi.h"
 

@@ -25,7 +25,7 @@ using glm::mix;
 using glm::vec2;
 inline float (*filterFieldCpu)(ivec2) = nullptr;
 #define SB_FILTER_OPACITY(t) filterFieldCpu(t)
-#include "techniques/common/opacity_filter.glsl"
+#include "render/common/opacity_filter.glsl"
 #undef SB_FILTER_OPACITY
 }  // namespace sb::glsl
 
@@ -246,7 +246,7 @@ TEST(FomMath, ErrorFallsWithCoefficientsAndClampingBoundsTheRinging) {
   EXPECT_GT(ringing, 1.0f);
 }
 
-// --- the dom / osm lookup filters: techniques/common/opacity_filter.glsl ---
+// --- the dom / osm lookup filters: render/common/opacity_filter.glsl ---
 
 TEST(OpacityFilter, KernelsOnKnownFields) {
   // A linear ramp in x: bilinear reproduces it between texel centres, and the

@@ -1,5 +1,5 @@
 // Binding numbers are named once, for the C++ and the GLSL: the shared ones in
-// techniques/common/slots.h, a folder's own in techniques/<folder>/slots.h. No
+// render/common/slots.h, a folder's own in techniques/<folder>/slots.h. No
 // shader under techniques/ spells a binding as a number, every SB_SLOT_ name a
 // file uses is defined once, in the common header or its own folder's (and a
 // shader includes that header itself), every header is plain #defines both
@@ -21,18 +21,18 @@
 #include <vector>
 
 #include "backends/vulkan/vk_shader.h"
-#include "techniques/common/shader_library.h"
-#include "techniques/common/technique.h"
-#include "techniques/common/unit.h"
+#include "render/common/shader_library.h"
+#include "render/common/technique.h"
+#include "render/common/unit.h"
+#include "render/outputs/probe/slots.h"
 #include "techniques/occupancy_oit/slots.h"
-#include "techniques/probe/slots.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
 const fs::path kSource = SB_SOURCE_DIR;
-const std::string kCommonHeader = "techniques/common/slots.h";
+const std::string kCommonHeader = "render/common/slots.h";
 
 std::string readText(const fs::path& p) {
   std::ifstream f(p, std::ios::binary);
@@ -49,7 +49,7 @@ std::vector<std::string> splitLines(const std::string& text) {
 }
 
 // "file:line: text" for every binding given as a number (`binding = 3`, `binding=3`,
-// `SB_UNIFORM_BLOCK(Name, 3)`: techniques/common/uniform_block.h).
+// `SB_UNIFORM_BLOCK(Name, 3)`: render/common/uniform_block.h).
 std::vector<std::string> numericBindings(const std::string& file, const std::string& text) {
   static const std::regex numeric(R"((\bbinding\s*=|\bSB_UNIFORM_BLOCK\(\s*\w+\s*,)\s*[0-9])");
   std::vector<std::string> found;
@@ -98,7 +98,7 @@ std::set<std::string> includedSlotsHeaders(const std::string& file, const std::s
 }
 
 // The names a (loaded) shader binds: `binding = SB_SLOT_NAME`, and a uniform
-// block's `SB_UNIFORM_BLOCK(Name, SB_SLOT_NAME)` (techniques/common/uniform_block.h).
+// block's `SB_UNIFORM_BLOCK(Name, SB_SLOT_NAME)` (render/common/uniform_block.h).
 std::set<std::string> boundNames(const std::string& text) {
   static const std::regex bound(
       R"((?:\bbinding\s*=|\bSB_UNIFORM_BLOCK\(\s*\w+\s*,)\s*(SB_SLOT_\w+))");
@@ -122,31 +122,38 @@ std::vector<std::string> collisions(const std::set<std::string>& names,
   return found;
 }
 
-// techniques/<folder>/... -> folder
+// techniques/<folder>/file or render/.../<folder>/file -> its folder, from the source root
 std::string folderOf(const std::string& path) {
-  const std::size_t start = path.find('/') + 1;
-  return path.substr(start, path.find('/', start) - start);
+  return fs::path(path.substr(0, path.find(':'))).parent_path().generic_string();
 }
 
 // The expected include guard of a header: SB_SLOTS_H, or SB_<FOLDER>_SLOTS_H.
 std::string guardOf(const std::string& header) {
   if (header == kCommonHeader) return "SB_SLOTS_H";
-  std::string folder = folderOf(header);
+  std::string folder = fs::path(folderOf(header)).filename().string();
   std::transform(folder.begin(), folder.end(), folder.begin(),
                  [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
   return "SB_" + folder + "_SLOTS_H";
 }
 
-// Every slots header, "techniques/..." paths: the common one first, then each
+// Every file under techniques/ and render/ for which keep(path) holds, as paths from the
+// source root.
+template <class Keep>
+std::vector<std::string> sourceFiles(Keep keep) {
+  std::vector<std::string> files;
+  for (const char* root : {"techniques", "render"})
+    for (const auto& e : fs::recursive_directory_iterator(kSource / root))
+      if (e.is_regular_file() && keep(e.path()))
+        files.push_back(fs::relative(e.path(), kSource).generic_string());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+// Every slots header, paths from the source root: the common one first, then each
 // folder's own.
 std::vector<std::string> slotHeaders() {
-  std::vector<std::string> headers;
-  for (const auto& e : fs::directory_iterator(kSource / "techniques")) {
-    const fs::path h = e.path() / "slots.h";
-    if (e.is_directory() && fs::is_regular_file(h))
-      headers.push_back(fs::relative(h, kSource).generic_string());
-  }
-  std::sort(headers.begin(), headers.end());
+  std::vector<std::string> headers =
+      sourceFiles([](const fs::path& p) { return p.filename() == "slots.h"; });
   std::stable_partition(headers.begin(), headers.end(),
                         [](const std::string& h) { return h == kCommonHeader; });
   return headers;
@@ -169,29 +176,20 @@ Slots allSlots() {
   return s;
 }
 
-// Every shader source under techniques/, as "techniques/..." paths.
+// Every shader source under techniques/ and render/.
 std::vector<std::string> shaderFiles() {
-  std::vector<std::string> files;
-  for (const auto& e : fs::recursive_directory_iterator(kSource / "techniques")) {
-    const std::string ext = e.path().extension().string();
-    if (e.is_regular_file() &&
-        (ext == ".glsl" || ext == ".vert" || ext == ".frag" || ext == ".comp"))
-      files.push_back(fs::relative(e.path(), kSource).generic_string());
-  }
-  std::sort(files.begin(), files.end());
-  return files;
+  return sourceFiles([](const fs::path& p) {
+    const std::string ext = p.extension().string();
+    return ext == ".glsl" || ext == ".vert" || ext == ".frag" || ext == ".comp";
+  });
 }
 
-// Every C++ file under techniques/ but the slots headers.
+// Every C++ file under techniques/ and render/ but the slots headers.
 std::vector<std::string> cppFiles() {
-  std::vector<std::string> files;
-  for (const auto& e : fs::recursive_directory_iterator(kSource / "techniques")) {
-    const std::string ext = e.path().extension().string();
-    if (e.is_regular_file() && (ext == ".cpp" || ext == ".h") && e.path().filename() != "slots.h")
-      files.push_back(fs::relative(e.path(), kSource).generic_string());
-  }
-  std::sort(files.begin(), files.end());
-  return files;
+  return sourceFiles([](const fs::path& p) {
+    const std::string ext = p.extension().string();
+    return (ext == ".cpp" || ext == ".h") && p.filename() != "slots.h";
+  });
 }
 
 TEST(Slots, TheScannersCatchANumericBindingAndAnUnknownName) {
@@ -216,11 +214,11 @@ TEST(Slots, TheScannersCatchANumericBindingAndAnUnknownName) {
   EXPECT_FALSE(defs.count("SB_SLOT_NO_SUCH_THING"));
   EXPECT_TRUE(includedSlotsHeaders("techniques/x/bad.frag", bad).empty());
   EXPECT_EQ(includedSlotsHeaders("techniques/x/a.frag",
-                                 "#include \"../common/slots.h\"\n"
+                                 "#include \"render/common/slots.h\"\n"
                                  "  #include \"slots.h\"\n")
                 .count("techniques/x/slots.h"),
             1u);
-  EXPECT_EQ(includedSlotsHeaders("techniques/x/a.frag", "#include \"../common/slots.h\"\n")
+  EXPECT_EQ(includedSlotsHeaders("techniques/x/a.frag", "#include \"render/common/slots.h\"\n")
                 .count(kCommonHeader),
             1u);
   EXPECT_EQ(includedSlotsHeaders("techniques/x/a.cpp", "#include \"techniques/x/slots.h\"\n")
@@ -235,6 +233,7 @@ TEST(Slots, TheScannersCatchANumericBindingAndAnUnknownName) {
   EXPECT_EQ(collisions(boundNames(twice), {{"SB_SLOT_VIEW", 0}, {"SB_SLOT_OTHER", 0}}),
             (std::vector<std::string>{"SB_SLOT_OTHER and SB_SLOT_VIEW at 0"}));
   EXPECT_EQ(guardOf("techniques/dual_peel/slots.h"), "SB_DUAL_PEEL_SLOTS_H");
+  EXPECT_EQ(guardOf("render/outputs/probe/slots.h"), "SB_PROBE_SLOTS_H");
 }
 
 TEST(Slots, NoShaderGivesABindingAsANumber) {
@@ -247,8 +246,8 @@ TEST(Slots, NoShaderGivesABindingAsANumber) {
   for (const auto& f : files)
     for (const auto& hit : numericBindings(f, readText(kSource / f))) found.push_back(hit);
   for (const auto& hit : found)
-    ADD_FAILURE() << hit << "\n  (name the slot in techniques/" << folderOf(hit)
-                  << "/slots.h, or in techniques/common/slots.h if folders share it)";
+    ADD_FAILURE() << hit << "\n  (name the slot in " << folderOf(hit)
+                  << "/slots.h, or in render/common/slots.h if folders share it)";
 }
 
 TEST(Slots, EveryNameIsDefinedOnce) {
@@ -273,7 +272,7 @@ TEST(Slots, EveryNameAFileUsesIsDefinedInCommonOrItsFolderAndIncluded) {
     const auto used = slotNamesUsed(f, text);
     if (used.empty()) return;
     ++namingFiles;
-    const std::string own = "techniques/" + folderOf(f) + "/slots.h";
+    const std::string own = folderOf(f) + "/slots.h";
     const auto included = includedSlotsHeaders(f, text);
     for (const auto& [name, where] : used) {
       const auto it = slots.header.find(name);
@@ -335,7 +334,8 @@ TEST(Slots, CppAndTheParsedHeadersAgree) {
 // shadow lookup beside their own.
 TEST(Slots, EachFolderKeepsToItsRange) {
   std::set<std::string> shadowFolders;
-  for (const auto* d : sb::techniques(sb::Family::Shadow)) shadowFolders.insert(d->folder);
+  for (const auto* d : sb::techniques(sb::Family::Shadow))
+    shadowFolders.insert("techniques/" + d->folder);
   const Slots slots = allSlots();
   const int first = slots.number.at("SB_SLOT_SHADOW_FIRST");
   const int opaque = slots.number.at("SB_SLOT_OPAQUE_SHADOW");
@@ -392,7 +392,7 @@ TEST(Slots, NoTwoNamesBoundInOneShaderShareANumber) {
 // strands.vert includes slots.h twice (through bindings.glsl and view.glsl):
 // the shader loader pastes it twice, the guard keeps one copy for glslang.
 TEST(Slots, AShaderIncludingTheHeaderTwiceCompiles) {
-  const sb::ShaderCode code = sb::loadShader("techniques/common/strands.vert");
+  const sb::ShaderCode code = sb::loadShader("render/common/strands.vert");
   std::size_t pasted = 0;
   for (std::size_t at = 0; (at = code.text.find("#ifndef SB_SLOTS_H", at)) != std::string::npos;
        ++at)

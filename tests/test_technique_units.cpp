@@ -1,4 +1,4 @@
-// The techniques as self-describing units (techniques/common/unit.h): every
+// The techniques as self-describing units (render/common/unit.h): every
 // descriptor is complete, its options drive validation, and what is generated
 // from the registry (list, docs/techniques.md) and the catalog (baselines, the
 // quick suite, the error and memory scripts) covers every registered technique.
@@ -17,7 +17,7 @@
 #include "harness/baselines.h"
 #include "harness/suite.h"
 #include "harness/technique_list.h"
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 #include "test_util.h"
 
 namespace {
@@ -221,7 +221,7 @@ std::vector<std::string> namesOutsideFolders(const fs::path& root) {
       {"techniques/msm/", {"mboit"}},                // MSM is MBOIT's moment math on light maps
       {"techniques/occupancy_oit/", {"occupancy"}},  // the occupancy maps' transparency order
       {"techniques/rt_oit/", {"kbuffer"}},           // k=: the k-buffer's merge of the hits past k
-      {"techniques/shading/", {"marschner", "sadeghi", "chiang"}}};  // the pass every model runs in
+      {"render/shading/", {"marschner", "sadeghi", "chiang"}}};  // the pass every model runs in
   // A name's folders: two descriptors may share one (occupancy: shadow and transparency).
   std::map<std::string, std::set<std::string>> homes;
   for (const TechniqueDescriptor* d : all()) homes[d->name].insert("techniques/" + d->folder + "/");
@@ -315,6 +315,19 @@ std::vector<std::string> optionReadsByName(const fs::path& root) {
   return found;
 }
 
+// The folders under `root`/techniques that are no registered unit's (infrastructure
+// lives in render/), and any loose file there.
+std::vector<std::string> foldersNotUnits(const fs::path& root) {
+  std::set<std::string> units;
+  for (const TechniqueDescriptor* d : all()) units.insert(d->folder);
+  std::vector<std::string> found;
+  for (const auto& e : fs::directory_iterator(root / "techniques"))
+    if (!e.is_directory() || !units.count(e.path().filename().string()))
+      found.push_back("techniques/" + e.path().filename().string());
+  std::sort(found.begin(), found.end());
+  return found;
+}
+
 TEST(TechniqueUnits, NoOptionIsReadByName) {
   const std::vector<std::string> found = optionReadsByName(SB_SOURCE_DIR);
   std::string list;
@@ -348,6 +361,20 @@ TEST(TechniqueUnits, OptionReadsByNameAreFound) {
   EXPECT_NE(found[0].find("o.integer(\"samples\")"), std::string::npos) << found[0];
   EXPECT_EQ(found[1].rfind("techniques/kajiya_kay/unit.cpp:", 0), 0u) << found[1];
   EXPECT_EQ(found[2].rfind("techniques/shadowmap/unit.cpp:", 0), 0u) << found[2];
+}
+
+TEST(TechniqueUnits, TechniquesHoldsUnitFoldersOnly) {
+  const std::vector<std::string> found = foldersNotUnits(SB_SOURCE_DIR);
+  std::string list;
+  for (const auto& f : found) list += "\n  " + f;
+  EXPECT_TRUE(found.empty()) << "not a unit's folder (shared code goes in render/):" << list;
+  // The check itself: an infrastructure folder or a loose file is found, a unit's folder is not.
+  const fs::path root = sbtest::tempDir("units-only");
+  fs::create_directories(root / "techniques" / "dom");
+  fs::create_directories(root / "techniques" / "common");
+  std::ofstream(root / "techniques" / "loose.h") << "\n";
+  EXPECT_EQ(foldersNotUnits(root),
+            (std::vector<std::string>{"techniques/common", "techniques/loose.h"}));
 }
 
 }  // namespace

@@ -7,8 +7,8 @@
 #include <cmath>
 
 #include "backends/shader_source.h"
-#include "techniques/common/shader_library.h"
-#include "techniques/common/technique.h"
+#include "render/common/shader_library.h"
+#include "render/common/technique.h"
 #include "techniques/kajiya_kay/kajiya_kay.h"
 #include "test_util.h"
 
@@ -39,9 +39,9 @@ TEST(ShaderLibrary, ResolvesIncludesAndAliasesWithLineDirectives) {
   ShaderDefines defs;
   defs.aliases["shadow"] = "techniques/shadowmap/lookup.glsl";
   defs.defines.push_back({"SB_TEST", "1"});
-  const ShaderCode code = loadShader("techniques/shading/hair.frag", defs);
-  EXPECT_EQ(code.fileNames.front(), "techniques/shading/hair.frag");
-  const std::vector<std::string> expected = {"techniques/common/shading.glsl",
+  const ShaderCode code = loadShader("render/shading/hair.frag", defs);
+  EXPECT_EQ(code.fileNames.front(), "render/shading/hair.frag");
+  const std::vector<std::string> expected = {"render/common/shading.glsl",
                                              "techniques/kajiya_kay/kajiya_kay.glsl",
                                              "techniques/shadowmap/lookup.glsl"};
   for (const auto& f : expected)
@@ -49,7 +49,7 @@ TEST(ShaderLibrary, ResolvesIncludesAndAliasesWithLineDirectives) {
         << f;
   EXPECT_NE(code.text.find("#define SB_TEST 1"), std::string::npos);
   EXPECT_NE(code.text.find("float shadowVisibility"), std::string::npos);
-  EXPECT_THROW(loadShader("techniques/shading/hair.frag"), DeviceError);  // <shadow> unbound
+  EXPECT_THROW(loadShader("render/shading/hair.frag"), DeviceError);  // <shadow> unbound
   EXPECT_THROW(loadShader("techniques/nope.frag"), DeviceError);
 }
 

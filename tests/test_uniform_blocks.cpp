@@ -1,4 +1,4 @@
-// techniques/common/uniform_block.h: a uniform block declared once yields the
+// render/common/uniform_block.h: a uniform block declared once yields the
 // GLSL block and a C++ struct whose layout is checked against std140 at compile
 // time. The std140 rules are checked here on layouts where C++ and std140
 // disagree (a scalar or vec3 after a vec4, an array of scalars), and the check
@@ -13,10 +13,10 @@
 #include <string>
 
 #include "backends/vulkan/vk_shader.h"
-#include "techniques/common/peel_uniforms.h"
-#include "techniques/common/shader_library.h"
-#include "techniques/common/uniform_block.h"
-#include "techniques/common/view_uniforms.h"
+#include "render/common/peel_uniforms.h"
+#include "render/common/shader_library.h"
+#include "render/common/uniform_block.h"
+#include "render/common/view_uniforms.h"
 #include "techniques/osm/uniforms.h"
 
 // clang-format off
@@ -111,11 +111,11 @@ TEST(UniformBlocks, TheGlslSideIsTheStd140BlockAndCompiles) {
   const sb::ShaderCode code = sb::loadShader("techniques/osm/map.frag");
   for (const auto& f : code.fileNames) EXPECT_EQ(f.find("std140.h"), std::string::npos) << f;
   EXPECT_NE(
-      std::find(code.fileNames.begin(), code.fileNames.end(), "techniques/common/uniform_block.h"),
+      std::find(code.fileNames.begin(), code.fileNames.end(), "render/common/uniform_block.h"),
       code.fileNames.end());
   EXPECT_NE(code.text.find("SB_UNIFORM_BLOCK(OsmParams, SB_SLOT_OSM_PARAMS)"), std::string::npos);
   EXPECT_FALSE(sb::compileVulkanSpirv(code, sb::ShaderStage::Fragment, "uniform_blocks").empty());
-  const sb::ShaderCode comp = sb::loadShader("techniques/common/peel_advance.comp",
+  const sb::ShaderCode comp = sb::loadShader("render/common/peel_advance.comp",
                                              {{{"STATE_BINDING", "1"}, {"PEELED_BINDING", "2"}}});
   EXPECT_FALSE(sb::compileVulkanSpirv(comp, sb::ShaderStage::Compute, "uniform_blocks").empty());
 }

@@ -12,8 +12,8 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "techniques/common/technique.h"
-#include "techniques/common/unit.h"
+#include "render/common/technique.h"
+#include "render/common/unit.h"
 #include "tests/test_util.h"
 #include "tests/window_test_util.h"
 

@@ -14,7 +14,7 @@
 #include "imaging/image.h"
 #include "imaging/metrics.h"
 #include "scenes/scene.h"
-#include "techniques/frame/renderer.h"
+#include "render/frame/renderer.h"
 #include "techniques/wboit/wboit_math.h"
 #include "techniques/weighted/weighted_math.h"
 

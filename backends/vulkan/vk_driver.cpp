@@ -46,6 +46,14 @@ namespace {
 constexpr uint32_t kQueriesPerPool = 128;  // even: a pass's pair never straddles pools
 constexpr VkDeviceSize kMaxCmdUpdateBytes = 65536;
 
+// Every layer of a texture, tightly packed one after the other (read and write back).
+VkBufferImageCopy allLayers(const TextureRes& t, const TextureDesc& desc) {
+  VkBufferImageCopy region{};
+  region.imageSubresource = {t.aspect, 0, 0, desc.layers};
+  region.imageExtent = {desc.width, desc.height, 1};
+  return region;
+}
+
 class VulkanDriver final : public Driver {
  public:
   explicit VulkanDriver(std::unique_ptr<VulkanPlatform> platform)
@@ -114,12 +122,9 @@ class VulkanDriver final : public Driver {
                     std::size_t offset) override {
     auto& r = static_cast<BufferRes&>(object);
     if (!inFrame_) {
-      resources_.withHostBuffer(bytes, [&](HostBuffer& staging) {
-        std::memcpy(staging.mapped, data, bytes);
-        resources_.immediate([&](VkCommandBuffer cmd) {
-          VkBufferCopy region{0, offset, bytes};
-          vkCmdCopyBuffer(cmd, staging.buffer, r.buffer, 1, &region);
-        });
+      resources_.upload(data, bytes, [&](VkCommandBuffer cmd, VkBuffer staging) {
+        VkBufferCopy region{0, offset, bytes};
+        vkCmdCopyBuffer(cmd, staging, r.buffer, 1, &region);
       });
       return;
     }
@@ -437,53 +442,34 @@ class VulkanDriver final : public Driver {
     // Layers are copied one after the other, each tightly packed.
     const std::size_t bytes =
         std::size_t{desc.width} * desc.height * desc.layers * bytesPerPixel(desc.format);
-    std::vector<uint8_t> out(bytes);
-    resources_.withHostBuffer(bytes, [&](HostBuffer& staging) {
-      resources_.immediate([&](VkCommandBuffer cmd) {
-        std::vector<VkImageMemoryBarrier> barriers;
-        transition(barriers, t, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-        fullBarrier(cmd, barriers);
-        VkBufferImageCopy region{};
-        region.imageSubresource = {t.aspect, 0, 0, desc.layers};
-        region.imageExtent = {desc.width, desc.height, 1};
-        vkCmdCopyImageToBuffer(cmd, t.image, t.layout, staging.buffer, 1, &region);
-        hostReadBarrier(cmd);
-      });
-      std::memcpy(out.data(), staging.mapped, bytes);
+    return resources_.download(bytes, [&](VkCommandBuffer cmd, VkBuffer staging) {
+      std::vector<VkImageMemoryBarrier> barriers;
+      transition(barriers, t, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+      fullBarrier(cmd, barriers);
+      const VkBufferImageCopy region = allLayers(t, desc);
+      vkCmdCopyImageToBuffer(cmd, t.image, t.layout, staging, 1, &region);
     });
-    return out;
   }
 
   std::vector<uint8_t> readBuffer(DriverObject& object, const BufferDesc& desc) override {
     auto& r = static_cast<BufferRes&>(object);
-    std::vector<uint8_t> out(desc.bytes);
-    resources_.withHostBuffer(desc.bytes, [&](HostBuffer& staging) {
-      resources_.immediate([&](VkCommandBuffer cmd) {
-        fullBarrier(cmd);
-        VkBufferCopy region{0, 0, desc.bytes};
-        vkCmdCopyBuffer(cmd, r.buffer, staging.buffer, 1, &region);
-        hostReadBarrier(cmd);
-      });
-      std::memcpy(out.data(), staging.mapped, out.size());
+    return resources_.download(desc.bytes, [&](VkCommandBuffer cmd, VkBuffer staging) {
+      fullBarrier(cmd);
+      VkBufferCopy region{0, 0, desc.bytes};
+      vkCmdCopyBuffer(cmd, r.buffer, staging, 1, &region);
     });
-    return out;
   }
 
   void writeTexture(DriverObject& object, const TextureDesc& desc,
                     const std::vector<uint8_t>& bytes) override {
     auto& t = static_cast<TextureRes&>(object);
-    resources_.withHostBuffer(bytes.size(), [&](HostBuffer& staging) {
-      std::memcpy(staging.mapped, bytes.data(), bytes.size());
-      resources_.immediate([&](VkCommandBuffer cmd) {
-        std::vector<VkImageMemoryBarrier> barriers;
-        transition(barriers, t, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-        fullBarrier(cmd, barriers);
-        VkBufferImageCopy region{};
-        region.imageSubresource = {t.aspect, 0, 0, desc.layers};
-        region.imageExtent = {desc.width, desc.height, 1};
-        vkCmdCopyBufferToImage(cmd, staging.buffer, t.image, t.layout, 1, &region);
-        fullBarrier(cmd);
-      });
+    resources_.upload(bytes.data(), bytes.size(), [&](VkCommandBuffer cmd, VkBuffer staging) {
+      std::vector<VkImageMemoryBarrier> barriers;
+      transition(barriers, t, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+      fullBarrier(cmd, barriers);
+      const VkBufferImageCopy region = allLayers(t, desc);
+      vkCmdCopyBufferToImage(cmd, staging, t.image, t.layout, 1, &region);
+      fullBarrier(cmd);
     });
   }
 

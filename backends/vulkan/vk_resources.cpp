@@ -174,20 +174,19 @@ std::unique_ptr<BufferRes> VulkanResources::createBuffer(const BufferDesc& desc,
     r->memory = allocate(req, false, "buffer " + desc.name);
     check(vkBindBufferMemory(device_, r->buffer, r->memory, 0), "vkBindBufferMemory");
     // Defined contents (zero) unless data is given, as on GL.
-    HostBuffer staging;
-    if (data != nullptr) {
-      staging = createHostBuffer(desc.bytes);
-      std::memcpy(staging.mapped, data, desc.bytes);
-    }
-    immediate([&](VkCommandBuffer cmd) {
+    const auto zero = [&](VkCommandBuffer cmd) {
       vkCmdFillBuffer(cmd, r->buffer, 0, VK_WHOLE_SIZE, 0);
-      if (staging.buffer != VK_NULL_HANDLE) {
+    };
+    if (data == nullptr) {
+      immediate(zero);
+    } else {
+      upload(data, desc.bytes, [&](VkCommandBuffer cmd, VkBuffer staging) {
+        zero(cmd);
         fullBarrier(cmd);
         VkBufferCopy region{0, 0, desc.bytes};
-        vkCmdCopyBuffer(cmd, staging.buffer, r->buffer, 1, &region);
-      }
-    });
-    destroyHostBuffer(staging);
+        vkCmdCopyBuffer(cmd, staging, r->buffer, 1, &region);
+      });
+    }
   } catch (...) {
     destroyBuffer(*r);
     throw;

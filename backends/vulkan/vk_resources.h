@@ -9,6 +9,7 @@
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
+#include <cstring>
 #include <memory>
 #include <set>
 #include <string>
@@ -134,6 +135,29 @@ class VulkanResources {
       throw;
     }
     destroyHostBuffer(staging);
+  }
+  // The two ways of staging: upload copies `bytes` of data into a host buffer,
+  // then record(cmd, staging) copies it onward; download has record(cmd, staging)
+  // copy into a host buffer, made visible to the host, and returns its `bytes`.
+  // Each submits and waits.
+  template <class F>
+  void upload(const void* data, VkDeviceSize bytes, F&& record) {
+    withHostBuffer(bytes, [&](HostBuffer& staging) {
+      std::memcpy(staging.mapped, data, bytes);
+      immediate([&](VkCommandBuffer cmd) { record(cmd, staging.buffer); });
+    });
+  }
+  template <class F>
+  std::vector<uint8_t> download(VkDeviceSize bytes, F&& record) {
+    std::vector<uint8_t> out(bytes);
+    withHostBuffer(bytes, [&](HostBuffer& staging) {
+      immediate([&](VkCommandBuffer cmd) {
+        record(cmd, staging.buffer);
+        hostReadBarrier(cmd);
+      });
+      std::memcpy(out.data(), staging.mapped, out.size());
+    });
+    return out;
   }
 
   // Contents zero unless data is given (desc.bytes of it). Waits for the upload.

@@ -3,8 +3,8 @@
 #include <cstring>
 
 #include "techniques/abuffer/uniforms.h"
-#include "techniques/common/shader_library.h"
-#include "techniques/shading/hair_shading.h"
+#include "render/common/shader_library.h"
+#include "render/shading/hair_shading.h"
 
 namespace sb {
 

@@ -1,5 +1,5 @@
 // Bindings of the eye-space A-buffer (16 is the shared accumulation).
-#include "../common/slots.h"
+#include "render/common/slots.h"
 struct Fragment {
   vec4 color;  // shaded rgb, alpha
   uvec4 key;   // xy: fragment key

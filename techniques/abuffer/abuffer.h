@@ -2,7 +2,7 @@
 
 #include <array>
 
-#include "techniques/common/hair_oit.h"
+#include "render/common/hair_oit.h"
 
 namespace sb {
 

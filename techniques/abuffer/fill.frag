@@ -3,11 +3,11 @@
 // Storage writes are side effects: without early tests they would happen even
 // for fragments the opaque depth test then rejects.
 layout(early_fragment_tests) in;
-#include "../common/view.glsl"
-#include "../common/shading.glsl"
+#include "render/common/view.glsl"
+#include "render/common/shading.glsl"
 #include <shadow>
-#include "../shading/hair_shading.glsl"
-#include "../common/fragment_key.glsl"
+#include "render/shading/hair_shading.glsl"
+#include "render/common/fragment_key.glsl"
 #include "abuffer.glsl"
 
 layout(location = 0) in vec3 vWorldPos;

@@ -1,9 +1,9 @@
 // Sorts each pixel's fragments front to back and composites them, with the
 // same arithmetic as depth peeling.
-#include "../common/key_order.glsl"
+#include "render/common/key_order.glsl"
 #include "abuffer.glsl"
-#include "../common/invocation.glsl"
-#include "../common/slots.h"
+#include "render/common/invocation.glsl"
+#include "render/common/slots.h"
 layout(local_size_x = 64) in;
 #include "uniforms.h"
 

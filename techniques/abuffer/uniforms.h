@@ -1,10 +1,10 @@
 // The size of the resolve (abuffer, and kbuffer and mlab, which reuse abuffer's C++).
-// Declared once for the C++ and the GLSL (techniques/common/uniform_block.h).
+// Declared once for the C++ and the GLSL (render/common/uniform_block.h).
 #ifndef SB_ABUFFER_UNIFORMS_H
 #define SB_ABUFFER_UNIFORMS_H
 
-#include "techniques/common/slots.h"
-#include "techniques/common/uniform_block.h"
+#include "render/common/slots.h"
+#include "render/common/uniform_block.h"
 
 // clang-format off
 SB_UNIFORM_BLOCK(AbufferSize, SB_SLOT_ABUFFER_SIZE)

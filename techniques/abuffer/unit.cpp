@@ -1,5 +1,5 @@
 // --oit abuffer: the second transparency reference.
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 #include "techniques/abuffer/abuffer.h"
 

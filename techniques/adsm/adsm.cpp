@@ -5,7 +5,7 @@
 
 #include "techniques/adsm/slots.h"
 #include "techniques/adsm/uniforms.h"
-#include "techniques/common/shader_library.h"
+#include "render/common/shader_library.h"
 
 namespace sb {
 
@@ -44,7 +44,7 @@ void ApproximatedDeepShadows::setup(Device& dev, const GpuScene& scene, const Re
       dev.createTexture({"adsm.depth", "shadow", Format::Depth32F, opt_.size, opt_.size, false});
   if (!scene.hasHair()) return;
   const ShaderCode vert = Geometry::strandVertexShader(s);
-  const ShaderCode frag = loadShader("techniques/common/depth_only.frag");
+  const ShaderCode frag = loadShader("render/common/depth_only.frag");
   PipelineDesc d = depthPass().pipeline(dev, "adsm.depth", "adsm");
   d.vertex = &vert;
   d.fragment = &frag;

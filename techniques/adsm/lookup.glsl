@@ -1,7 +1,7 @@
 // Approximated deep shadows lookup (TressFX): over the kernel's taps of the
 // hair's front depth map, (1 - alpha)^fibers for the point's depth behind
 // each tap's front, Gaussian-weighted (adsm_math.glsl); 0 behind the opaque mesh.
-#include "../common/opaque_shadow.glsl"
+#include "render/common/opaque_shadow.glsl"
 #include "slots.h"
 #include "adsm_math.glsl"
 

@@ -1,10 +1,10 @@
 // adsm's lookup parameters.
-// Declared once for the C++ and the GLSL (techniques/common/uniform_block.h).
+// Declared once for the C++ and the GLSL (render/common/uniform_block.h).
 #ifndef SB_ADSM_UNIFORMS_H
 #define SB_ADSM_UNIFORMS_H
 
 #include "techniques/adsm/slots.h"
-#include "techniques/common/uniform_block.h"
+#include "render/common/uniform_block.h"
 
 // clang-format off
 SB_UNIFORM_BLOCK(AdsmParams, SB_SLOT_ADSM_PARAMS)

@@ -1,5 +1,5 @@
 // --shadow adsm: approximated deep shadows (TressFX).
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 #include "techniques/adsm/adsm.h"
 

@@ -5,7 +5,7 @@
 #include "techniques/avsm/resolve_uniforms.h"
 #include "techniques/avsm/slots.h"
 #include "techniques/avsm/uniforms.h"
-#include "techniques/common/shader_library.h"
+#include "render/common/shader_library.h"
 
 namespace sb {
 

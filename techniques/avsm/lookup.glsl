@@ -1,6 +1,6 @@
 // AVSM lookup: the point's texel curve interpolated at the point's light depth
 // (avsm_math.glsl); 0 behind the opaque mesh.
-#include "../common/opaque_shadow.glsl"
+#include "render/common/opaque_shadow.glsl"
 #include "slots.h"
 
 #include "uniforms.h"

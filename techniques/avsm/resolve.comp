@@ -6,8 +6,8 @@
 // pass streams them into the curve in that order, so the curve is the one the
 // paper's single pass would give; the cost is not (timing marked emulated).
 // The nodes go to [p * (SB_AVSM_NODES + 2), ... + count).
-#include "../common/invocation.glsl"
-#include "../common/slots.h"
+#include "render/common/invocation.glsl"
+#include "render/common/slots.h"
 #include "slots.h"
 #define SB_AVSM_SLOTS (SB_AVSM_NODES + 2)
 layout(local_size_x = 64) in;

@@ -1,9 +1,9 @@
 // avsm: the lookup (params, nodes per texel, the nodes); the resolve pass
-// (compute) reads exact's lists at the EXACT slots (techniques/common/slots.h)
+// (compute) reads exact's lists at the EXACT slots (render/common/slots.h)
 // and writes at 0..3
 // Its own binding names, for its C++ (#include "techniques/avsm/slots.h") and
 // its GLSL (#include "slots.h"); the ranges and the shared names are in
-// techniques/common/slots.h. Plain #defines, read by both languages.
+// render/common/slots.h. Plain #defines, read by both languages.
 #ifndef SB_AVSM_SLOTS_H
 #define SB_AVSM_SLOTS_H
 

@@ -1,10 +1,10 @@
 // avsm's lookup parameters.
-// Declared once for the C++ and the GLSL (techniques/common/uniform_block.h).
+// Declared once for the C++ and the GLSL (render/common/uniform_block.h).
 #ifndef SB_AVSM_UNIFORMS_H
 #define SB_AVSM_UNIFORMS_H
 
 #include "techniques/avsm/slots.h"
-#include "techniques/common/uniform_block.h"
+#include "render/common/uniform_block.h"
 
 // clang-format off
 SB_UNIFORM_BLOCK(AvsmLookupParams, SB_SLOT_AVSM_PARAMS)

@@ -1,5 +1,5 @@
 // --shadow avsm: adaptive volumetric shadow maps.
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 #include "techniques/avsm/avsm.h"
 

@@ -14,7 +14,7 @@
 #define SB_INLINE
 #endif
 
-#include "../common/angles.glsl"
+#include "render/common/angles.glsl"
 
 // The table's axes: phi in [0, pi], |sin theta_o| in [0, 1], sqrt(sigma_a) in [0, xMax];
 // lobes R, TT, TRT and the higher orders. Index ((p * X + x) * S + s) * PHI + phi.

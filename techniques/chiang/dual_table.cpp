@@ -6,7 +6,7 @@
 #include <numbers>
 
 #include "techniques/chiang/dual.h"
-#include "techniques/common/shading_model.h"
+#include "render/shading/shading_model.h"
 
 namespace sb {
 

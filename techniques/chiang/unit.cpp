@@ -1,5 +1,5 @@
 // --shading chiang.
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 #include <algorithm>
 #include <cmath>

@@ -5,10 +5,10 @@
 
 #include "base/errors.h"
 #include "base/options.h"
-#include "techniques/common/shader_library.h"
+#include "render/common/shader_library.h"
 #include "techniques/compute_raster/slots.h"
 #include "techniques/compute_raster/uniforms.h"
-#include "techniques/shading/hair_shading.h"
+#include "render/shading/hair_shading.h"
 
 namespace sb {
 

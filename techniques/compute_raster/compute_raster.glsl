@@ -1,6 +1,6 @@
 // What the compute_raster passes share: the parameters, the tiles' lists and
 // the status words (compute_raster.h says what each holds).
-#include "../common/slots.h"
+#include "render/common/slots.h"
 #include "slots.h"
 #include "uniforms.h"
 

@@ -25,7 +25,7 @@
 // that the hair's coverage stays what all strands gave.
 #pragma once
 
-#include "techniques/common/hair_oit.h"
+#include "render/common/hair_oit.h"
 
 namespace sb {
 

@@ -7,8 +7,8 @@
 // hardware rasterizes the same lines or ribbons). Each covered pixel in front
 // of the opaque depth is appended to its tile's list; a full list counts the
 // fragment as dropped (SB_CRASTER_COUNT: only counts, to size the lists).
-#include "../common/bindings.glsl"
-#include "../common/invocation.glsl"
+#include "render/common/bindings.glsl"
+#include "render/common/invocation.glsl"
 #include "compute_raster.glsl"
 #include "slots.h"
 layout(local_size_x = 64) in;

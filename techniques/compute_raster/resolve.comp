@@ -10,13 +10,13 @@
 //    compensated for the LOD, times the coverage) until what is left to see
 //    drops under the early-termination transmittance.
 #if !defined(SB_CRASTER_BUCKET) && defined(SB_CRASTER_PER_FRAGMENT)
-#include "../common/bindings.glsl"
-#include "../common/shading.glsl"
+#include "render/common/bindings.glsl"
+#include "render/common/shading.glsl"
 #include <shadow>
-#include "../shading/hair_shading.glsl"
+#include "render/shading/hair_shading.glsl"
 #endif
 #include "compute_raster.glsl"
-#include "../common/slots.h"
+#include "render/common/slots.h"
 #include "slots.h"
 layout(local_size_x = SB_CRASTER_TILE, local_size_y = SB_CRASTER_TILE) in;
 #ifdef SB_CRASTER_BUCKET

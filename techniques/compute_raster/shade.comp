@@ -2,11 +2,11 @@
 // shading model through the shadow technique's lookup, with the segment's
 // tangent, as the hardware techniques' vertex shader gives every fragment of
 // it); the resolve interpolates them along the segment.
-#include "../common/bindings.glsl"
-#include "../common/shading.glsl"
+#include "render/common/bindings.glsl"
+#include "render/common/shading.glsl"
 #include <shadow>
-#include "../shading/hair_shading.glsl"
-#include "../common/invocation.glsl"
+#include "render/shading/hair_shading.glsl"
+#include "render/common/invocation.glsl"
 #include "slots.h"
 #include "uniforms.h"
 layout(local_size_x = 64) in;

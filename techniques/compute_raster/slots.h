@@ -1,6 +1,6 @@
 // compute_raster: its own binding names, for its C++ (#include
 // "techniques/compute_raster/slots.h") and its GLSL (#include "slots.h"); the
-// ranges and the shared names (the accumulation, 16) are in techniques/common/slots.h.
+// ranges and the shared names (the accumulation, 16) are in render/common/slots.h.
 #ifndef SB_COMPUTE_RASTER_SLOTS_H
 #define SB_COMPUTE_RASTER_SLOTS_H
 

@@ -1,9 +1,9 @@
 // The parameters of every compute_raster pass, declared once for the C++ and
-// the GLSL (techniques/common/uniform_block.h).
+// the GLSL (render/common/uniform_block.h).
 #ifndef SB_COMPUTE_RASTER_UNIFORMS_H
 #define SB_COMPUTE_RASTER_UNIFORMS_H
 
-#include "techniques/common/uniform_block.h"
+#include "render/common/uniform_block.h"
 #include "techniques/compute_raster/slots.h"
 
 // clang-format off

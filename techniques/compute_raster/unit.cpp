@@ -1,5 +1,5 @@
 // --oit compute_raster: strands rasterized in compute shaders, as engines do.
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 #include "techniques/compute_raster/compute_raster.h"
 

@@ -1,7 +1,7 @@
 #include "techniques/dc/dc.h"
 
 #include "base/options.h"
-#include "techniques/common/shader_library.h"
+#include "render/common/shader_library.h"
 #include "techniques/dc/slots.h"
 #include "techniques/dc/uniforms.h"
 
@@ -49,7 +49,7 @@ void DensityClusteringShadow::setup(Device& dev, const GpuScene& scene, const Re
 
   const ShaderDefines defs = lookup().defines;
   {  // The centres: a full-map triangle (also needed without hair: it clears).
-    const ShaderCode vert = loadShader("techniques/common/composite.vert");
+    const ShaderCode vert = loadShader("render/common/composite.vert");
     for (int first = 1; first >= 0; --first) {
       ShaderDefines md = defs;
       md.defines.push_back({"SB_DC_FIRST", std::to_string(first)});
@@ -63,7 +63,7 @@ void DensityClusteringShadow::setup(Device& dev, const GpuScene& scene, const Re
   if (!scene.hasHair()) return;
 
   const ShaderCode vert = Geometry::strandVertexShader(s);
-  const ShaderCode rangeFrag = loadShader("techniques/common/depth_range.frag", defs);
+  const ShaderCode rangeFrag = loadShader("render/common/depth_range.frag", defs);
   PipelineDesc d = initPass().pipeline(dev, "dc.init", "dc");
   d.vertex = &vert;
   d.topology = Geometry::strandTopology(s);

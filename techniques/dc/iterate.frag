@@ -4,7 +4,7 @@
 // targets are the layers of the three arrays, 4 clusters per layer.
 #include "dc_math.glsl"
 #include "slots.h"
-#include "../common/light_pass_depth.glsl"
+#include "render/common/light_pass_depth.glsl"
 
 layout(binding = SB_SLOT_DC_RANGE) uniform sampler2D dcRange;  // x: nearest, y: -furthest depth
 layout(binding = SB_SLOT_DC_CENTRES) uniform sampler2DArray dcCentres;  // one channel per cluster

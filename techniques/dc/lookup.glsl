@@ -3,7 +3,7 @@
 // times the part of its extent [mean - sqrt(3) sd, mean + sqrt(3) sd] in front
 // (dc_math.glsl); visibility (1 - alpha_s)^n, times the opaque mesh's hard
 // shadow. Textures only, fetched without derivatives.
-#include "../common/opaque_shadow.glsl"
+#include "render/common/opaque_shadow.glsl"
 #include "dc_math.glsl"
 #include "slots.h"
 

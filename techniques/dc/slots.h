@@ -1,7 +1,7 @@
 // dc: the lookup (params, range, counts, sums, squares) and the cluster passes
 // Its own binding names, for its C++ (#include "techniques/dc/slots.h") and
 // its GLSL (#include "slots.h"); the ranges and the shared names are in
-// techniques/common/slots.h. Plain #defines, read by both languages.
+// render/common/slots.h. Plain #defines, read by both languages.
 #ifndef SB_DC_SLOTS_H
 #define SB_DC_SLOTS_H
 

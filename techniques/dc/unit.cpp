@@ -1,5 +1,5 @@
 // --shadow dc: density clustering.
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 #include "techniques/dc/dc.h"
 

@@ -3,9 +3,9 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "techniques/common/opacity.h"
-#include "techniques/common/opacity_filter.h"
-#include "techniques/common/shader_library.h"
+#include "render/common/opacity_filter.h"
+#include "render/common/shader_library.h"
+#include "techniques/dom/layers.h"
 #include "techniques/dom/slots.h"
 #include "techniques/dom/uniforms.h"
 
@@ -70,7 +70,7 @@ void DeepOpacityMaps::setup(Device& dev, const GpuScene& scene, const RenderSett
 
   const ShaderCode vert = Geometry::strandVertexShader(s);
   {
-    const ShaderCode frag = loadShader("techniques/common/depth_only.frag");
+    const ShaderCode frag = loadShader("render/common/depth_only.frag");
     PipelineDesc d = depthPass().pipeline(dev, "dom.depth", "dom");
     d.vertex = &vert;
     d.topology = Geometry::strandTopology(s);

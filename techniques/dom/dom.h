@@ -1,8 +1,8 @@
 #pragma once
 
 #include "base/options.h"
-#include "techniques/common/opaque_shadow.h"
-#include "techniques/common/technique.h"
+#include "render/common/opaque_shadow.h"
+#include "render/common/technique.h"
 
 namespace sb {
 

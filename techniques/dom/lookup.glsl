@@ -2,7 +2,7 @@
 // and the layers from the point's texel, the
 // opacity interpolated within the point's layer (opacity.glsl), visibility
 // (1 - alpha_s)^opacity; 0 behind the opaque mesh.
-#include "../common/opaque_shadow.glsl"
+#include "render/common/opaque_shadow.glsl"
 #include "dom.glsl"
 #include "slots.h"
 
@@ -15,7 +15,7 @@ ivec2 domTexel;
 float domChannel(int j) { return texelFetch(domMaps, ivec3(domTexel, j / 4), 0)[j % 4]; }
 
 #define SB_DOM_LAYER(k) domChannel(k)
-#include "../common/opacity.glsl"
+#include "layers.glsl"
 
 float domZ;  // the point's light depth, less the bias
 
@@ -27,7 +27,7 @@ float domOpacityAt(ivec2 t) {
   return domOpacity(domZ, z0, domLayout.x);
 }
 #define SB_FILTER_OPACITY(t) domOpacityAt(t)
-#include "../common/opacity_filter.glsl"
+#include "render/common/opacity_filter.glsl"
 
 float shadowVisibility(vec3 worldPos) {
   vec3 ndc;

@@ -3,8 +3,8 @@
 // front of it instead, the thesis's Listing 3). Channel 0 of target 0 is unused (0):
 // z0 lives in the depth map only, quantized to the depth bits as it is read.
 #include "dom.glsl"
-#include "../common/opacity.glsl"
-#include "../common/light_space.glsl"
+#include "layers.glsl"
+#include "render/common/light_space.glsl"
 #include "slots.h"
 
 layout(binding = SB_SLOT_DOM_DEPTH) uniform sampler2D domDepth;

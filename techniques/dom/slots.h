@@ -2,7 +2,7 @@
 // the maps (lookup)
 // Its own binding names, for its C++ (#include "techniques/dom/slots.h") and
 // its GLSL (#include "slots.h"); the ranges and the shared names are in
-// techniques/common/slots.h. Plain #defines, read by both languages.
+// render/common/slots.h. Plain #defines, read by both languages.
 #ifndef SB_DOM_SLOTS_H
 #define SB_DOM_SLOTS_H
 

@@ -1,8 +1,8 @@
 // --shadow dom: deep opacity maps.
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
-#include "techniques/common/opacity.h"
-#include "techniques/common/opacity_filter.h"
+#include "render/common/opacity.h"
+#include "render/common/opacity_filter.h"
 #include "techniques/dom/dom.h"
 
 namespace sb {

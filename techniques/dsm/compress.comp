@@ -5,8 +5,8 @@
 // [dsmOffsets[p], dsmOffsets[p] + capacity), capacity = min(2 n, max nodes).
 #include "dsm.glsl"
 #include "dsm_math.glsl"
-#include "../common/invocation.glsl"
-#include "../common/slots.h"
+#include "render/common/invocation.glsl"
+#include "render/common/slots.h"
 #include "slots.h"
 layout(local_size_x = 64) in;
 

@@ -1,9 +1,9 @@
 // dsm's compression parameters (compress.comp, through dsm.glsl).
-// Declared once for the C++ and the GLSL (techniques/common/uniform_block.h).
+// Declared once for the C++ and the GLSL (render/common/uniform_block.h).
 #ifndef SB_DSM_COMPRESS_UNIFORMS_H
 #define SB_DSM_COMPRESS_UNIFORMS_H
 
-#include "techniques/common/uniform_block.h"
+#include "render/common/uniform_block.h"
 #include "techniques/dsm/slots.h"
 
 // clang-format off

@@ -1,7 +1,7 @@
 #include "techniques/dsm/dsm.h"
 
-#include "techniques/common/readback.h"
-#include "techniques/common/shader_library.h"
+#include "render/common/readback.h"
+#include "render/common/shader_library.h"
 #include "techniques/dsm/compress_uniforms.h"
 #include "techniques/dsm/slots.h"
 #include "techniques/dsm/uniforms.h"

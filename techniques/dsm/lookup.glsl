@@ -1,7 +1,7 @@
 // Deep shadow maps lookup: the point's texel curve, searched for the first
 // node at or behind the point's light depth and interpolated from the node in
 // front of it (dsm_math.glsl); 0 behind the opaque mesh.
-#include "../common/opaque_shadow.glsl"
+#include "render/common/opaque_shadow.glsl"
 #include "slots.h"
 #include "dsm_math.glsl"
 

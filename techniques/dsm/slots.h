@@ -1,9 +1,9 @@
 // dsm: the lookup (params, nodes kept per texel, their offsets, the nodes);
 // the compression pass (compute) reads exact's sorted lists at the EXACT slots
-// (techniques/common/slots.h) and writes the nodes at 0..3 (no geometry bound there)
+// (render/common/slots.h) and writes the nodes at 0..3 (no geometry bound there)
 // Its own binding names, for its C++ (#include "techniques/dsm/slots.h") and
 // its GLSL (#include "slots.h"); the ranges and the shared names are in
-// techniques/common/slots.h. Plain #defines, read by both languages.
+// render/common/slots.h. Plain #defines, read by both languages.
 #ifndef SB_DSM_SLOTS_H
 #define SB_DSM_SLOTS_H
 

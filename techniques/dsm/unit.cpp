@@ -1,5 +1,5 @@
 // --shadow dsm: deep shadow maps.
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 #include "techniques/dsm/dsm.h"
 

@@ -1,8 +1,8 @@
 #include "techniques/dual_peel/dual_peel.h"
 
-#include "techniques/common/composite.h"
+#include "render/common/composite.h"
 #include "techniques/dual_peel/slots.h"
-#include "techniques/shading/hair_shading.h"
+#include "render/shading/hair_shading.h"
 
 namespace sb {
 

@@ -17,7 +17,7 @@
 // keeps one of them); --oit peel stays the ground truth.
 #pragma once
 
-#include "techniques/common/hair_oit.h"
+#include "render/common/hair_oit.h"
 
 namespace sb {
 

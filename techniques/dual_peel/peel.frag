@@ -5,9 +5,9 @@
 // outside [nearest, farthest] (peeled before): carry the front forward;
 // inside: (-z, z) for the next pass; at nearest: blend under the front; at
 // farthest: the back layer's (c, a).
-#include "../common/shading.glsl"
+#include "render/common/shading.glsl"
 #include <shadow>
-#include "../shading/hair_shading.glsl"
+#include "render/shading/hair_shading.glsl"
 #include "slots.h"
 
 layout(binding = SB_SLOT_DUAL_OPAQUE_DEPTH) uniform sampler2D dualOpaqueDepth;

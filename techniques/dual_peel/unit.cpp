@@ -1,5 +1,5 @@
 // --oit dual_peel: dual depth peeling.
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 #include "techniques/dual_peel/dual_peel.h"
 

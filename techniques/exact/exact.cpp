@@ -1,8 +1,8 @@
 #include "techniques/exact/exact.h"
 
-#include "techniques/common/peel_uniforms.h"
-#include "techniques/common/readback.h"
-#include "techniques/common/shader_library.h"
+#include "render/common/peel_uniforms.h"
+#include "render/common/readback.h"
+#include "render/common/shader_library.h"
 #include "techniques/exact/uniforms.h"
 
 namespace sb {

@@ -1,5 +1,5 @@
 // Bindings of the exact shadow technique (8..15, the shadow range).
-#include "../common/slots.h"
+#include "render/common/slots.h"
 #include "uniforms.h"
 // Counts: fragments per texel; offsets: their prefix sum; cursor: fill / layers
 // peeled; nodes: sorted keys per texel; state: peeling state.

@@ -1,6 +1,6 @@
 // Light-space A-buffer: every hair fragment appends its key to its texel's list.
-#include "../common/view.glsl"
-#include "../common/fragment_key.glsl"
+#include "render/common/view.glsl"
+#include "render/common/fragment_key.glsl"
 #include "exact.glsl"
 
 void main() {

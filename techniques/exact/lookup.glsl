@@ -2,8 +2,8 @@
 // visibility of a point is (1 - alpha_s)^n, n = the hair fragments in front of
 // it in its light texel, found by binary search in the texel's sorted list;
 // times 0 when the opaque mesh is in front (hard shadow).
-#include "../common/opaque_shadow.glsl"
-#include "../common/slots.h"
+#include "render/common/opaque_shadow.glsl"
+#include "render/common/slots.h"
 
 // Only the blocks the lookup reads (GL counts declared blocks per stage).
 #include "uniforms.h"

@@ -2,9 +2,9 @@
 // average, and any length works). By depth (the exact visibility), or with
 // SB_EXACT_BY_SUBMISSION by primitive id then depth: the order ordered
 // interlock processes fragments in, for a streaming resolve (avsm).
-#include "../common/key_order.glsl"
+#include "render/common/key_order.glsl"
 #include "exact.glsl"
-#include "../common/invocation.glsl"
+#include "render/common/invocation.glsl"
 layout(local_size_x = 64) in;
 #ifdef SB_EXACT_BY_SUBMISSION
 #define SB_EXACT_ORDER(k) (k).yx

@@ -1,10 +1,10 @@
 // exact's parameters (its light passes, through exact.glsl, and its lookup).
-// Declared once for the C++ and the GLSL (techniques/common/uniform_block.h).
+// Declared once for the C++ and the GLSL (render/common/uniform_block.h).
 #ifndef SB_EXACT_UNIFORMS_H
 #define SB_EXACT_UNIFORMS_H
 
-#include "techniques/common/slots.h"
-#include "techniques/common/uniform_block.h"
+#include "render/common/slots.h"
+#include "render/common/uniform_block.h"
 
 // clang-format off
 SB_UNIFORM_BLOCK(ExactShadowParams, SB_SLOT_EXACT_PARAMS)

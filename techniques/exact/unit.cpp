@@ -1,5 +1,5 @@
 // --shadow exact: the shadow reference.
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 #include "techniques/exact/exact.h"
 

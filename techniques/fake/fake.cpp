@@ -2,9 +2,9 @@
 
 #include <cstring>
 
-#include "techniques/common/shader_library.h"
+#include "render/common/shader_library.h"
 #include "techniques/fake/slots.h"
-#include "techniques/shading/hair_shading.h"
+#include "render/shading/hair_shading.h"
 
 namespace sb {
 
@@ -53,7 +53,7 @@ void FakeTransparency::setup(Device& dev, const GpuScene& scene, const RenderSet
 
   // Each subset: opaque hair, shaded as --oit none shades it, depth-tested.
   const ShaderCode vert = Geometry::strandVertexShader(s);
-  const ShaderCode frag = loadShader("techniques/shading/hair.frag", shading.hairDefines());
+  const ShaderCode frag = loadShader("render/shading/hair.frag", shading.hairDefines());
   PipelineDesc d = subsetPass(0).pipeline(dev, "fake.subset", "fake+" + shading.shadow().name());
   d.vertex = &vert;
   d.fragment = &frag;
@@ -71,7 +71,7 @@ void FakeTransparency::setup(Device& dev, const GpuScene& scene, const RenderSet
   }
 
   // The blend: C = hair + (1 - coverage) C_dst; the destination alpha kept.
-  const ShaderCode fullScreen = loadShader("techniques/common/composite.vert");
+  const ShaderCode fullScreen = loadShader("render/common/composite.vert");
   const ShaderCode blend = loadShader("techniques/fake/blend.frag");
   PipelineDesc b = blendPass().pipeline(dev, "fake.blend", "fake");
   b.vertex = &fullScreen;

@@ -2,7 +2,7 @@
 
 #include <array>
 
-#include "techniques/common/technique.h"
+#include "render/common/technique.h"
 
 namespace sb {
 

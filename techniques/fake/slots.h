@@ -1,7 +1,7 @@
 // fake: the three subset images in the blend (a full-screen pass)
 // Its own binding names, for its C++ (#include "techniques/fake/slots.h") and
 // its GLSL (#include "slots.h"); the ranges and the shared names are in
-// techniques/common/slots.h. Plain #defines, read by both languages.
+// render/common/slots.h. Plain #defines, read by both languages.
 #ifndef SB_FAKE_SLOTS_H
 #define SB_FAKE_SLOTS_H
 

@@ -1,5 +1,5 @@
 // --oit fake: fake transparency.
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 #include "techniques/fake/fake.h"
 

@@ -1,7 +1,7 @@
 #include "techniques/fom/fom.h"
 
-#include "techniques/common/opacity.h"
-#include "techniques/common/shader_library.h"
+#include "render/common/opacity.h"
+#include "render/common/shader_library.h"
 #include "techniques/fom/slots.h"
 #include "techniques/fom/uniforms.h"
 

@@ -1,7 +1,7 @@
 // Fourier opacity maps lookup: the optical depth in front of the point from
 // its texel's coefficients, transmittance clamped to [0, 1] (fom_math.glsl);
 // 0 behind the opaque mesh.
-#include "../common/opaque_shadow.glsl"
+#include "render/common/opaque_shadow.glsl"
 #include "slots.h"
 #include "fom.glsl"
 

@@ -1,7 +1,7 @@
 // fom: parameters (passes and lookup), the coefficients (lookup)
 // Its own binding names, for its C++ (#include "techniques/fom/slots.h") and
 // its GLSL (#include "slots.h"); the ranges and the shared names are in
-// techniques/common/slots.h. Plain #defines, read by both languages.
+// render/common/slots.h. Plain #defines, read by both languages.
 #ifndef SB_FOM_SLOTS_H
 #define SB_FOM_SLOTS_H
 

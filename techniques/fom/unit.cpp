@@ -1,5 +1,5 @@
 // --shadow fom: Fourier opacity maps.
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 #include "techniques/fom/fom.h"
 

@@ -1,5 +1,5 @@
 // --shading kajiya-kay.
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 namespace sb {
 namespace {

@@ -1,11 +1,11 @@
 // kbuffer resolve: each pixel's list, in submission order, through the
 // k-buffer of kbuffer_math.glsl (SB_KBUFFER_K entries), into the accumulation.
 #define SB_INOUT(T) inout T
-#include "../common/key_order.glsl"
+#include "render/common/key_order.glsl"
 #include "../abuffer/abuffer.glsl"
 #include "../abuffer/submission_order.glsl"
-#include "../common/invocation.glsl"
-#include "../common/slots.h"
+#include "render/common/invocation.glsl"
+#include "render/common/slots.h"
 #define SB_KBUFFER_MAX SB_KBUFFER_K
 #include "kbuffer_math.glsl"
 layout(local_size_x = 64) in;

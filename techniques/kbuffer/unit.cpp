@@ -1,5 +1,5 @@
 // --oit kbuffer: the k-buffer as TressFX 4 resolves it.
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 #include "techniques/kbuffer/kbuffer.h"
 

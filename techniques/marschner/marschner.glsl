@@ -18,7 +18,7 @@
 #define SB_INLINE
 #endif
 
-#include "../common/angles.glsl"
+#include "render/common/angles.glsl"
 
 #define SB_PI 3.14159265358979f
 

@@ -1,5 +1,5 @@
 // --shading marschner.
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 namespace sb {
 namespace {

@@ -1,9 +1,9 @@
 // mboit pass 2: every visible hair fragment adds (c a T, a T), T the
 // transmittance in front of it reconstructed from the moments of pass 1.
-#include "../common/view.glsl"
-#include "../common/shading.glsl"
+#include "render/common/view.glsl"
+#include "render/common/shading.glsl"
 #include <shadow>
-#include "../shading/hair_shading.glsl"
+#include "render/shading/hair_shading.glsl"
 #include "mboit.glsl"
 #include "mboit_math.glsl"
 #include "slots.h"

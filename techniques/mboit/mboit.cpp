@@ -3,11 +3,11 @@
 #include <cmath>
 
 #include "base/options.h"
-#include "techniques/common/hair_oit.h"
+#include "render/common/hair_oit.h"
 #include "techniques/mboit/mboit_math.h"
 #include "techniques/mboit/slots.h"
 #include "techniques/mboit/uniforms.h"
-#include "techniques/shading/hair_shading.h"
+#include "render/shading/hair_shading.h"
 
 namespace sb {
 

@@ -12,7 +12,7 @@
 // (the bias of the paper's 16-bit row is used), which the report says.
 #pragma once
 
-#include "techniques/common/technique.h"
+#include "render/common/technique.h"
 
 namespace sb {
 

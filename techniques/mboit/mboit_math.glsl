@@ -323,7 +323,7 @@ SB_INLINE float mboitTransmittance(int n, float b0, vec4 low, vec4 high, float z
 // cos and sin as polynomials (Taylor to degree 12/13 after reduction to
 // |r| <= pi/4, error below 1e-8), so that GL and Vulkan generate the moments
 // with the same arithmetic: the drivers lower the builtins differently (as
-// techniques/common/angles.glsl found for acos), and the moment solve
+// render/common/angles.glsl found for acos), and the moment solve
 // amplifies any difference in the moments.
 SB_INLINE vec2 mboitCosSin(float x) {
   SB_PRECISE float q = floor(x * 0.63661977236758134f + 0.5f);  // nearest multiple of pi/2

@@ -1,6 +1,6 @@
 // mboit pass 1: every visible hair fragment adds its absorbance A to b0 and
 // A z^k (power) or A e^(i k phi) (trigonometric) to the moment targets (additive blending; mboit_math.glsl).
-#include "../common/view.glsl"
+#include "render/common/view.glsl"
 #include "mboit.glsl"
 #include "mboit_math.glsl"
 

@@ -2,7 +2,7 @@
 // second hair pass and the accumulation sampled by the resolve
 // Its own binding names, for its C++ (#include "techniques/mboit/slots.h") and
 // its GLSL (#include "slots.h"); the ranges and the shared names are in
-// techniques/common/slots.h. Plain #defines, read by both languages.
+// render/common/slots.h. Plain #defines, read by both languages.
 #ifndef SB_MBOIT_SLOTS_H
 #define SB_MBOIT_SLOTS_H
 

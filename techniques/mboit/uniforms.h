@@ -1,9 +1,9 @@
 // The parameters of both hair passes of mboit.
-// Declared once for the C++ and the GLSL (techniques/common/uniform_block.h).
+// Declared once for the C++ and the GLSL (render/common/uniform_block.h).
 #ifndef SB_MBOIT_UNIFORMS_H
 #define SB_MBOIT_UNIFORMS_H
 
-#include "techniques/common/uniform_block.h"
+#include "render/common/uniform_block.h"
 #include "techniques/mboit/slots.h"
 
 // clang-format off

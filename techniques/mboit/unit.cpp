@@ -1,5 +1,5 @@
 // --oit mboit: moment-based OIT.
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 #include "techniques/mboit/mboit.h"
 

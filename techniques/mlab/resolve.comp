@@ -3,11 +3,11 @@
 // the one the paper's single geometry pass would give; the cost is not.
 // status.resolveCounter counts the fragments merged (the emulated steps).
 #define SB_INOUT(T) inout T
-#include "../common/key_order.glsl"
+#include "render/common/key_order.glsl"
 #include "../abuffer/abuffer.glsl"
 #include "../abuffer/submission_order.glsl"
-#include "../common/invocation.glsl"
-#include "../common/slots.h"
+#include "render/common/invocation.glsl"
+#include "render/common/slots.h"
 #define SB_MLAB_MAX SB_MLAB_LAYERS
 #include "mlab_math.glsl"
 layout(local_size_x = 64) in;

@@ -1,5 +1,5 @@
 // --oit mlab: multi-layer alpha blending.
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 #include "techniques/mlab/mlab.h"
 

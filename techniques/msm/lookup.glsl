@@ -1,7 +1,7 @@
 // Moment shadow maps lookup: the transmittance in front of the point
 // reconstructed from its texel's moments (mboit_math.glsl, the paper's bias
 // and overestimation); 0 behind the opaque mesh, 1 outside the map.
-#include "../common/opaque_shadow.glsl"
+#include "render/common/opaque_shadow.glsl"
 #include "slots.h"
 #include "../mboit/mboit_math.glsl"
 #include "msm.glsl"

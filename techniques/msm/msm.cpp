@@ -1,7 +1,7 @@
 #include "techniques/msm/msm.h"
 
-#include "techniques/common/opacity.h"
-#include "techniques/common/shader_library.h"
+#include "render/common/opacity.h"
+#include "render/common/shader_library.h"
 #include "techniques/mboit/mboit_math.h"
 #include "techniques/msm/slots.h"
 #include "techniques/msm/uniforms.h"

@@ -1,5 +1,5 @@
 // Parameters of moment shadow maps, for the light pass and the lookup.
-#include "../common/light_space.glsl"
+#include "render/common/light_space.glsl"
 #include "slots.h"
 #include "uniforms.h"
 // Both passes compute a point's light depth with msmLightDepth: `precise`,

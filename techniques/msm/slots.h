@@ -1,7 +1,7 @@
 // msm: parameters (light pass and lookup), b0 and the moment targets (lookup)
 // Its own binding names, for its C++ (#include "techniques/msm/slots.h") and
 // its GLSL (#include "slots.h"); the ranges and the shared names are in
-// techniques/common/slots.h. Plain #defines, read by both languages.
+// render/common/slots.h. Plain #defines, read by both languages.
 #ifndef SB_MSM_SLOTS_H
 #define SB_MSM_SLOTS_H
 

@@ -1,5 +1,5 @@
 // --shadow msm: moment shadow maps.
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 #include "techniques/msm/msm.h"
 

@@ -1,5 +1,5 @@
 // --shadow none: no shadows, the light always visible.
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 #include "techniques/none/none.h"
 

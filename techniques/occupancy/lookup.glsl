@@ -3,7 +3,7 @@
 // occupancy bits and slab counts (occupancy_math.glsl); visibility is
 // (1 - alpha_s)^n, times the opaque mesh's hard shadow. Textures only (no
 // storage blocks), fetched without derivatives.
-#include "../common/opaque_shadow.glsl"
+#include "render/common/opaque_shadow.glsl"
 #include "occupancy_math.glsl"
 #include "slots.h"
 

@@ -1,7 +1,7 @@
 #include "techniques/occupancy/occupancy.h"
 
 #include "base/options.h"
-#include "techniques/common/shader_library.h"
+#include "render/common/shader_library.h"
 #include "techniques/occupancy/slots.h"
 #include "techniques/occupancy/uniforms.h"
 

@@ -3,7 +3,7 @@
 // slices per RGBA32UI.
 #include "occupancy_math.glsl"
 #include "slots.h"
-#include "../common/light_pass_depth.glsl"
+#include "render/common/light_pass_depth.glsl"
 
 layout(binding = SB_SLOT_OCC_RANGE) uniform sampler2D occRange;  // x: nearest, y: -furthest depth
 

@@ -1,7 +1,7 @@
 #pragma once
 
-#include "techniques/common/opaque_shadow.h"
-#include "techniques/common/technique.h"
+#include "render/common/opaque_shadow.h"
+#include "render/common/technique.h"
 #include "techniques/occupancy/occupancy_maps.h"
 
 namespace sb {

@@ -44,7 +44,7 @@ void OccupancyMaps::setup(Device& dev, const GpuScene& scene, const RenderSettin
     return d;
   };
 
-  const ShaderCode rangeFrag = loadShader("techniques/common/depth_range.frag", defs);
+  const ShaderCode rangeFrag = loadShader("render/common/depth_range.frag", defs);
   PipelineDesc range = hairDesc(rangePass());
   range.fragment = &rangeFrag;
   range.blend = {BlendState::min()};

@@ -11,7 +11,7 @@
 
 #include <algorithm>
 
-#include "techniques/common/technique.h"
+#include "render/common/technique.h"
 #include "techniques/occupancy/slots.h"
 
 namespace sb {

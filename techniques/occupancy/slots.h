@@ -2,7 +2,7 @@
 // (OccupancyMaps, from the light and, for occupancy_oit, from the eye)
 // Its own binding names, for its C++ (#include "techniques/occupancy/slots.h") and
 // its GLSL (#include "slots.h"); the ranges and the shared names are in
-// techniques/common/slots.h. Plain #defines, read by both languages.
+// render/common/slots.h. Plain #defines, read by both languages.
 #ifndef SB_OCCUPANCY_SLOTS_H
 #define SB_OCCUPANCY_SLOTS_H
 

@@ -1,9 +1,9 @@
 // occupancy's lookup parameters.
-// Declared once for the C++ and the GLSL (techniques/common/uniform_block.h).
+// Declared once for the C++ and the GLSL (render/common/uniform_block.h).
 #ifndef SB_OCCUPANCY_UNIFORMS_H
 #define SB_OCCUPANCY_UNIFORMS_H
 
-#include "techniques/common/uniform_block.h"
+#include "render/common/uniform_block.h"
 #include "techniques/occupancy/slots.h"
 
 // clang-format off

@@ -1,5 +1,5 @@
 // --shadow occupancy: occupancy maps from the light.
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 #include "techniques/occupancy/occupancy.h"
 #include "techniques/occupancy/occupancy_maps.h"

@@ -7,10 +7,10 @@
 //   target 1: log2(1 - a)                             (additive: log2 prod (1 - a_i))
 // with a the fragment's own alpha (the vertex colour's alpha). Its defines are
 // SB_OOIT_*: the occupancy shadow's lookup uses SB_OCC_* with its own values.
-#include "../common/view.glsl"
-#include "../common/shading.glsl"
+#include "render/common/view.glsl"
+#include "render/common/shading.glsl"
 #include <shadow>
-#include "../shading/hair_shading.glsl"
+#include "render/shading/hair_shading.glsl"
 #include "../occupancy/occupancy_math.glsl"  // once, with the occupancy shadow's lookup
 #include "occupancy_oit_math.glsl"
 #include "slots.h"

@@ -3,9 +3,9 @@
 #include <algorithm>
 
 #include "base/options.h"
-#include "techniques/common/shader_library.h"
+#include "render/common/shader_library.h"
 #include "techniques/occupancy_oit/slots.h"
-#include "techniques/shading/hair_shading.h"
+#include "render/shading/hair_shading.h"
 
 namespace sb {
 
@@ -55,7 +55,7 @@ void OccupancyOit::setup(Device& dev, const GpuScene& scene, const RenderSetting
 
   // The resolve: a full-screen triangle, blend One, OneMinusSrcAlpha.
   {
-    const ShaderCode vert = loadShader("techniques/common/composite.vert");
+    const ShaderCode vert = loadShader("render/common/composite.vert");
     const ShaderCode frag = loadShader("techniques/occupancy_oit/resolve.frag", defs);
     PipelineDesc d = resolvePass().pipeline(dev, "occupancy_oit.resolve", "occupancy_oit");
     d.vertex = &vert;

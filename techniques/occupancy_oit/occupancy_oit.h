@@ -1,6 +1,6 @@
 #pragma once
 
-#include "techniques/common/technique.h"
+#include "render/common/technique.h"
 #include "techniques/occupancy/occupancy_maps.h"
 
 namespace sb {

@@ -2,7 +2,7 @@
 // the resolve's inputs (a full-screen pass)
 // Its own binding names, for its C++ (#include "techniques/occupancy_oit/slots.h") and
 // its GLSL (#include "slots.h"); the ranges and the shared names are in
-// techniques/common/slots.h. Plain #defines, read by both languages.
+// render/common/slots.h. Plain #defines, read by both languages.
 #ifndef SB_OCCUPANCY_OIT_SLOTS_H
 #define SB_OCCUPANCY_OIT_SLOTS_H
 

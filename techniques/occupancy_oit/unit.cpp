@@ -1,5 +1,5 @@
 // --oit occupancy: occupancy-ordered blending.
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 #include "techniques/occupancy/occupancy_maps.h"
 #include "techniques/occupancy_oit/occupancy_oit.h"

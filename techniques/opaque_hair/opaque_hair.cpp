@@ -1,7 +1,7 @@
 #include "techniques/opaque_hair/opaque_hair.h"
 
-#include "techniques/common/shader_library.h"
-#include "techniques/shading/hair_shading.h"
+#include "render/common/shader_library.h"
+#include "render/shading/hair_shading.h"
 
 namespace sb {
 
@@ -12,7 +12,7 @@ void OpaqueHair::setup(Device& dev, const GpuScene& scene, const RenderSettings&
   settings_ = s;
   targets_ = targets;
   const ShaderCode vert = Geometry::strandVertexShader(s);
-  const ShaderCode frag = loadShader("techniques/shading/hair.frag", shading.hairDefines());
+  const ShaderCode frag = loadShader("render/shading/hair.frag", shading.hairDefines());
   PipelineDesc d = pass().pipeline(dev, "shading.hair", "kajiya_kay+" + shading.shadow().name());
   d.vertex = &vert;
   d.fragment = &frag;

@@ -1,5 +1,5 @@
 // --oit none: opaque, depth-tested hair.
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 #include "techniques/opaque_hair/opaque_hair.h"
 

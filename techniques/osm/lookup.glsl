@@ -1,7 +1,7 @@
 // Opacity shadow maps lookup: the point's opacity interpolated between the
 // two maps enclosing its light depth (opacity.glsl), visibility
 // (1 - alpha_s)^(opacity / weight); 0 behind the opaque mesh.
-#include "../common/opaque_shadow.glsl"
+#include "render/common/opaque_shadow.glsl"
 #include "osm.glsl"
 #include "slots.h"
 
@@ -19,7 +19,7 @@ float osmStored(int m) {
 }
 
 #define SB_OSM_MAP(i) osmStored((i)-1)
-#include "../common/opacity.glsl"
+#include "slicing.glsl"
 
 float osmZ;  // the point's light depth, less the bias
 
@@ -29,7 +29,7 @@ float osmOpacityAt(ivec2 t) {
   return osmOpacity(osmZ, osmLayout.y);
 }
 #define SB_FILTER_OPACITY(t) osmOpacityAt(t)
-#include "../common/opacity_filter.glsl"
+#include "render/common/opacity_filter.glsl"
 
 float shadowVisibility(vec3 worldPos) {
   vec3 ndc;

@@ -3,7 +3,7 @@
 // of slab [D_(i-1), D_i) added to the previous map, since addition commutes).
 // Fragments outside this pass's atlas tile are discarded.
 #include "osm.glsl"
-#include "../common/light_space.glsl"
+#include "render/common/light_space.glsl"
 #include "slots.h"
 
 #include "pass_uniforms.h"

@@ -3,10 +3,11 @@
 #include <cmath>
 
 #include "base/options.h"
-#include "techniques/common/opacity.h"
-#include "techniques/common/opacity_filter.h"
-#include "techniques/common/shader_library.h"
+#include "render/common/opacity.h"
+#include "render/common/opacity_filter.h"
+#include "render/common/shader_library.h"
 #include "techniques/osm/pass_uniforms.h"
+#include "techniques/osm/slicing.h"
 #include "techniques/osm/slots.h"
 #include "techniques/osm/uniforms.h"
 

@@ -1,8 +1,8 @@
 #pragma once
 
 #include "base/options.h"
-#include "techniques/common/opaque_shadow.h"
-#include "techniques/common/technique.h"
+#include "render/common/opaque_shadow.h"
+#include "render/common/technique.h"
 
 namespace sb {
 
@@ -20,7 +20,7 @@ class OpacityShadowMaps : public LightMapShadow {
  public:
   struct Options {
     uint32_t maps = 16;
-    int slicing = 0;  // kOsmUniform | kOsmDensity | kOsmGamma (opacity.glsl)
+    int slicing = 0;  // kOsmUniform | kOsmDensity | kOsmGamma (slicing.glsl)
     float gamma = 2.0f;
     bool multi = true;
     uint32_t bits = 32;  // 8 (RGBA8 unorm), 16 (RGBA16F), 32 (RGBA32F)

@@ -1,9 +1,9 @@
 // One map pass of osm (map.frag).
-// Declared once for the C++ and the GLSL (techniques/common/uniform_block.h).
+// Declared once for the C++ and the GLSL (render/common/uniform_block.h).
 #ifndef SB_OSM_PASS_UNIFORMS_H
 #define SB_OSM_PASS_UNIFORMS_H
 
-#include "techniques/common/uniform_block.h"
+#include "render/common/uniform_block.h"
 #include "techniques/osm/slots.h"
 
 // clang-format off

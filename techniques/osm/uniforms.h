@@ -1,9 +1,9 @@
 // osm's parameters (its map passes and lookup).
-// Declared once for the C++ and the GLSL (techniques/common/uniform_block.h).
+// Declared once for the C++ and the GLSL (render/common/uniform_block.h).
 #ifndef SB_OSM_UNIFORMS_H
 #define SB_OSM_UNIFORMS_H
 
-#include "techniques/common/uniform_block.h"
+#include "render/common/uniform_block.h"
 #include "techniques/osm/slots.h"
 
 // clang-format off

@@ -1,8 +1,8 @@
 // --shadow osm: opacity shadow maps.
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
-#include "techniques/common/opacity.h"
-#include "techniques/common/opacity_filter.h"
+#include "render/common/opacity.h"
+#include "render/common/opacity_filter.h"
 #include "techniques/osm/osm.h"
 
 namespace sb {

@@ -1,7 +1,7 @@
 #include "techniques/peel/peel.h"
 
-#include "techniques/common/peel_uniforms.h"
-#include "techniques/shading/hair_shading.h"
+#include "render/common/peel_uniforms.h"
+#include "render/shading/hair_shading.h"
 
 namespace sb {
 

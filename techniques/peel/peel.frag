@@ -6,16 +6,16 @@
 layout(early_fragment_tests) in;
 #include <shadow>
 
-#include "../common/fragment_key.glsl"
-#include "../common/shading.glsl"
-#include "../common/slots.h"
-#include "../common/view.glsl"
-#include "../shading/hair_shading.glsl"
+#include "render/common/fragment_key.glsl"
+#include "render/common/shading.glsl"
+#include "render/common/slots.h"
+#include "render/common/view.glsl"
+#include "render/shading/hair_shading.glsl"
 
 layout(std430, binding = SB_SLOT_OIT_ACCUM) buffer Accum { vec4 accum[]; };
 layout(std430, binding = SB_SLOT_PEEL_STATE) buffer PeelState { uvec4 peelState[]; };
 layout(std430, binding = SB_SLOT_PEEL_PEELED) buffer Peeled { uint peeled[]; };
-#include "../common/peel_step.glsl"
+#include "render/common/peel_step.glsl"
 
 layout(location = 0) in vec3 vWorldPos;
 layout(location = 1) in vec3 vTangent;

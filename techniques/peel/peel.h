@@ -1,6 +1,6 @@
 #pragma once
 
-#include "techniques/common/hair_oit.h"
+#include "render/common/hair_oit.h"
 
 namespace sb {
 

@@ -1,5 +1,5 @@
 // --oit peel: the transparency reference.
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 #include "techniques/peel/peel.h"
 

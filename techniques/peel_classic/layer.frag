@@ -3,9 +3,9 @@
 // of the last pass) and in front of the opaque surface writes its shaded,
 // premultiplied colour and its depth; the depth test (Less) keeps the nearest.
 // A fragment at exactly a peeled depth fails the strict test: ties are lost.
-#include "../common/shading.glsl"
+#include "render/common/shading.glsl"
 #include <shadow>
-#include "../shading/hair_shading.glsl"
+#include "render/shading/hair_shading.glsl"
 #include "slots.h"
 
 layout(binding = SB_SLOT_PEELC_PREV_DEPTH) uniform sampler2D peelPrevDepth;

@@ -2,8 +2,8 @@
 
 #include <cstring>
 
-#include "techniques/common/composite.h"
-#include "techniques/shading/hair_shading.h"
+#include "render/common/composite.h"
+#include "render/shading/hair_shading.h"
 #include "techniques/peel_classic/slots.h"
 
 namespace sb {

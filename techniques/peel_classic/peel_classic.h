@@ -13,7 +13,7 @@
 // capped by `layers` (reported).
 #pragma once
 
-#include "techniques/common/hair_oit.h"
+#include "render/common/hair_oit.h"
 
 namespace sb {
 

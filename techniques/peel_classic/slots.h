@@ -2,7 +2,7 @@
 // composite (full-screen passes)
 // Its own binding names, for its C++ (#include "techniques/peel_classic/slots.h") and
 // its GLSL (#include "slots.h"); the ranges and the shared names are in
-// techniques/common/slots.h. Plain #defines, read by both languages.
+// render/common/slots.h. Plain #defines, read by both languages.
 #ifndef SB_PEEL_CLASSIC_SLOTS_H
 #define SB_PEEL_CLASSIC_SLOTS_H
 

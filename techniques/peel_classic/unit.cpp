@@ -1,5 +1,5 @@
 // --oit peel_classic: depth peeling as the papers time it.
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 #include "techniques/peel_classic/peel_classic.h"
 

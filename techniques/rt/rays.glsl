@@ -8,7 +8,7 @@
 // multiplies the ray's transmittance by (1 - shadow_alpha); the visibility is
 // the mean over the rays. The opaque mesh casts its hard shadow through its
 // depth map, as in every technique.
-#include "../common/opaque_shadow.glsl"
+#include "render/common/opaque_shadow.glsl"
 #include "rt_math.glsl"
 #include "slots.h"
 #include "uniforms.h"

@@ -1,7 +1,7 @@
 #include "techniques/rt/rt.h"
 
 #include "base/errors.h"
-#include "techniques/common/readback.h"
+#include "render/common/readback.h"
 #include "techniques/rt/slots.h"
 #include "techniques/rt/uniforms.h"
 

@@ -2,7 +2,7 @@
 // the acceleration structure of the segments' boxes (the ray-query tier)
 // Its own binding names, for its C++ (#include "techniques/rt/slots.h") and
 // its GLSL (#include "slots.h"); the ranges and the shared names are in
-// techniques/common/slots.h. Plain #defines, read by both languages.
+// render/common/slots.h. Plain #defines, read by both languages.
 #ifndef SB_RT_SLOTS_H
 #define SB_RT_SLOTS_H
 

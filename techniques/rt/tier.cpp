@@ -4,8 +4,8 @@
 #include <numeric>
 
 #include "base/errors.h"
-#include "techniques/common/readback.h"
-#include "techniques/common/unit.h"
+#include "render/common/readback.h"
+#include "render/common/unit.h"
 
 namespace sb::rt {
 

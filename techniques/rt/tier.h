@@ -15,7 +15,7 @@
 
 #include "backends/device.h"
 #include "base/options.h"
-#include "techniques/common/technique.h"
+#include "render/common/technique.h"
 #include "techniques/rt/bvh.h"
 
 namespace sb::rt {

@@ -1,9 +1,9 @@
 // rt's parameters (its lookup).
-// Declared once for the C++ and the GLSL (techniques/common/uniform_block.h).
+// Declared once for the C++ and the GLSL (render/common/uniform_block.h).
 #ifndef SB_RT_UNIFORMS_H
 #define SB_RT_UNIFORMS_H
 
-#include "techniques/common/uniform_block.h"
+#include "render/common/uniform_block.h"
 #include "techniques/rt/slots.h"
 
 // clang-format off

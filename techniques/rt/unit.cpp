@@ -1,5 +1,5 @@
 // --shadow rt: ray-traced strand shadows (software and ray-query tiers).
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 #include "techniques/rt/rt.h"
 

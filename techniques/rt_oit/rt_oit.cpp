@@ -2,11 +2,11 @@
 
 #include "base/errors.h"
 #include "base/options.h"
-#include "techniques/common/readback.h"
-#include "techniques/common/shader_library.h"
+#include "render/common/readback.h"
+#include "render/common/shader_library.h"
 #include "techniques/rt_oit/slots.h"
 #include "techniques/rt_oit/uniforms.h"
-#include "techniques/shading/hair_shading.h"
+#include "render/shading/hair_shading.h"
 
 namespace sb {
 

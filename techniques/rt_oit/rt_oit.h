@@ -17,7 +17,7 @@
 // reference sees what the rasterizer covers (docs/transparency-techniques.md).
 #pragma once
 
-#include "techniques/common/hair_oit.h"
+#include "render/common/hair_oit.h"
 #include "techniques/rt/tier.h"
 
 namespace sb {

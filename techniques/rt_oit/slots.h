@@ -1,6 +1,6 @@
 // rt (transparency): its own binding names, for its C++ (#include
 // "techniques/rt_oit/slots.h") and its GLSL (#include "slots.h"); the ranges
-// and the shared names (the accumulation, 16) are in techniques/common/slots.h.
+// and the shared names (the accumulation, 16) are in render/common/slots.h.
 #ifndef SB_RT_OIT_SLOTS_H
 #define SB_RT_OIT_SLOTS_H
 

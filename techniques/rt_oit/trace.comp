@@ -16,11 +16,11 @@
 #ifdef SB_RT_OIT_RAY_QUERY
 #extension GL_EXT_ray_query : require
 #endif
-#include "../common/bindings.glsl"
-#include "../common/shading.glsl"
+#include "render/common/bindings.glsl"
+#include "render/common/shading.glsl"
 #include <shadow>
-#include "../shading/hair_shading.glsl"
-#include "../common/slots.h"
+#include "render/shading/hair_shading.glsl"
+#include "render/common/slots.h"
 #include "../rt/rt_math.glsl"
 #include "slots.h"
 #include "uniforms.h"

@@ -1,9 +1,9 @@
 // rt (transparency)'s parameters, declared once for the C++ and the GLSL
-// (techniques/common/uniform_block.h).
+// (render/common/uniform_block.h).
 #ifndef SB_RT_OIT_UNIFORMS_H
 #define SB_RT_OIT_UNIFORMS_H
 
-#include "techniques/common/uniform_block.h"
+#include "render/common/uniform_block.h"
 #include "techniques/rt_oit/slots.h"
 
 // clang-format off

@@ -1,5 +1,5 @@
 // --oit rt: ray-traced transparency (software and ray-query tiers).
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 #include "techniques/rt_oit/rt_oit.h"
 

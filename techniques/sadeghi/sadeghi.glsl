@@ -11,7 +11,7 @@
 #define SB_INLINE
 #endif
 
-#include "../common/angles.glsl"
+#include "render/common/angles.glsl"
 
 // Unit-height Gaussian: exp(-x^2 / (2 w^2)).
 SB_INLINE float sadeghiGauss(float w, float x) { return exp(-x * x / (2.0f * w * w)); }

@@ -1,6 +1,6 @@
 // Williams (1978) hard shadows: a point is lit when its light-space depth is
 // not behind the nearest surface the light sees, up to a constant bias.
-#include "../common/light_space.glsl"
+#include "render/common/light_space.glsl"
 #include "slots.h"
 
 layout(binding = SB_SLOT_SHADOWMAP_DEPTH) uniform sampler2D shadowDepth;

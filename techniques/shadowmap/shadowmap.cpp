@@ -1,6 +1,6 @@
 #include "techniques/shadowmap/shadowmap.h"
 
-#include "techniques/common/shader_library.h"
+#include "render/common/shader_library.h"
 #include "techniques/shadowmap/slots.h"
 #include "techniques/shadowmap/uniforms.h"
 
@@ -19,7 +19,7 @@ void ShadowMap::setup(Device& dev, const GpuScene& scene, const RenderSettings& 
   const ShadowMapParams p{view.viewProj, glm::vec4(bias_, 0, 0, 0)};
   paramsUbo_ = dev.createBuffer({"shadowmap.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
 
-  const ShaderCode frag = loadShader("techniques/common/depth_only.frag");
+  const ShaderCode frag = loadShader("render/common/depth_only.frag");
   PipelineDesc d = pass().pipeline(dev, "shadowmap.depth", "shadowmap");
   d.fragment = &frag;
   d.depthCompare = CompareOp::Less;

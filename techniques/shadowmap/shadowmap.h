@@ -1,6 +1,6 @@
 #pragma once
 
-#include "techniques/common/technique.h"
+#include "render/common/technique.h"
 
 namespace sb {
 

@@ -1,7 +1,7 @@
 // shadowmap: the lookup (the depth map, its parameters)
 // Its own binding names, for its C++ (#include "techniques/shadowmap/slots.h") and
 // its GLSL (#include "slots.h"); the ranges and the shared names are in
-// techniques/common/slots.h. Plain #defines, read by both languages.
+// render/common/slots.h. Plain #defines, read by both languages.
 #ifndef SB_SHADOWMAP_SLOTS_H
 #define SB_SHADOWMAP_SLOTS_H
 

@@ -1,5 +1,5 @@
 // --shadow shadowmap: the hard shadow map.
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 #include "techniques/shadowmap/shadowmap.h"
 

@@ -4,11 +4,11 @@
 // depth order by the resolve; every other fragment adds (c a, a) to the tail
 // target, the weighted average of TressFX's ShortCut.
 layout(early_fragment_tests) in;
-#include "../common/view.glsl"
-#include "../common/shading.glsl"
+#include "render/common/view.glsl"
+#include "render/common/shading.glsl"
 #include <shadow>
-#include "../shading/hair_shading.glsl"
-#include "../common/fragment_key.glsl"
+#include "render/shading/hair_shading.glsl"
+#include "render/common/fragment_key.glsl"
 #include "shortcut.glsl"
 
 layout(location = 0) in vec3 vWorldPos;

@@ -6,8 +6,8 @@
 // Storage writes are side effects: early tests keep hair behind the opaque
 // depth out of them.
 layout(early_fragment_tests) in;
-#include "../common/view.glsl"
-#include "../common/fragment_key.glsl"
+#include "render/common/view.glsl"
+#include "render/common/fragment_key.glsl"
 #include "shortcut.glsl"
 
 layout(location = 0) in vec3 vWorldPos;

@@ -2,8 +2,8 @@
 // tail's weighted average behind them with the tail's own coverage (the
 // product of (1 - alpha) of all fragments over that of the nearest ones);
 // writes (hair, T) with blending One, SrcAlpha over the opaque colour.
-#include "../common/view.glsl"
-#include "../common/fragment_key.glsl"
+#include "render/common/view.glsl"
+#include "render/common/fragment_key.glsl"
 #include "shortcut.glsl"
 #include "shortcut_math.glsl"
 #include "slots.h"

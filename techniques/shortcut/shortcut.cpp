@@ -1,7 +1,7 @@
 #include "techniques/shortcut/shortcut.h"
 
-#include "techniques/common/hair_oit.h"
-#include "techniques/shading/hair_shading.h"
+#include "render/common/hair_oit.h"
+#include "render/shading/hair_shading.h"
 #include "techniques/shortcut/slots.h"
 
 namespace sb {

@@ -10,7 +10,7 @@
 // revealage.
 #pragma once
 
-#include "techniques/common/technique.h"
+#include "render/common/technique.h"
 
 namespace sb {
 

@@ -1,7 +1,7 @@
 // shortcut: the k nearest depths, their colours and claims, the tail targets
 // Its own binding names, for its C++ (#include "techniques/shortcut/slots.h") and
 // its GLSL (#include "slots.h"); the ranges and the shared names are in
-// techniques/common/slots.h. Plain #defines, read by both languages.
+// render/common/slots.h. Plain #defines, read by both languages.
 #ifndef SB_SHORTCUT_SLOTS_H
 #define SB_SHORTCUT_SLOTS_H
 

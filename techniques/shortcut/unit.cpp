@@ -1,5 +1,5 @@
 // --oit shortcut: TressFX ShortCut.
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 #include "techniques/shortcut/shortcut.h"
 

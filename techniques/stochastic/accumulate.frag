@@ -3,11 +3,11 @@
 // depth (its own covered samples hold its depth: <= passes), its estimated
 // visibility prod(1 - a_j) (additive blending into one RGBA32F target).
 layout(early_fragment_tests) in;
-#include "../common/view.glsl"
-#include "../common/shading.glsl"
+#include "render/common/view.glsl"
+#include "render/common/shading.glsl"
 #include <shadow>
-#include "../shading/hair_shading.glsl"
-#include "../common/fragment_key.glsl"
+#include "render/shading/hair_shading.glsl"
+#include "render/common/fragment_key.glsl"
 #include "stochastic_pass.glsl"
 
 layout(location = 0) in vec3 vWorldPos;

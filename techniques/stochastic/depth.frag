@@ -4,8 +4,8 @@
 // the nearest depth (atomicMin). Storage writes are side effects: early tests
 // keep hair behind the opaque depth out of them.
 layout(early_fragment_tests) in;
-#include "../common/view.glsl"
-#include "../common/fragment_key.glsl"
+#include "render/common/view.glsl"
+#include "render/common/fragment_key.glsl"
 #include "stochastic_pass.glsl"
 #include "stochastic_math.glsl"
 

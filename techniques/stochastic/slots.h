@@ -2,7 +2,7 @@
 // shadow lookup), the resolve's inputs (a full-screen pass)
 // Its own binding names, for its C++ (#include "techniques/stochastic/slots.h") and
 // its GLSL (#include "slots.h"); the ranges and the shared names are in
-// techniques/common/slots.h. Plain #defines, read by both languages.
+// render/common/slots.h. Plain #defines, read by both languages.
 #ifndef SB_STOCHASTIC_SLOTS_H
 #define SB_STOCHASTIC_SLOTS_H
 

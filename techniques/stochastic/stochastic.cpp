@@ -1,8 +1,8 @@
 #include "techniques/stochastic/stochastic.h"
 
 #include "base/options.h"
-#include "techniques/common/composite.h"
-#include "techniques/shading/hair_shading.h"
+#include "render/common/composite.h"
+#include "render/shading/hair_shading.h"
 #include "techniques/stochastic/slots.h"
 #include "techniques/stochastic/uniforms.h"
 

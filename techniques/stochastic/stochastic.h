@@ -18,7 +18,7 @@
 // APIs. Memory: 4 S bytes per pixel + the accumulation (16) and alpha (4).
 #pragma once
 
-#include "techniques/common/technique.h"
+#include "render/common/technique.h"
 
 namespace sb {
 

@@ -1,9 +1,9 @@
 // stochastic's pass parameters.
-// Declared once for the C++ and the GLSL (techniques/common/uniform_block.h).
+// Declared once for the C++ and the GLSL (render/common/uniform_block.h).
 #ifndef SB_STOCHASTIC_UNIFORMS_H
 #define SB_STOCHASTIC_UNIFORMS_H
 
-#include "techniques/common/uniform_block.h"
+#include "render/common/uniform_block.h"
 #include "techniques/stochastic/slots.h"
 
 // clang-format off

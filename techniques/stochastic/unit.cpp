@@ -1,5 +1,5 @@
 // --oit stochastic: stochastic transparency.
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 #include "techniques/stochastic/stochastic.h"
 

@@ -1,7 +1,7 @@
 // Voxelized hair density lookup: the hair count marched from the point
 // towards the light through the grid (voxel_math.glsl), normalised to
 // fragments per map texel; 0 behind the opaque mesh.
-#include "../common/opaque_shadow.glsl"
+#include "render/common/opaque_shadow.glsl"
 #include "voxel.glsl"
 int voxelColumns;
 #define SB_VOXEL_COUNT(x, y, s) float(voxelCounts[((s)*voxelColumns + (y)) * voxelColumns + (x)])

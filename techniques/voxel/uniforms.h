@@ -1,9 +1,9 @@
 // voxel's parameters (its pass and lookup).
-// Declared once for the C++ and the GLSL (techniques/common/uniform_block.h).
+// Declared once for the C++ and the GLSL (render/common/uniform_block.h).
 #ifndef SB_VOXEL_UNIFORMS_H
 #define SB_VOXEL_UNIFORMS_H
 
-#include "techniques/common/uniform_block.h"
+#include "render/common/uniform_block.h"
 #include "techniques/voxel/slots.h"
 
 // clang-format off

@@ -1,5 +1,5 @@
 // --shadow voxel: voxelized hair density.
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 #include "techniques/voxel/voxel.h"
 

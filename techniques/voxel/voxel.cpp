@@ -2,8 +2,8 @@
 
 #include <cstring>
 
-#include "techniques/common/opacity.h"
-#include "techniques/common/shader_library.h"
+#include "render/common/opacity.h"
+#include "render/common/shader_library.h"
 #include "techniques/voxel/slots.h"
 #include "techniques/voxel/uniforms.h"
 

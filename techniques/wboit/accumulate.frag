@@ -2,10 +2,10 @@
 // (c a w, a w) (additive), target 1 (R32F revealage, cleared to 1) multiplies by
 // (1 - a) (blend Zero, OneMinusSrcColor). z for the weight is the view-space
 // depth: the interpolated world position projected on the camera's forward axis.
-#include "../common/view.glsl"
-#include "../common/shading.glsl"
+#include "render/common/view.glsl"
+#include "render/common/shading.glsl"
 #include <shadow>
-#include "../shading/hair_shading.glsl"
+#include "render/shading/hair_shading.glsl"
 #include "wboit_math.glsl"
 
 layout(location = 0) in vec3 vWorldPos;

@@ -1,5 +1,5 @@
 // --oit wboit: weighted blended OIT.
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 #include "techniques/wboit/wboit.h"
 

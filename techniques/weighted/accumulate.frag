@@ -1,9 +1,9 @@
 // Weighted sum / weighted average accumulation (Bavoil & Myers 2008): every
 // visible hair fragment adds (a c, a) to target 0 (additive blending, RGBA32F);
 // SB_WEIGHTED_COUNT also adds 1 to target 1 (R32F), the fragment count n.
-#include "../common/shading.glsl"
+#include "render/common/shading.glsl"
 #include <shadow>
-#include "../shading/hair_shading.glsl"
+#include "render/shading/hair_shading.glsl"
 
 layout(location = 0) in vec3 vWorldPos;
 layout(location = 1) in vec3 vTangent;

@@ -1,8 +1,8 @@
 // weighted: the resolve samples target i at SB_SLOT_BLENDED_TARGETS + i
-// (techniques/common/slots.h)
+// (render/common/slots.h)
 // Its own binding names, for its C++ (#include "techniques/weighted/slots.h") and
 // its GLSL (#include "slots.h"); the ranges and the shared names are in
-// techniques/common/slots.h. Plain #defines, read by both languages.
+// render/common/slots.h. Plain #defines, read by both languages.
 #ifndef SB_WEIGHTED_SLOTS_H
 #define SB_WEIGHTED_SLOTS_H
 

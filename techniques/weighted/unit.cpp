@@ -1,5 +1,5 @@
 // --oit wsum and --oit wavg: one class, two weightings.
-#include "techniques/common/unit.h"
+#include "render/common/unit.h"
 
 #include "techniques/weighted/weighted.h"
 

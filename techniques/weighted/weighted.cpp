@@ -1,6 +1,6 @@
 #include "techniques/weighted/weighted.h"
 
-#include "techniques/shading/hair_shading.h"
+#include "render/shading/hair_shading.h"
 
 namespace sb {
 
@@ -49,7 +49,7 @@ void BlendedOitBase::setup(Device& dev, const GpuScene& scene, const RenderSetti
 
   // Resolve: (hair, T) over the opaque colour, C = hair + T * C_dst; the
   // destination alpha is kept.
-  const ShaderCode fullScreen = loadShader("techniques/common/composite.vert");
+  const ShaderCode fullScreen = loadShader("render/common/composite.vert");
   const ShaderCode resolve = loadShader(cfg.resolveShader, cfg.defines);
   // Over the (multisampled) opaque colour, then averaged into the frame.
   PipelineDesc r = resolvePass().pipeline(dev, name() + ".resolve", name());

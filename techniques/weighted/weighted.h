@@ -11,8 +11,8 @@
 
 #include <array>
 
-#include "techniques/common/shader_library.h"
-#include "techniques/common/technique.h"
+#include "render/common/shader_library.h"
+#include "render/common/technique.h"
 
 namespace sb {
 

@@ -2,7 +2,7 @@
 // vec2 to 4, std140 to 8), and SB_UNIFORM_BLOCK_END's static_assert says so.
 // Compiled by the UniformBlockStd140CheckFails test (CMakeLists.txt), which
 // expects the assert's message; with -DSB_GOOD it compiles (the control).
-#include "techniques/common/uniform_block.h"
+#include "render/common/uniform_block.h"
 
 // clang-format off
 SB_UNIFORM_BLOCK(BadBlock, 0)
