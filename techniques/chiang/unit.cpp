@@ -33,8 +33,9 @@ SB_TECHNIQUE(
                              "ambient term, a fraction of the hair colour (the tracer has none), "
                              "0..1"),
                  opt::choice("opacity", "scene", {"scene", "fibre"},
-                             "the strands' shadow alpha: the scene's shadow_alpha, or the light "
-                             "this fibre stops (1 - its mean forward transmittance A_1)")},
+                             "the strands' shadow alpha and alpha: the scene's, or the light this "
+                             "fibre stops (1 - its mean forward transmittance A_1), the colour "
+                             "then what it reflects over that (rung 2's composite)")},
      .makeShading = [](const OptionReader& o) {
        const auto f = [&](const char* name) { return static_cast<float>(o.number(name)); };
        pbr::HairParams hp;
@@ -57,15 +58,19 @@ SB_TECHNIQUE(
        m.intensity = {std::sin(4 * a), std::cos(4 * a), inverse, chiangXMax(hp.betaN)};
        // The colour invariant's bound: pi times each lobe's largest M_p and table entry.
        const std::vector<float>& table = chiangLobeTable(m.betaN, m.eta);
-       const std::size_t lobe = table.size() / SB_CHIANG_LOBES;
+       const std::size_t lobe = std::size_t(SB_CHIANG_X) * SB_CHIANG_SIN * SB_CHIANG_PHI;
        double bound = 0;
        for (int p = 0; p < SB_CHIANG_LOBES; ++p)
          bound += mpBound(m.shift[p]) *
                   *std::max_element(table.begin() + p * lobe, table.begin() + (p + 1) * lobe);
        m.specularBound = static_cast<float>(std::numbers::pi * bound);
-       if (o.choice("opacity") == "fibre")
+       if (o.choice("opacity") == "fibre") {
+         // A fragment's colour is divided by its opacity (chiangOpacity): most for the
+         // clearest fibre.
+         m.specularBound /= chiangShadowAlpha(glm::vec3(1.0f), m.betaN, m.eta);
          m.fibreShadowAlpha = [betaN = m.betaN, eta = m.eta](glm::vec3 c) {
            return chiangShadowAlpha(c, betaN, eta);
          };
+       }
        return m;
      }});
