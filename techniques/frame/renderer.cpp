@@ -309,7 +309,10 @@ void Renderer::upload(const Scene& scene) {
   glm::vec3 lastColor(0.0f);
   float lastAlpha = 1.0f;
   for (std::size_t i = 0; i < st.points.size(); ++i) {
-    const float thickness = i < st.thickness.size() ? st.thickness[i] : 0.0f;
+    // World strands whose file gives no width: 0, the view's fallback (the path reference's
+    // width for them too), not the loader's stand-in.
+    const bool own = !st.thicknessFallback || settings_.primitive != Primitive::World;
+    const float thickness = i < st.thickness.size() && own ? st.thickness[i] : 0.0f;
     const float transparency = i < st.transparency.size() ? st.transparency[i] : 0.0f;
     const glm::vec3 c = i < st.colors.size() ? st.colors[i] : scene.hairColor;
     points[i] = glm::vec4(st.points[i], thickness);
