@@ -182,7 +182,7 @@ TEST(PbrReference, ChiangShadingOnBothApisMatchesItsCpuForm) {
   }
 }
 
-// Acceptance item 2 of issue 45 (docs/physics-reference.md "Rung 2 agreement"): on a real groom
+// Rung 2 agreement (docs/physics-reference.md "Rung 2 agreement"): on a real groom
 // with exact visibility, the raster Chiang fibre on world-width strands with the fibre's own
 // opacity (chiang:opacity=fibre: alpha and shadow alpha 1 - its mean transmittance, the colour
 // what it reflects over that) and rung 2 agree: image means within 5%, the RMSE with the
