@@ -6,7 +6,7 @@
 # 95% interval (Student's t). Then once more against rung 3 (pbr:mode=path, PATH_SPP samples,
 # default 256, the same fibre with multiple scattering). SHADINGS: the shading specs, one row
 # set each (default "chiang:opacity=fibre"; the dual-scattering rows are added by naming their
-# spec here, e.g. SHADINGS="chiang:opacity=fibre chiang:opacity=fibre,dual=on"). Writes
+# spec here, SHADINGS="chiang:opacity=fibre chiang:opacity=fibre,scattering=dual"). Writes
 # docs/physics-measured.md (or the file given): per light placement, shading and shadow
 # technique the rung-1 error (against the rasterized exact reference), the rung-2 error (raw,
 # reference noise removed, at the best exposure scale), the rung-3 error, the order of

@@ -24,6 +24,8 @@
 #define SB_CHIANG_SIN 32
 #define SB_CHIANG_X 32
 #define SB_CHIANG_LOBES 4
+// Where chiangOpacity's row starts in chiang's own table (dual scattering's has it elsewhere).
+#define SB_CHIANG_OPACITY (SB_CHIANG_LOBES * SB_CHIANG_X * SB_CHIANG_SIN * SB_CHIANG_PHI)
 
 // The table: chiangTable[], a storage buffer the includer declares (shading/hair_shading.glsl),
 // a pointer on the CPU (chiang.h).
@@ -80,9 +82,8 @@ SB_INLINE float chiangLobe(int p, float phi, float sinO, float x, float xMax) {
 // CPU's, from which chiang:opacity=fibre scales the strands' alpha). A fragment of such a fibre
 // lets the rest through, so its colour is what the fibre reflects divided by this: the
 // composite then adds the reflected light once and attenuates what lies behind as the
-// tracer's camera rays are (rung 2).
-SB_INLINE float chiangOpacity(vec3 x, float xMax) {
-  const int base = SB_CHIANG_LOBES * SB_CHIANG_X * SB_CHIANG_SIN * SB_CHIANG_PHI;
+// tracer's camera rays are (rung 2). base: where the row starts in the table bound.
+SB_INLINE float chiangOpacity(vec3 x, float xMax, int base) {
   vec3 t = vec3(0.0f);
   for (int c = 0; c < 3; ++c) {
     float fx = clamp(x[c] / xMax, 0.0f, 1.0f) * float(SB_CHIANG_X - 1);

@@ -66,7 +66,7 @@ std::vector<float> build(float betaN, float eta) {
   // chiangOpacity's row: the tracer's own mean transmittance, one definition for both.
   for (int ix = 0; ix < SB_CHIANG_X; ++ix) {
     const double x = xMax * ix / (SB_CHIANG_X - 1);
-    sum[at(SB_CHIANG_LOBES, 0, 0, 0) + std::size_t(ix)] =
+    sum[SB_CHIANG_OPACITY + std::size_t(ix)] =
         pbr::meanFibreTransmittance(glm::vec3(float(x * x)), eta, 0.0f).x;
   }
   return std::vector<float>(sum.begin(), sum.end());

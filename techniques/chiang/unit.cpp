@@ -7,12 +7,34 @@
 
 #include "pbr/hair_bsdf.h"
 #include "techniques/chiang/chiang.h"
+#include "techniques/chiang/dual.h"
 
 namespace {
 
 // M_p's largest value for variance v: I0(a) e^-b <= e^(a - b) <= e^(1/v), times the
 // normalisation csch(1/v) / (2v).
 double mpBound(double v) { return 1.0 / (v * -std::expm1(-2.0 / v)); }
+
+// What dual scattering adds to the colour invariant's bound (dual.glsl): the direct light's
+// back-scatter d_b A_b M_b and, with T_f - visibility <= d_f, the forward-scattered light's
+// d_f^2 (pi sum of M_p N^G_p + pi d_b A_b M_b); each M at its narrowest variance.
+double dualBound(const sb::ShadingModel& m) {
+  const std::vector<float>& t = sb::dualTable(m);
+  double ab = 0, vb = SB_DUAL_MAX_VARIANCE;
+  for (int i = 0; i < SB_CHIANG_X * SB_CHIANG_SIN; ++i) {
+    ab = std::max(ab, double(t[SB_DUAL_PARAMS + i * SB_DUAL_FIELDS + 2]));
+    vb = std::min(vb, double(t[SB_DUAL_PARAMS + i * SB_DUAL_FIELDS + 5]));
+  }
+  const double back = ab * mpBound(std::max(vb, 1e-4));
+  const std::size_t lobe = SB_DUAL_LOBES / SB_CHIANG_LOBES;
+  double global = 0;
+  for (int p = 0; p < SB_CHIANG_LOBES; ++p) {
+    const auto first = t.begin() + SB_DUAL_LOBES + p * lobe;
+    global += mpBound(m.shift[p]) * *std::max_element(first, first + lobe);
+  }
+  const double pi = std::numbers::pi;
+  return m.densityB * back + m.densityF * m.densityF * (pi * global + pi * m.densityB * back);
+}
 
 }  // namespace
 
@@ -24,18 +46,23 @@ SB_TECHNIQUE(
      .help = "Chiang et al. 2016: the path-traced reference's fibre (pbr/hair_bsdf.h, absorption "
              "from the strand colour as it derives it), longitudinal lobes evaluated, azimuthal "
              "lobes averaged over the fibre's width in a table; no diffuse term",
-     .options = {opt::number("beta_m", "0.3", 0.01, 1, "longitudinal roughness, 0.01..1"),
-                 opt::number("beta_n", "0.3", 0.01, 1, "azimuthal roughness, 0.01..1"),
-                 opt::number("alpha", "2", -45, 45,
-                             "tilt of the cuticle scales in degrees, -45..45"),
-                 opt::number("eta", "1.55", 1.01, 3, "index of refraction of the fibre, 1.01..3"),
-                 opt::number("ambient", "0", 0, 1,
-                             "ambient term, a fraction of the hair colour (the tracer has none), "
-                             "0..1"),
-                 opt::choice("opacity", "scene", {"scene", "fibre"},
-                             "the strands' shadow alpha and alpha: the scene's, or the light this "
-                             "fibre stops (1 - its mean forward transmittance A_1), the colour "
-                             "then what it reflects over that (rung 2's composite)")},
+     .options =
+         {opt::number("beta_m", "0.3", 0.01, 1, "longitudinal roughness, 0.01..1"),
+          opt::number("beta_n", "0.3", 0.01, 1, "azimuthal roughness, 0.01..1"),
+          opt::number("alpha", "2", -45, 45, "tilt of the cuticle scales in degrees, -45..45"),
+          opt::number("eta", "1.55", 1.01, 3, "index of refraction of the fibre, 1.01..3"),
+          opt::number("ambient", "0", 0, 1,
+                      "ambient term, a fraction of the hair colour (the tracer has none), "
+                      "0..1"),
+          opt::choice("opacity", "scene", {"scene", "fibre"},
+                      "the strands' shadow alpha: the scene's shadow_alpha, or the light "
+                      "this fibre stops (1 - its mean forward transmittance A_1)"),
+          opt::choice("scattering", "single", {"single", "dual"},
+                      "single scattering, or Zinke et al. 2008's dual scattering "
+                      "approximation of multiple scattering, fed by the shadow "
+                      "technique's visibility (techniques/chiang/dual.glsl)"),
+          opt::number("d_f", "0.7", 0, 1, "dual scattering's forward density factor d_f, 0..1"),
+          opt::number("d_b", "0.7", 0, 1, "dual scattering's backward density factor d_b, 0..1")},
      .makeShading = [](const OptionReader& o) {
        const auto f = [&](const char* name) { return static_cast<float>(o.number(name)); };
        pbr::HairParams hp;
@@ -64,6 +91,12 @@ SB_TECHNIQUE(
          bound += mpBound(m.shift[p]) *
                   *std::max_element(table.begin() + p * lobe, table.begin() + (p + 1) * lobe);
        m.specularBound = static_cast<float>(std::numbers::pi * bound);
+       if (o.choice("scattering") == "dual") {
+         m.dualScattering = true;
+         m.densityF = f("d_f");
+         m.densityB = f("d_b");
+         m.specularBound += dualBound(m);
+       }
        if (o.choice("opacity") == "fibre") {
          // A fragment's colour is divided by its opacity (chiangOpacity): most for the
          // clearest fibre.

@@ -41,6 +41,10 @@ struct ShadingModel {
   // Set by a model whose fibre defines how much light a strand stops (chiang:opacity=fibre):
   // the shadow alpha of hair of this mean colour; empty: the scene's shadow_alpha.
   std::function<float(glm::vec3)> fibreShadowAlpha;
+  // chiang:scattering=dual (techniques/chiang/dual.glsl): multiple scattering by Zinke et al.
+  // 2008's dual scattering, with its forward and backward density factors d_f, d_b.
+  bool dualScattering = false;
+  float densityF = 0.7f, densityB = 0.7f;
 
   // From the registry (techniques/common/unit.h): throws InputError naming the model and the
   // option (unknown name or option, out of range).

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "techniques/chiang/chiang.h"
+#include "techniques/chiang/dual.h"
 #include "techniques/common/shader_library.h"
 #include "techniques/kajiya_kay/kajiya_kay.h"
 #include "techniques/marschner/marschner.h"
@@ -69,7 +70,10 @@ void HairShading::setup(Device& dev, const GpuScene& scene, const RenderSettings
   u.lobeIntensity = s.shading.intensity;
   shadingUbo_ = dev.createBuffer({"shading.params", "frame", BufferUsage::Uniform, sizeof u}, &u);
   if (s.shading.kind == ShadingKind::Chiang) {
-    const std::vector<float>& table = chiangLobeTable(s.shading.betaN, s.shading.eta);
+    // Dual scattering reads chiang's table with its own appended (techniques/chiang/dual.glsl).
+    const std::vector<float>& table = s.shading.dualScattering
+                                          ? dualTable(s.shading)
+                                          : chiangLobeTable(s.shading.betaN, s.shading.eta);
     lobeTable_ = dev.createBuffer(
         {"shading.lobe_table", "frame", BufferUsage::Storage, table.size() * sizeof(float)},
         table.data());
@@ -94,6 +98,7 @@ ShaderDefines HairShading::hairDefines() const {
       {"SB_SHADING_MODEL", std::to_string(static_cast<int>(settings_.shading.kind))});
   if (settings_.shading.kind == ShadingKind::Chiang && settings_.shading.fibreShadowAlpha)
     defs.defines.push_back({"SB_FIBRE_OPACITY", "1"});
+  if (settings_.shading.dualScattering) defs.defines.push_back({"SB_DUAL_SCATTERING", "1"});
   return defs;
 }
 

@@ -15,6 +15,9 @@ layout(std430, binding = SB_SLOT_SHADING_TABLE) readonly buffer ShadingTable {
   float chiangTable[];  // the model's h-averaged lobes (techniques/chiang/chiang_table.cpp)
 };
 #include "../chiang/chiang.glsl"
+#ifdef SB_DUAL_SCATTERING
+#include "../chiang/dual.glsl"
+#endif
 #endif
 
 vec3 shadeHair(vec3 worldPos, vec3 tangent, vec3 color) {
@@ -25,13 +28,22 @@ vec3 shadeHair(vec3 worldPos, vec3 tangent, vec3 color) {
 #if SB_SHADING_MODEL == 0
   vec2 kk = kajiyaKay(T, L, V, hairMaterial.z);
   vec3 direct = (hairMaterial.x * kk.x * color + hairMaterial.y * kk.y) * lightColor.rgb;
+#elif SB_SHADING_MODEL == 3 && defined(SB_DUAL_SCATTERING)
+  // Dual scattering: the visibility feeds its strand count and is inside its value.
+  vec3 direct = chiangDual(T, L, V, color, lobeShift, lobeWidth, lobeIntensity, visibility,
+                           sceneParams.y) *
+                lightColor.rgb;
+  visibility = 1.0f;
+#ifdef SB_FIBRE_OPACITY
+  direct /= chiangOpacity(chiangX(color, lobeIntensity.z), lobeIntensity.w, SB_DUAL_OPACITY);
+#endif
 #elif SB_SHADING_MODEL == 3
   // The fibre alone: no diffuse term (the tracer's single scattering).
   vec3 direct = chiang(T, L, V, color, lobeShift, lobeWidth, lobeIntensity) * lightColor.rgb;
 #ifdef SB_FIBRE_OPACITY
   // The strand's alpha is the fibre's opacity (chiang:opacity=fibre): its colour is what it
   // reflects over that, so the composite adds the reflection once.
-  direct /= chiangOpacity(chiangX(color, lobeIntensity.z), lobeIntensity.w);
+  direct /= chiangOpacity(chiangX(color, lobeIntensity.z), lobeIntensity.w, SB_CHIANG_OPACITY);
 #endif
 #else
   // Both papers' models add a Kajiya-Kay diffuse term (the thesis, Listing 2, line 3).
