@@ -306,12 +306,25 @@ std::vector<GraphResource> Renderer::resources(const std::set<std::string>& outp
 void Renderer::upload(const Scene& scene) {
   const Strands& st = scene.strands;
   std::vector<glm::vec4> points(st.points.size()), colors(st.points.size());
+  glm::vec3 lastColor(0.0f);
+  float lastAlpha = 1.0f;
   for (std::size_t i = 0; i < st.points.size(); ++i) {
-    const float thickness = i < st.thickness.size() ? st.thickness[i] : 0.0f;
+    // World strands whose file gives no width: 0, the view's fallback (the path reference's
+    // width for them too), not the loader's stand-in.
+    const bool own = !st.thicknessFallback || settings_.primitive != Primitive::World;
+    const float thickness = i < st.thickness.size() && own ? st.thickness[i] : 0.0f;
     const float transparency = i < st.transparency.size() ? st.transparency[i] : 0.0f;
     const glm::vec3 c = i < st.colors.size() ? st.colors[i] : scene.hairColor;
     points[i] = glm::vec4(st.points[i], thickness);
     colors[i] = glm::vec4(c, scene.hairAlpha * (1.0f - transparency));
+    // A fibre that defines the light it stops (chiang:opacity=fibre) has that opacity for the
+    // camera too, in place of the scene's alpha and transparency (the tracer's rung 2 knows
+    // only the fibre; the shading divides the colour by the same); strands mostly share a colour.
+    if (settings_.shading.fibreShadowAlpha) {
+      if (i == 0 || c != lastColor) lastAlpha = settings_.shading.fibreShadowAlpha(c);
+      lastColor = c;
+      colors[i].a = lastAlpha;
+    }
   }
   std::vector<uint32_t> segments;
   segments.reserve(st.segmentCount());

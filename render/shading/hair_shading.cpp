@@ -19,7 +19,8 @@ glm::vec3 HairShading::direct(const ShadingModel& m, glm::vec3 T, glm::vec3 L, g
     const glm::vec2 kk = glsl::kajiyaKay(T, L, V, m.material.z);
     return m.material.x * kk.x * c + glm::vec3(m.material.y * kk.y);
   }
-  if (m.kind == ShadingKind::Chiang) return chiangShade(m, T, L, V, c);
+  if (m.kind == ShadingKind::Chiang)  // over the fibre's opacity where it is the strand's alpha
+    return chiangShade(m, T, L, V, c) / (m.fibreShadowAlpha ? m.fibreShadowAlpha(c) : 1.0f);
   const float tl = glm::dot(T, L);
   const float diffuse = std::sqrt(std::max(0.0f, 1.0f - tl * tl));
   const glm::vec3 specular =
@@ -95,6 +96,8 @@ ShaderDefines HairShading::hairDefines() const {
   defs.aliases["shadow"] = lookup.shader;
   defs.defines.push_back(
       {"SB_SHADING_MODEL", std::to_string(static_cast<int>(settings_.shading.kind))});
+  if (settings_.shading.kind == ShadingKind::Chiang && settings_.shading.fibreShadowAlpha)
+    defs.defines.push_back({"SB_FIBRE_OPACITY", "1"});
   if (settings_.shading.dualScattering) defs.defines.push_back({"SB_DUAL_SCATTERING", "1"});
   return defs;
 }

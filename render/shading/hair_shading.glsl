@@ -34,9 +34,17 @@ vec3 shadeHair(vec3 worldPos, vec3 tangent, vec3 color) {
                            sceneParams.y) *
                 lightColor.rgb;
   visibility = 1.0f;
+#ifdef SB_FIBRE_OPACITY
+  direct /= chiangOpacity(chiangX(color, lobeIntensity.z), lobeIntensity.w, SB_DUAL_OPACITY);
+#endif
 #elif SB_SHADING_MODEL == 3
   // The fibre alone: no diffuse term (the tracer's single scattering).
   vec3 direct = chiang(T, L, V, color, lobeShift, lobeWidth, lobeIntensity) * lightColor.rgb;
+#ifdef SB_FIBRE_OPACITY
+  // The strand's alpha is the fibre's opacity (chiang:opacity=fibre): its colour is what it
+  // reflects over that, so the composite adds the reflection once.
+  direct /= chiangOpacity(chiangX(color, lobeIntensity.z), lobeIntensity.w, SB_CHIANG_OPACITY);
+#endif
 #else
   // Both papers' models add a Kajiya-Kay diffuse term (the thesis, Listing 2, line 3).
   float tl = dot(T, L);

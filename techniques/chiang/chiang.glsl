@@ -17,11 +17,15 @@
 #include "render/common/angles.glsl"
 
 // The table's axes: phi in [0, pi], |sin theta_o| in [0, 1], sqrt(sigma_a) in [0, xMax];
-// lobes R, TT, TRT and the higher orders. Index ((p * X + x) * S + s) * PHI + phi.
+// lobes R, TT, TRT and the higher orders. Index ((p * X + x) * S + s) * PHI + phi. After the
+// lobes, X more entries: the fibre's mean transmittance at normal incidence by sqrt(sigma_a)
+// (pbr::meanFibreTransmittance), for chiangOpacity.
 #define SB_CHIANG_PHI 64
 #define SB_CHIANG_SIN 32
 #define SB_CHIANG_X 32
 #define SB_CHIANG_LOBES 4
+// Where chiangOpacity's row starts in chiang's own table (dual scattering's has it elsewhere).
+#define SB_CHIANG_OPACITY (SB_CHIANG_LOBES * SB_CHIANG_X * SB_CHIANG_SIN * SB_CHIANG_PHI)
 
 // The table: chiangTable[], a storage buffer the includer declares (shading/hair_shading.glsl),
 // a pointer on the CPU (chiang.h).
@@ -73,6 +77,28 @@ SB_INLINE float chiangLobe(int p, float phi, float sinO, float x, float xMax) {
   return r;
 }
 
+// The light a fibre of sqrt(sigma_a) x (per channel) stops as a camera ray crosses it: 1 - the
+// luminance of its h-mean transmittance at normal incidence, chiangShadowAlpha's value (the
+// CPU's, from which chiang:opacity=fibre scales the strands' alpha). A fragment of such a fibre
+// lets the rest through, so its colour is what the fibre reflects divided by this: the
+// composite then adds the reflected light once and attenuates what lies behind as the
+// tracer's camera rays are (rung 2). base: where the row starts in the table bound.
+SB_INLINE float chiangOpacity(vec3 x, float xMax, int base) {
+  vec3 t = vec3(0.0f);
+  for (int c = 0; c < 3; ++c) {
+    float fx = clamp(x[c] / xMax, 0.0f, 1.0f) * float(SB_CHIANG_X - 1);
+    int ix = min(int(fx), SB_CHIANG_X - 2);
+    t[c] = mix(chiangTable[base + ix], chiangTable[base + ix + 1], fx - float(ix));
+  }
+  return max(1.0f - dot(t, vec3(0.2126f, 0.7152f, 0.0722f)), 1e-3f);
+}
+
+// sqrt(sigma_a) per channel from the colour: |ln c| / divisor (pbr::sigmaAFromReflectance),
+// the colour clamped as the tracer clamps it. invDivisor: lobeIntensity.z (tilt4.z below).
+SB_INLINE vec3 chiangX(vec3 color, float invDivisor) {
+  return -log(clamp(color, vec3(1e-3f), vec3(1.0f))) * invDivisor;
+}
+
 // T: unit tangent (root to tip), L: unit direction to the light, V: unit direction to the eye.
 // variance: M_p's variances (R, TT, TRT, higher orders); tilt1: sin, cos of alpha and 2 alpha;
 // tilt4: sin, cos of 4 alpha, 1 / the colour's divisor (sqrt(sigma_a) = |ln c| / divisor) and
@@ -85,9 +111,7 @@ SB_INLINE vec3 chiang(vec3 T, vec3 L, vec3 V, vec3 color, vec4 variance, vec4 ti
   float cosO = sqrt(max(0.0f, 1.0f - sinO * sinO));
   vec4 a = hairAngles(T, L, V);
   float phi = a.z;
-  // sqrt(sigma_a) = |ln c| / divisor (pbr::sigmaAFromReflectance), the colour clamped as the
-  // tracer clamps it.
-  vec3 x = -log(clamp(color, vec3(1e-3f), vec3(1.0f))) * tilt4.z;
+  vec3 x = chiangX(color, tilt4.z);
   vec3 sum = vec3(0.0f);
   for (int p = 0; p < SB_CHIANG_LOBES; ++p) {
     // The scale tilt rotates theta_o per lobe as pbr::HairBsdf::tiltedThetaO does: R by

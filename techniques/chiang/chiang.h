@@ -31,6 +31,7 @@ using glm::length;
 using glm::log;
 using glm::max;
 using glm::min;
+using glm::mix;
 using glm::sqrt;
 using glm::vec2;
 using glm::vec3;

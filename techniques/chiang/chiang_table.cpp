@@ -30,8 +30,8 @@ std::vector<float> build(float betaN, float eta) {
   hp.eta = eta;
   const double s = pbr::HairBsdf(hp).logisticScale();
   const double xMax = chiangXMax(betaN);
-  std::vector<double> sum(std::size_t(SB_CHIANG_LOBES) * SB_CHIANG_X * SB_CHIANG_SIN *
-                          SB_CHIANG_PHI);
+  std::vector<double> sum(
+      std::size_t(SB_CHIANG_LOBES) * SB_CHIANG_X * SB_CHIANG_SIN * SB_CHIANG_PHI + SB_CHIANG_X);
   std::vector<double> np(std::size_t(3) * SB_CHIANG_PHI);
   for (int is = 0; is < SB_CHIANG_SIN; ++is) {
     // The grazing end is kept off 1, where theta_o's Bravais index is infinite.
@@ -62,6 +62,12 @@ std::vector<float> build(float betaN, float eta) {
         for (int k = 0; k < SB_CHIANG_PHI; ++k) sum[at(3, ix, is, k)] += w * ap[3].x / (2 * kPi);
       }
     }
+  }
+  // chiangOpacity's row: the tracer's own mean transmittance, one definition for both.
+  for (int ix = 0; ix < SB_CHIANG_X; ++ix) {
+    const double x = xMax * ix / (SB_CHIANG_X - 1);
+    sum[SB_CHIANG_OPACITY + std::size_t(ix)] =
+        pbr::meanFibreTransmittance(glm::vec3(float(x * x)), eta, 0.0f).x;
   }
   return std::vector<float>(sum.begin(), sum.end());
 }

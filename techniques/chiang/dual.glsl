@@ -22,7 +22,9 @@
 // Per (x, |sin theta_i|): a_f, beta_f^2, A_b, sin and cos of Delta_b, sigma_b^2.
 #define SB_DUAL_FIELDS 6
 #define SB_DUAL_DENSITY (SB_DUAL_PARAMS + SB_DUAL_FIELDS * SB_CHIANG_X * SB_CHIANG_SIN)
-#define SB_DUAL_TABLE_SIZE (SB_DUAL_DENSITY + 2)
+// chiang's opacity row (chiangOpacity), copied from its table.
+#define SB_DUAL_OPACITY (SB_DUAL_DENSITY + 2)
+#define SB_DUAL_TABLE_SIZE (SB_DUAL_OPACITY + SB_CHIANG_X)
 // The most strands counted between a point and the light (a_f^64 is below 1e-3 for every
 // colour but white), and the widest lobe variance (a lobe this wide is nearly uniform).
 #define SB_DUAL_MAX_N 64.0f

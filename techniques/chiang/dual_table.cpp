@@ -97,7 +97,9 @@ DualTerms terms(const ShadingModel& m, const std::vector<float>& lobes, int x, i
 std::vector<float> build(const ShadingModel& m) {
   const std::vector<float>& lobes = chiangLobeTable(m.betaN, m.eta);
   std::vector<float> out(SB_DUAL_TABLE_SIZE, 0.0f);
-  std::copy(lobes.begin(), lobes.end(), out.begin());
+  std::copy(lobes.begin(), lobes.begin() + SB_DUAL_LOBES, out.begin());
+  std::copy(lobes.begin() + SB_CHIANG_OPACITY, lobes.begin() + SB_CHIANG_OPACITY + SB_CHIANG_X,
+            out.begin() + SB_DUAL_OPACITY);
   // N^G_p: each lobe seen by light whose azimuth is spread uniformly over the forward half
   // circle (the paper's s_f = 1/pi there).
   for (int p = 0; p < SB_CHIANG_LOBES; ++p)

@@ -90,7 +90,7 @@ SB_TECHNIQUE(
        m.intensity = {std::sin(4 * a), std::cos(4 * a), inverse, chiangXMax(hp.betaN)};
        // The colour invariant's bound: pi times each lobe's largest M_p and table entry.
        const std::vector<float>& table = chiangLobeTable(m.betaN, m.eta);
-       const std::size_t lobe = table.size() / SB_CHIANG_LOBES;
+       const std::size_t lobe = std::size_t(SB_CHIANG_X) * SB_CHIANG_SIN * SB_CHIANG_PHI;
        double bound = 0;
        for (int p = 0; p < SB_CHIANG_LOBES; ++p)
          bound += mpBound(m.shift[p]) *
@@ -102,9 +102,13 @@ SB_TECHNIQUE(
          m.densityB = o.densityB;
          m.specularBound += dualBound(m);
        }
-       if (o.fibreOpacity)
+       if (o.fibreOpacity) {
+         // A fragment's colour is divided by its opacity (chiangOpacity): most for the
+         // clearest fibre.
+         m.specularBound /= chiangShadowAlpha(glm::vec3(1.0f), m.betaN, m.eta);
          m.fibreShadowAlpha = [betaN = m.betaN, eta = m.eta](glm::vec3 c) {
            return chiangShadowAlpha(c, betaN, eta);
          };
+       }
        return m;
      }});

@@ -1,7 +1,7 @@
 // --shadow dom: deep opacity maps.
 #include "render/common/unit.h"
 
-#include "render/common/opacity.h"
+#include "techniques/dom/layers.h"
 #include "render/common/opacity_filter.h"
 #include "techniques/dom/dom.h"
 

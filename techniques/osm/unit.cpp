@@ -1,7 +1,7 @@
 // --shadow osm: opacity shadow maps.
 #include "render/common/unit.h"
 
-#include "render/common/opacity.h"
+#include "techniques/osm/slicing.h"
 #include "render/common/opacity_filter.h"
 #include "techniques/osm/osm.h"
 
