@@ -237,7 +237,7 @@ pbr::StrandScene pbrScene(const Scene& scene, const RenderSettings& s, const Spe
     out.colors[i] = i < st.colors.size() ? st.colors[i] : scene.hairColor;
     const float transparency = i < st.transparency.size() ? st.transparency[i] : 0.0f;
     out.alpha[i] = scene.hairAlpha * (1.0f - transparency);
-    // As the renderer uploads it (techniques/frame/renderer.cpp): the fibre's opacity instead.
+    // As the renderer uploads it (render/frame/renderer.cpp): the fibre's opacity instead.
     if (s.shading.fibreShadowAlpha) out.alpha[i] = s.shading.fibreShadowAlpha(out.colors[i]);
   }
   out.meshNormals = scene.mesh.normals;
