@@ -17,6 +17,7 @@
 
 #include "scenes/loader_util.h"
 #include "scenes/mesh_loaders.h"
+#include "scenes/groom_rule.h"
 #include "scenes/options.h"
 #include "scenes/scene.h"
 
@@ -109,6 +110,7 @@ std::vector<SceneInfo> buildCatalog() {
                      std::to_string(kMaxPointsPerStrand)},
                 {"alpha", "1", "hair opacity in [0,1] for transparency"},
                 {"shadow_alpha", "0.5", "per-fragment shadow opacity in [0,1]"},
+                {"seed", "1", "seed of the generation rule (guides=, instances=)"},
                 {"up", "auto",
                  "the file's up axis, turned to +y: auto (z for .hair, Yuksel's models are "
                  "z-up; y for .tfx, TressFX's; for .ply, which does not say, the axis "
@@ -122,6 +124,20 @@ std::vector<SceneInfo> buildCatalog() {
     info.options.push_back({"scale", "1", "uniform scale of the whole scene, 1e-6..1e6"});
     info.options.push_back(
         {"zero_segments", "0", "1: every point doubled (every other segment has zero length)"});
+    // The groom (scenes/groom.h, docs/geometry.md): guides, the generation rule, a crowd.
+    info.options.push_back({"guides", "0",
+                            "every n-th strand is a guide and the strands are made from the "
+                            "guides by the generation rule (docs/geometry.md); 0: no guides"});
+    info.options.push_back({"spread", "0.5", "guides=: how far a strand leans to a neighbouring "
+                                             "guide, 0..1"});
+    info.options.push_back(
+        {"offset", "0.5", "guides=: per-strand offset in mean guide spacings, 0..10"});
+    info.options.push_back(
+        {"noise", "0.1", "guides=: per-point noise at the tip in mean guide spacings, 0..10"});
+    info.options.push_back({"clump", "0", "guides=: pull to the home guide at the tip, 0..1"});
+    info.options.push_back({"instances", "1",
+                            "copies of the groom in a grid on the floor, each turned and made "
+                            "with its own seed, 1..10000"});
   }
   return c;
 }
@@ -516,6 +532,39 @@ void applyScaleAndZeroSegments(const Options& o, Scene& scene) {
   scene.strands = std::move(out);
 }
 
+// guides= and instances=: the groom kept with the scene, its strands made by the
+// rule on the CPU, and the mesh repeated with every instance.
+void applyGroom(const Options& o, Scene& scene) {
+  GroomSettings g;
+  g.guideEvery = uint32_t(o.integer("guides", 0, kMaxStrands));
+  g.instances = uint32_t(o.integer("instances", 1, 10000));
+  g.seed = uint32_t(o.integer("seed", 0, std::numeric_limits<uint32_t>::max()));
+  g.spread = o.real("spread", 0.0, 1.0);
+  g.offset = o.real("offset", 0.0, 10.0);
+  g.noise = o.real("noise", 0.0, 10.0);
+  g.clump = o.real("clump", 0.0, 1.0);
+  if (g.guideEvery == 0 && g.instances == 1) {
+    for (const char* key : {"spread", "offset", "noise", "clump"})
+      if (o.given(key)) throw o.error(std::string(key) + "= needs guides= (every n-th strand a guide)");
+    return;
+  }
+  scene.groom = makeGroom(scene.strands, g);
+  checkTotal(o, 1, scene.groom.totalPoints());
+  const bool fallback = scene.strands.thicknessFallback;
+  scene.strands = generateStrands(scene.groom);
+  scene.strands.thicknessFallback = fallback;
+  if (g.instances == 1 || scene.mesh.positions.empty()) return;
+  Mesh one = std::move(scene.mesh);
+  Mesh& all = scene.mesh;
+  for (const glm::vec4& place : scene.groom.placements) {
+    const uint32_t base = uint32_t(all.positions.size());
+    for (const glm::vec3& p : one.positions) all.positions.push_back(groom_rule::groomPlace(p, place));
+    for (const glm::vec3& n : one.normals)
+      all.normals.push_back(groom_rule::groomPlace(n, {place.x, place.y, 0.0f, 0.0f}));
+    for (uint32_t i : one.indices) all.indices.push_back(base + i);
+  }
+}
+
 Scene makeFur(const Options& o) {
   Scene scene;
   Common c = readCommon(o, scene, false);
@@ -786,6 +835,7 @@ Scene makeScene(const Spec& spec) {
                            "fewer strands= or points= make it fit)");
   }
   applyScaleAndZeroSegments(o, scene);
+  applyGroom(o, scene);
   scene.name = spec.str();
   return scene;
 }

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "techniques/common/technique.h"
+#include "techniques/generation/generation.h"
 #include "techniques/probe/probe.h"
 #include "techniques/shading/hair_shading.h"
 #include "techniques/visibility/visibility.h"
@@ -141,6 +142,7 @@ class Renderer {
   ResourceGroup group_;
   RenderSettings settings_;
   GpuScene gpu_;
+  StrandGeneration generation_;  // --geometry compute: the strands made on the device
   std::vector<std::unique_ptr<LightChain>> lights_;  // the key light first
   Pipeline sumPipeline_;
   VisibilityOutput visibility_;
