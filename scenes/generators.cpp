@@ -15,9 +15,9 @@
 #include <optional>
 #include <random>
 
+#include "scenes/groom_rule.h"
 #include "scenes/loader_util.h"
 #include "scenes/mesh_loaders.h"
-#include "scenes/groom_rule.h"
 #include "scenes/options.h"
 #include "scenes/scene.h"
 
@@ -128,13 +128,17 @@ std::vector<SceneInfo> buildCatalog() {
     info.options.push_back({"guides", "0",
                             "every n-th strand is a guide and the strands are made from the "
                             "guides by the generation rule (docs/geometry.md); 0: no guides"});
-    info.options.push_back({"spread", "0.5", "guides=: how far a strand leans to a neighbouring "
-                                             "guide, 0..1"});
+    info.options.push_back({"spread", "0.5",
+                            "guides=: how far a strand leans to a neighbouring "
+                            "guide, 0..1"});
     info.options.push_back(
         {"offset", "0.5", "guides=: per-strand offset in mean guide spacings, 0..10"});
     info.options.push_back(
         {"noise", "0.1", "guides=: per-point noise at the tip in mean guide spacings, 0..10"});
     info.options.push_back({"clump", "0", "guides=: pull to the home guide at the tip, 0..1"});
+    info.options.push_back({"lod", "1",
+                            "guides=: level of detail, the share of the strands kept (0..1], "
+                            "their thickness widened by 1/lod"});
     info.options.push_back({"instances", "1",
                             "copies of the groom in a grid on the floor, each turned and made "
                             "with its own seed, 1..10000"});
@@ -543,11 +547,12 @@ void applyGroom(const Options& o, Scene& scene) {
   g.offset = o.real("offset", 0.0, 10.0);
   g.noise = o.real("noise", 0.0, 10.0);
   g.clump = o.real("clump", 0.0, 1.0);
-  if (g.guideEvery == 0 && g.instances == 1) {
-    for (const char* key : {"spread", "offset", "noise", "clump"})
-      if (o.given(key)) throw o.error(std::string(key) + "= needs guides= (every n-th strand a guide)");
-    return;
-  }
+  g.lod = o.real("lod", 0.0, 1.0, true);
+  if (g.guideEvery == 0)
+    for (const char* key : {"spread", "offset", "noise", "clump", "lod"})
+      if (o.given(key))
+        throw o.error(std::string(key) + "= needs guides= (every n-th strand a guide)");
+  if (g.guideEvery == 0 && g.instances == 1) return;
   scene.groom = makeGroom(scene.strands, g);
   checkTotal(o, 1, scene.groom.totalPoints());
   const bool fallback = scene.strands.thicknessFallback;
@@ -558,7 +563,8 @@ void applyGroom(const Options& o, Scene& scene) {
   Mesh& all = scene.mesh;
   for (const glm::vec4& place : scene.groom.placements) {
     const uint32_t base = uint32_t(all.positions.size());
-    for (const glm::vec3& p : one.positions) all.positions.push_back(groom_rule::groomPlace(p, place));
+    for (const glm::vec3& p : one.positions)
+      all.positions.push_back(groom_rule::groomPlace(p, place));
     for (const glm::vec3& n : one.normals)
       all.normals.push_back(groom_rule::groomPlace(n, {place.x, place.y, 0.0f, 0.0f}));
     for (uint32_t i : one.indices) all.indices.push_back(base + i);

@@ -49,7 +49,8 @@ void findNeighbours(Groom& g) {
     }
     std::sort_heap(best.begin(), best.end());
     for (uint32_t k = 0; k < kK; ++k)
-      g.neighbours[std::size_t(a) * kK + k] = best.empty() ? a : best[std::min<std::size_t>(k, best.size() - 1)].second;
+      g.neighbours[std::size_t(a) * kK + k] =
+          best.empty() ? a : best[std::min<std::size_t>(k, best.size() - 1)].second;
     if (!best.empty()) spacing += std::sqrt(double(best[0].first));
   }
   // The mean distance to the nearest guide: the rule's offset and noise scale.
@@ -82,11 +83,17 @@ Groom makeGroom(const Strands& strands, const GroomSettings& s) {
     for (uint32_t j = 0; j < g.points; ++j) {
       g.guidePoints.push_back(glm::vec4(resampled(strands.points, first, count, j, g.points),
                                         resampled(strands.thickness, first, count, j, g.points)));
-      g.guideColors.push_back(glm::vec4(resampled(strands.colors, first, count, j, g.points),
-                                        resampled(strands.transparency, first, count, j, g.points)));
+      g.guideColors.push_back(
+          glm::vec4(resampled(strands.colors, first, count, j, g.points),
+                    resampled(strands.transparency, first, count, j, g.points)));
     }
   }
   g.alongStep = 1.0f / float(g.points - 1);
+  if (s.lod < 1.0f) {
+    // The first strands of each instance: home guide i mod guides spreads them evenly.
+    g.strands = std::max(1u, uint32_t(std::lround(double(s.lod) * g.strands)));
+    g.widen = 1.0f / s.lod;
+  }
   if (s.guideEvery > 0) {
     g.spread = s.spread;
     g.offset = s.offset;
@@ -146,8 +153,8 @@ Strands generateStrands(const Groom& g) {
       const std::size_t strand = std::size_t(k) * g.strands + i;
       const uint32_t seed = groomStrandSeed(g.instanceSeeds[k], i);
       const uint32_t home = i % g.guideCount;
-      const uint32_t other = g.neighbours[std::size_t(home) * SB_GROOM_NEIGHBOURS +
-                                          groomNeighbourSlot(seed)];
+      const uint32_t other =
+          g.neighbours[std::size_t(home) * SB_GROOM_NEIGHBOURS + groomNeighbourSlot(seed)];
       const float w = groomWeight(seed, g.spread);
       const glm::vec3 offset = groomJitter(seed, g.offset);
       out.firstPoint[strand] = uint32_t(strand * g.points);
@@ -160,7 +167,7 @@ Strands generateStrands(const Groom& g) {
         const std::size_t at = strand * g.points + j;
         const glm::vec4 c = g.guideColors[std::size_t(home) * g.points + j];
         out.points[at] = groomPlace(p, g.placements[k]);
-        out.thickness[at] = h.w;
+        out.thickness[at] = groomThickness(h.w, g.widen);
         out.colors[at] = glm::vec3(c);
         out.transparency[at] = c.w;
       }

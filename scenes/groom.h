@@ -22,6 +22,9 @@ struct GroomSettings {
   float offset = 0.5f;  // per-strand offset, in mean guide spacings
   float noise = 0.1f;   // per-point noise at the tip, in mean guide spacings
   float clump = 0.0f;   // pull towards the home guide at the tip (0..1)
+  // Level of detail: the share of the strands kept (the first of each instance,
+  // spread evenly over the guides), their thickness widened by 1 / lod.
+  float lod = 1.0f;
 };
 
 struct Groom {
@@ -40,6 +43,7 @@ struct Groom {
   // The rule's scalars, world units where they are lengths.
   float spread = 0, offset = 0, noise = 0, clump = 0;
   float alongStep = 0;  // 1 / (points - 1): j * alongStep is how far along point j is
+  float widen = 1;      // the thickness's factor (1 / lod)
 
   bool empty() const { return guideCount == 0; }
   uint32_t instanceCount() const { return static_cast<uint32_t>(placements.size()); }

@@ -46,7 +46,9 @@ SB_RULE_FN uint groomStrandSeed(uint instanceSeed, uint strand) {
 }
 
 // The seed of point j's noise.
-SB_RULE_FN uint groomPointSeed(uint seed, uint j) { return groomHash(seed + (j + 1u) * 0x27d4eb2du); }
+SB_RULE_FN uint groomPointSeed(uint seed, uint j) {
+  return groomHash(seed + (j + 1u) * 0x27d4eb2du);
+}
 
 // Which of the home guide's neighbours the strand leans towards.
 SB_RULE_FN uint groomNeighbourSlot(uint seed) { return groomHash(seed ^ 1u) % SB_GROOM_NEIGHBOURS; }
@@ -85,6 +87,13 @@ SB_RULE_FN vec3 groomPlace(vec3 p, vec4 place) {
   SB_PRECISE float x = place.x * p.x - place.y * p.z + place.z;
   SB_PRECISE float z = place.y * p.x + place.x * p.z + place.w;
   return vec3(x, p.y, z);
+}
+
+// A point's thickness: the home guide's, widened for the strands the level of
+// detail left out (widen = 1 / lod, from the CPU).
+SB_RULE_FN float groomThickness(float guide, float widen) {
+  SB_PRECISE float t = guide * widen;
+  return t;
 }
 
 // The colour's alpha the renderer uploads: the scene's opacity times the

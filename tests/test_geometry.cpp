@@ -24,8 +24,7 @@ sb::Scene scene(const std::string& spec) { return sb::makeScene(sb::Spec::parse(
 
 bool sameBytes(const sb::Strands& a, const sb::Strands& b) {
   const auto same = [](const auto& x, const auto& y) {
-    return x.size() == y.size() &&
-           std::memcmp(x.data(), y.data(), x.size() * sizeof(x[0])) == 0;
+    return x.size() == y.size() && std::memcmp(x.data(), y.data(), x.size() * sizeof(x[0])) == 0;
   };
   return same(a.firstPoint, b.firstPoint) && same(a.pointCount, b.pointCount) &&
          same(a.points, b.points) && same(a.colors, b.colors) && same(a.thickness, b.thickness) &&
@@ -103,8 +102,8 @@ TEST(GroomRule, InstancesAreRigidCopiesSideBySide) {
   for (uint32_t k = 0; k < 4; ++k)
     for (uint32_t p = 0; p + 1 < 96u * 8u; p += 37) {
       const float d0 = glm::length(one.strands.points[p + 1] - one.strands.points[p]);
-      const float dk = glm::length(crowd.strands.points[k * 768 + p + 1] -
-                                   crowd.strands.points[k * 768 + p]);
+      const float dk =
+          glm::length(crowd.strands.points[k * 768 + p + 1] - crowd.strands.points[k * 768 + p]);
       EXPECT_NEAR(dk, d0, 1e-5f) << "instance " << k;
     }
   const float r1 = one.bounds().radius(), r4 = crowd.bounds().radius();
@@ -114,7 +113,26 @@ TEST(GroomRule, InstancesAreRigidCopiesSideBySide) {
   // The file scenes take it too.
   EXPECT_EQ(crowd.mesh.positions.size(), 0u);
   const sb::Scene heads = scene("straight:strands=16,points=4,instances=3");
-  EXPECT_EQ(heads.mesh.positions.size(), 3 * scene("straight:strands=16,points=4").mesh.positions.size());
+  EXPECT_EQ(heads.mesh.positions.size(),
+            3 * scene("straight:strands=16,points=4").mesh.positions.size());
+}
+
+// lod=F keeps the first F of each instance's strands, every guide followed by
+// some, their thickness widened by 1/F; lod=1 is the full groom (the control).
+TEST(GroomRule, LevelOfDetailKeepsAShareOverEveryGuideAndWidensIt) {
+  const std::string spec = std::string(kGroom) + ",guides=8,instances=2";
+  const sb::Scene full = scene(spec), half = scene(spec + ",lod=0.25");
+  EXPECT_EQ(full.strands.strandCount(), 2u * 96u);
+  EXPECT_EQ(half.strands.strandCount(), 2u * 24u);
+  EXPECT_EQ(half.strands.thickness[0], 4.0f * full.strands.thickness[0]);
+  EXPECT_EQ(full.strands.thickness[0], full.groom.guidePoints[0].w);
+  // The kept strands are the full groom's first ones, made alike.
+  EXPECT_EQ(std::memcmp(half.strands.points.data(), full.strands.points.data(), 24 * 8 * 12), 0);
+  std::vector<int> followers(12, 0);
+  for (uint32_t i = 0; i < 24; ++i) ++followers[i % half.groom.guideCount];
+  for (int n : followers) EXPECT_EQ(n, 2);
+  EXPECT_THROW(scene(spec + ",lod=0"), sb::InputError);
+  EXPECT_THROW(scene(std::string(kGroom) + ",lod=0.5"), sb::InputError);  // needs guides=
 }
 
 TEST(GroomRule, BadOptionsAreRefused) {
@@ -142,7 +160,8 @@ sb::RenderRequest request(const std::string& backend, const std::string& geometr
 }
 
 TEST_P(GeometryCompute, TheDeviceMakesTheCpusStrandsBitForBit) {
-  const sb::Scene s = scene(std::string(kGroom) + ",guides=4,clump=0.3,noise=0.5,instances=3");
+  const sb::Scene s =
+      scene(std::string(kGroom) + ",guides=4,clump=0.3,noise=0.5,instances=3,lod=0.5");
   std::vector<std::vector<uint8_t>> buffers[2];
   for (int path = 0; path < 2; ++path) {
     sb::RenderRequest req = request(GetParam(), "cpu", "none", "none");

@@ -38,7 +38,7 @@ void main() {
   precise float along = float(j) * genMore.x;
   vec3 p = groomPoint(h.xyz, o.xyz, w, offset, genRule.w, along, noise);
   vec4 c = guideColors[home * points + j];
-  points[at] = vec4(groomPlace(p, placements[instance]), h.w);
+  points[at] = vec4(groomPlace(p, placements[instance]), groomThickness(h.w, genMore.z));
   colors[at] = vec4(c.rgb, groomAlpha(genMore.y, c.w));
   if (j + 1u < points) segments[strand * (points - 1u) + j] = at;
 }

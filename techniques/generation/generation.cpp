@@ -47,14 +47,14 @@ void StrandGeneration::setup(Device& dev, const Scene& scene, GpuScene& gpu) {
   GenerationParams params{};
   params.genSizes = {g.guideCount, g.points, g.strands, g.instanceCount()};
   params.genRule = {g.spread, g.offset, g.noise, g.clump};
-  params.genMore = {g.alongStep, scene.hairAlpha, 0.0f, 0.0f};
+  params.genMore = {g.alongStep, scene.hairAlpha, g.widen, 0.0f};
   params.genTotal = {total_, 0u, 0u, 0u};
   params_ = dev.createBuffer(
       {"scene.generation_params", "scene", BufferUsage::Uniform, sizeof params}, &params);
-  guidePoints_ = input(dev, "guide_points", g.guidePoints.data(),
-                       g.guidePoints.size() * sizeof(glm::vec4));
-  guideColors_ = input(dev, "guide_colors", g.guideColors.data(),
-                       g.guideColors.size() * sizeof(glm::vec4));
+  guidePoints_ =
+      input(dev, "guide_points", g.guidePoints.data(), g.guidePoints.size() * sizeof(glm::vec4));
+  guideColors_ =
+      input(dev, "guide_colors", g.guideColors.data(), g.guideColors.size() * sizeof(glm::vec4));
   neighbours_ =
       input(dev, "guide_neighbours", g.neighbours.data(), g.neighbours.size() * sizeof(uint32_t));
   placements_ = input(dev, "instance_placements", g.placements.data(),
