@@ -139,7 +139,7 @@ TEST(GroomRule, BadOptionsAreRefused) {
   EXPECT_THROW(scene(std::string(kGroom) + ",spread=0.2"), sb::InputError);  // needs guides=
   EXPECT_THROW(scene(std::string(kGroom) + ",instances=0"), sb::InputError);
   EXPECT_THROW(scene(std::string(kGroom) + ",guides=2,clump=2"), sb::InputError);
-  EXPECT_THROW(scene("straight:strands=1000,points=100000,instances=10000"), sb::InputError);
+  EXPECT_THROW(scene("straight:strands=1000,points=2000,head=0,instances=200"), sb::InputError);
 }
 
 // --geometry compute: the device's strands are the CPU's, byte for byte, and so

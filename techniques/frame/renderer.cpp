@@ -150,11 +150,7 @@ Renderer::Renderer(Device& dev, const Scene& scene, const RenderSettings& settin
   guardPlan(outputs);
   dev_.makeDeferredBuffers();
   making.reset();
-  if (settings_.geometry == GeometryPath::Compute) {
-    // Before every preparation: they read the strands.
-    generation_.run(dev_);
-    preparations_.push_back("scene.generate");
-  }
+  if (settings_.geometry == GeometryPath::Compute) preparations_.push_back("scene.generate");
   for (std::size_t i = 0; i < lights_.size(); ++i) buildLight(*lights_[i], i);
   if (lights_.size() > 1 &&
       kept({Unit::Kind::Outputs, lights_.back()->endNode, graph_.nodes().size(), {}}))
@@ -312,7 +308,15 @@ void Renderer::upload(const Scene& scene) {
   // --geometry compute: the strands' buffers are the generation pass's; the CPU's
   // strands are not uploaded.
   const bool generated = settings_.geometry == GeometryPath::Compute;
-  if (generated) generation_.setup(dev_, scene, gpu_);
+  if (generated) {
+    // Made at once, before the techniques are set up: some read the strands back
+    // then (the opacity maps' depth range from the light).
+    const uint32_t first = dev_.nextHandleId();
+    generation_.setup(dev_, scene, gpu_);
+    dev_.guardMemory(dev_.resourceIdsFrom(first),
+                     "this run (at least: the groom and the strands made from it on the device)");
+    generation_.run(dev_);
+  }
   static const Strands kNone;
   const Strands& st = generated ? kNone : scene.strands;
   std::vector<glm::vec4> points(st.points.size()), colors(st.points.size());

@@ -24,21 +24,21 @@ layout(std430, binding = SB_SLOT_GEN_SEEDS) readonly buffer Seeds { uint seeds[]
 void main() {
   uint at = linearInvocation();
   if (at >= genTotal.x) return;
-  uint points = genSizes.y, strands = genSizes.z;
-  uint strand = at / points, j = at - strand * points;
+  uint perStrand = genSizes.y, strands = genSizes.z;
+  uint strand = at / perStrand, j = at - strand * perStrand;
   uint instance = strand / strands, i = strand - instance * strands;
   uint seed = groomStrandSeed(seeds[instance], i);
   uint home = i % genSizes.x;
   uint other = neighbours[home * SB_GROOM_NEIGHBOURS + groomNeighbourSlot(seed)];
   float w = groomWeight(seed, genRule.x);
   vec3 offset = groomJitter(seed, genRule.y);
-  vec4 h = guidePoints[home * points + j];
-  vec4 o = guidePoints[other * points + j];
+  vec4 h = guidePoints[home * perStrand + j];
+  vec4 o = guidePoints[other * perStrand + j];
   vec3 noise = groomJitter(groomPointSeed(seed, j), genRule.z);
   precise float along = float(j) * genMore.x;
   vec3 p = groomPoint(h.xyz, o.xyz, w, offset, genRule.w, along, noise);
-  vec4 c = guideColors[home * points + j];
+  vec4 c = guideColors[home * perStrand + j];
   points[at] = vec4(groomPlace(p, placements[instance]), groomThickness(h.w, genMore.z));
   colors[at] = vec4(c.rgb, groomAlpha(genMore.y, c.w));
-  if (j + 1u < points) segments[strand * (points - 1u) + j] = at;
+  if (j + 1u < perStrand) segments[strand * (perStrand - 1u) + j] = at;
 }
