@@ -54,8 +54,10 @@ def main():
     ap.add_argument("--drivers", default="system,mesa-25.0")
     ap.add_argument("--backends", default="gl,vulkan")
     a = ap.parse_args()
+    # By name under drivers/ (skipped where it is not there) or a path to one.
     drivers = [d for d in a.drivers.split(",")
-               if d == "system" or os.path.isdir(os.path.join(ROOT, "drivers", d))]
+               if d == "system" or os.path.isdir(os.path.join(ROOT, "drivers", d)) or
+               os.path.isabs(d) and os.path.isdir(d)]
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True,
                             text=True, cwd=ROOT).stdout.strip()
     load = open("/proc/loadavg").read().split()[0]

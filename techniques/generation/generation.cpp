@@ -2,6 +2,7 @@
 
 #include "techniques/common/pass.h"
 #include "techniques/common/shader_library.h"
+#include "techniques/generation/slots.h"
 #include "techniques/generation/uniforms.h"
 
 namespace sb {
