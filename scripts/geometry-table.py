@@ -77,7 +77,7 @@ def main():
                           "the full model's (lod=1) exact reference.", "",
                           "| shadow | lod | frame ms | scene bytes | RMSE (own reference) | "
                           "RMSE (full model's reference) |", "|---|---|---|---|---|---|"]
-                full = os.path.join(tmp, driver + backend + "full.exr")
+                full = os.path.join(tmp, os.path.basename(driver) + "-" + backend + "-full.exr")
                 for shadow in SHADOWS:
                     for lod in LODS:
                         scene = GROOM + ",lod=" + str(lod)
