@@ -12,6 +12,7 @@
 #include "harness/render.h"
 #include "harness/technique_list.h"
 #include "scenes/scene.h"
+#include "render/generation/generation.h"
 
 namespace sb {
 namespace {
@@ -93,6 +94,9 @@ void checkRenderRequest(const RenderRequest& req, bool device, RenderCache* cach
     if (cache) cache->scenes[req.scene] = scene;
   }
   checkTechniqueSpecs(req, spelling);
+  // --geometry: refused up front where the path cannot make this scene's strands.
+  if (const std::string why = geometryRefusal(req.geometry, *scene); !why.empty())
+    throw InputError(settingMessage(*findSetting("geometry"), spelling, req.geometry, why));
   makeRenderSettings(req, *scene);
   if (device) makeRequestDevice(req);
 }

@@ -56,6 +56,7 @@ RenderSettings makeRenderSettings(const RenderRequest& req, const Scene& scene) 
                 : req.primitive == "world" ? Primitive::World
                                            : Primitive::Lines;
   s.ribbonWidth = req.ribbonWidth;
+  s.geometry = req.geometry == "compute" ? GeometryPath::Compute : GeometryPath::Cpu;
   s.shading = ShadingModel::fromSpec(req.shading);
   s.msaa = static_cast<uint32_t>(req.msaa);
 
@@ -517,11 +518,14 @@ void outputs(const RenderRequest& req, const Validated& v, Plan& p, Device& dev,
                scene.bounds(),
                scene.up,
                scene.upReason,
-               scene.strands.thicknessFallback ? "fallback" : "strands"};
+               scene.strands.thicknessFallback ? "fallback" : "strands",
+               scene.groom.guideCount,
+               scene.groom.instanceCount()};
   out.shadow = v.shadow.str();
   out.oit = v.oit.str();
   out.shading = v.settings.shading.spec;
   out.primitive = req.primitive;
+  out.geometry = req.geometry;
   out.width = v.settings.width;
   out.height = v.settings.height;
   out.repeat = req.repeat;

@@ -86,6 +86,7 @@ struct RenderRequest {
   std::string platform;  // empty: egl for gl, headless for vulkan
   uint32_t width = 512, height = 512;
   std::string primitive = "lines";  // lines | ribbons | world
+  std::string geometry = "cpu";     // cpu | compute | mesh (docs/geometry.md)
   float ribbonWidth = 1.0f;
   int msaa = 1;  // samples per pixel of the frame targets: 1, 2, 4, 8 (what the device has)
   int repeat = 1;
@@ -117,6 +118,8 @@ struct SceneSummary {
   std::string up, upReason;  // files: Scene::up, Scene::upReason
   // "strands" (the file's or the generator's) or "fallback" (Strands::thicknessFallback)
   std::string thicknessSource;
+  // The groom (scenes/groom.h), when the scene has one: its guides and instances.
+  std::size_t guides = 0, instances = 0;
 };
 
 // Visibility along the probe ray: the exact curve and the technique's.
@@ -178,6 +181,7 @@ struct RenderResult {
   std::string shadow, oit;  // the technique specs as run
   std::string shading;      // the hair shading model spec
   std::string primitive;
+  std::string geometry;
   uint32_t width = 0, height = 0;
   int repeat = 0, warmup = 0;
   std::vector<std::string> graph;  // the passes of a timed frame

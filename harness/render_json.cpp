@@ -139,6 +139,10 @@ nlohmann::json renderJson(const RenderResult& r) {
                 {"mesh_triangles", r.scene.meshTriangles},
                 {"bounds", boundsJson(r.scene.bounds)},
                 {"thickness_source", r.scene.thicknessSource}};
+  if (r.scene.instances > 0) {
+    j["scene"]["guides"] = r.scene.guides;
+    j["scene"]["instances"] = r.scene.instances;
+  }
   if (!r.scene.up.empty()) {
     j["scene"]["up"] = r.scene.up;
     j["scene"]["up_reason"] = r.scene.upReason;
@@ -147,6 +151,7 @@ nlohmann::json renderJson(const RenderResult& r) {
   j["oit"] = r.oit;
   j["shading"] = r.shading;
   j["primitive"] = r.primitive;
+  j["geometry"] = r.geometry;
   j["size"] = {r.width, r.height};
   j["repeat"] = r.repeat;
   j["warmup"] = r.warmup;

@@ -174,6 +174,16 @@ std::vector<Setting> buildTable() {
     s.choices = {"lines", "ribbons", "world"};
     plain(s, &RenderRequest::primitive);
   }
+  {
+    Setting& s = add(make("geometry", "--geometry", T::Enum, "cpu",
+                          "where the strands are made (docs/geometry.md): cpu (expanded on the "
+                          "CPU and uploaded), compute (made from the scene's groom, guides= or "
+                          "instances=, by a compute pass on the device); mesh (mesh shaders) is "
+                          "refused: not built yet",
+                          "compute", "gpu"));
+    s.choices = {"cpu", "compute", "mesh"};
+    plain(s, &RenderRequest::geometry);
+  }
   plainFloat(add(ranged(make("ribbon_width", "--ribbon-width", T::Float, "1",
                              "ribbon width in pixels", "2.5", "0"),
                         {0, 64, true, true, true, false})),

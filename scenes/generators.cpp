@@ -16,6 +16,7 @@
 #include <random>
 
 #include "base/options.h"
+#include "scenes/groom_rule.h"
 #include "scenes/loader_util.h"
 #include "scenes/mesh_loaders.h"
 #include "scenes/scene.h"
@@ -51,6 +52,9 @@ struct SceneOptions {
   uint32_t pointsPerStrand = 0;  // file: 0 = not given
   float scale = 1;
   bool zeroSegments = false;
+  // The groom (scenes/groom.h, docs/geometry.md): guides, the generation rule, a crowd.
+  uint32_t guides = 0, instances = 1;
+  float guideSpread = 0.5f, guideOffset = 0.5f, noise = 0.1f, clump = 0, lod = 1;
   InputError error(const std::string& what) const {
     return InputError("scene '" + scene + "': " + what);
   }
@@ -466,6 +470,43 @@ void applyScaleAndZeroSegments(const SO& o, Scene& scene) {
   scene.strands = std::move(out);
 }
 
+// guides= and instances=: the groom kept with the scene, its strands made by the
+// rule on the CPU, and the mesh repeated with every instance.
+void applyGroom(const SO& o, Scene& scene) {
+  GroomSettings g;
+  g.guideEvery = o.guides;
+  g.instances = o.instances;
+  g.seed = o.seed;
+  g.spread = o.guideSpread;
+  g.offset = o.guideOffset;
+  g.noise = o.noise;
+  g.clump = o.clump;
+  g.lod = o.lod;
+  // The rule's shape options mean nothing without guides: refused rather than ignored.
+  if (g.guideEvery == 0 &&
+      (g.spread != 0.5f || g.offset != 0.5f || g.noise != 0.1f || g.clump != 0.0f || g.lod != 1.0f))
+    throw o.error(
+        "guide_spread=, guide_offset=, noise=, clump= and lod= need guides= (every "
+        "n-th strand a guide)");
+  if (g.guideEvery == 0 && g.instances == 1) return;
+  scene.groom = makeGroom(scene.strands, g);
+  checkTotal(o, 1, scene.groom.totalPoints());
+  const bool fallback = scene.strands.thicknessFallback;
+  scene.strands = generateStrands(scene.groom);
+  scene.strands.thicknessFallback = fallback;
+  if (g.instances == 1 || scene.mesh.positions.empty()) return;
+  Mesh one = std::move(scene.mesh);
+  Mesh& all = scene.mesh;
+  for (const glm::vec4& place : scene.groom.placements) {
+    const uint32_t base = uint32_t(all.positions.size());
+    for (const glm::vec3& p : one.positions)
+      all.positions.push_back(groom_rule::groomPlace(p, place));
+    for (const glm::vec3& n : one.normals)
+      all.normals.push_back(groom_rule::groomPlace(n, {place.x, place.y, 0.0f, 0.0f}));
+    for (uint32_t i : one.indices) all.indices.push_back(base + i);
+  }
+}
+
 Scene makeFur(const SO& o) {
   Scene scene;
   scene.hairAlpha = o.alpha;
@@ -663,6 +704,28 @@ Scene makeFile(const SO& o) {
   return scene;
 }
 
+// The groom every scene may have (applyGroom): guides, the generation rule's shape, a crowd.
+SceneOption groomOptions() {
+  return opt::group<SO>(
+      {opt::integer(&SO::guides, "guides", 0, 0, kMaxStrands,
+                    "every n-th strand is a guide and the strands are made from the guides by "
+                    "the generation rule (docs/geometry.md); 0: no guides"),
+       opt::number(&SO::guideSpread, "guide_spread", "0.5", 0.0, 1.0,
+                   "guides=: how far a strand leans to a neighbouring guide, 0..1"),
+       opt::number(&SO::guideOffset, "guide_offset", "0.5", 0.0, 10.0,
+                   "guides=: per-strand offset in mean guide spacings, 0..10"),
+       opt::number(&SO::noise, "noise", "0.1", 0.0, 10.0,
+                   "guides=: per-point noise at the tip in mean guide spacings, 0..10"),
+       opt::number(&SO::clump, "clump", "0", 0.0, 1.0,
+                   "guides=: pull to the home guide at the tip, 0..1"),
+       positive(&SO::lod, "lod", "1", 1.0,
+                "guides=: level of detail, the share of the strands kept (0..1], their "
+                "thickness widened by 1/lod"),
+       opt::integer(&SO::instances, "instances", 1, 1, 10000,
+                    "copies of the groom in a grid on the floor, each turned and made with its "
+                    "own seed, 1..10000")});
+}
+
 // A scene: its options' table and how it is made.
 struct SceneKind {
   std::string name, help;
@@ -676,7 +739,8 @@ const std::vector<SceneKind>& sceneKinds() {
       opt::group<SO>({opt::number(&SO::scale, "scale", "1", 1e-6, 1e6,
                                   "uniform scale of the whole scene, 1e-6..1e6"),
                       zeroOne(&SO::zeroSegments, "zero_segments", false,
-                              "1: every point doubled (every other segment has zero length)")});
+                              "1: every point doubled (every other segment has zero length)"),
+                      groomOptions()});
   const auto hair = [&](const char* name, const char* help, long long strands, long long points,
                         const char* length, SceneOption own, HairStyle style) {
     return SceneKind{name, help,
@@ -773,6 +837,8 @@ const std::vector<SceneKind>& sceneKinds() {
                   return s.pointsPerStrand ? std::to_string(s.pointsPerStrand) : "";
                 }),
             alphas(),
+            opt::integer(&SO::seed, "seed", 1, 0, std::numeric_limits<uint32_t>::max(),
+                         "seed of the generation rule (guides=, instances=)"),
             opt::choice(&SO::up, "up", "auto", {"auto", "y", "z", "-y", "-z"},
                         "the file's up axis, turned to +y: auto (z for .hair, Yuksel's models are "
                         "z-up; y for .tfx, TressFX's; for .ply, which does not say, the axis "
@@ -822,6 +888,7 @@ Scene makeScene(const Spec& spec) {
                            "fewer strands= or points= make it fit)");
   }
   applyScaleAndZeroSegments(o, scene);
+  applyGroom(o, scene);
   scene.name = spec.str();
   return scene;
 }

@@ -12,6 +12,7 @@
 
 #include "base/errors.h"   // InputError
 #include "base/options.h"  // Spec, OptionInfo
+#include "scenes/groom.h"
 
 namespace sb {
 
@@ -62,6 +63,9 @@ struct Scene {
   // Files: the up axis the file was turned from ("y", "z", "-y", "-z") and why
   // ("up=z asked for", "auto: ..."); empty for generated scenes (y up by construction).
   std::string up, upReason;
+  // Made with guides= or instances=: the guides and rule `strands` were made from
+  // on the CPU (render --geometry compute makes them again on the GPU); else empty.
+  Groom groom;
   Bounds bounds() const;  // strands and mesh together
 };
 

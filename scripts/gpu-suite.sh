@@ -6,7 +6,7 @@
 #   --out DIR   the folder (default out/gpu-<date>); a stopped run continues (--resume)
 #   --small     the quick suite only (minutes on CPU drivers; proves the script works)
 #   --suites S  the suites to run (names in suites/, default: quick, every paper-* and
-#               ray-tracing)
+#               ray-tracing, geometry)
 # On a machine without an NVIDIA GPU it runs on whatever devices there are (Mesa's llvmpipe
 # and lavapipe here) and says so in the summary. Timing: GPU timestamps on both APIs, no
 # finish between passes (SB_VULKAN_GPU_TIMING=1, SB_GL_GPU_TIMING=1: Vulkan timestamps, GL
@@ -15,7 +15,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="out/gpu-$(date -u +%Y%m%d)"
-suites="quick paper-dom paper-osm paper-occupancy paper-thesis ray-tracing"
+suites="quick paper-dom paper-osm paper-occupancy paper-thesis ray-tracing geometry"
 while (($#)); do
   case "$1" in
     --out) out=${2:?--out needs a folder}; shift ;;

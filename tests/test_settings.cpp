@@ -157,6 +157,7 @@ TEST(Settings, TableIsComplete) {
                         "platform",
                         "size",
                         "primitive",
+                        "geometry",
                         "ribbon_width",
                         "repeat",
                         "warmup",
@@ -181,7 +182,7 @@ TEST(Settings, TableIsComplete) {
                         "light_intensity",
                         "extra_lights"})
     EXPECT_EQ(keys.count(k), 1u) << k;
-  EXPECT_EQ(keys.size(), 33u);
+  EXPECT_EQ(keys.size(), 34u);
 }
 
 // Every setting through the three front ends: the same value lands in the same

@@ -25,11 +25,15 @@ namespace sb {
 
 // World: ribbons of the strands' world width, at least a pixel, alpha times coverage.
 enum class Primitive { Lines, Ribbons, World };
+// Where the strands are made (render --geometry, docs/geometry.md): expanded on the
+// CPU and uploaded, or made from the scene's groom by a compute pass on the device.
+enum class GeometryPath { Cpu, Compute };
 
 struct RenderSettings {
   ShadingModel shading;  // hair shading model of the final passes
   uint32_t width = 512, height = 512;
   Primitive primitive = Primitive::Lines;
+  GeometryPath geometry = GeometryPath::Cpu;
   float ribbonWidth = 1.0f;  // pixels of the target being drawn
   // World: the thickness (world units) of a strand point that has none.
   float worldThickness = 0.0f;

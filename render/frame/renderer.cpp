@@ -150,6 +150,7 @@ Renderer::Renderer(Device& dev, const Scene& scene, const RenderSettings& settin
   guardPlan(outputs);
   dev_.makeDeferredBuffers();
   making.reset();
+  if (settings_.geometry == GeometryPath::Compute) preparations_.push_back("scene.generate");
   for (std::size_t i = 0; i < lights_.size(); ++i) buildLight(*lights_[i], i);
   if (lights_.size() > 1 &&
       kept({Unit::Kind::Outputs, lights_.back()->endNode, graph_.nodes().size(), {}}))
@@ -304,7 +305,20 @@ std::vector<GraphResource> Renderer::resources(const std::set<std::string>& outp
 }
 
 void Renderer::upload(const Scene& scene) {
-  const Strands& st = scene.strands;
+  // --geometry compute: the strands' buffers are the generation pass's; the CPU's
+  // strands are not uploaded.
+  const bool generated = settings_.geometry == GeometryPath::Compute;
+  if (generated) {
+    // Made at once, before the techniques are set up: some read the strands back
+    // then (the opacity maps' depth range from the light).
+    const uint32_t first = dev_.nextHandleId();
+    generation_.setup(dev_, scene, gpu_);
+    dev_.guardMemory(dev_.resourceIdsFrom(first),
+                     "this run (at least: the groom and the strands made from it on the device)");
+    generation_.run(dev_);
+  }
+  static const Strands kNone;
+  const Strands& st = generated ? kNone : scene.strands;
   std::vector<glm::vec4> points(st.points.size()), colors(st.points.size());
   glm::vec3 lastColor(0.0f);
   float lastAlpha = 1.0f;
@@ -338,11 +352,15 @@ void Renderer::upload(const Scene& scene) {
     normals[i] = glm::vec4(i < m.normals.size() ? m.normals[i] : glm::vec3(0, 1, 0), 0.0f);
   }
 
-  gpu_.points = makeBuffer(dev_, "scene.points", points.data(), points.size() * sizeof(glm::vec4));
-  gpu_.colors = makeBuffer(dev_, "scene.colors", colors.data(), colors.size() * sizeof(glm::vec4));
-  gpu_.segments =
-      makeBuffer(dev_, "scene.segments", segments.data(), segments.size() * sizeof(uint32_t));
-  gpu_.segmentCount = static_cast<uint32_t>(segments.size());
+  if (!generated) {
+    gpu_.points =
+        makeBuffer(dev_, "scene.points", points.data(), points.size() * sizeof(glm::vec4));
+    gpu_.colors =
+        makeBuffer(dev_, "scene.colors", colors.data(), colors.size() * sizeof(glm::vec4));
+    gpu_.segments =
+        makeBuffer(dev_, "scene.segments", segments.data(), segments.size() * sizeof(uint32_t));
+    gpu_.segmentCount = static_cast<uint32_t>(segments.size());
+  }
   gpu_.meshPositions = makeBuffer(dev_, "scene.mesh_positions", positions.data(),
                                   positions.size() * sizeof(glm::vec4));
   gpu_.meshNormals =

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "render/common/technique.h"
+#include "render/generation/generation.h"
 #include "render/outputs/probe/probe.h"
 #include "render/shading/hair_shading.h"
 #include "render/outputs/visibility/visibility.h"
@@ -141,6 +142,7 @@ class Renderer {
   ResourceGroup group_;
   RenderSettings settings_;
   GpuScene gpu_;
+  StrandGeneration generation_;  // --geometry compute: the strands made on the device
   std::vector<std::unique_ptr<LightChain>> lights_;  // the key light first
   Pipeline sumPipeline_;
   VisibilityOutput visibility_;
