@@ -7,6 +7,7 @@
 
 #include "pbr/hair_bsdf.h"
 #include "techniques/chiang/chiang.h"
+#include "techniques/chiang/slots.h"
 
 namespace {
 
@@ -43,28 +44,31 @@ SB_TECHNIQUE(
        hp.alphaDeg = f("alpha");
        hp.eta = f("eta");
        const pbr::HairBsdf bsdf(hp);  // the same variances as the tracer's
-       ShadingModel m;
-       m.kind = ShadingKind::Chiang;
-       m.eta = hp.eta;
-       m.betaN = hp.betaN;
-       m.material = {0.0f, 1.0f, 0.0f, f("ambient")};
-       for (int p = 0; p < 4; ++p) m.shift[p] = static_cast<float>(bsdf.variance(p));
+       ChiangParams p{};
+       for (int l = 0; l < 4; ++l) p.chiangVariance[l] = static_cast<float>(bsdf.variance(l));
        const float a = hp.alphaDeg * kDegree;
-       m.width = {std::sin(a), std::cos(a), std::sin(2 * a), std::cos(2 * a)};
+       p.chiangTilt1 = {std::sin(a), std::cos(a), std::sin(2 * a), std::cos(2 * a)};
        // sqrt(sigma_a) = |ln c| / divisor: the divisor's inverse is sqrt(sigma_a) at c = 1/e.
        const float inverse =
            std::sqrt(pbr::sigmaAFromReflectance(glm::vec3(std::exp(-1.0f)), hp.betaN).x);
-       m.intensity = {std::sin(4 * a), std::cos(4 * a), inverse, chiangXMax(hp.betaN)};
+       p.chiangTilt4 = {std::sin(4 * a), std::cos(4 * a), inverse, chiangXMax(hp.betaN)};
+       const std::vector<float>& table = chiangLobeTable(hp.betaN, hp.eta);
+       ShadingModel m;
+       m.setParams(p);
+       m.tables.push_back({SB_SLOT_CHIANG_TABLE, &table});
+       m.ambient = f("ambient");
        // The colour invariant's bound: pi times each lobe's largest M_p and table entry.
-       const std::vector<float>& table = chiangLobeTable(m.betaN, m.eta);
        const std::size_t lobe = table.size() / SB_CHIANG_LOBES;
        double bound = 0;
-       for (int p = 0; p < SB_CHIANG_LOBES; ++p)
-         bound += mpBound(m.shift[p]) *
-                  *std::max_element(table.begin() + p * lobe, table.begin() + (p + 1) * lobe);
-       m.specularBound = static_cast<float>(std::numbers::pi * bound);
+       for (int l = 0; l < SB_CHIANG_LOBES; ++l)
+         bound += mpBound(p.chiangVariance[l]) *
+                  *std::max_element(table.begin() + l * lobe, table.begin() + (l + 1) * lobe);
+       m.maxDirect = static_cast<float>(std::numbers::pi * bound);
+       m.direct = [p, &table](glm::vec3 T, glm::vec3 L, glm::vec3 V, glm::vec3 c) {
+         return chiangShade(p, table, T, L, V, c);
+       };
        if (o.choice("opacity") == "fibre")
-         m.fibreShadowAlpha = [betaN = m.betaN, eta = m.eta](glm::vec3 c) {
+         m.fibreShadowAlpha = [betaN = hp.betaN, eta = hp.eta](glm::vec3 c) {
            return chiangShadowAlpha(c, betaN, eta);
          };
        return m;

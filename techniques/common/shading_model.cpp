@@ -1,52 +1,20 @@
 #include "techniques/common/shading_model.h"
 
-#include <algorithm>
-#include <cmath>
-
 #include "scenes/options.h"
 
 namespace sb {
 
-namespace {
-
-// The shaders bound cos^2(theta_d) below by this (marschner.glsl, sadeghi.glsl).
-constexpr float kMinCos2 = 1e-2f;
-
-}  // namespace
-
-ShadingModel ShadingModel::withLobes(const OptionReader& o) {
+ShadingLobes ShadingLobes::read(const OptionReader& o) {
   const auto f = [&](const char* name) { return static_cast<float>(o.number(name)); };
   const float alpha = f("alpha") * kDegree;
   const float beta = f("beta") * kDegree;
-  ShadingModel m;
+  ShadingLobes l;
   // The paper's relations between the lobes (Marschner et al. 2003, Table 1; kept by Sadeghi).
-  m.shift = {alpha, -alpha / 2.0f, -3.0f * alpha / 2.0f, 0.0f};
-  m.width = {beta, beta / 2.0f, 2.0f * beta, 0.0f};
-  m.material = {f("diffuse"), f("specular"), 0.0f, 0.12f};
-  return m;
-}
-
-float ShadingModel::maxSpecular() const {
-  switch (kind) {
-    case ShadingKind::KajiyaKay:
-      return 1.0f;
-    case ShadingKind::Marschner: {
-      // Per lobe: the Gaussian's peak 1/(beta sqrt(2 pi)) times N's bound: at most 3 roots,
-      // each with attenuation <= 1 over |2 dphi/dh| >= max(4 (R), 2 caustic).
-      float s = 0.0f;
-      for (int p = 0; p < 3; ++p) {
-        const float peak = 1.0f / (width[p] * 2.50662827463f);
-        const float n = p == 0 ? 1.0f / 4.0f : 3.0f / (2.0f * width.w);
-        s += peak * n;
-      }
-      return s / kMinCos2;
-    }
-    case ShadingKind::Sadeghi:
-      return (intensity.x + intensity.y + intensity.z * (1.0f + intensity.w)) / kMinCos2;
-    case ShadingKind::Chiang:
-      return specularBound;
-  }
-  return 1.0f;
+  l.alpha = {alpha, -alpha / 2.0f, -3.0f * alpha / 2.0f, 0.0f};
+  l.beta = {beta, beta / 2.0f, 2.0f * beta, 0.0f};
+  l.diffuse = f("diffuse");
+  l.specular = f("specular");
+  return l;
 }
 
 float ShadingModel::shadowAlpha(const Scene& scene) const {

@@ -114,7 +114,7 @@ OptionInfo opacityFilter();
 // The moments of msm and mboit.
 OptionInfo moments();
 OptionInfo momentKind();
-// The lobe options ShadingModel::withLobes reads (marschner, sadeghi): diffuse, specular,
+// The lobe options ShadingLobes::read reads (the lobe models): diffuse, specular,
 // alpha and beta, the models' own options after them.
 std::vector<OptionInfo> lobes(std::string diffuseHelp, std::string specularHelp,
                               std::vector<OptionInfo> more, std::string specularDefault = "0.5");

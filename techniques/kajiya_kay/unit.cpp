@@ -1,6 +1,9 @@
 // --shading kajiya-kay.
 #include "techniques/common/unit.h"
 
+#include "techniques/kajiya_kay/kajiya_kay.h"
+#include "techniques/kajiya_kay/uniforms.h"
+
 SB_TECHNIQUE(
     {.name = "kajiya-kay",
      .family = Family::Shading,
@@ -16,8 +19,17 @@ SB_TECHNIQUE(
      .isDefault = true,
      .makeShading = [](const OptionReader& o) {
        const auto f = [&](const char* name) { return static_cast<float>(o.number(name)); };
+       KajiyaKayParams p{};
+       p.kajiyaKayDiffuse = f("diffuse");
+       p.kajiyaKaySpecular = f("specular");
+       p.kajiyaKayShininess = f("shininess");
        ShadingModel m;
-       m.kind = ShadingKind::KajiyaKay;
-       m.material = {f("diffuse"), f("specular"), f("shininess"), f("ambient")};
+       m.setParams(p);
+       m.ambient = f("ambient");
+       m.maxDirect = p.kajiyaKayDiffuse + p.kajiyaKaySpecular * 1.0f;  // both factors <= 1
+       m.direct = [p](glm::vec3 T, glm::vec3 L, glm::vec3 V, glm::vec3 c) {
+         const glm::vec2 kk = glsl::kajiyaKay(T, L, V, p.kajiyaKayShininess);
+         return p.kajiyaKayDiffuse * kk.x * c + glm::vec3(p.kajiyaKaySpecular * kk.y);
+       };
        return m;
      }});

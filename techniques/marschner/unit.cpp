@@ -1,6 +1,28 @@
 // --shading marschner.
 #include "techniques/common/unit.h"
 
+#include <algorithm>
+#include <cmath>
+
+#include "techniques/marschner/marschner.h"
+
+namespace {
+
+// The scattering function's largest value: per lobe, the Gaussian's peak 1/(beta sqrt(2 pi))
+// times N's bound (at most 3 roots, each with attenuation <= 1 over |2 dphi/dh| >= max(4 (R),
+// 2 caustic)), over the shader's bound on cos^2(theta_d).
+float maxScattering(const sb::MarschnerParams& p) {
+  float s = 0.0f;
+  for (int l = 0; l < 3; ++l) {
+    const float peak = 1.0f / (p.marschnerBeta[l] * 2.50662827463f);
+    const float n = l == 0 ? 1.0f / 4.0f : 3.0f / (2.0f * p.marschnerCaustic);
+    s += peak * n;
+  }
+  return s / sb::kMinCos2;
+}
+
+}  // namespace
+
 SB_TECHNIQUE(
     {.name = "marschner",
      .family = Family::Shading,
@@ -20,10 +42,23 @@ SB_TECHNIQUE(
                       "ambient term, a fraction of the hair colour (0: none, as the path-traced "
                       "reference has), 0..1")}),
      .makeShading = [](const OptionReader& o) {
-       ShadingModel m = ShadingModel::withLobes(o);
-       m.kind = ShadingKind::Marschner;
-       m.shift.w = static_cast<float>(o.number("eta"));
-       m.width.w = static_cast<float>(o.number("caustic"));
-       m.material.w = static_cast<float>(o.number("ambient"));
+       const ShadingLobes lobes = ShadingLobes::read(o);
+       MarschnerParams p{};
+       p.marschnerAlpha = lobes.alpha;
+       p.marschnerBeta = lobes.beta;
+       p.marschnerDiffuse = lobes.diffuse;
+       p.marschnerSpecular = lobes.specular;
+       p.marschnerEta = static_cast<float>(o.number("eta"));
+       p.marschnerCaustic = static_cast<float>(o.number("caustic"));
+       ShadingModel m;
+       m.setParams(p);
+       m.ambient = static_cast<float>(o.number("ambient"));
+       m.maxDirect = p.marschnerDiffuse + p.marschnerSpecular * maxScattering(p);
+       m.direct = [p](glm::vec3 T, glm::vec3 L, glm::vec3 V, glm::vec3 c) {
+         const float tl = glm::dot(T, L);
+         const float diffuse = std::sqrt(std::max(0.0f, 1.0f - tl * tl));
+         const glm::vec3 specular = marschnerScattering(p, T, L, V, c) * diffuse;
+         return p.marschnerDiffuse * diffuse * c + p.marschnerSpecular * specular;
+       };
        return m;
      }});

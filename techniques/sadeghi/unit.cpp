@@ -1,6 +1,11 @@
 // --shading sadeghi.
 #include "techniques/common/unit.h"
 
+#include <algorithm>
+#include <cmath>
+
+#include "techniques/sadeghi/sadeghi.h"
+
 SB_TECHNIQUE(
     {.name = "sadeghi",
      .family = Family::Shading,
@@ -27,12 +32,28 @@ SB_TECHNIQUE(
          "1"),
      .makeShading = [](const OptionReader& o) {
        const auto f = [&](const char* name) { return static_cast<float>(o.number(name)); };
-       ShadingModel m = ShadingModel::withLobes(o);
-       m.kind = ShadingKind::Sadeghi;
-       m.shift.w = f("glint_angle") * kDegree;
-       m.width.w = f("tt_width") * kDegree;
-       m.intensity = {f("i_r"), f("i_tt"), f("i_trt"), f("glint")};
-       m.glintWidth = (f("glint_width") > 0.0f ? f("glint_width") : f("tt_width")) * kDegree;
-       m.material.w = f("ambient");
+       const ShadingLobes lobes = ShadingLobes::read(o);
+       SadeghiParams p{};
+       p.sadeghiAlpha = lobes.alpha;
+       p.sadeghiBeta = lobes.beta;
+       p.sadeghiIntensity = {f("i_r"), f("i_tt"), f("i_trt"), f("glint")};
+       p.sadeghiDiffuse = lobes.diffuse;
+       p.sadeghiSpecular = lobes.specular;
+       p.sadeghiGlintAngle = f("glint_angle") * kDegree;
+       p.sadeghiTtWidth = f("tt_width") * kDegree;
+       p.sadeghiGlintWidth = (f("glint_width") > 0.0f ? f("glint_width") : f("tt_width")) * kDegree;
+       ShadingModel m;
+       m.setParams(p);
+       m.ambient = f("ambient");
+       // The specular sum's largest value: every lobe at its peak, over the shader's bound on
+       // cos^2(theta_d).
+       const glm::vec4 i = p.sadeghiIntensity;
+       m.maxDirect =
+           p.sadeghiDiffuse + p.sadeghiSpecular * ((i.x + i.y + i.z * (1.0f + i.w)) / kMinCos2);
+       m.direct = [p](glm::vec3 T, glm::vec3 L, glm::vec3 V, glm::vec3 c) {
+         const float tl = glm::dot(T, L);
+         const float diffuse = std::sqrt(std::max(0.0f, 1.0f - tl * tl));
+         return p.sadeghiDiffuse * diffuse * c + p.sadeghiSpecular * sadeghiSpecular(p, T, L, V, c);
+       };
        return m;
      }});

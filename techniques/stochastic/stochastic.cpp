@@ -22,10 +22,7 @@ StochasticOit::Options StochasticOit::readOptions(const OptionReader& o) {
 
 void StochasticOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
                           const HairShading& shading, const OitTargets& targets) {
-  scene_ = &scene;
-  shading_ = &shading;
-  settings_ = s;
-  targets_ = targets;
+  keep(scene, s, shading, targets);
   const StochasticParams p{glm::uvec4(options_.seed, options_.samples, 0, 0)};
   params_ = dev.createBuffer({"stochastic.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
   const uint32_t w = s.width, h = s.height;
@@ -92,10 +89,8 @@ Pass StochasticOit::accumulatePass() const {
 }
 
 Pass StochasticOit::resolvePass() const {
-  const glm::vec3 bg = settings_.background;
   Pass p("stochastic.resolve");
-  p.color(targets_.color, targets_.opaqueDrawn ? LoadOp::Load : LoadOp::Clear,
-          {bg.r, bg.g, bg.b, 1.0f});
+  p.colorOver(targets_.color, targets_.opaqueDrawn, settings_.background);
   return p.sample(kAccum, accum_).sample(kAlpha, alpha_);
 }
 
