@@ -310,7 +310,7 @@ RenderResult::MoreReference renderPbrReference(const Scene& scene, const RenderS
   info.width = pbrWidthModel(spec);
   // The tracer has no environment light: the raster's ambient term (its strength here) is
   // part of what the two differ by unless the render turns it off.
-  info.rasterAmbient = s.ambient ? double(s.shading.material.w) : 0.0;
+  info.rasterAmbient = s.ambient ? double(s.shading.ambient) : 0.0;
   info.shadowRays = spec.mode == "transmittance" ? "shadow_alpha per strand"
                     : spec.mode == "single"      ? "attenuated by each fibre's transmittance"
                                                  : "opaque (transmission is scattering)";

@@ -11,6 +11,7 @@
 
 #include <array>
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
 

@@ -6,15 +6,12 @@
 
 #include "techniques/common/shading_model.h"
 #include "techniques/kajiya_kay/kajiya_kay.h"
+#include "tests/shading_test_util.h"
 
 namespace {
 
-const glm::vec3 kTangent{0, 1, 0};
-
-// A direction at longitudinal angle theta (to the normal plane, towards the tip) and azimuth phi.
-glm::vec3 dir(float theta, float phi) {
-  return {std::cos(theta) * std::cos(phi), std::sin(theta), std::cos(theta) * std::sin(phi)};
-}
+using sbtest::dir;
+using sbtest::kTangent;
 
 // Diffuse: sin(T, L); specular: 1 on the cone of reflection (V at -theta_i, any azimuth), less
 // off it, and sharper for a larger exponent.

@@ -6,11 +6,12 @@
 
 #include "techniques/common/shading_model.h"
 #include "techniques/marschner/marschner.h"
+#include "tests/shading_test_util.h"
 
 namespace {
 
-constexpr float kPi = 3.14159265358979f;
-const glm::vec3 kBrown{0.55f, 0.35f, 0.2f};
+using sbtest::kBrown;
+using sbtest::kPi;
 
 // R: a single root gamma_i = -phi/2 with |2 dphi/dh| = 4 / cos(phi/2), so the paper's
 // N_R(phi) = F(eta', eta'', gamma_i) cos(phi/2) / 4.

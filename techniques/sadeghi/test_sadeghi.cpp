@@ -6,17 +6,14 @@
 
 #include "techniques/common/shading_model.h"
 #include "techniques/sadeghi/sadeghi.h"
+#include "tests/shading_test_util.h"
 
 namespace {
 
-constexpr float kPi = 3.14159265358979f;
-const glm::vec3 kTangent{0, 1, 0};
-const glm::vec3 kBrown{0.55f, 0.35f, 0.2f};
-
-// A direction at longitudinal angle theta (to the normal plane, towards the tip) and azimuth phi.
-glm::vec3 dir(float theta, float phi) {
-  return {std::cos(theta) * std::cos(phi), std::sin(theta), std::cos(theta) * std::sin(phi)};
-}
+using sbtest::dir;
+using sbtest::kBrown;
+using sbtest::kPi;
+using sbtest::kTangent;
 
 sb::ShadingModel model(const std::string& spec) { return sb::ShadingModel::fromSpec(spec); }
 sb::SadeghiParams params(const std::string& spec) {
