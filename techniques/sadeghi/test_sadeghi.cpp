@@ -10,10 +10,7 @@
 
 namespace {
 
-using sbtest::dir;
-using sbtest::kBrown;
-using sbtest::kPi;
-using sbtest::kTangent;
+using namespace sbtest;  // kPi, kTangent, kBrown, dir
 
 sb::ShadingModel model(const std::string& spec) { return sb::ShadingModel::fromSpec(spec); }
 sb::SadeghiParams params(const std::string& spec) {
