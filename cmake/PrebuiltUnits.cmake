@@ -1,14 +1,16 @@
 # A build of technique folders against the libraries of an existing build
 # (-DSB_PREBUILT_DIR=<that build> -DSB_UNIT_FOLDERS=<folder;...>): compiles only
 # those folders' sources, the embedded shaders and cli/main.cpp, and links
-# the prebuilt static libraries. scripts/check-technique-unit.sh uses it to
-# build a copied technique folder in seconds instead of rebuilding the tree.
+# the prebuilt static libraries; the folders' own tests (test_*.cpp) become
+# sb_unit_tests. scripts/check-technique-unit.sh uses it to build copied unit
+# folders in seconds instead of rebuilding the tree.
 find_package(glm REQUIRED)
 find_package(tinyobjloader CONFIG REQUIRED)
 find_package(Vulkan REQUIRED)
 find_package(glslang CONFIG REQUIRED)
 find_package(CLI11 CONFIG REQUIRED)
 find_package(nlohmann_json CONFIG REQUIRED)
+find_package(GTest REQUIRED)
 find_package(Threads REQUIRED)
 find_package(embree 3 CONFIG REQUIRED)
 find_package(PkgConfig REQUIRED)
@@ -34,8 +36,10 @@ set_target_properties(sb_techniques PROPERTIES IMPORTED_LOCATION ${_techniques})
 
 file(GLOB_RECURSE SB_SHADER_FILES techniques/*.glsl techniques/*.vert techniques/*.frag
   techniques/*.comp techniques/slots.h techniques/*uniforms.h render/*.glsl render/*.vert
-  render/*.frag render/*.comp render/slots.h render/*uniforms.h render/common/uniform_block.h)
-  # every folder's slots.h and uniforms.h (the new folders' too)
+  render/*.frag render/*.comp render/slots.h render/*uniforms.h render/common/uniform_block.h
+  scenes/groom_rule.h)
+  # every folder's slots.h and uniforms.h (the new folders' too), the generation rule: the
+  # same list as CMakeLists.txt's
 string(REPLACE ";" "|" SB_SHADER_LIST "${SB_SHADER_FILES}")
 set(SB_SHADER_CPP ${CMAKE_BINARY_DIR}/generated/embedded_shaders.cpp)
 add_custom_command(
@@ -44,18 +48,36 @@ add_custom_command(
           "-DFILES=${SB_SHADER_LIST}" -P ${CMAKE_SOURCE_DIR}/cmake/EmbedShaders.cmake
   DEPENDS ${SB_SHADER_FILES} ${CMAKE_SOURCE_DIR}/cmake/EmbedShaders.cmake VERBATIM)
 
-set(_sources cli/main.cpp ${SB_SHADER_CPP})
+set(_sources "")
+set(_tests "")
 foreach(_folder IN LISTS SB_UNIT_FOLDERS)
   file(GLOB _folder_sources techniques/${_folder}/*.cpp)
+  set(_folder_tests ${_folder_sources})
+  list(FILTER _folder_tests INCLUDE REGEX "/test_[^/]*\\.cpp$")
+  list(FILTER _folder_sources EXCLUDE REGEX "/test_[^/]*\\.cpp$")
   list(APPEND _sources ${_folder_sources})
+  list(APPEND _tests ${_folder_tests})
 endforeach()
-add_executable(strandbench ${_sources})
-target_include_directories(strandbench PRIVATE ${CMAKE_SOURCE_DIR})
-# The new folders' objects are linked as they are (each registers itself); the
-# prebuilt techniques whole, as in the main build.
-target_link_libraries(strandbench PRIVATE sb_cli sb_harness sb_imaging sb_reports sb_pbr
+set(_libs sb_cli sb_harness sb_imaging sb_reports sb_pbr
   "$<LINK_LIBRARY:WHOLE_ARCHIVE,sb_techniques>" sb_backends sb_scenes
   CLI11::CLI11 nlohmann_json::nlohmann_json
   glm::glm tinyobjloader::tinyobjloader Vulkan::Vulkan PkgConfig::EGL PkgConfig::GLFW
   glslang::glslang glslang::SPIRV glslang::glslang-default-resource-limits embree ${CMAKE_DL_LIBS}
   Threads::Threads)
+# The new folders' objects and the shaders, once for the program and the tests: each
+# registers itself, so they are linked as they are; the prebuilt techniques whole, as in the
+# main build.
+add_library(sb_units OBJECT ${_sources} ${SB_SHADER_CPP})
+target_include_directories(sb_units PRIVATE ${CMAKE_SOURCE_DIR})
+target_link_libraries(sb_units PRIVATE glm::glm nlohmann_json::nlohmann_json)
+add_executable(strandbench cli/main.cpp $<TARGET_OBJECTS:sb_units>)
+target_include_directories(strandbench PRIVATE ${CMAKE_SOURCE_DIR})
+target_link_libraries(strandbench PRIVATE ${_libs})
+if(_tests)
+  add_executable(sb_unit_tests tests/main.cpp ${_tests} $<TARGET_OBJECTS:sb_units>)
+  target_include_directories(sb_unit_tests PRIVATE ${CMAKE_SOURCE_DIR} ${CMAKE_SOURCE_DIR}/tests)
+  target_compile_definitions(sb_unit_tests PRIVATE
+    SB_SOURCE_DIR="${CMAKE_SOURCE_DIR}" SB_CLI="$<TARGET_FILE:strandbench>")
+  target_link_libraries(sb_unit_tests PRIVATE ${_libs} GTest::gtest)
+  add_dependencies(sb_unit_tests strandbench)
+endif()

@@ -26,6 +26,7 @@
 #include "harness/json_keys.h"
 #include "harness/settings.h"
 #include "harness/stop.h"
+#include "harness/unit_cases.h"
 #include "reports/json_file.h"
 #include "scenes/scene.h"
 
@@ -38,7 +39,9 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-const std::vector<std::string> kTopKeys = {"comment", "format", "tolerances", "defaults", "cases"};
+// "unit_cases": true adds the cases the unit folders carry (harness/unit_cases.h).
+const std::vector<std::string> kTopKeys = {"comment",  "format", "tolerances",
+                                           "defaults", "cases",  "unit_cases"};
 // Format 1 (still read): these settings only, "size" a "WxH" string.
 const std::vector<std::string> kFormat1Settings = {"scene",     "shadow",       "oit",     "size",
                                                    "primitive", "ribbon_width", "backends"};
@@ -137,28 +140,42 @@ class ManifestReader {
     Manifest m;
     m.file = file_;
     if (!root.contains("cases")) fail("", "missing \"cases\": [...]");
-    const json& cases = root["cases"];
-    if (!cases.is_array()) fail("cases", "must be an array of cases");
-    std::map<std::string, std::size_t> seen;
-    for (std::size_t i = 0; i < cases.size(); ++i) {
-      std::string where = "cases[" + std::to_string(i) + "]";
-      const json& c = cases[i];
-      if (!c.is_object()) fail(where, "must be an object");
-      if (c.contains("name") && c["name"].is_string())
-        where += " ('" + c["name"].get<std::string>() + "')";
-      PartialCase p = defaults;
-      apply(c, where, p);
-      BaselineCase bc = finish(p, where);
-      if (auto it = seen.find(bc.name); it != seen.end())
-        fail(where, "duplicate case name '" + bc.name + "' (also cases[" +
-                        std::to_string(it->second) + "])");
-      seen[bc.name] = i;
-      m.cases.push_back(std::move(bc));
-    }
+    std::map<std::string, std::string> seen;
+    addCases(root["cases"], "cases", defaults, seen, m);
+    if (root.contains("unit_cases") && !root["unit_cases"].is_boolean())
+      fail("unit_cases", "must be true or false");
+    if (root.value("unit_cases", false))
+      for (const UnitCaseFile& u : unitCaseFiles(file_)) {
+        const json doc = parseJson<json>(u.text, u.file.string());
+        sb::checkKeys(doc, unitCaseKeys(), u.file.string(), "key");
+        if (doc.contains("baselines"))
+          addCases(doc["baselines"], u.file.string() + ": baselines", defaults, seen, m);
+      }
     return m;
   }
 
  private:
+  // The cases of one array (`where`: "cases", or a unit's file), their names unique over all.
+  void addCases(const json& cases, const std::string& where, const PartialCase& defaults,
+                std::map<std::string, std::string>& seen, Manifest& m) const {
+    if (!cases.is_array()) fail(where, "must be an array of cases");
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+      const std::string index = where + "[" + std::to_string(i) + "]";
+      std::string at = index;
+      const json& c = cases[i];
+      if (!c.is_object()) fail(at, "must be an object");
+      if (c.contains("name") && c["name"].is_string())
+        at += " ('" + c["name"].get<std::string>() + "')";
+      PartialCase p = defaults;
+      apply(c, at, p);
+      BaselineCase bc = finish(p, at);
+      if (auto it = seen.find(bc.name); it != seen.end())
+        fail(at, "duplicate case name '" + bc.name + "' (also " + it->second + ")");
+      seen[bc.name] = index;
+      m.cases.push_back(std::move(bc));
+    }
+  }
+
   [[noreturn]] void fail(const std::string& where, const std::string& what) const {
     throw InputError(file_.string() + ": " + (where.empty() ? "" : where + ": ") + what);
   }

@@ -66,7 +66,6 @@ std::string cacheKeyText(const Scene& scene, const RenderSettings& s, const Spec
   std::ostringstream k;
   k.precision(9);
   auto v3 = [&](const glm::vec3& v) { k << v.x << "," << v.y << "," << v.z << ";"; };
-  auto v4 = [&](const glm::vec4& v) { k << v.x << "," << v.y << "," << v.z << "," << v.w << ";"; };
   k << kPbrCodeVersion << "|" << spec.str() << "|" << scene.name << "|";
   uint64_t h = kFnvOffset;
   const Strands& st = scene.strands;
@@ -103,12 +102,9 @@ std::string cacheKeyText(const Scene& scene, const RenderSettings& s, const Spec
     k << refShadow.str() << "|";
   // The shading model counts in transmittance mode only (the path's is the hair BSDF).
   if (spec.mode == "transmittance") {
-    k << s.shading.spec << ";";
-    v4(s.shading.material);
-    v4(s.shading.shift);
-    v4(s.shading.width);
-    v4(s.shading.intensity);
-    k << s.shading.glintWidth;
+    k << s.shading.spec << ";" << s.shading.ambient << ";" << std::hex;
+    for (const std::byte b : s.shading.params) k << int(b) << ",";  // the model's own block
+    k << std::dec;
   }
   return k.str();
 }
@@ -190,12 +186,12 @@ pbr::ShadeFn shadingOf(const RenderSettings& s) {
       return out;
     }
     const glm::vec3 T = glm::normalize(p.direction), c = p.color;
-    out = m.material.w * ambient * c;
+    out = m.ambient * ambient * c;
     for (std::size_t l = 0; l < lights.size(); ++l) {
       const Light& Lt = lights[l];
       const glm::vec3 L = Lt.type == LightType::Point ? glm::normalize(Lt.position - p.position)
                                                       : -glm::normalize(Lt.direction);
-      const glm::vec3 direct = HairShading::direct(m, T, L, V, c);
+      const glm::vec3 direct = m.direct(T, L, V, c);
       out += vis[l] * direct * Lt.color * Lt.intensity;
     }
     return out;
@@ -316,7 +312,7 @@ RenderResult::MoreReference renderPbrReference(const Scene& scene, const RenderS
   info.width = pbrWidthModel(spec);
   // The tracer has no environment light: the raster's ambient term (its strength here) is
   // part of what the two differ by unless the render turns it off.
-  info.rasterAmbient = s.ambient ? double(s.shading.material.w) : 0.0;
+  info.rasterAmbient = s.ambient ? double(s.shading.ambient) : 0.0;
   info.shadowRays = spec.mode == "transmittance" ? "shadow_alpha per strand"
                     : spec.mode == "single"      ? "attenuated by each fibre's transmittance"
                                                  : "opaque (transmission is scattering)";

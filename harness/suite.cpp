@@ -10,6 +10,7 @@
 #include "harness/json_keys.h"
 #include "harness/settings.h"
 #include "harness/technique_list.h"
+#include "harness/unit_cases.h"
 #include "reports/files.h"
 #include "reports/json_file.h"
 #include "render/common/technique.h"
@@ -22,8 +23,11 @@ using ojson = nlohmann::ordered_json;
 
 // "figure" and "small": a figure's grid and its --small overrides (harness/figure.h); a sweep
 // of a figure file runs its full size and ignores both.
-const std::vector<std::string> kSuiteKeys = {"name",   "description", "defaults", "presets",
-                                             "groups", "tables",      "figure",   "small"};
+// "unit_cases": true adds the groups the unit folders carry for the quick suite
+// (harness/unit_cases.h).
+const std::vector<std::string> kSuiteKeys = {"name",    "description", "defaults",
+                                             "presets", "groups",      "tables",
+                                             "figure",  "small",       "unit_cases"};
 const std::vector<std::string> kGroupKeys = {"name", "description", "preset", "axes"};
 // Settings: the table's keys (harness/settings.h), "backends", a list: one case per backend,
 // and "drivers", a list: one case per driver (each driver's cases run in a process of its own).
@@ -175,6 +179,17 @@ Suite parseSuite(const std::string& text, const std::string& file) {
   const ojson& d = suite.doc;
   const std::string where = "suite " + file;
   checkKeys(d, kSuiteKeys, where, "suite key");
+  if (d.contains("unit_cases") && !d["unit_cases"].is_boolean())
+    throw InputError(where + ": \"unit_cases\" must be true or false");
+  if (d.value("unit_cases", false) && d.contains("groups") && d["groups"].is_array())
+    for (const UnitCaseFile& u : unitCaseFiles(file)) {
+      const ojson unit = parseJson<ojson>(u.text, u.file.string());
+      checkKeys(unit, unitCaseKeys(), u.file.string(), "key");
+      if (!unit.contains("quick")) continue;
+      if (!unit["quick"].is_array())
+        throw InputError(u.file.string() + ": \"quick\" must be an array of groups");
+      for (const ojson& g : unit["quick"]) suite.doc["groups"].push_back(g);
+    }
   if (!d.contains("name") || !d["name"].is_string())
     throw InputError(where + ": \"name\" (a string) is required");
   suite.name = d["name"];

@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
-# The copy-a-folder acceptance check (a technique is its folder): a copy of techniques/wboit as
-# techniques/wboit_copy, with its file, class and descriptor names changed by
-# sed and nothing else edited, builds in a scratch copy of the tree, appears in
-# `strandbench list`, renders on GL and Vulkan and is accepted by a suite.
+# The copy-a-folder acceptance check (a unit is its folder): copies of a shadow technique
+# (techniques/voxel as voxel_copy), a transparency technique (wboit as wboit_copy) and a shading
+# model (marschner as marschner_copy), each with its file, class and descriptor names changed by
+# sed and nothing else edited, build in a scratch copy of the tree, appear in `strandbench list`,
+# render on GL and Vulkan (the model's copy the same image as the model), are accepted by a
+# suite, and run the tests they carry (techniques/<folder>/test_*.cpp).
 #   scripts/check-technique-unit.sh [BUILD_DIR]   (default build/; it must be built)
-# Only the new folder, the embedded shaders and main.cpp are compiled: the rest
+# Only the new folders, their tests, the embedded shaders and main.cpp are compiled: the rest
 # is linked from BUILD_DIR's libraries (cmake/PrebuiltUnits.cmake).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -13,37 +15,71 @@ build=$(realpath "${1:-build}")
 scratch=$(mktemp -d /tmp/strandbench-unit-XXXXXX)
 trap '[ -n "${KEEP:-}" ] || rm -rf "$scratch"' EXIT
 # The sources only (no builds, baselines or history).
-tar --exclude=./build --exclude='./build-*' --exclude=./.git --exclude=./baselines -cf - . |
-  tar -xf - -C "$scratch"
+tar --exclude=./build --exclude='./build-*' --exclude=./.git --exclude=./baselines \
+  --exclude=./drivers -cf - . | tar -xf - -C "$scratch"
 
-# The copy: files renamed, then the folder's names changed; nothing else edited.
-src=$scratch/techniques/wboit
-dst=$scratch/techniques/wboit_copy
-cp -r "$src" "$dst"
-for f in "$dst"/wboit*; do mv "$f" "$dst/wboit_copy${f##*/wboit}"; done
-sed -i -e 's/wboit/wboit_copy/g' -e 's/WBOIT/WBOIT_COPY/g' \
-  -e 's/WeightedBlendedOit/WeightedBlendedCopyOit/g' "$dst"/*
+# copy FOLDER NEW SED...: the folder copied as NEW, its files renamed (FOLDER -> NEW in the
+# name), then its names changed by the sed expressions; nothing else edited.
+copy() {
+  local from=$1 to=$2
+  shift 2
+  cp -r "$scratch/techniques/$from" "$scratch/techniques/$to"
+  for f in "$scratch/techniques/$to"/*"$from"*; do
+    local name=${f##*/}
+    mv "$f" "$scratch/techniques/$to/${name//$from/$to}"
+  done
+  sed -i "$@" "$scratch/techniques/$to"/*
+}
+copy voxel voxel_copy -e 's/voxel/voxel_copy/g' -e 's/Voxel/VoxelCopy/g' -e 's/VOXEL/VOXEL_COPY/g'
+copy wboit wboit_copy -e 's/wboit/wboit_copy/g' -e 's/WBOIT/WBOIT_COPY/g' \
+  -e 's/WeightedBlendedOit/WeightedBlendedCopyOit/g'
+copy marschner marschner_copy -e 's/marschner/marschner_copy/g' -e 's/Marschner/MarschnerCopy/g' \
+  -e 's/MARSCHNER/MARSCHNER_COPY/g'
 
 cmake -S "$scratch" -B "$scratch/build" -DCMAKE_BUILD_TYPE=Release -DSB_PREBUILT_DIR="$build" \
-  -DSB_UNIT_FOLDERS=wboit_copy ${CMAKE_CXX_COMPILER_LAUNCHER:+-DCMAKE_CXX_COMPILER_LAUNCHER=$CMAKE_CXX_COMPILER_LAUNCHER} \
+  "-DSB_UNIT_FOLDERS=voxel_copy;wboit_copy;marschner_copy" \
+  ${CMAKE_CXX_COMPILER_LAUNCHER:+-DCMAKE_CXX_COMPILER_LAUNCHER=$CMAKE_CXX_COMPILER_LAUNCHER} \
   >"$scratch/configure.log" || { cat "$scratch/configure.log"; exit 1; }
 cmake --build "$scratch/build" -j"$(nproc)" >"$scratch/build.log" || { cat "$scratch/build.log"; exit 1; }
 bin=$scratch/build/strandbench
 
 "$bin" list >"$scratch/list.txt"
-grep -q '^  wboit_copy ' "$scratch/list.txt" || { echo "wboit_copy is not in strandbench list" >&2; exit 1; }
-"$bin" list wboit_copy
+for name in voxel_copy wboit_copy marschner_copy; do
+  grep -q "^  $name " "$scratch/list.txt" || { echo "$name is not in strandbench list" >&2; exit 1; }
+  "$bin" list "$name"
+done
 for backend in gl vulkan; do
-  "$bin" render --backend "$backend" --scene curly:strands=50 --size 32x32 --shadow none \
-    --oit wboit_copy --out "$scratch/copy.$backend.png"
+  render() {
+    "$bin" render --backend "$backend" --scene curly:strands=50 --size 32x32 "$@"
+  }
+  render --shadow voxel_copy --oit wboit_copy --out "$scratch/copy.$backend.png"
+  # The model's copy is the model: the same pixels.
+  render --shading marschner --out "$scratch/model.$backend.png"
+  render --shading marschner_copy --out "$scratch/model_copy.$backend.png"
+  cmp "$scratch/model.$backend.png" "$scratch/model_copy.$backend.png" ||
+    { echo "marschner_copy renders otherwise than marschner on $backend" >&2; exit 1; }
 done
 cat >"$scratch/unit.json" <<'JSON'
 {
   "name": "unit",
-  "description": "one case of the copied technique",
+  "description": "one case of the copied units",
   "defaults": {"scene": "curly:strands=50", "size": "32x32", "repeat": 1, "warmup": 0},
-  "groups": [{"name": "copy", "axes": {"oit": ["wboit_copy"], "backend": ["gl", "vulkan"]}}]
+  "groups": [{"name": "copy", "axes": {"shadow": ["voxel_copy"], "oit": ["wboit_copy"],
+                                       "shading": ["marschner_copy"], "backend": ["gl", "vulkan"]}}]
 }
 JSON
 "$bin" sweep "$scratch/unit.json" --out "$scratch/sweep"
-echo "check-technique-unit: wboit_copy builds, lists, renders on gl and vulkan and runs in a suite"
+
+# The copies' own tests, and nothing but theirs.
+tests=$scratch/build/sb_unit_tests
+"$tests" --gtest_list_tests >"$scratch/tests.txt"
+for suite in VoxelCopyMath MarschnerCopyShading; do
+  grep -q "^$suite\." "$scratch/tests.txt" || { echo "the copy's $suite tests were not built" >&2; exit 1; }
+done
+if grep -q "^\(VoxelMath\|MarschnerShading\)\." "$scratch/tests.txt"; then
+  echo "the originals' tests were built into the copies' test program" >&2
+  exit 1
+fi
+(cd "$scratch" && "$tests")
+echo "check-technique-unit: voxel_copy, wboit_copy and marschner_copy build, list, render on gl" \
+  "and vulkan, run in a suite and pass their copied tests"

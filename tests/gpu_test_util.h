@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <functional>
@@ -92,6 +94,28 @@ class ProbedShadowTest : public BackendTest {
     p.samples = 256;
     r.probe = p;
     return r;
+  }
+  // Largest |technique - exact| along the probe ray.
+  static double probeMaxError(const sb::RenderResult& out) {
+    double worst = 0;
+    for (std::size_t i = 0; i < out.probe->exact.size(); ++i)
+      worst = std::max(worst, double(std::abs(out.probe->visibility[i] - out.probe->exact[i])));
+    return worst;
+  }
+  static double counter(const sb::RenderResult& out, const std::string& name) {
+    for (const sb::Counter& c : out.counters)
+      if (c.name == name) return c.value;
+    ADD_FAILURE() << "no counter " << name;
+    return 0;
+  }
+  // Renders r, prints its visibility errors and expects its invariants to hold.
+  sb::RenderResult run(const sb::RenderRequest& r) {
+    sb::RenderResult out = sb::runRender(r);
+    std::cout << "[ measured ] " << r.backend << " " << r.scene << " " << r.shadow
+              << ": visibility RMSE " << out.visibilityError->rmse << ", max "
+              << out.visibilityError->max << ", probe max " << probeMaxError(out) << "\n";
+    EXPECT_TRUE(out.invariants->empty()) << out.invariants->front().what;
+    return out;
   }
 };
 

@@ -93,7 +93,7 @@ Agreement agreement(const std::string& modelSpec, float betaM, float betaN, floa
   double largest = 0;
   for (const Probe& p : probes()) {
     ref.push_back(pbrAveraged(p.T, p.L, p.V, p.color, betaM, betaN, alphaDeg));
-    got.push_back(glm::dvec3(sb::chiangShade(m, p.T, p.L, p.V, p.color)));
+    got.push_back(glm::dvec3(m.direct(p.T, p.L, p.V, p.color)));
     largest = std::max({largest, ref.back().x, ref.back().y, ref.back().z});
   }
   Agreement a;
@@ -131,17 +131,17 @@ TEST(ChiangShading, AnotherFibreFailsTheBound) {
   EXPECT_GT(betaN.worst, kTolerance);
 }
 
-// Finite, non-negative and under the colour invariant's bound (ShadingModel::maxSpecular) at
+// Finite, non-negative and under the colour invariant's bound (ShadingModel::maxDirect) at
 // every probe, grazing directions included.
 TEST(ChiangShading, FiniteNonNegativeAndBounded) {
   for (const char* spec : {"chiang", "chiang:beta_m=0.05,beta_n=0.05,alpha=10"}) {
     const sb::ShadingModel m = sb::ShadingModel::fromSpec(spec);
     for (const Probe& p : probes())
       for (glm::vec3 V : {p.V, p.T, -p.T}) {
-        const glm::vec3 v = sb::chiangShade(m, p.T, p.L, V, p.color);
+        const glm::vec3 v = m.direct(p.T, p.L, V, p.color);
         for (int c = 0; c < 3; ++c) {
           EXPECT_TRUE(std::isfinite(v[c]) && v[c] >= 0.0f) << spec << ": " << v[c];
-          EXPECT_LE(v[c], m.maxSpecular()) << spec;
+          EXPECT_LE(v[c], m.maxDirect) << spec;
         }
       }
   }

@@ -9,22 +9,29 @@
 #include <iostream>
 #include <map>
 #include <numbers>
+#include <string>
+#include <vector>
 
 #include "backends/device.h"
 #include "harness/render.h"
 #include "imaging/metrics.h"
 #include "pbr/hair_bsdf.h"
-#include "techniques/chiang/dual.h"
 #include "render/shading/shading_model.h"
+#include "techniques/chiang/dual.h"
 
 namespace {
 
 constexpr double kPi = std::numbers::pi;
 
+// chiang's uniform block for a spec: what the dual-scattering code reads.
+sb::ChiangParams block(const std::string& spec) {
+  return sb::ShadingModel::fromSpec(spec).paramsAs<sb::ChiangParams>();
+}
+
 // The fibre's energy (white furnace: a_f + a_b <= 1) and the neighbourhood's back-scattering
 // within [0, 1] at every entry of the table; widths and variances positive.
 TEST(DualScattering, AveragesWithinTheFibresEnergy) {
-  const sb::ShadingModel m = sb::ShadingModel::fromSpec("chiang:scattering=dual");
+  const sb::ChiangParams m = block("chiang:scattering=dual");
   double largestAb = 0;
   for (int x = 0; x < SB_CHIANG_X; ++x)
     for (int s = 0; s < SB_CHIANG_SIN; ++s) {
@@ -49,8 +56,8 @@ TEST(DualScattering, AveragesWithinTheFibresEnergy) {
 // grid in z and azimuth, 64 offsets h across the fibre), wo at the table's angle: forward where
 // cos(phi) < 0.
 TEST(DualScattering, AttenuationsAreTheBsdfsIntegral) {
-  const sb::ShadingModel m = sb::ShadingModel::fromSpec("chiang:scattering=dual");
-  const float xMax = sb::chiangXMax(m.betaN);
+  const sb::ChiangParams m = block("chiang:scattering=dual");
+  const float xMax = sb::chiangXMax(m.chiangBetaN);
   double worst = 0, control = 0;
   for (int x : {0, 8, 20}) {
     for (int s : {0, 25}) {
@@ -103,8 +110,10 @@ TEST(DualScattering, StrandCountFromVisibility) {
 // single scattering plus the local back-scatter, and d_f counts for nothing; behind strands d_f
 // changes the result (the control). Finite, non-negative and under the colour bound.
 TEST(DualScattering, DirectLightAddsOnlyTheBackScatter) {
-  const sb::ShadingModel m = sb::ShadingModel::fromSpec("chiang:scattering=dual");
-  const sb::ShadingModel m2 = sb::ShadingModel::fromSpec("chiang:scattering=dual,d_f=0.3");
+  const sb::ShadingModel model = sb::ShadingModel::fromSpec("chiang:scattering=dual");
+  const sb::ChiangParams m = model.paramsAs<sb::ChiangParams>();
+  const sb::ChiangParams m2 = block("chiang:scattering=dual,d_f=0.3");
+  const std::vector<float>& lobes = sb::chiangLobeTable(m.chiangBetaN, m.chiangEta);
   const glm::vec3 T(0, 1, 0), c(0.55f, 0.35f, 0.2f);
   double changed = 0;
   for (double tl : {-0.8, -0.1, 0.4})
@@ -112,7 +121,7 @@ TEST(DualScattering, DirectLightAddsOnlyTheBackScatter) {
       const glm::vec3 L(float(std::cos(tl) * std::cos(pl)), float(std::sin(tl)),
                         float(std::cos(tl) * std::sin(pl)));
       const glm::vec3 V(0, 0.2f, 0.98f);
-      const glm::vec3 single = sb::chiangShade(m, T, L, glm::normalize(V), c);
+      const glm::vec3 single = sb::chiangShade(m, lobes, T, L, glm::normalize(V), c);
       const glm::vec3 lit = sb::dualShade(m, T, L, glm::normalize(V), c, 1.0f, 0.4f);
       const glm::vec3 lit2 = sb::dualShade(m2, T, L, glm::normalize(V), c, 1.0f, 0.4f);
       const glm::vec3 hidden = sb::dualShade(m, T, L, glm::normalize(V), c, 0.05f, 0.4f);
@@ -122,7 +131,7 @@ TEST(DualScattering, DirectLightAddsOnlyTheBackScatter) {
         EXPECT_FLOAT_EQ(lit[k], lit2[k]);
         for (float v : {lit[k], hidden[k]}) {
           EXPECT_TRUE(std::isfinite(v) && v >= 0.0f);
-          EXPECT_LE(v, m.maxSpecular());
+          EXPECT_LE(v, model.maxDirect);
         }
         changed = std::max(changed, double(std::abs(hidden[k] - hidden2[k])));
       }

@@ -98,9 +98,9 @@ TEST(Invariants, ABrokenShaderFailsTheSweepNamingCaseTechniqueBackendAndPass) {
            fs::copy_options::recursive);
   const fs::path shading = dir / "shaders" / "render" / "shading" / "hair_shading.glsl";
   std::string text = readFile(shading);
-  const std::string ret = "return hairMaterial.w * color + visibility * direct;";
+  const std::string ret = "return sceneParams.z * color + visibility * direct;";
   ASSERT_NE(text.find(ret), std::string::npos);
-  text.replace(text.find(ret), ret.size(), "return vec3(1.0 / (hairMaterial.x - hairMaterial.x));");
+  text.replace(text.find(ret), ret.size(), "return vec3(1.0 / (sceneParams.x - sceneParams.x));");
   std::ofstream(shading) << text;
   const std::string cmd = "SB_SHADER_DIR=" + (dir / "shaders").string() + " " + SB_CLI + " sweep " +
                           (dir / "inv.json").string() + " --out " + (dir / "bad2").string() +

@@ -151,7 +151,7 @@ TEST(PbrReference, TransmittanceAgreesWithTheExactReferenceOnARealGroom) {
 }
 
 // The chiang shading model's GLSL (the raster's exact reference, on each API) against its CPU
-// form (HairShading::direct, which the transmittance reference shades with) over the interior
+// form (ShadingModel::direct, which the transmittance reference shades with) over the interior
 // pixels of 6-pixel ribbons, relative to the CPU image's level there; the control, the GPU
 // image of the model with its tilt mirrored, fails the same bound.
 TEST(PbrReference, ChiangShadingOnBothApisMatchesItsCpuForm) {

@@ -1,9 +1,6 @@
-// Adaptive volumetric shadow maps (Salvi et al. 2010) and voxelized hair
-// density (Unreal, vkhr): the math shared with the GLSL is tested
-// on the CPU (AVSM's node removal against a brute-force search of the least
-// area change, the voxel march against the exact count), and both backends
-// render against the exact visibility, with the ordering: avsm with 8
-// nodes below dom with 3 layers on the stray scene.
+// Adaptive volumetric shadow maps (Salvi et al. 2010): the math shared with the GLSL is tested
+// on the CPU (the node removal against a brute-force search of the least area change), and both
+// backends render against the exact visibility. (voxel's tests: techniques/voxel/test_voxel.cpp.)
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,7 +12,6 @@
 #include "harness/invariants.h"
 #include "harness/render.h"
 #include "techniques/avsm/avsm_math.h"
-#include "techniques/voxel/voxel_math.h"
 
 namespace sb {
 namespace {
@@ -201,89 +197,9 @@ TEST(AvsmMath, ErrorFallsWithMoreNodes) {
   EXPECT_GT(err[1], err[2]);
 }
 
-// --- voxel: the march (techniques/voxel/voxel_math.glsl) ---
-
-struct Grid {
-  int g;
-  std::vector<float> counts;
-  float& at(int x, int y, int s) { return counts[(s * g + y) * g + x]; }
-  void use() {
-    glsl::voxelCountsCpu = counts.data();
-    glsl::voxelColumnsCpu = g;
-  }
-};
-
-TEST(VoxelMath, MarchingTheWholeColumnCountsEveryFragment) {
-  Grid grid{8, std::vector<float>(8 * 8 * 8, 0.0f)};
-  grid.at(3, 4, 1) = 2;
-  grid.at(3, 4, 5) = 3;
-  grid.use();
-  // At a voxel centre, steps = grid: the march sums the column's slices.
-  for (const int steps : {8, 16, 64}) {
-    EXPECT_NEAR(glsl::voxelHairCount(3, 4, 1.0f, 8, steps), 5.0f, 1e-4f) << steps;
-    EXPECT_NEAR(glsl::voxelHairCount(3, 4, 0.0f, 8, steps), 0.0f, 1e-6f);
-  }
-  // Between the two slices: the first's count (slice 1 ends at 2/8).
-  EXPECT_NEAR(glsl::voxelHairCount(3, 4, 0.5f, 8, 8), 2.0f, 1e-4f);
-  // With density_scale 1 the visibility is (1 - alpha)^n.
-  EXPECT_NEAR(glsl::voxelVisibility(5.0f, 0.3f, 1.0f), std::pow(0.7f, 5.0f), 1e-6f);
-  EXPECT_EQ(glsl::voxelVisibility(5.0f, 0.3f, 0.0f), 1.0f);
-  EXPECT_EQ(glsl::voxelVisibility(5.0f, 1.0f, 1.0f) >= 0.0f, true);
-  // Half way into slice 5: slice 1's 2 and half of slice 5's 3 (the partial
-  // step takes the density of its whole step's middle).
-  EXPECT_NEAR(glsl::voxelHairCount(3, 4, 5.5f / 8.0f, 8, 8), 2.0f + 0.5f * 3.0f, 1e-4f);
-  // The comparison fails on a wrong column.
-  EXPECT_GT(std::abs(glsl::voxelHairCount(5, 4, 1.0f, 8, 8) - 5.0f), 1.0f);
-}
-
-TEST(VoxelMath, CountNeverFallsAlongTheRayAndStaysFinite) {
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  for (const int g : {4, 16, 32}) {
-    Grid grid{g, std::vector<float>(std::size_t(g) * g * g)};
-    for (float& c : grid.counts) c = u(rng) < 0.3f ? std::floor(u(rng) * 20.0f) : 0.0f;
-    grid.use();
-    for (const int steps : {1, 7, g, 3 * g}) {
-      const int cx = int(u(rng) * float(g - 1)), cy = int(u(rng) * float(g - 1));
-      float prev = 0.0f;
-      for (float z = -0.1f; z <= 1.1f; z += 1e-3f) {
-        const float n = glsl::voxelHairCount(cx, cy, z, g, steps);
-        ASSERT_TRUE(std::isfinite(n));
-        ASSERT_GE(n, prev - 1e-4f * std::max(prev, 1.0f)) << g << " " << steps << " " << z;
-        prev = n;
-        const float v = glsl::voxelVisibility(n, 0.5f, 1.0f);
-        ASSERT_GE(v, 0.0f);
-        ASSERT_LE(v, 1.0f);
-      }
-    }
-  }
-}
-
 // --- GPU: both backends against the exact visibility ---
 
-class ShadowAvsm : public sbtest::ProbedShadowTest {
- protected:
-  static double counter(const RenderResult& out, const std::string& name) {
-    for (const Counter& c : out.counters)
-      if (c.name == name) return c.value;
-    ADD_FAILURE() << "no counter " << name;
-    return 0;
-  }
-  static double probeMaxError(const RenderResult& out) {
-    double worst = 0;
-    for (std::size_t i = 0; i < out.probe->exact.size(); ++i)
-      worst = std::max(worst, double(std::abs(out.probe->visibility[i] - out.probe->exact[i])));
-    return worst;
-  }
-  RenderResult run(const RenderRequest& r) {
-    RenderResult out = runRender(r);
-    std::cout << "[ measured ] " << r.backend << " " << r.scene << " " << r.shadow
-              << ": visibility RMSE " << out.visibilityError->rmse << ", max "
-              << out.visibilityError->max << ", probe max " << probeMaxError(out) << "\n";
-    EXPECT_TRUE(out.invariants->empty()) << out.invariants->front().what;
-    return out;
-  }
-};
+class ShadowAvsm : public sbtest::ProbedShadowTest {};
 
 // The ordering: on the stray scene, AVSM with 8 nodes has a lower
 // visibility RMSE than deep opacity maps with 3 layers (same map size).
@@ -322,26 +238,9 @@ TEST_P(ShadowAvsm, AvsmRendersItsCurvesAndMarksTheTimingEmulated) {
   EXPECT_GT(cut.visibilityError->max, 1e-5);
 }
 
-TEST_P(ShadowAvsm, VoxelRendersWithinItsInvariantsAndGridHelps) {
-  const RenderResult coarse = run(request("stray:strands=1500", "voxel:grid=16,steps=16,size=128"));
-  const RenderResult fine = run(request("stray:strands=1500", "voxel:grid=64,steps=64,size=128"));
-  EXPECT_GT(counter(fine, "voxel_fragments"), 0.0);
-  EXPECT_EQ(counter(fine, "voxel_grid_bytes"), 64.0 * 64 * 64 * 4);
-  EXPECT_GT(coarse.visibilityError->rmse, 0.0);
-  EXPECT_LT(fine.visibilityError->rmse, coarse.visibilityError->rmse);
-  // density_scale 0: no shadow from the hair at all, a larger error.
-  const RenderResult none =
-      run(request("stray:strands=1500", "voxel:grid=64,density_scale=0,size=128"));
-  EXPECT_GT(none.visibilityError->rmse, fine.visibilityError->rmse);
-}
-
 TEST_P(ShadowAvsm, BadOptionsAreRejectedNamingThem) {
   for (const auto& [shadow, name] : std::vector<std::pair<std::string, std::string>>{
-           {"avsm:nodes=5", "nodes"},
-           {"avsm:nodes=32", "nodes"},
-           {"voxel:grid=1000", "grid"},
-           {"voxel:steps=0", "steps"},
-           {"voxel:density_scale=-1", "density_scale"}}) {
+           {"avsm:nodes=5", "nodes"}, {"avsm:nodes=32", "nodes"}}) {
     RenderRequest r = request("straight:strands=10", shadow);
     try {
       runRender(r);
@@ -357,14 +256,13 @@ INSTANTIATE_TEST_SUITE_P(Backends, ShadowAvsm, ::testing::Values("gl", "vulkan")
 
 TEST(ShadowAvsmInvariants, BothPromiseToFall) {
   EXPECT_TRUE(makeShadowTechnique(Spec::parse("avsm"))->monotone());
-  EXPECT_TRUE(makeShadowTechnique(Spec::parse("voxel"))->monotone());
 }
 
 // GL and Vulkan render them alike (visibility within 1e-4).
 TEST(ShadowAvsmParity, GlAndVulkanAgree) {
   const sbtest::BothBackends both = sbtest::makeBothBackends();
   if (!both.unavailable.empty()) GTEST_SKIP() << both.unavailable;
-  sbtest::expectShadowParity(both, {"avsm:size=128,nodes=8", "voxel:size=128,grid=64,steps=64"});
+  sbtest::expectShadowParity(both, {"avsm:size=128,nodes=8"});
 }
 
 }  // namespace

@@ -278,18 +278,21 @@ TEST(OsmBox3x3, AveragesThePointsTexelAndItsEightNeighbours) {
   const int size = 32;
   // A ramp in x: the symmetric average keeps the point's texel value.
   glsl::filterFieldCpu = [](glsl::ivec2 t) { return float(t.x); };
-  EXPECT_FLOAT_EQ(glsl::filteredOpacity(glm::vec2(10.25f, 7.5f) / float(size), size, glsl::kFilterBox3x3),
-                  10.0f);
+  EXPECT_FLOAT_EQ(
+      glsl::filteredOpacity(glm::vec2(10.25f, 7.5f) / float(size), size, glsl::kFilterBox3x3),
+      10.0f);
   // One bright texel: 1/9 of it in each of the 9 texels around it, nothing
   // two texels away (pcf6x6 spreads it over 36: a different kernel).
   glsl::filterFieldCpu = [](glsl::ivec2 t) { return t == glsl::ivec2(16, 16) ? 36.0f : 0.0f; };
   for (const glm::vec2 p : {glm::vec2(16.5f, 16.5f), glm::vec2(17.5f, 16.5f),
                             glm::vec2(15.5f, 15.5f), glm::vec2(17.9f, 17.1f)})
     EXPECT_FLOAT_EQ(glsl::filteredOpacity(p / float(size), size, glsl::kFilterBox3x3), 4.0f);
-  EXPECT_FLOAT_EQ(glsl::filteredOpacity(glm::vec2(18.5f, 16.5f) / float(size), size, glsl::kFilterBox3x3),
-                  0.0f);
-  EXPECT_FLOAT_EQ(glsl::filteredOpacity(glm::vec2(16.5f, 16.5f) / float(size), size, glsl::kFilterPcf6x6),
-                  1.0f);
+  EXPECT_FLOAT_EQ(
+      glsl::filteredOpacity(glm::vec2(18.5f, 16.5f) / float(size), size, glsl::kFilterBox3x3),
+      0.0f);
+  EXPECT_FLOAT_EQ(
+      glsl::filteredOpacity(glm::vec2(16.5f, 16.5f) / float(size), size, glsl::kFilterPcf6x6),
+      1.0f);
   // Edges clamp: a constant field stays constant at the corner.
   glsl::filterFieldCpu = [](glsl::ivec2) { return 3.0f; };
   EXPECT_FLOAT_EQ(glsl::filteredOpacity(glm::vec2(0.0f), size, glsl::kFilterBox3x3), 3.0f);
@@ -315,29 +318,8 @@ TEST(ShadowMoreInvariants, RayMayRiseOnlyWhereTheTechniqueSaysSo) {
 
 class ShadowMore : public sbtest::ProbedShadowTest {
  protected:
-  // Largest |technique - exact| along the probe ray.
-  static double probeMaxError(const RenderResult& out) {
-    double worst = 0;
-    for (std::size_t i = 0; i < out.probe->exact.size(); ++i)
-      worst = std::max(worst, double(std::abs(out.probe->visibility[i] - out.probe->exact[i])));
-    return worst;
-  }
   static double probeMinExact(const RenderResult& out) {
     return *std::min_element(out.probe->exact.begin(), out.probe->exact.end());
-  }
-  static double counter(const RenderResult& out, const std::string& name) {
-    for (const Counter& c : out.counters)
-      if (c.name == name) return c.value;
-    ADD_FAILURE() << "no counter " << name;
-    return 0;
-  }
-  RenderResult run(const RenderRequest& r) {
-    RenderResult out = runRender(r);
-    std::cout << "[ measured ] " << r.backend << " " << r.scene << " " << r.shadow
-              << ": visibility RMSE " << out.visibilityError->rmse << ", max "
-              << out.visibilityError->max << ", probe max " << probeMaxError(out) << "\n";
-    EXPECT_TRUE(out.invariants->empty()) << out.invariants->front().what;
-    return out;
   }
 };
 

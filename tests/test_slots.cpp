@@ -362,12 +362,22 @@ TEST(Slots, NoTwoNamesBoundInOneShaderShareANumber) {
   for (const auto& f : shaderFiles())
     if (fs::path(f).filename() == "lookup.glsl") lookups.push_back(f);
   ASSERT_GE(lookups.size(), 13u);  // every shadow technique's, none's too
+  // Every shading model's GLSL in place of <shading>, in turn with the lookups: with at least
+  // as many lookups as models, each shader meets every model.
+  std::vector<std::string> models;
+  for (const auto& f : shaderFiles())
+    if (fs::path(f).filename() == "shading.glsl" && f.rfind("render/common/", 0) != 0)
+      models.push_back(f);
+  ASSERT_GE(models.size(), 4u);
+  ASSERT_GE(lookups.size(), models.size());
   std::size_t loaded = 0, withLookup = 0;
   for (const auto& f : shaderFiles()) {
     if (fs::path(f).extension() == ".glsl") continue;  // included by the others
-    for (const auto& lookup : lookups) {
+    for (std::size_t i = 0; i < lookups.size(); ++i) {
+      const std::string& lookup = lookups[i];
       sb::ShaderDefines defs;
       defs.aliases["shadow"] = lookup;
+      defs.aliases["shading"] = models[i % models.size()];
       const sb::ShaderCode code = sb::loadShader(f, defs);
       ++loaded;
       const bool shading = std::count(code.fileNames.begin(), code.fileNames.end(), lookup) > 0;

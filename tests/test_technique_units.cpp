@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -220,8 +221,7 @@ std::vector<std::string> namesOutsideFolders(const fs::path& root) {
   const std::map<std::string, std::set<std::string>> reuse = {
       {"techniques/msm/", {"mboit"}},                // MSM is MBOIT's moment math on light maps
       {"techniques/occupancy_oit/", {"occupancy"}},  // the occupancy maps' transparency order
-      {"techniques/rt_oit/", {"kbuffer"}},           // k=: the k-buffer's merge of the hits past k
-      {"render/shading/", {"marschner", "sadeghi", "chiang"}}};  // the pass every model runs in
+      {"techniques/rt_oit/", {"kbuffer"}}};          // k=: the k-buffer's merge of the hits past k
   // A name's folders: two descriptors may share one (occupancy: shadow and transparency).
   std::map<std::string, std::set<std::string>> homes;
   for (const TechniqueDescriptor* d : all()) homes[d->name].insert("techniques/" + d->folder + "/");
@@ -375,6 +375,42 @@ TEST(TechniqueUnits, TechniquesHoldsUnitFoldersOnly) {
   std::ofstream(root / "techniques" / "loose.h") << "\n";
   EXPECT_EQ(foldersNotUnits(root),
             (std::vector<std::string>{"techniques/common", "techniques/loose.h"}));
+}
+
+// A shading model is its folder: its shading.glsl (bound as <shading>) and its own uniform
+// block (uniforms.h, at SB_SLOT_SHADING_MODEL), and its CPU form; the shared shading code
+// (render/shading/, render/common/shading_uniforms.h) names no model.
+TEST(TechniqueUnits, ShadingModelsAreTheirFolders) {
+  const fs::path root = SB_SOURCE_DIR;
+  std::vector<std::string> words;
+  for (const TechniqueDescriptor* d : sb::techniques(Family::Shading)) {
+    SCOPED_TRACE(what(*d));
+    const fs::path folder = root / "techniques" / d->folder;
+    EXPECT_TRUE(fs::is_regular_file(folder / "shading.glsl"));
+    const std::string block = sbtest::readFile(folder / "uniforms.h");
+    EXPECT_NE(block.find("SB_SLOT_SHADING_MODEL"), std::string::npos);
+    const sb::ShadingModel m = sb::ShadingModel::fromSpec(d->name);
+    EXPECT_EQ(m.shader, "techniques/" + d->folder + "/shading.glsl");
+    EXPECT_FALSE(m.params.empty());
+    EXPECT_EQ(m.params.size() % 16, 0u);  // a std140 block's size
+    ASSERT_TRUE(m.direct != nullptr);
+    const glm::vec3 v = m.direct({0, 1, 0}, {0.6f, 0.8f, 0}, {0.8f, -0.6f, 0}, glm::vec3(0.5f));
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_TRUE(std::isfinite(v[c]) && v[c] >= 0 && v[c] <= m.maxDirect) << v[c];
+    }
+    words.push_back(d->name);
+    words.push_back(d->folder);
+  }
+  std::vector<fs::path> shared = {root / "render" / "common" / "shading_uniforms.h"};
+  for (const auto& e : fs::directory_iterator(root / "render" / "shading"))
+    shared.push_back(e.path());
+  for (const fs::path& f : shared) {
+    const std::string text = sbtest::readFile(f);
+    for (const std::string& w : words)
+      EXPECT_FALSE(namesWord(text, w)) << f.filename() << " names " << w;
+  }
+  // The control: a model's own file names it.
+  EXPECT_TRUE(namesWord(sbtest::readFile(root / "techniques" / "sadeghi" / "unit.cpp"), "sadeghi"));
 }
 
 }  // namespace

@@ -38,18 +38,21 @@ TEST(KajiyaKay, SpecularPeaksOnTheReflectionCone) {
 TEST(ShaderLibrary, ResolvesIncludesAndAliasesWithLineDirectives) {
   ShaderDefines defs;
   defs.aliases["shadow"] = "techniques/shadowmap/lookup.glsl";
+  defs.aliases["shading"] = "techniques/kajiya_kay/shading.glsl";
   defs.defines.push_back({"SB_TEST", "1"});
   const ShaderCode code = loadShader("render/shading/hair.frag", defs);
   EXPECT_EQ(code.fileNames.front(), "render/shading/hair.frag");
-  const std::vector<std::string> expected = {"render/common/shading.glsl",
-                                             "techniques/kajiya_kay/kajiya_kay.glsl",
-                                             "techniques/shadowmap/lookup.glsl"};
+  const std::vector<std::string> expected = {
+      "render/common/shading.glsl", "techniques/kajiya_kay/shading.glsl",
+      "techniques/kajiya_kay/kajiya_kay.glsl", "techniques/shadowmap/lookup.glsl"};
   for (const auto& f : expected)
     EXPECT_NE(std::find(code.fileNames.begin(), code.fileNames.end(), f), code.fileNames.end())
         << f;
   EXPECT_NE(code.text.find("#define SB_TEST 1"), std::string::npos);
   EXPECT_NE(code.text.find("float shadowVisibility"), std::string::npos);
   EXPECT_THROW(loadShader("render/shading/hair.frag"), DeviceError);  // <shadow> unbound
+  defs.aliases.erase("shading");
+  EXPECT_THROW(loadShader("render/shading/hair.frag", defs), DeviceError);  // <shading> too
   EXPECT_THROW(loadShader("techniques/nope.frag"), DeviceError);
 }
 

@@ -34,10 +34,8 @@ void AccumComposite::setup(Device& dev, const RenderSettings& s, Buffer viewUbo,
 }
 
 Pass AccumComposite::pass() const {
-  const glm::vec3 bg = settings_.background;
   return Pass("oit.composite")
-      .color(targets_.color, targets_.opaqueDrawn ? LoadOp::Load : LoadOp::Clear,
-             {bg.r, bg.g, bg.b, 1.0f})
+      .colorOver(targets_.color, targets_.opaqueDrawn, settings_.background)
       .uniform(bind::kView, viewUbo_)
       .readStorage(kAccumBinding, accum_);
 }

@@ -16,12 +16,17 @@ PipelineDesc transparentHairDesc(const Device& dev, const Pass& pass, const std:
   return d;
 }
 
-void CompositedOit::keepInputs(Device& dev, const GpuScene& scene, const RenderSettings& s,
-                               const HairShading& shading, const OitTargets& targets) {
+void KeptInputsOit::keep(const GpuScene& scene, const RenderSettings& s, const HairShading& shading,
+                         const OitTargets& targets) {
   scene_ = &scene;
   shading_ = &shading;
   settings_ = s;
   targets_ = targets;
+}
+
+void CompositedOit::keepInputs(Device& dev, const GpuScene& scene, const RenderSettings& s,
+                               const HairShading& shading, const OitTargets& targets) {
+  keep(scene, s, shading, targets);
   composite_.setup(dev, s, shading.viewUbo(), targets, name());
 }
 

@@ -21,18 +21,26 @@ PipelineDesc transparentHairDesc(const Device& dev, const Pass& pass, const std:
                                  const std::string& technique, const ShaderCode& vert,
                                  const RenderSettings& s);
 
-// A transparency technique that composites its own accumulation over the
-// opaque image: the inputs it keeps from setup() and its composite.
-class CompositedOit : public OitTechnique {
+// A transparency technique's inputs, kept from setup() for its passes.
+class KeptInputsOit : public OitTechnique {
  protected:
-  // Keeps the inputs and sets up the accumulation/composite.
-  void keepInputs(Device& dev, const GpuScene& scene, const RenderSettings& s,
-                  const HairShading& shading, const OitTargets& targets);
+  void keep(const GpuScene& scene, const RenderSettings& s, const HairShading& shading,
+            const OitTargets& targets);
 
   const GpuScene* scene_ = nullptr;
   const HairShading* shading_ = nullptr;
   RenderSettings settings_;
   OitTargets targets_;
+};
+
+// A transparency technique that composites its own accumulation over the
+// opaque image: the inputs it keeps from setup() and its composite.
+class CompositedOit : public KeptInputsOit {
+ protected:
+  // Keeps the inputs and sets up the accumulation/composite.
+  void keepInputs(Device& dev, const GpuScene& scene, const RenderSettings& s,
+                  const HairShading& shading, const OitTargets& targets);
+
   AccumComposite composite_;
 };
 

@@ -104,6 +104,7 @@ ShadingModel ShadingModel::fromSpec(const std::string& text) {
   const TechniqueDescriptor& d = findTechnique(Family::Shading, spec.name);
   ShadingModel m = d.makeShading(readerFor(d, spec));
   m.spec = text;
+  m.shader = "techniques/" + d.folder + "/shading.glsl";  // every model's, by name
   return m;
 }
 

@@ -1,4 +1,5 @@
-// The lighting parameters of the shading passes (render/common/shading.glsl).
+// The lighting parameters of the shading passes (render/common/shading.glsl); the shading
+// model's own are in its folder's uniforms.h (SB_SLOT_SHADING_MODEL).
 // Declared once for the C++ and the GLSL (render/common/uniform_block.h).
 #ifndef SB_COMMON_SHADING_UNIFORMS_H
 #define SB_COMMON_SHADING_UNIFORMS_H
@@ -11,12 +12,9 @@ SB_UNIFORM_BLOCK(ShadingUniforms, SB_SLOT_SHADING)
   SB_FIELD(vec4, eyePos)        // xyz
   SB_FIELD(vec4, lightPos)      // w=1: point light position; w=0: direction towards the light
   SB_FIELD(vec4, lightColor)    // rgb * intensity
-  SB_FIELD(vec4, hairMaterial)  // kd, ks, shininess, ambient
   SB_FIELD(vec4, meshMaterial)  // rgb, ambient
-  SB_FIELD(vec4, sceneParams)   // hair alpha, shadow alpha, glint width (Sadeghi), 0
-  SB_FIELD(vec4, lobeShift)     // the shading model's parameters (shading_model.h)
-  SB_FIELD(vec4, lobeWidth)
-  SB_FIELD(vec4, lobeIntensity)
+  SB_FIELD(vec4, sceneParams)   // hair alpha, shadow alpha, the model's ambient (of the hair
+                                // colour, 0 in an extra light's shading), 0
 SB_UNIFORM_BLOCK_END(ShadingUniforms)
 // clang-format on
 

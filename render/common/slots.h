@@ -19,6 +19,8 @@
 //           passes read 9 from the eye as well (occupancy_oit).
 //   16..25  the transparency techniques and the outputs (probe), in passes
 //           that may also bind 0..15.
+//   26..    the shading model in the hair shading passes: its uniform block and
+//           its folder's tables, beside all of the above.
 #ifndef SB_SLOTS_H
 #define SB_SLOTS_H
 
@@ -76,6 +78,9 @@
 
 // weighted and wboit: the resolve samples target i at SB_SLOT_BLENDED_TARGETS + i
 #define SB_SLOT_BLENDED_TARGETS 16
+
+// --- the shading model: 26.. ---
+#define SB_SLOT_SHADING_MODEL 26  // its uniform block (its folder's uniforms.h)
 
 // the renderer's sum of the lights (a full-screen pass): an extra light's colour
 #define SB_SLOT_LIGHTS_SUM_COLOR 0

@@ -103,6 +103,11 @@ Pass& Pass::resolveInto(Texture target) {
   return *this;
 }
 
+Pass& Pass::colorOver(Texture t, bool over, glm::vec3 background) {
+  return color(t, over ? LoadOp::Load : LoadOp::Clear,
+               {background.r, background.g, background.b, 1.0f});
+}
+
 Pass& Pass::colorUint(Texture t, LoadOp load, std::array<uint32_t, 4> clear, uint32_t layer) {
   desc_.color.push_back({t, load, {}, clear, layer, {}});
   return *this;

@@ -11,6 +11,7 @@
 
 #include <array>
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
 
@@ -74,6 +75,9 @@ class Pass {
   // What it writes. An attachment loaded (LoadOp::Load) is also read.
   Pass& color(Texture t, LoadOp load, std::array<float, 4> clear = {}, uint32_t layer = 0);
   Pass& colorUint(Texture t, LoadOp load, std::array<uint32_t, 4> clear = {}, uint32_t layer = 0);
+  // A final pass's colour target: drawn over what it holds when `over` (the opaque image was
+  // drawn first), else cleared to the opaque background.
+  Pass& colorOver(Texture t, bool over, glm::vec3 background);
   // The last colour attachment (multisampled) is averaged into `target` at the
   // end of the pass (ColorAttachment::resolve): the pass writes it too.
   Pass& resolveInto(Texture target);

@@ -1,4 +1,4 @@
-// Opaque hair with Kajiya-Kay shading; the shadow technique supplies the
+// Opaque hair shaded by the chosen model (bound as <shading>); the shadow technique supplies the
 // light's visibility through shadowVisibility() (bound as <shadow>).
 #include "../common/shading.glsl"
 #include <shadow>

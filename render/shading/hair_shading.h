@@ -8,7 +8,7 @@ namespace sb {
 
 // Final shading from the camera: the opaque mesh (Lambert, pass "shading.mesh")
 // and what every hair pass of a transparency technique needs to shade hair with
-// the model chosen by --shading (Kajiya-Kay, Marschner, Sadeghi or Chiang) through the
+// the model chosen by --shading (its folder's shading.glsl, bound as <shading>) through the
 // shadow technique's lookup (hair_shading.glsl).
 class HairShading {
  public:
@@ -17,10 +17,6 @@ class HairShading {
   // The brightest any shaded fragment or the background can be (hair colour
   // <= 1, visibility <= 1): a bound every composited pixel must stay under.
   static float maxRadiance(const RenderSettings& s);
-  // shadeHair's direct term for one light of unit colour on the CPU (hair_shading.glsl; the
-  // CPU references shade with it): T the tangent, L towards the light, V towards the eye.
-  static glm::vec3 direct(const ShadingModel& m, glm::vec3 T, glm::vec3 L, glm::vec3 V,
-                          glm::vec3 color);
 
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
              const ShadowTechnique& shadow, Texture color, Texture depth);
@@ -42,8 +38,8 @@ class HairShading {
   const ShadowTechnique* shadow_ = nullptr;
   RenderSettings settings_;
   Texture color_, depth_;
-  Buffer viewUbo_, shadingUbo_;
-  Buffer lobeTable_;  // the shading model's table (chiang), or none
+  Buffer viewUbo_, shadingUbo_, modelUbo_;
+  std::vector<std::pair<int, Buffer>> tables_;  // the shading model's, at their slots
   Pipeline meshPipeline_;
 };
 

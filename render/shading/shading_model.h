@@ -1,13 +1,15 @@
-// The hair shading models of the final passes (`--shading NAME:key=value,...`): Kajiya-Kay
-// (techniques/kajiya_kay/), Marschner et al. 2003 (techniques/marschner/), the
-// artist-friendly model of Sadeghi et al. 2010 as the thesis implements it (techniques/sadeghi/)
-// and the path-traced reference's fibre, Chiang et al. 2016 (techniques/chiang/).
-// The math is in each folder's .glsl, shared with the CPU tests; this is the choice and its
-// parameters, read from the spec and handed to the shaders as uniforms.
+// The hair shading model of the final passes (`--shading NAME:key=value,...`), a unit like the
+// shadow and transparency techniques: each model's folder (`strandbench list`) holds its math
+// (.glsl, compiled as C++ for its CPU form), its shading.glsl (bound as
+// <shading> in the hair passes, render/shading/hair_shading.glsl), its own uniform block
+// (uniforms.h) and the descriptor whose makeShading fills this. Nothing here names a model.
 #pragma once
 
+#include <cstddef>
+#include <cstring>
 #include <functional>
 #include <glm/glm.hpp>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -15,61 +17,77 @@
 
 namespace sb {
 
-enum class ShadingKind {
-  KajiyaKay = 0,
-  Marschner = 1,
-  Sadeghi = 2,
-  Chiang = 3
-};  // SB_SHADING_MODEL
-
 struct ShadingModel {
-  ShadingKind kind = ShadingKind::KajiyaKay;
-  std::string spec;  // canonical NAME[:options] as given (fromSpec)
-  // Diffuse and specular weights, Kajiya-Kay's exponent, ambient.
-  glm::vec4 material{0.8f, 0.35f, 40.0f, 0.12f};
-  // Marschner: (alpha_R, alpha_TT, alpha_TRT, eta), (beta_R, beta_TT, beta_TRT, caustic floor).
-  // Sadeghi: (alpha_R, alpha_TT, alpha_TRT, glint half angle), (beta_R, beta_TT, beta_TRT,
-  // xi_TT), intensities (I_R, I_TT, I_TRT, I_g), glint width xi_g. Angles in radians.
-  // Chiang: M_p's variances (R, TT, TRT, higher orders); sin and cos of alpha and 2 alpha;
-  // sin and cos of 4 alpha, sqrt(sigma_a) per |ln colour|, the table's range of sqrt(sigma_a)
-  // (chiang.glsl); eta and beta_n choose its table, specularBound bounds its value.
-  glm::vec4 shift{0.0f}, width{1.0f}, intensity{0.0f};
-  float glintWidth = 0.1f;
-  float eta = 1.55f, betaN = 0.3f, specularBound = 0.0f;
-  // Set by a model whose fibre defines how much light a strand stops (chiang:opacity=fibre):
+  std::string spec;    // canonical NAME[:options] as given (fromSpec)
+  std::string shader;  // its GLSL, bound as <shading>: defines shadingDirect(T, L, V, color)
+  // Its uniform block's bytes (the folder's uniforms.h), bound at SB_SLOT_SHADING_MODEL.
+  std::vector<std::byte> params;
+  // A storage buffer of floats the model's GLSL reads (a table), at the slot its folder
+  // names; the data lives as long as the process (a model's tables are built once and kept).
+  struct Table {
+    int slot = 0;
+    const std::vector<float>* data = nullptr;
+  };
+  std::vector<Table> tables;
+  float ambient = 0.12f;  // a fraction of the hair colour, added once, unshadowed
+  // shadingDirect on the CPU (the references shade with it): one light of unit colour, T the
+  // tangent, L towards the light, V towards the eye.
+  std::function<glm::vec3(glm::vec3 T, glm::vec3 L, glm::vec3 V, glm::vec3 color)> direct;
+  // The largest value a channel of `direct` can take (colour <= 1): the colour invariant's bound.
+  float maxDirect = 1.0f;
+  // Set by a model whose fibre defines how much light a strand stops (its opacity option):
   // the shadow alpha of hair of this mean colour; empty: the scene's shadow_alpha.
   std::function<float(glm::vec3)> fibreShadowAlpha;
-  // chiang:scattering=dual (techniques/chiang/dual.glsl): multiple scattering by Zinke et al.
-  // 2008's dual scattering, with its forward and backward density factors d_f, d_b.
-  bool dualScattering = false;
-  float densityF = 0.7f, densityB = 0.7f;
 
   // From the registry (render/common/unit.h): throws InputError naming the model and the
   // option (unknown name or option, out of range).
   static ShadingModel fromSpec(const std::string& spec);
-  // Marschner's and Sadeghi's lobes from their options diffuse, specular, alpha and beta
-  // (opt::lobes below; the angles in degrees).
-  struct Lobes {
-    float diffuse, specular, alpha, beta;
-  };
-  static ShadingModel withLobes(const Lobes& l);
-  // The largest value the specular factor can take (the shader's bounds on cos^2(theta_d)
-  // included): the colour invariant's bound.
-  float maxSpecular() const;
   // The shadow alpha the techniques and references use for this scene: the fibre's where the
   // model derives one (from the strands' mean colour), else the scene's.
   float shadowAlpha(const Scene& scene) const;
+
+  // The uniform block as the C++ struct of its uniforms.h (a model's factory and its tests).
+  template <class Block>
+  void setParams(const Block& b) {
+    params.resize(sizeof b);
+    std::memcpy(params.data(), &b, sizeof b);
+  }
+  template <class Block>
+  Block paramsAs() const {
+    if (params.size() != sizeof(Block)) throw std::logic_error(spec + ": not this model's block");
+    Block b;
+    std::memcpy(&b, params.data(), sizeof b);
+    return b;
+  }
 };
+
+// The lobe options of the lobe models as given: diffuse, specular, and alpha and beta in
+// degrees (opt::lobes below binds them to a model's Options member).
+struct LobeOptions {
+  float diffuse, specular, alpha, beta;
+};
+
+// The lobes of Marschner et al. 2003 that later models keep (Table 1), from their options,
+// in radians.
+struct ShadingLobes {
+  glm::vec4 alpha{0.0f};  // alpha_R, alpha_TT, alpha_TRT, 0
+  glm::vec4 beta{0.0f};   // beta_R, beta_TT, beta_TRT, 0
+  float diffuse = 0, specular = 0;
+  static ShadingLobes from(const LobeOptions& o);
+};
+
+// The lobe models' shaders bound cos^2(theta_d) below by this.
+constexpr float kMinCos2 = 1e-2f;
 
 constexpr float kDegree = 3.14159265358979f / 180.0f;
 
 namespace opt {
-// The lobe options of marschner and sadeghi: diffuse, specular, alpha and beta, bound to
-// their Options' Lobes member; the models' own options follow them in their tables.
+// The lobe options of the lobe models: diffuse, specular, alpha and beta, bound to
+// their Options' LobeOptions member; the models' own options follow them in their tables.
 template <class S>
-std::vector<Option<S>> lobes(ShadingModel::Lobes S::*m, std::string diffuseHelp,
-                             std::string specularHelp, std::string specularDefault = "0.5") {
-  using L = ShadingModel::Lobes;
+std::vector<Option<S>> lobes(LobeOptions S::*m, std::string diffuseHelp, std::string specularHelp,
+                             std::string specularDefault = "0.5") {
+  using L = LobeOptions;
   return nested(
       m, group<L>({number(&L::diffuse, "diffuse", "0.4", 0, 4, std::move(diffuseHelp)),
                    number(&L::specular, "specular", std::move(specularDefault), 0, 4,

@@ -27,7 +27,7 @@
 // Where chiangOpacity's row starts in chiang's own table (dual scattering's has it elsewhere).
 #define SB_CHIANG_OPACITY (SB_CHIANG_LOBES * SB_CHIANG_X * SB_CHIANG_SIN * SB_CHIANG_PHI)
 
-// The table: chiangTable[], a storage buffer the includer declares (shading/hair_shading.glsl),
+// The table: chiangTable[], a storage buffer the includer declares (shading.glsl),
 // a pointer on the CPU (chiang.h).
 
 // log I0(x) for x >= 0, finite where I0 overflows float: the power series below 12, the
@@ -94,7 +94,7 @@ SB_INLINE float chiangOpacity(vec3 x, float xMax, int base) {
 }
 
 // sqrt(sigma_a) per channel from the colour: |ln c| / divisor (pbr::sigmaAFromReflectance),
-// the colour clamped as the tracer clamps it. invDivisor: lobeIntensity.z (tilt4.z below).
+// the colour clamped as the tracer clamps it. invDivisor: chiangTilt4.z (tilt4.z below).
 SB_INLINE vec3 chiangX(vec3 color, float invDivisor) {
   return -log(clamp(color, vec3(1e-3f), vec3(1.0f))) * invDivisor;
 }

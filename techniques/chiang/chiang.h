@@ -5,9 +5,9 @@
 #include <glm/glm.hpp>
 #include <vector>
 
-namespace sb {
+#include "techniques/chiang/uniforms.h"
 
-struct ShadingModel;
+namespace sb {
 
 // The h-averaged A_p N_p of the fibre with this azimuthal roughness and index (chiang.glsl's
 // axes and layout), built once per (beta_n, eta) in a process and kept.
@@ -43,8 +43,9 @@ inline thread_local const float* chiangTable = nullptr;
 #undef SB_INLINE
 }  // namespace glsl
 
-// chiang.glsl's value on the CPU for model m (kind Chiang): h-averaged f cos times pi.
-glm::vec3 chiangShade(const ShadingModel& m, glm::vec3 T, glm::vec3 L, glm::vec3 V,
-                      glm::vec3 color);
+// chiang.glsl's value on the CPU for the model's block and table (shading.glsl's
+// shadingDirect): h-averaged f cos times pi.
+glm::vec3 chiangShade(const ChiangParams& p, const std::vector<float>& table, glm::vec3 T,
+                      glm::vec3 L, glm::vec3 V, glm::vec3 color);
 
 }  // namespace sb

@@ -7,7 +7,6 @@
 
 #include "pbr/hair_bsdf.h"
 #include "techniques/chiang/chiang.h"
-#include "render/shading/shading_model.h"
 
 namespace sb {
 
@@ -95,10 +94,10 @@ const std::vector<float>& chiangLobeTable(float betaN, float eta) {
   return it->second;
 }
 
-glm::vec3 chiangShade(const ShadingModel& m, glm::vec3 T, glm::vec3 L, glm::vec3 V,
-                      glm::vec3 color) {
-  glsl::chiangTable = chiangLobeTable(m.betaN, m.eta).data();
-  return glsl::chiang(T, L, V, color, m.shift, m.width, m.intensity);
+glm::vec3 chiangShade(const ChiangParams& p, const std::vector<float>& table, glm::vec3 T,
+                      glm::vec3 L, glm::vec3 V, glm::vec3 color) {
+  glsl::chiangTable = table.data();
+  return glsl::chiang(T, L, V, color, p.chiangVariance, p.chiangTilt1, p.chiangTilt4);
 }
 
 }  // namespace sb

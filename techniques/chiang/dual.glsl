@@ -9,7 +9,8 @@
 // The fibre's averages over the hemispheres and the forward-spread lobes N^G_p are precomputed
 // on the CPU from chiang's own table (dual_table.cpp) and appended to it:
 //   [chiang's lobes 0..3][N^G_p, read as lobes 4..7 by chiangLobe][per (x, |sin theta|): the
-//   fields below][d_f, d_b]
+//   fields below][chiang's opacity row]
+// The density factors d_f, d_b are the model's uniforms (chiang's uniforms.h).
 // Angles and variances are in u = theta_i + theta_o (d'Eon's lobe has variance v there), where
 // the paper's shift and spread formulas, linear in the shifts and widths, hold unchanged.
 // Compiled as GLSL (after chiang.glsl) and, through dual.h, as C++.
@@ -21,9 +22,8 @@
 #define SB_DUAL_PARAMS (2 * SB_DUAL_LOBES)
 // Per (x, |sin theta_i|): a_f, beta_f^2, A_b, sin and cos of Delta_b, sigma_b^2.
 #define SB_DUAL_FIELDS 6
-#define SB_DUAL_DENSITY (SB_DUAL_PARAMS + SB_DUAL_FIELDS * SB_CHIANG_X * SB_CHIANG_SIN)
 // chiang's opacity row (chiangOpacity), copied from its table.
-#define SB_DUAL_OPACITY (SB_DUAL_DENSITY + 2)
+#define SB_DUAL_OPACITY (SB_DUAL_PARAMS + SB_DUAL_FIELDS * SB_CHIANG_X * SB_CHIANG_SIN)
 #define SB_DUAL_TABLE_SIZE (SB_DUAL_OPACITY + SB_CHIANG_X)
 // The most strands counted between a point and the light (a_f^64 is below 1e-3 for every
 // colour but white), and the widest lobe variance (a lobe this wide is nearly uniform).
@@ -55,11 +55,11 @@ SB_INLINE float dualStrandCount(float visibility, float strandAlpha) {
   return min(log(v) / log(1.0f - a), SB_DUAL_MAX_N);
 }
 
-// Arguments as chiang(), plus the shadow technique's visibility and the strands' shadow alpha.
-// Returns pi times the dual-scattering f cos per channel, visibility included (single
-// scattering's direct light is visibility * chiang()).
+// Arguments as chiang(), plus the density factors (d_f, d_b), the shadow technique's visibility
+// and the strands' shadow alpha. Returns pi times the dual-scattering f cos per channel,
+// visibility included (single scattering's direct light is visibility * chiang()).
 SB_INLINE vec3 chiangDual(vec3 T, vec3 L, vec3 V, vec3 color, vec4 variance, vec4 tilt1,
-                          vec4 tilt4, float visibility, float strandAlpha) {
+                          vec4 tilt4, vec2 density, float visibility, float strandAlpha) {
   const float pi = 3.14159265358979f;
   float vis = clamp(visibility, 0.0f, 1.0f);
   vec3 single = chiang(T, L, V, color, variance, tilt1, tilt4);
@@ -69,8 +69,8 @@ SB_INLINE vec3 chiangDual(vec3 T, vec3 L, vec3 V, vec3 color, vec4 variance, vec
   float cosO = sqrt(max(0.0f, 1.0f - sinO * sinO));
   float phi = hairAngles(T, L, V).z;
   vec3 x = -log(clamp(color, vec3(1e-3f), vec3(1.0f))) * tilt4.z;
-  float df = chiangTable[SB_DUAL_DENSITY];
-  float db = chiangTable[SB_DUAL_DENSITY + 1];
+  float df = density.x;
+  float db = density.y;
   float n = dualStrandCount(vis, strandAlpha);
   // The paper's back-scatter spread in azimuth: uniform over the backward half circle.
   float sb = phi < 0.5f * pi ? 1.0f / pi : 0.0f;

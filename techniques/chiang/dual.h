@@ -9,8 +9,6 @@
 
 namespace sb {
 
-struct ShadingModel;
-
 // The paper's averages at one absorption and |sin theta| (Zinke et al. 2008, section 4), in
 // u = theta_i + theta_o: the forward and backward attenuations a_f, a_b (the h-averaged
 // fibre's energy scattered into the forward, |phi| > pi/2, and backward half of the sphere),
@@ -21,11 +19,11 @@ struct DualTerms {
   double af = 0, ab = 0, alphaF = 0, alphaB = 0, betaF = 0, betaB = 0;
   double Ab = 0, deltaB = 0, sigmaB2 = 0;
 };
-DualTerms dualTerms(const ShadingModel& m, int x, int sinTheta);
+DualTerms dualTerms(const ChiangParams& p, int x, int sinTheta);
 
-// chiang's table with dual.glsl's appended (its layout there), for model m (kind Chiang,
-// scattering=dual); built once per set of parameters in a process and kept.
-const std::vector<float>& dualTable(const ShadingModel& m);
+// chiang's table with dual.glsl's appended (its layout there), for chiang's block p
+// (scattering=dual); built once per set of parameters in a process and kept.
+const std::vector<float>& dualTable(const ChiangParams& p);
 
 namespace glsl {
 using glm::pow;
@@ -35,7 +33,7 @@ using glm::pow;
 }  // namespace glsl
 
 // dual.glsl's value on the CPU: pi times f cos with the light's visibility in it.
-glm::vec3 dualShade(const ShadingModel& m, glm::vec3 T, glm::vec3 L, glm::vec3 V, glm::vec3 color,
+glm::vec3 dualShade(const ChiangParams& p, glm::vec3 T, glm::vec3 L, glm::vec3 V, glm::vec3 color,
                     float visibility, float strandAlpha);
 
 }  // namespace sb

@@ -6,7 +6,6 @@
 #include <numbers>
 
 #include "techniques/chiang/dual.h"
-#include "render/shading/shading_model.h"
 
 namespace sb {
 
@@ -44,19 +43,20 @@ double halfIntegral(const float* row, double a, double b) {
 // The lobes' centres in u = theta_i + theta_o: chiang.glsl tilts theta_o by +2 alpha (R),
 // -alpha (TT), -4 alpha (TRT), so each peaks at u = -2 alpha, alpha, 4 alpha; the higher
 // orders are not tilted.
-std::array<double, SB_CHIANG_LOBES> lobeShifts(const ShadingModel& m) {
-  const double a = std::asin(double(m.width.x));
+std::array<double, SB_CHIANG_LOBES> lobeShifts(const ChiangParams& p) {
+  const double a = std::asin(double(p.chiangTilt1.x));
   return {-2 * a, a, 4 * a, 0.0};
 }
 
-using Key = std::array<float, 9>;
+// What the table depends on: the fibre (its table's parameters, variances and tilt) and d_b.
+using Key = std::array<float, 8>;
 
-Key keyOf(const ShadingModel& m) {
-  return {m.betaN,    m.eta,     m.shift[0], m.shift[1], m.shift[2],
-          m.shift[3], m.width.x, m.densityF, m.densityB};
+Key keyOf(const ChiangParams& p) {
+  const glm::vec4 v = p.chiangVariance;
+  return {p.chiangBetaN, p.chiangEta, v[0], v[1], v[2], v[3], p.chiangTilt1.x, p.chiangDensityB};
 }
 
-DualTerms terms(const ShadingModel& m, const std::vector<float>& lobes, int x, int s) {
+DualTerms terms(const ChiangParams& m, const std::vector<float>& lobes, int x, int s) {
   const auto shift = lobeShifts(m);
   DualTerms t;
   double wf = 0, wb = 0;
@@ -64,7 +64,7 @@ DualTerms terms(const ShadingModel& m, const std::vector<float>& lobes, int x, i
     const float* row = lobes.data() + lobeAt(p, x, s);
     const double f = halfIntegral(row, kPi / 2, kPi);
     const double b = halfIntegral(row, 0, kPi / 2);
-    const double width = std::sqrt(double(m.shift[p]));
+    const double width = std::sqrt(double(m.chiangVariance[p]));
     t.af += f;
     t.ab += b;
     t.alphaF += f * shift[p];
@@ -87,15 +87,15 @@ DualTerms terms(const ShadingModel& m, const std::vector<float>& lobes, int x, i
   const double bf2 = t.betaF * t.betaF, bb2 = t.betaB * t.betaB;
   const double den = ab + ab3 * (2 * t.betaF + 3 * t.betaB);
   const double sigmaB =
-      den > 0 ? (1 + m.densityB * af2) *
+      den > 0 ? (1 + m.chiangDensityB * af2) *
                     (ab * std::sqrt(2 * bf2 + bb2) + ab3 * std::sqrt(2 * bf2 + 3 * bb2)) / den
               : 0.0;
   t.sigmaB2 = sigmaB * sigmaB;
   return t;
 }
 
-std::vector<float> build(const ShadingModel& m) {
-  const std::vector<float>& lobes = chiangLobeTable(m.betaN, m.eta);
+std::vector<float> build(const ChiangParams& m) {
+  const std::vector<float>& lobes = chiangLobeTable(m.chiangBetaN, m.chiangEta);
   std::vector<float> out(SB_DUAL_TABLE_SIZE, 0.0f);
   std::copy(lobes.begin(), lobes.begin() + SB_DUAL_LOBES, out.begin());
   std::copy(lobes.begin() + SB_CHIANG_OPACITY, lobes.begin() + SB_CHIANG_OPACITY + SB_CHIANG_X,
@@ -127,18 +127,16 @@ std::vector<float> build(const ShadingModel& m) {
                                             float(t.sigmaB2)};
       std::copy(fields, fields + SB_DUAL_FIELDS, f);
     }
-  out[SB_DUAL_DENSITY] = m.densityF;
-  out[SB_DUAL_DENSITY + 1] = m.densityB;
   return out;
 }
 
 }  // namespace
 
-DualTerms dualTerms(const ShadingModel& m, int x, int sinTheta) {
-  return terms(m, chiangLobeTable(m.betaN, m.eta), x, sinTheta);
+DualTerms dualTerms(const ChiangParams& p, int x, int sinTheta) {
+  return terms(p, chiangLobeTable(p.chiangBetaN, p.chiangEta), x, sinTheta);
 }
 
-const std::vector<float>& dualTable(const ShadingModel& m) {
+const std::vector<float>& dualTable(const ChiangParams& m) {
   static std::mutex mutex;
   static std::map<Key, std::vector<float>> tables;
   const std::lock_guard<std::mutex> lock(mutex);
@@ -147,10 +145,11 @@ const std::vector<float>& dualTable(const ShadingModel& m) {
   return it->second;
 }
 
-glm::vec3 dualShade(const ShadingModel& m, glm::vec3 T, glm::vec3 L, glm::vec3 V, glm::vec3 color,
+glm::vec3 dualShade(const ChiangParams& p, glm::vec3 T, glm::vec3 L, glm::vec3 V, glm::vec3 color,
                     float visibility, float strandAlpha) {
-  glsl::chiangTable = dualTable(m).data();
-  return glsl::chiangDual(T, L, V, color, m.shift, m.width, m.intensity, visibility, strandAlpha);
+  glsl::chiangTable = dualTable(p).data();
+  return glsl::chiangDual(T, L, V, color, p.chiangVariance, p.chiangTilt1, p.chiangTilt4,
+                          glm::vec2(p.chiangDensityF, p.chiangDensityB), visibility, strandAlpha);
 }
 
 }  // namespace sb

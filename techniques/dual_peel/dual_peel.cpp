@@ -86,10 +86,8 @@ Pass DualPeelOit::backPass() const {
 }
 
 Pass DualPeelOit::finalPass() const {
-  const glm::vec3 bg = settings_.background;
   return Pass("dual_peel.final")
-      .color(targets_.color, targets_.opaqueDrawn ? LoadOp::Load : LoadOp::Clear,
-             {bg.r, bg.g, bg.b, 1.0f})
+      .colorOver(targets_.color, targets_.opaqueDrawn, settings_.background)
       .sample(kFrontFinal, front_[peelPasses() % 2])
       .sample(kBackFinal, back_);
 }

@@ -14,10 +14,7 @@ constexpr uint32_t kImage0 = SB_SLOT_FAKE_IMAGE0;
 
 void FakeTransparency::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
                              const HairShading& shading, const OitTargets& targets) {
-  scene_ = &scene;
-  shading_ = &shading;
-  settings_ = s;
-  targets_ = targets;
+  keep(scene, s, shading, targets);
 
   // The subsets' segment lists: a strand's segments have consecutive first
   // points, so a new strand begins wherever the first point jumps.
@@ -97,10 +94,8 @@ Pass FakeTransparency::subsetPass(uint32_t k) const {
 // Nothing opaque drawn: the blend also clears the frame's depth to 1, as the
 // other blending techniques leave it (the hair writes no frame depth).
 Pass FakeTransparency::blendPass() const {
-  const glm::vec3 bg = settings_.background;
   Pass p("fake.blend");
-  p.color(targets_.color, targets_.opaqueDrawn ? LoadOp::Load : LoadOp::Clear,
-          {bg.r, bg.g, bg.b, 1.0f});
+  p.colorOver(targets_.color, targets_.opaqueDrawn, settings_.background);
   if (targets_.resolved) p.resolveInto(targets_.resolved);  // --msaa: the samples averaged
   if (!targets_.opaqueDrawn) p.depth(targets_.depth, LoadOp::Clear);
   for (uint32_t k = 0; k < kSubsets; ++k) p.sample(kImage0 + k, images_[k]);

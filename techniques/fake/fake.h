@@ -2,6 +2,7 @@
 
 #include <array>
 
+#include "render/common/hair_oit.h"
 #include "render/common/technique.h"
 
 namespace sb {
@@ -18,7 +19,7 @@ namespace sb {
 //   C = sum_k c_k a_k / 3 + (1 - sum_k a_k / 3) C_dst.
 // It ignores the hair's alpha: a pixel covered by all three subsets is the
 // average of their nearest strands, whatever the hair's opacity.
-class FakeTransparency : public OitTechnique {
+class FakeTransparency : public KeptInputsOit {
  public:
   static constexpr uint32_t kSubsets = 3;
   std::string name() const override { return "fake"; }
@@ -33,10 +34,6 @@ class FakeTransparency : public OitTechnique {
   Pass subsetPass(uint32_t k) const;
   Pass blendPass() const;
 
-  const GpuScene* scene_ = nullptr;
-  const HairShading* shading_ = nullptr;
-  RenderSettings settings_;
-  OitTargets targets_;
   std::array<Buffer, kSubsets> segments_{};
   std::array<uint32_t, kSubsets> counts_{};
   std::array<Texture, kSubsets> images_{};

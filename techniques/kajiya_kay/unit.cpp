@@ -1,6 +1,9 @@
 // --shading kajiya-kay.
 #include "render/common/unit.h"
 
+#include "techniques/kajiya_kay/kajiya_kay.h"
+#include "techniques/kajiya_kay/uniforms.h"
+
 namespace sb {
 namespace {
 struct O {
@@ -26,8 +29,17 @@ SB_TECHNIQUE(
      .isDefault = true,
      .makeShading = [](const OptionReader& r) {
        const O o = kOptions.read(r);
+       KajiyaKayParams p{};
+       p.kajiyaKayDiffuse = o.diffuse;
+       p.kajiyaKaySpecular = o.specular;
+       p.kajiyaKayShininess = o.shininess;
        ShadingModel m;
-       m.kind = ShadingKind::KajiyaKay;
-       m.material = {o.diffuse, o.specular, o.shininess, o.ambient};
+       m.setParams(p);
+       m.ambient = o.ambient;
+       m.maxDirect = p.kajiyaKayDiffuse + p.kajiyaKaySpecular * 1.0f;  // both factors <= 1
+       m.direct = [p](glm::vec3 T, glm::vec3 L, glm::vec3 V, glm::vec3 c) {
+         const glm::vec2 kk = glsl::kajiyaKay(T, L, V, p.kajiyaKayShininess);
+         return p.kajiyaKayDiffuse * kk.x * c + glm::vec3(p.kajiyaKaySpecular * kk.y);
+       };
        return m;
      }});

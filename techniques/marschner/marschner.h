@@ -3,6 +3,8 @@
 
 #include <glm/glm.hpp>
 
+#include "techniques/marschner/uniforms.h"
+
 namespace sb::glsl {
 using glm::abs;
 using glm::clamp;
@@ -25,3 +27,13 @@ using glm::vec4;
 #undef SB_INLINE
 #undef SB_PI
 }  // namespace sb::glsl
+
+namespace sb {
+// The scattering function S for the model's block, as its shading.glsl calls it (eta and the
+// caustic floor in the fourth components of marschner.glsl's shift and width).
+inline glm::vec3 marschnerScattering(const MarschnerParams& p, glm::vec3 T, glm::vec3 L,
+                                     glm::vec3 V, glm::vec3 color) {
+  return glsl::marschner(T, L, V, color, glm::vec4(glm::vec3(p.marschnerAlpha), p.marschnerEta),
+                         glm::vec4(glm::vec3(p.marschnerBeta), p.marschnerCaustic));
+}
+}  // namespace sb

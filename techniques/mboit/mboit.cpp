@@ -34,10 +34,7 @@ glm::vec2 depthRange(const Bounds& b, const ViewUniforms& v) {
 
 void MomentOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
                       const HairShading& shading, const OitTargets& targets) {
-  scene_ = &scene;
-  shading_ = &shading;
-  settings_ = s;
-  targets_ = targets;
+  keep(scene, s, shading, targets);
   const glm::vec2 range = depthRange(scene.bounds, cameraView(s));
   const int kind = o_.trig ? SB_MBOIT_TRIG : SB_MBOIT_POWER;
   MboitParams p{{std::log(range.x), 1.0f / (std::log(range.y) - std::log(range.x)),
@@ -97,10 +94,8 @@ Pass MomentOit::accumulatePass() const {
 }
 
 Pass MomentOit::resolvePass() const {
-  const glm::vec3 bg = settings_.background;
   return Pass("mboit.resolve")
-      .color(targets_.color, targets_.opaqueDrawn ? LoadOp::Load : LoadOp::Clear,
-             {bg.r, bg.g, bg.b, 1.0f})
+      .colorOver(targets_.color, targets_.opaqueDrawn, settings_.background)
       .sample(kB0, b0_)
       .sample(kAccum, accum_);
 }

@@ -12,13 +12,14 @@
 // (the bias of the paper's 16-bit row is used), which the report says.
 #pragma once
 
+#include "render/common/hair_oit.h"
 #include "render/common/technique.h"
 
 namespace sb {
 
 class OptionReader;
 
-class MomentOit : public OitTechnique {
+class MomentOit : public KeptInputsOit {
  public:
   struct Options {
     int moments = 6;    // 4, 6 or 8 real moments beyond b0 (trig: 2, 3, 4 complex)
@@ -41,10 +42,6 @@ class MomentOit : public OitTechnique {
   bool highTarget() const { return o_.moments > 4; }
 
   Options o_;
-  const GpuScene* scene_ = nullptr;
-  const HairShading* shading_ = nullptr;
-  RenderSettings settings_;
-  OitTargets targets_;
   Buffer params_;
   Texture b0_, low_, high_, accum_;
   Pipeline moments_, accumulate_, resolve_;

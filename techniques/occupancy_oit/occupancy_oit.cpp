@@ -29,10 +29,7 @@ void OccupancyOit::check(Options& opts) {
 
 void OccupancyOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
                          const HairShading& shading, const OitTargets& targets) {
-  scene_ = &scene;
-  shading_ = &shading;
-  settings_ = s;
-  targets_ = targets;
+  keep(scene, s, shading, targets);
   const uint32_t w = s.width, h = s.height;
   // Every target of the technique (owner "oit"); no buffers, no uniforms.
   OccupancyMaps::Config c;
@@ -120,10 +117,8 @@ Pass OccupancyOit::accumulatePass() const {
 
 // The sum over the opaque result (or the background).
 Pass OccupancyOit::resolvePass() const {
-  const glm::vec3 bg = settings_.background;
   return Pass("occupancy_oit.resolve")
-      .color(targets_.color, targets_.opaqueDrawn ? LoadOp::Load : LoadOp::Clear,
-             {bg.r, bg.g, bg.b, 1.0f})
+      .colorOver(targets_.color, targets_.opaqueDrawn, settings_.background)
       .sample(kResolveAccum, accum_)
       .sample(kResolveLog2T, log2T_);
 }

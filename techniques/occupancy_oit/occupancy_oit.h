@@ -1,5 +1,6 @@
 #pragma once
 
+#include "render/common/hair_oit.h"
 #include "render/common/technique.h"
 #include "techniques/occupancy/occupancy_maps.h"
 
@@ -19,7 +20,7 @@ class OptionReader;
 //   occupancy_oit.accumulate   (1 - a)^o a (c, 1) into RGBA32F and log2(1 - a)
 //                              into R32F (additive, fp32)
 //   occupancy_oit.resolve      hair over the opaque colour
-class OccupancyOit : public OitTechnique {
+class OccupancyOit : public KeptInputsOit {
  public:
   struct Options {
     uint32_t slices = 128;  // multiple of 32, at most 1024
@@ -49,10 +50,6 @@ class OccupancyOit : public OitTechnique {
   Pass resolvePass() const;
 
   Options opts_;
-  const GpuScene* scene_ = nullptr;
-  const HairShading* shading_ = nullptr;
-  RenderSettings settings_;
-  OitTargets targets_;
   OccupancyMaps maps_;
   Texture accum_, log2T_;
   Pipeline accumPipeline_, resolvePipeline_;

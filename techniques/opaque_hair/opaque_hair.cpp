@@ -7,10 +7,7 @@ namespace sb {
 
 void OpaqueHair::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
                        const HairShading& shading, const OitTargets& targets) {
-  scene_ = &scene;
-  shading_ = &shading;
-  settings_ = s;
-  targets_ = targets;
+  keep(scene, s, shading, targets);
   const ShaderCode vert = Geometry::strandVertexShader(s);
   const ShaderCode frag = loadShader("render/shading/hair.frag", shading.hairDefines());
   PipelineDesc d = pass().pipeline(dev, "shading.hair", "kajiya_kay+" + shading.shadow().name());
@@ -23,12 +20,11 @@ void OpaqueHair::setup(Device& dev, const GpuScene& scene, const RenderSettings&
 
 // Over the opaque result when one was drawn, else clearing the targets.
 Pass OpaqueHair::pass() const {
-  const LoadOp load = targets_.opaqueDrawn ? LoadOp::Load : LoadOp::Clear;
-  const glm::vec3 bg = settings_.background;
   Pass p("shading.hair");
-  p.color(targets_.color, load, {bg.r, bg.g, bg.b, 1.0f});
+  p.colorOver(targets_.color, targets_.opaqueDrawn, settings_.background);
   if (targets_.resolved) p.resolveInto(targets_.resolved);  // --msaa: the samples averaged
-  return p.depth(targets_.depth, load).inputs(shading_->hairInputs());
+  return p.depth(targets_.depth, targets_.opaqueDrawn ? LoadOp::Load : LoadOp::Clear)
+      .inputs(shading_->hairInputs());
 }
 
 void OpaqueHair::addPasses(FrameGraph& graph, Device& dev) {

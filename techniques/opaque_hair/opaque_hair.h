@@ -1,12 +1,13 @@
 #pragma once
 
+#include "render/common/hair_oit.h"
 #include "render/common/technique.h"
 
 namespace sb {
 
 // No transparency (--oit none): hair drawn opaque with depth test and write,
 // the baseline the papers quote frame rates against.
-class OpaqueHair : public OitTechnique {
+class OpaqueHair : public KeptInputsOit {
  public:
   std::string name() const override { return "none"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
@@ -16,10 +17,6 @@ class OpaqueHair : public OitTechnique {
  private:
   Pass pass() const;
 
-  const GpuScene* scene_ = nullptr;
-  const HairShading* shading_ = nullptr;
-  RenderSettings settings_;
-  OitTargets targets_;
   Pipeline pipeline_;
 };
 

@@ -83,10 +83,8 @@ Pass ClassicPeelOit::blendPass(uint32_t layer) const {
 }
 
 Pass ClassicPeelOit::compositePass() const {
-  const glm::vec3 bg = settings_.background;
   return Pass("peel_classic.composite")
-      .color(targets_.color, targets_.opaqueDrawn ? LoadOp::Load : LoadOp::Clear,
-             {bg.r, bg.g, bg.b, 1.0f})
+      .colorOver(targets_.color, targets_.opaqueDrawn, settings_.background)
       .sample(kUnder, under_);
 }
 

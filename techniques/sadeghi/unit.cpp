@@ -1,10 +1,15 @@
 // --shading sadeghi.
 #include "render/common/unit.h"
 
+#include <algorithm>
+#include <cmath>
+
+#include "techniques/sadeghi/sadeghi.h"
+
 namespace sb {
 namespace {
 struct O {
-  ShadingModel::Lobes lobes;
+  LobeOptions lobes;
   float iR, iTT, iTRT, ttWidth, glint, glintAngle, glintWidth, ambient;
 };
 const OptionTable<O> kOptions(
@@ -36,12 +41,28 @@ SB_TECHNIQUE(
      .options = kOptions.infos(),
      .makeShading = [](const OptionReader& r) {
        const O o = kOptions.read(r);
-       ShadingModel m = ShadingModel::withLobes(o.lobes);
-       m.kind = ShadingKind::Sadeghi;
-       m.shift.w = o.glintAngle * kDegree;
-       m.width.w = o.ttWidth * kDegree;
-       m.intensity = {o.iR, o.iTT, o.iTRT, o.glint};
-       m.glintWidth = (o.glintWidth > 0.0f ? o.glintWidth : o.ttWidth) * kDegree;
-       m.material.w = o.ambient;
+       const ShadingLobes lobes = ShadingLobes::from(o.lobes);
+       SadeghiParams p{};
+       p.sadeghiAlpha = lobes.alpha;
+       p.sadeghiBeta = lobes.beta;
+       p.sadeghiIntensity = {o.iR, o.iTT, o.iTRT, o.glint};
+       p.sadeghiDiffuse = lobes.diffuse;
+       p.sadeghiSpecular = lobes.specular;
+       p.sadeghiGlintAngle = o.glintAngle * kDegree;
+       p.sadeghiTtWidth = o.ttWidth * kDegree;
+       p.sadeghiGlintWidth = (o.glintWidth > 0.0f ? o.glintWidth : o.ttWidth) * kDegree;
+       ShadingModel m;
+       m.setParams(p);
+       m.ambient = o.ambient;
+       // The specular sum's largest value: every lobe at its peak, over the shader's bound on
+       // cos^2(theta_d).
+       const glm::vec4 i = p.sadeghiIntensity;
+       m.maxDirect =
+           p.sadeghiDiffuse + p.sadeghiSpecular * ((i.x + i.y + i.z * (1.0f + i.w)) / kMinCos2);
+       m.direct = [p](glm::vec3 T, glm::vec3 L, glm::vec3 V, glm::vec3 c) {
+         const float tl = glm::dot(T, L);
+         const float diffuse = std::sqrt(std::max(0.0f, 1.0f - tl * tl));
+         return p.sadeghiDiffuse * diffuse * c + p.sadeghiSpecular * sadeghiSpecular(p, T, L, V, c);
+       };
        return m;
      }});

@@ -14,10 +14,7 @@ constexpr uint32_t kDepths = SB_SLOT_SHORTCUT_DEPTHS, kColors = SB_SLOT_SHORTCUT
 
 void ShortCutOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
                         const HairShading& shading, const OitTargets& targets) {
-  scene_ = &scene;
-  shading_ = &shading;
-  settings_ = s;
-  targets_ = targets;
+  keep(scene, s, shading, targets);
   const std::size_t slots = std::size_t(s.width) * s.height * std::size_t(k_);
   depths_ = dev.createBuffer({"shortcut.depths", "oit", BufferUsage::Storage, slots * 4});
   colors_ = dev.createBuffer({"shortcut.colors", "oit", BufferUsage::Storage, slots * 16});
@@ -76,10 +73,8 @@ Pass ShortCutOit::colorsPass() const {
 }
 
 Pass ShortCutOit::resolvePass() const {
-  const glm::vec3 bg = settings_.background;
   Pass p("shortcut.resolve");
-  p.color(targets_.color, targets_.opaqueDrawn ? LoadOp::Load : LoadOp::Clear,
-          {bg.r, bg.g, bg.b, 1.0f})
+  p.colorOver(targets_.color, targets_.opaqueDrawn, settings_.background)
       .uniform(bind::kView, shading_->viewUbo())
       .readStorage(kDepths, depths_)
       .readStorage(kColors, colors_)

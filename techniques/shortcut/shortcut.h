@@ -10,11 +10,12 @@
 // revealage.
 #pragma once
 
+#include "render/common/hair_oit.h"
 #include "render/common/technique.h"
 
 namespace sb {
 
-class ShortCutOit : public OitTechnique {
+class ShortCutOit : public KeptInputsOit {
  public:
   static constexpr int kMaxK = 16;
   explicit ShortCutOit(int k) : k_(k) {}
@@ -30,10 +31,6 @@ class ShortCutOit : public OitTechnique {
   Inputs slots() const;
 
   int k_;
-  const GpuScene* scene_ = nullptr;
-  const HairShading* shading_ = nullptr;
-  RenderSettings settings_;
-  OitTargets targets_;
   Buffer depths_, colors_, claims_;
   Texture tail_, revealage_;
   Pipeline depthsPipeline_, colorsPipeline_, resolvePipeline_;

@@ -15,10 +15,7 @@ constexpr uint32_t kParams = SB_SLOT_STOCH_PARAMS, kDepths = SB_SLOT_STOCH_DEPTH
 
 void StochasticOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
                           const HairShading& shading, const OitTargets& targets) {
-  scene_ = &scene;
-  shading_ = &shading;
-  settings_ = s;
-  targets_ = targets;
+  keep(scene, s, shading, targets);
   const StochasticParams p{glm::uvec4(options_.seed, options_.samples, 0, 0)};
   params_ = dev.createBuffer({"stochastic.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
   const uint32_t w = s.width, h = s.height;
@@ -85,10 +82,8 @@ Pass StochasticOit::accumulatePass() const {
 }
 
 Pass StochasticOit::resolvePass() const {
-  const glm::vec3 bg = settings_.background;
   Pass p("stochastic.resolve");
-  p.color(targets_.color, targets_.opaqueDrawn ? LoadOp::Load : LoadOp::Clear,
-          {bg.r, bg.g, bg.b, 1.0f});
+  p.colorOver(targets_.color, targets_.opaqueDrawn, settings_.background);
   return p.sample(kAccum, accum_).sample(kAlpha, alpha_);
 }
 

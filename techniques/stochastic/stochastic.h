@@ -18,11 +18,12 @@
 // APIs. Memory: 4 S bytes per pixel + the accumulation (16) and alpha (4).
 #pragma once
 
+#include "render/common/hair_oit.h"
 #include "render/common/technique.h"
 
 namespace sb {
 
-class StochasticOit : public OitTechnique {
+class StochasticOit : public KeptInputsOit {
  public:
   struct Options {
     uint32_t samples = 8;
@@ -42,10 +43,6 @@ class StochasticOit : public OitTechnique {
   Pass resolvePass() const;
 
   Options options_;
-  const GpuScene* scene_ = nullptr;
-  const HairShading* shading_ = nullptr;
-  RenderSettings settings_;
-  OitTargets targets_;
   Buffer params_;  // (seed, samples)
   Buffer depths_;  // S sample depths per pixel (uint bits of the window depth)
   Texture accum_, alpha_;

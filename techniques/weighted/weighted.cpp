@@ -10,10 +10,7 @@ constexpr uint32_t kFirstTarget = SB_SLOT_BLENDED_TARGETS;  // resolve: sampler 
 
 void BlendedOitBase::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
                            const HairShading& shading, const OitTargets& targets) {
-  scene_ = &scene;
-  shading_ = &shading;
-  settings_ = s;
-  targets_ = targets;
+  keep(scene, s, shading, targets);
   const Config cfg = config();
   targetDescs_ = cfg.targets;
   textures_.clear();
@@ -79,10 +76,8 @@ Pass BlendedOitBase::accumulatePass() const {
 }
 
 Pass BlendedOitBase::resolvePass() const {
-  const glm::vec3 bg = settings_.background;
   Pass p(name() + ".resolve");
-  p.color(targets_.color, targets_.opaqueDrawn ? LoadOp::Load : LoadOp::Clear,
-          {bg.r, bg.g, bg.b, 1.0f});
+  p.colorOver(targets_.color, targets_.opaqueDrawn, settings_.background);
   if (targets_.resolved) p.resolveInto(targets_.resolved);  // --msaa: the samples averaged
   for (uint32_t i = 0; i < textures_.size(); ++i) p.sample(kFirstTarget + i, textures_[i]);
   return p;

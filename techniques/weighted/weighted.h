@@ -11,12 +11,13 @@
 
 #include <array>
 
+#include "render/common/hair_oit.h"
 #include "render/common/shader_library.h"
 #include "render/common/technique.h"
 
 namespace sb {
 
-class BlendedOitBase : public OitTechnique {
+class BlendedOitBase : public KeptInputsOit {
  public:
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
              const HairShading& shading, const OitTargets& targets) override;
@@ -41,10 +42,6 @@ class BlendedOitBase : public OitTechnique {
   Pass accumulatePass() const;
   Pass resolvePass() const;
 
-  const GpuScene* scene_ = nullptr;
-  const HairShading* shading_ = nullptr;
-  RenderSettings settings_;
-  OitTargets targets_;
   std::vector<Target> targetDescs_;
   std::vector<Texture> textures_;         // what the resolve reads
   std::vector<Texture> samplesTextures_;  // --msaa N > 1: the N-sample accumulation targets
