@@ -29,7 +29,10 @@ if [ $list = 0 ] && [ -n "$(git status --porcelain --untracked-files=no -- . ':!
   git status --short --untracked-files=no -- . ':!docs' ':!README.md' >&2
   exit 2
 fi
-stale=$("$cli" docs refresh --stale || true)
+status=0
+stale=$("$cli" docs refresh --stale) || status=$?
+# 1: some are stale; anything else: the store could not be read (named above).
+[ $status -le 1 ] || exit "$status"
 # "PAGE: RUN/BLOCK (run of C): FILES" and "PAGE: figure NAME (run of C): FILES".
 mapfile -t stale_runs < <(sed -n 's|^[^:]*: \([^ /]*\)/[^ ]* (run of .*|\1|p' <<<"$stale" | sort -u)
 mapfile -t stale_pages < <(sed -n 's|^\([^:]*\): figure [^ ]* (run of .*|\1|p' <<<"$stale" | sort -u)
