@@ -2,8 +2,8 @@
 # Re-measures everything the docs publish whose code changed since it was measured, in one
 # command (the merger's and the nightly job's): `strandbench docs refresh --stale` lists the
 # stale store blocks and figure pages; each stale stored run is re-recorded with the command in
-# its meta.json (scripts/docs-record.sh, or the command itself where its script writes the store,
-# as scripts/fresh-machine-check.sh does), each stale figure page is re-run with the command in
+# its meta.json (scripts/docs-record.sh, or the command itself where its script does not take
+# $SB_DOCS_RESULTS but writes the store itself, as scripts/fresh-machine-check.sh does), each stale figure page is re-run with the command in
 # its header (its size and rounds, --docs docs/figures), then `strandbench docs refresh` renders
 # every block. Refused on a tree with uncommitted code (the runs must be a commit's); commit the
 # rewritten docs/ afterwards.
@@ -46,8 +46,8 @@ for run in "${stale_runs[@]}"; do
   eval "cmd=($command)"
   script=""
   for w in "${cmd[@]}"; do [[ $w == scripts/* ]] && { script=$w; break; }; done
-  if [ -n "$script" ] && grep -q "docs/results/$run" "$script"; then
-    line=("${cmd[@]}")  # the script writes its run into the store itself
+  if [ -n "$script" ] && ! grep -q 'SB_DOCS_RESULTS' "$script"; then
+    line=("${cmd[@]}")  # the script writes its run into the store itself (fresh-machine)
   else
     line=(scripts/docs-record.sh "$run" "${cmd[@]}")
   fi
