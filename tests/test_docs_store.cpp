@@ -237,6 +237,7 @@ TEST(DocsStore, StaleListsAFigurePageWhoseDependenciesChanged) {
   const fs::path dir = sbtest::tempDir("docs-stale-figure");
   const std::string sha = "0123456789abcdef0123456789abcdef01234567";
   const std::string body = "# F\n";
+  writeFile(dir / "README.md", "# r\n");
   writeFile(
       dir / "docs/figures/occ-x.md",
       sb::report::figureHeader("occ-x", "strandbench figure occ-x --docs docs/figures", sha, body) +
