@@ -13,6 +13,7 @@
 #include <set>
 
 #include "base/errors.h"
+#include "base/options.h"
 #include "harness/backend_names.h"
 #include "harness/checks.h"
 #include "harness/run_context.h"
@@ -20,12 +21,11 @@
 #include "imaging/image.h"
 #include "imaging/metrics.h"
 #include "imaging/oiio/oiio_api.h"
+#include "render/common/unit.h"
 #include "reports/figure_report.h"
 #include "reports/files.h"
 #include "reports/json_file.h"
 #include "reports/report_data.h"
-#include "base/options.h"
-#include "techniques/common/unit.h"
 
 namespace sb {
 
@@ -385,7 +385,9 @@ std::vector<std::string> figureDepends(const std::string& name) {
   std::set<std::pair<Family, std::string>> specs;
   techniqueSpecs(readJsonFile<nlohmann::json>(file), "", specs);
   std::set<std::string> out = {fs::relative(file, SB_SOURCE_DIR).generic_string(),
-                               "harness/figure.cpp", "reports/figure_report.cpp"};
+                               "harness/figure.cpp", "reports/figure_report.cpp",
+                               // the floor every technique draws through
+                               "render"};
   for (Family f : {Family::Shadow, Family::Transparency, Family::Shading}) {
     out.insert("techniques/" + defaultTechnique(f).folder);
     // The references every figure's errors are measured against.
