@@ -25,7 +25,7 @@ set(_techniques ${CMAKE_BINARY_DIR}/libsb_techniques_prebuilt.a)
 file(COPY_FILE ${SB_PREBUILT_DIR}/libsb_techniques.a ${_techniques})
 execute_process(COMMAND ${CMAKE_AR} d ${_techniques} embedded_shaders.cpp.o
                 COMMAND_ERROR_IS_FATAL ANY)
-foreach(_lib sb_cli sb_harness sb_imaging sb_reports sb_pbr sb_backends sb_scenes)
+foreach(_lib sb_cli sb_harness sb_imaging sb_reports sb_pbr sb_backends sb_scenes sb_base)
   add_library(${_lib} STATIC IMPORTED)
   set_target_properties(${_lib} PROPERTIES IMPORTED_LOCATION ${SB_PREBUILT_DIR}/lib${_lib}.a)
 endforeach()
@@ -34,7 +34,8 @@ set_target_properties(sb_techniques PROPERTIES IMPORTED_LOCATION ${_techniques})
 
 file(GLOB_RECURSE SB_SHADER_FILES techniques/*.glsl techniques/*.vert techniques/*.frag
   techniques/*.comp techniques/slots.h techniques/*uniforms.h render/*.glsl render/*.vert
-  render/*.frag render/*.comp render/slots.h render/*uniforms.h render/common/uniform_block.h)
+  render/*.frag render/*.comp render/slots.h render/*uniforms.h render/common/uniform_block.h
+  scenes/groom_rule.h)
   # every folder's slots.h and uniforms.h (the new folders' too)
 string(REPLACE ";" "|" SB_SHADER_LIST "${SB_SHADER_FILES}")
 set(SB_SHADER_CPP ${CMAKE_BINARY_DIR}/generated/embedded_shaders.cpp)
@@ -54,7 +55,7 @@ target_include_directories(strandbench PRIVATE ${CMAKE_SOURCE_DIR})
 # The new folders' objects are linked as they are (each registers itself); the
 # prebuilt techniques whole, as in the main build.
 target_link_libraries(strandbench PRIVATE sb_cli sb_harness sb_imaging sb_reports sb_pbr
-  "$<LINK_LIBRARY:WHOLE_ARCHIVE,sb_techniques>" sb_backends sb_scenes
+  "$<LINK_LIBRARY:WHOLE_ARCHIVE,sb_techniques>" sb_backends sb_scenes sb_base
   CLI11::CLI11 nlohmann_json::nlohmann_json
   glm::glm tinyobjloader::tinyobjloader Vulkan::Vulkan PkgConfig::EGL PkgConfig::GLFW
   glslang::glslang glslang::SPIRV glslang::glslang-default-resource-limits embree ${CMAKE_DL_LIBS}
