@@ -11,6 +11,7 @@
 
 #include "base/errors.h"
 #include "cli/commands.h"
+#include "harness/figure.h"
 #include "reports/docs_store.h"
 #include "reports/figure_report.h"
 #include "reports/files.h"
@@ -129,6 +130,11 @@ std::string withAges(const fs::path& root, const std::string& text) {
                             std::regex_constants::format_first_only);
 }
 
+bool sameTree(const fs::path& root) {
+  std::error_code ec;
+  return fs::equivalent(root, SB_SOURCE_DIR, ec);
+}
+
 int refresh(const fs::path& root, bool write, std::ostream& os) {
   int changedPages = 0, blocks = 0, loose = 0;
   // Every page is rendered before any is written: a run missing from the store leaves all as
@@ -192,10 +198,13 @@ void registerDocsCommands(CLI::App& app) {
   refreshCmd->callback([=] {
     runGuarded("docs refresh", [&] {
       if (!*stale) return refresh(*root, true, std::cout);
-      const auto list =
-          docs::staleBlocks(*root, [&](const std::string& c, const std::vector<std::string>& p) {
+      const auto list = docs::staleBlocks(
+          *root,
+          [&](const std::string& c, const std::vector<std::string>& p) {
             return changedSince(*root, c, p);
-          });
+          },
+          // Only for the tree this binary was built from: its figures and registry.
+          sameTree(*root) ? docs::FigureDepends(figureDepends) : nullptr);
       for (const auto& s : list) {
         std::cout << s.page.generic_string() << ": " << s.block << " (run of "
                   << s.commit.substr(0, 7) << "):";

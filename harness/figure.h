@@ -42,6 +42,13 @@ nlohmann::ordered_json figureSuite(const std::string& name, bool small, const st
 // Runs the figure into o.out (written in a temporary folder beside it and renamed into place:
 // an existing figure folder there is replaced, anything else is refused). Returns 0, or 1
 // when a case failed (its cell says so).
+// Refused with --docs (InputError) on a tree with uncommitted code (run_context.h
+// uncommittedCode): the page names the commit that ran.
 int runFigure(const FigureOptions& o);
+
+// The paths a figure's page depends on, relative to the source tree: the figure file, the
+// figure code, the folders of the techniques it names, the families' defaults and the exact
+// references (`docs refresh --stale`).
+std::vector<std::string> figureDepends(const std::string& name);
 
 }  // namespace sb

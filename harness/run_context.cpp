@@ -172,15 +172,20 @@ std::string cpuGovernor() {
   return out;
 }
 
+std::string uncommittedCode() {
+  // docs/ and README.md are what the runs write (pages, stored runs), not code that runs.
+  return commandLine(std::string("git -C '") + SB_SOURCE_DIR +
+                     "' status --porcelain --untracked-files=no -- . ':!docs' ':!README.md' "
+                     "2>/dev/null");
+}
+
 nlohmann::json runContext() {
   nlohmann::json c;
   c["date"] = utcNow();
   const std::string git = std::string("git -C '") + SB_SOURCE_DIR + "' ";
   const std::string commit = commandLine(git + "rev-parse HEAD 2>/dev/null");
   c["commit"] = commit.empty() ? nlohmann::json(nullptr) : nlohmann::json(commit);
-  c["commit_dirty"] =
-      !commit.empty() &&
-      !commandLine(git + "status --porcelain --untracked-files=no 2>/dev/null").empty();
+  c["commit_dirty"] = !commit.empty() && !uncommittedCode().empty();
   c["build_type"] = SB_BUILD_TYPE;
 #if defined(__clang__)
   c["compiler"] = std::string("Clang ") + __clang_version__;

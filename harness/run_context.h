@@ -29,6 +29,9 @@ AutoShard shardFromEnvironment(const std::string& text,
 // The machine and build a run was made on (date, commit, build type, compiler, CPU, OS, the
 // load average when it starts, the CPU frequency governor where /sys shows it).
 nlohmann::json runContext();
+// The first tracked file of the source tree with uncommitted changes (git status --porcelain),
+// docs/ and README.md aside (the runs write them); "" on a clean tree or without git.
+std::string uncommittedCode();
 // /proc/loadavg as {"1min", "5min", "15min"}; null where it cannot be read.
 nlohmann::json loadAverage();
 // The CPUs' cpufreq scaling governors ("performance", or "a,b" when they differ); "" where

@@ -457,11 +457,16 @@ std::vector<fs::path> docPages(const fs::path& root) {
   return out;
 }
 
-std::vector<StaleBlock> staleBlocks(const fs::path& root, const ChangedFiles& changed) {
+std::vector<StaleBlock> staleBlocks(const fs::path& root, const ChangedFiles& changed,
+                                    const FigureDepends& figureDepends) {
   std::vector<StaleBlock> out;
   std::map<std::string, StoredRun> runs;
   for (const auto& page : docPages(root)) {
     const std::string text = readTextFile(root / page);
+    if (const auto h = report::parseFigureHeader(text); h && figureDepends) {
+      auto files = changed(h->commit, figureDepends(h->name));
+      if (!files.empty()) out.push_back({page, "figure " + h->name, h->commit, files});
+    }
     for (const auto& b : markedBlocks(text, page.generic_string())) {
       if (!b.fromStore()) continue;
       const auto slash = b.name.rfind('/');

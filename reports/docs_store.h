@@ -101,6 +101,11 @@ struct StaleBlock {
 // working tree (the caller asks git).
 using ChangedFiles =
     std::function<std::vector<std::string>(const std::string&, const std::vector<std::string>&)>;
-std::vector<StaleBlock> staleBlocks(const std::filesystem::path& root, const ChangedFiles& changed);
+// `figureDepends(name)`: the paths a figure page depends on (harness/figure.h); with it, a
+// figure page (reports/figure_report.h header) whose paths changed since its header's commit
+// is listed too, as block "figure NAME".
+using FigureDepends = std::function<std::vector<std::string>(const std::string&)>;
+std::vector<StaleBlock> staleBlocks(const std::filesystem::path& root, const ChangedFiles& changed,
+                                    const FigureDepends& figureDepends = nullptr);
 
 }  // namespace sb::docs

@@ -3,7 +3,7 @@
 # runs COMMAND with SB_DOCS_RESULTS naming the JSON file it must write, then keeps that file
 # as docs/results/NAME/results.json beside meta.json (the command, the commit, the date, the
 # machine, the driver and the load average before and after). Refused on a tree with
-# uncommitted changes (the commit must be the code that ran). docs/results/NAME/blocks.json
+# uncommitted changes outside docs/ and README.md (the commit must be the code that ran). docs/results/NAME/blocks.json
 # (the templates, written by hand) is left as it is; `build/strandbench docs refresh` then
 # renders the pages' blocks.
 # Usage: scripts/docs-record.sh NAME COMMAND [ARGS...]
@@ -15,10 +15,13 @@ shift
 case $name in
   */* | .* | "") echo "docs-record.sh: '$name': a run's name is one folder name" >&2; exit 2 ;;
 esac
-if [ -n "$(git status --porcelain --untracked-files=no)" ]; then
+# docs/ and README.md aside: they are what the runs write (so runs can be recorded one after
+# another, as scripts/docs-refresh-stale.sh does), not code that runs.
+code=(-- . ':!docs' ':!README.md')
+if [ -n "$(git status --porcelain --untracked-files=no "${code[@]}")" ]; then
   echo "docs-record.sh: the tree has uncommitted changes; commit them first (the docs cite only" \
        "runs of a clean commit):" >&2
-  git status --short --untracked-files=no >&2
+  git status --short --untracked-files=no "${code[@]}" >&2
   exit 2
 fi
 dir=docs/results/$name
@@ -30,7 +33,7 @@ SB_DOCS_RESULTS="$tmp/results.json" "$@"
 load_after=$(cut -d' ' -f1-3 /proc/loadavg)
 [ -s "$tmp/results.json" ] || { echo "docs-record.sh: '$*' wrote no \$SB_DOCS_RESULTS" >&2; exit 2; }
 # The code must not have moved under the run (a commit or an edit while it ran).
-if [ "$(git rev-parse HEAD)" != "$commit" ] || [ -n "$(git status --porcelain --untracked-files=no -- ':!docs' ':!README.md')" ]; then
+if [ "$(git rev-parse HEAD)" != "$commit" ] || [ -n "$(git status --porcelain --untracked-files=no "${code[@]}")" ]; then
   echo "docs-record.sh: the tree changed while the run ran; nothing recorded" >&2
   exit 2
 fi

@@ -13,6 +13,7 @@
 
 #include "base/errors.h"
 #include "reports/docs_store.h"
+#include "reports/figure_report.h"
 #include "test_util.h"
 
 namespace {
@@ -227,6 +228,44 @@ TEST(DocsStore, RefreshIsStableAndStaleFollowsTheDependencyPaths) {
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("uncommitted changes"), std::string::npos) << r.err;
   EXPECT_EQ(readFile(dir / "README.md"), edited);
+  fs::remove_all(dir);
+}
+
+// A figure page (its header names the commit that ran) is stale when a path its figure
+// depends on changed since that commit, and only then.
+TEST(DocsStore, StaleListsAFigurePageWhoseDependenciesChanged) {
+  const fs::path dir = sbtest::tempDir("docs-stale-figure");
+  const std::string sha = "0123456789abcdef0123456789abcdef01234567";
+  const std::string body = "# F\n";
+  writeFile(dir / "README.md", "# r\n");
+  writeFile(
+      dir / "docs/figures/occ-x.md",
+      sb::report::figureHeader("occ-x", "strandbench figure occ-x --docs docs/figures", sha, body) +
+          body);
+  std::vector<std::string> asked;
+  auto depends = [](const std::string& name) {
+    return std::vector<std::string>{"suites/figures/" + name + ".json", "techniques/occupancy"};
+  };
+  auto changedIn = [&](const std::string& folder) {
+    return [&, folder](const std::string& commit, const std::vector<std::string>& paths) {
+      EXPECT_EQ(commit, sha);
+      asked = paths;
+      std::vector<std::string> out;
+      for (const auto& p : paths)
+        if (p == folder) out.push_back(folder + "/occupancy.frag");
+      return out;
+    };
+  };
+  auto stale = sb::docs::staleBlocks(dir, changedIn("techniques/osm"), depends);
+  EXPECT_TRUE(stale.empty());
+  EXPECT_EQ(asked, depends("occ-x"));
+  stale = sb::docs::staleBlocks(dir, changedIn("techniques/occupancy"), depends);
+  ASSERT_EQ(stale.size(), 1u);
+  EXPECT_EQ(stale[0].page, fs::path("docs/figures/occ-x.md"));
+  EXPECT_EQ(stale[0].block, "figure occ-x");
+  EXPECT_EQ(stale[0].changed, std::vector<std::string>{"techniques/occupancy/occupancy.frag"});
+  // Without the figures' dependencies (another tree than the binary's), no figure is listed.
+  EXPECT_TRUE(sb::docs::staleBlocks(dir, changedIn("techniques/occupancy")).empty());
   fs::remove_all(dir);
 }
 

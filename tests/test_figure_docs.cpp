@@ -89,4 +89,23 @@ TEST(FigureDocs, NoOtherPageHoldsACopiedFigureTable) {
   }
 }
 
+// A figure page depends on its figure file, the figure code and the folders of the
+// techniques it runs (and the exact references), not on every technique: `docs refresh
+// --stale` lists it when one of those changes.
+TEST(FigureDocs, AFigureDependsOnItsFileAndTheTechniquesItRuns) {
+  const auto deps = sb::figureDepends("occ-fig1");
+  auto has = [&](const std::string& p) {
+    return std::find(deps.begin(), deps.end(), p) != deps.end();
+  };
+  EXPECT_TRUE(has("suites/figures/occ-fig1.json"));
+  EXPECT_TRUE(has("harness/figure.cpp"));
+  EXPECT_TRUE(has("techniques/occupancy"));      // --shadow occupancy
+  EXPECT_TRUE(has("techniques/occupancy_oit"));  // --oit occupancy
+  EXPECT_TRUE(has("techniques/exact"));          // the reference
+  EXPECT_FALSE(has("techniques/osm"));           // not run by this figure
+  for (const auto& p : deps) EXPECT_TRUE(fs::exists(fs::path(SB_SOURCE_DIR) / p)) << p;
+  EXPECT_EQ(sb::figureDepends("no-such-figure"),
+            std::vector<std::string>{"suites/figures/no-such-figure.json"});
+}
+
 }  // namespace

@@ -56,14 +56,13 @@ const OptionTable<O> kOptions(
                  "the strands' shadow alpha: the scene's shadow_alpha, or the light "
                  "this fibre stops (1 - its mean forward transmittance A_1)"),
      opt::choice(&O::dual, "scattering", "single", {{"single", false}, {"dual", true}},
-                 "single scattering, or Zinke et al. 2008's dual scattering "
-                 "approximation of multiple scattering, fed by the shadow "
-                 "technique's visibility (techniques/chiang/dual.glsl)"),
+                 "single scattering, or Zinke et al. 2008's dual scattering approximation of "
+                 "multiple scattering, fed by the shadow technique's visibility "
+                 "(techniques/chiang/dual.glsl)"),
      opt::number(&O::densityF, "d_f", "0.7", 0, 1,
                  "dual scattering's forward density factor d_f, 0..1"),
      opt::number(&O::densityB, "d_b", "0.7", 0, 1,
                  "dual scattering's backward density factor d_b, 0..1")});
-
 }  // namespace
 }  // namespace sb
 
