@@ -11,9 +11,9 @@
 #include "harness/settings.h"
 #include "harness/technique_list.h"
 #include "harness/unit_cases.h"
+#include "render/common/technique.h"
 #include "reports/files.h"
 #include "reports/json_file.h"
-#include "render/common/technique.h"
 
 namespace sb {
 
@@ -190,6 +190,9 @@ Suite parseSuite(const std::string& text, const std::string& file) {
         throw InputError(u.file.string() + ": \"quick\" must be an array of groups");
       for (const ojson& g : unit["quick"]) suite.doc["groups"].push_back(g);
     }
+  // The document now holds the units' groups: a run's stored copy of it (sweep.json), parsed
+  // again, must not add them twice.
+  suite.doc.erase("unit_cases");
   if (!d.contains("name") || !d["name"].is_string())
     throw InputError(where + ": \"name\" (a string) is required");
   suite.name = d["name"];
