@@ -55,11 +55,25 @@ SB_INLINE float dualStrandCount(float visibility, float strandAlpha) {
   return min(log(v) / log(1.0f - a), SB_DUAL_MAX_N);
 }
 
+// Dual scattering's light in two parts: what this fibre scatters itself (the direct light's
+// single scattering and the forward-scattered light's, F_scatter's f_s^scatter), and what its
+// neighbourhood scatters back (d_b f_back in F_direct and F_scatter). The back-scatter A_b is
+// the light returned by every strand behind the point, so it belongs to the pixel, not to one
+// of its layers: where the strands are see-through (chiang:opacity=fibre) the fibres behind are
+// seen as well and their own light is already in A_b, so shading.glsl weights this part by
+// the fragment's alpha (once over the layers), the fibre part by the fibre's coverage.
+struct ChiangDualParts {
+  vec3 fibre;
+  vec3 neighbourhood;
+};
+
 // Arguments as chiang(), plus the density factors (d_f, d_b), the shadow technique's visibility
 // and the strands' shadow alpha. Returns pi times the dual-scattering f cos per channel,
-// visibility included (single scattering's direct light is visibility * chiang()).
-SB_INLINE vec3 chiangDual(vec3 T, vec3 L, vec3 V, vec3 color, vec4 variance, vec4 tilt1,
-                          vec4 tilt4, vec2 density, float visibility, float strandAlpha) {
+// visibility included (single scattering's direct light is visibility * chiang()), in its two
+// parts.
+SB_INLINE ChiangDualParts chiangDualParts(vec3 T, vec3 L, vec3 V, vec3 color, vec4 variance,
+                                          vec4 tilt1, vec4 tilt4, vec2 density, float visibility,
+                                          float strandAlpha) {
   const float pi = 3.14159265358979f;
   float vis = clamp(visibility, 0.0f, 1.0f);
   vec3 single = chiang(T, L, V, color, variance, tilt1, tilt4);
@@ -74,7 +88,8 @@ SB_INLINE vec3 chiangDual(vec3 T, vec3 L, vec3 V, vec3 color, vec4 variance, vec
   float n = dualStrandCount(vis, strandAlpha);
   // The paper's back-scatter spread in azimuth: uniform over the backward half circle.
   float sb = phi < 0.5f * pi ? 1.0f / pi : 0.0f;
-  vec3 multiple = vec3(0.0f);
+  vec3 global3 = vec3(0.0f);
+  vec3 back3 = vec3(0.0f);
   for (int c = 0; c < 3; ++c) {
     float xc = x[c];
     float af = max(dualField(0, abs(sinI), xc, tilt4.w), 1e-6f);
@@ -104,8 +119,20 @@ SB_INLINE vec3 chiangDual(vec3 T, vec3 L, vec3 V, vec3 color, vec4 variance, vec
     // The paper's F_direct's back-scatter and F_scatter (its Fig. 5); T_f - directFraction
     // is kept >= 0 where the direct light is more than d_f a_f^n.
     float tf = df * exp(n * log(af));
-    multiple[c] = vis * db * pi * backDirect +
-                  max(tf - vis, 0.0f) * df * (pi * global + pi * db * pi * backScatter);
+    float scattered = max(tf - vis, 0.0f) * df;
+    global3[c] = scattered * pi * global;
+    back3[c] = vis * db * pi * backDirect + scattered * pi * db * pi * backScatter;
   }
-  return vis * single + multiple;
+  ChiangDualParts parts;
+  parts.fibre = vis * single + global3;
+  parts.neighbourhood = back3;
+  return parts;
+}
+
+// Both parts together: the fragment's light where its alpha is the scene's.
+SB_INLINE vec3 chiangDual(vec3 T, vec3 L, vec3 V, vec3 color, vec4 variance, vec4 tilt1,
+                          vec4 tilt4, vec2 density, float visibility, float strandAlpha) {
+  ChiangDualParts parts = chiangDualParts(T, L, V, color, variance, tilt1, tilt4, density,
+                                          visibility, strandAlpha);
+  return parts.fibre + parts.neighbourhood;
 }
