@@ -150,15 +150,30 @@ write_store_entry() {
     paste -sd ';' | sed 's/;/; /g')
   python3 - "$commit" "$load0" "$(cut -d' ' -f1-3 /proc/loadavg)" "$ctest_line" "$skips" \
     "${took["README main command (scripts/main-job.sh)"]}" \
-    "${took["README test command (scripts/test.sh)"]}" <<'PY'
-import json, os, sys, datetime
-commit, load0, load1, ctest, skips, main_s, test_s = sys.argv[1:]
+    "${took["README test command (scripts/test.sh)"]}" "$log" <<'PY'
+import json, os, re, sys, datetime
+commit, load0, load1, ctest, skips, main_s, test_s, log = sys.argv[1:]
+# test-report.sh's slowest tests ("== slowest tests (seconds)", then "  SECONDS  NAME" lines)
+# and its skips by reason ("  COUNT REASON" lines after "== skipped tests: N").
+slowest, skipped, section = [], [], None
+for line in open(log, errors="replace"):
+    if line.startswith("=="):
+        section = ("slowest" if line.startswith("== slowest tests") else
+                   "skips" if line.startswith("== skipped tests") else None)
+        continue
+    m = re.match(r"^\s*([0-9.]+)\s+(\S+)\s*$", line)
+    if section == "slowest" and m:
+        slowest.append({"seconds": float(m.group(1)), "test": m.group(2)})
+    m = re.match(r"^\s*([0-9]+) (.+?)\s*$", line)
+    if section == "skips" and m:
+        skipped.append({"count": int(m.group(1)), "reason": m.group(2)})
 cpu = next((l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.startswith("model name")), None)
 mem = next((int(l.split()[1]) for l in open("/proc/meminfo") if l.startswith("MemTotal")), 0)
 out = "docs/results/fresh-machine"
 os.makedirs(out, exist_ok=True)
 docs = {
-    "results.json": {"main_s": int(main_s), "test_s": int(test_s), "ctest": ctest, "skips": skips},
+    "results.json": {"main_s": int(main_s), "test_s": int(test_s), "ctest": ctest, "skips": skips,
+                     "slowest": slowest, "skipped": skipped},
     "meta.json": {"command": "sudo scripts/fresh-machine-check.sh", "commit": commit, "dirty": False,
                   "date": f"{datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC",
                   "machine": {"cpu": cpu, "cores": os.cpu_count(), "memory_gib": round(mem / 2**20, 1)},
