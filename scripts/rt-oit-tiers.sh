@@ -7,7 +7,9 @@
 # hits. A device without VK_KHR_ray_query refuses tier=ray_query (exit 2): no
 # row. (scripts/rt-oit.sh measures rt beside the other techniques; its
 # anti-aliased reference of the stray scene outgrows lavapipe's largest
-# storage buffer, so it stays on GL.) Prints Markdown with the command and date.
+# storage buffer, so it stays on GL.) Prints the rows; with SB_DOCS_RESULTS set,
+# writes them there as JSON for the results store (docs/measured-pages.md):
+#   scripts/docs-record.sh rt-oit-tiers scripts/rt-oit-tiers.sh vulkan mesa-25.0
 # Usage: scripts/rt-oit-tiers.sh [backend] [driver]   (default gl system;
 # e.g. vulkan mesa-25.0 for both tiers on Mesa 25.0.7's lavapipe)
 set -euo pipefail
@@ -16,11 +18,8 @@ sb=build/strandbench
 [ -x "$sb" ] || { echo "rt-oit-tiers.sh: $sb missing: run scripts/setup.sh" >&2; exit 2; }
 backend=${1:-gl}
 driver=${2:-system}
-echo "Written by \`scripts/rt-oit-tiers.sh $backend $driver\` at commit $(git rev-parse --short HEAD)," \
-  "$(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg)."
-echo
-echo "| scene | transparency | tier | image RMSE vs exact | frame ms (median of 3) | segments | BVH nodes / depth | build ms | BVH or acceleration structure + segments MiB | hits |"
-echo "|---|---|---|---:|---:|---:|---:|---:|---:|---:|"
+rows=$(mktemp)
+trap 'rm -f "$rows"' EXIT
 for s in "curly:strands=300,seed=3,alpha=0.4" "stray:alpha=0.4"; do
   for oit in rt rt:k=8; do
     for tier in software ray_query; do
@@ -31,10 +30,22 @@ for s in "curly:strands=300,seed=3,alpha=0.4" "stray:alpha=0.4"; do
       python3 -c "import json,sys; j=json.loads(sys.argv[1]); c=j['counters']
 b=sum(r['bytes'] for r in j['memory']['resources'] if r['name'] in
       ('rt.oit_bvh_nodes','rt.oit_acceleration_structure','rt.oit_boxes','rt.oit_segments'))
-print('| \`%s\` | \`%s\` | %s | %.4f | %.0f | %d | %d / %d | %.1f | %.2f | %d |' % ('$s', '$oit',
-      j['tier'], j['error']['image']['rmse'], j['frame_ms']['median'], c['rt.oit_segments'],
-      c['rt.oit_bvh_nodes'], c['rt.oit_bvh_depth'], c['rt.oit_bvh_build_ms'], b / 2**20,
-      c['rt.oit_hits']))" "$json"
+print(json.dumps({'scene': sys.argv[2], 'oit': sys.argv[3], 'tier': j['tier'],
+      'rmse': j['error']['image']['rmse'], 'frame_ms': j['frame_ms']['median'],
+      'segments': c['rt.oit_segments'], 'bvh_nodes': c['rt.oit_bvh_nodes'],
+      'bvh_depth': c['rt.oit_bvh_depth'], 'build_ms': c['rt.oit_bvh_build_ms'], 'bytes': b,
+      'hits': c['rt.oit_hits']}))" "$json" "$s" "$oit" >> "$rows"
     done
   done
 done
+python3 - "$rows" "$backend" "$driver" "${SB_DOCS_RESULTS:-}" <<'PY'
+import json, sys
+rows, backend, driver, out = sys.argv[1:]
+data = {"backend": backend, "driver": driver,
+        "rows": [json.loads(l) for l in open(rows) if l.strip()]}
+for r in data["rows"]:
+    print(f"{r['scene']} {r['oit']} {r['tier']}: rmse {r['rmse']:.4f}, frame {r['frame_ms']:.0f} ms, "
+          f"hits {r['hits']}")
+if out:
+    json.dump(data, open(out, "w"), indent=1)
+PY
