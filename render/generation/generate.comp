@@ -1,6 +1,7 @@
-// The groom's strands made on the GPU: one invocation per rendered point (of the
-// strands the level of detail kept), by the rule the CPU runs (scenes/groom_rule.h), into the buffers every technique
-// reads (common/bindings.glsl): point g * points + j of strand g, and the
+// The groom's strands made on the GPU: one invocation per rendered point (of
+// the strands the level of detail kept), by the rule the CPU runs
+// (scenes/groom_rule.h), into the buffers every technique reads
+// (common/bindings.glsl): point g * points + j of strand g, and the
 // segment g * (points - 1) + j starting there, as the CPU path uploads them.
 #include "../common/invocation.glsl"
 #include "../../scenes/groom_rule.h"
@@ -57,7 +58,8 @@ void main() {
   precise float along = float(j) * genMore.x;
   vec3 p = groomPoint(h.xyz, o.xyz, w, offset, genRule.w, along, noise);
   vec4 c = guideColors[home * perStrand + j];
-  points[at] = vec4(groomPlace(p, placements[instance]), groomThickness(h.w, uintBitsToFloat(lod.z)));
+  points[at] = vec4(groomPlace(p, placements[instance]),
+                    groomThickness(h.w, uintBitsToFloat(lod.z)));
   colors[at] = vec4(c.rgb, groomAlpha(genMore.y, c.w));
   if (j + 1u < perStrand) segments[strand * (perStrand - 1u) + j] = at;
 }
