@@ -221,16 +221,16 @@ TEST(GroomLod, TheShareFollowsTheDistanceToTheCamera) {
 // strands / kept, cover what all strands covered. The hair's mean brightness over
 // the black background (no shadows: each strand shaded alike on average) is its
 // coverage times its mean shade: at a quarter of the strands it stays within 15%
-// of the full model's (exact transparency); without the widening it would be
-// about a quarter.
+// of the full model's (exact transparency); without the widening (lines, the
+// control) it falls out of that band.
 TEST(GroomLod, WideningKeepsTheMeanCoverage) {
-  auto brightness = [](const std::string& lod) {
+  auto brightness = [](const std::string& lod, const std::string& primitive = "world") {
     sb::RenderRequest r;
     r.backend = "gl";
     r.scene = "straight:strands=400,points=8,seed=3,head=0,alpha=0.5,guides=8" + lod;
     r.shadow = "none";
     r.oit = "abuffer";
-    r.primitive = "world";
+    r.primitive = primitive;
     r.width = r.height = 64;
     r.warmup = 0;
     const sb::RenderResult out = sb::runRender(r);
@@ -244,6 +244,12 @@ TEST(GroomLod, WideningKeepsTheMeanCoverage) {
             << " (ratio " << quarter / all << ")\n";
   EXPECT_GT(all, 0.0);
   EXPECT_NEAR(quarter / all, 1.0, 0.15);
+  // The control: lines take no width from the strands, so nothing compensates
+  // there and the brightness falls out of the band (lines overlap more, so not to
+  // a quarter).
+  const double lines = brightness(",lod=0.25", "lines") / brightness("", "lines");
+  std::cout << "lines (not widened): ratio " << lines << "\n";
+  EXPECT_LT(lines, 0.85);
 }
 
 // The render JSON's lod: the shares kept and the image's error against the full
