@@ -21,8 +21,8 @@
 #include "harness/settings.h"
 #include "harness/stop.h"
 #include "imaging/metrics.h"
-#include "reports/stats.h"
 #include "render/frame/renderer.h"
+#include "reports/stats.h"
 
 namespace sb {
 
@@ -346,7 +346,9 @@ uint32_t peelLayers(const std::optional<DepthComplexity>& c) { return c ? c->max
 
 // 1. Validate: everything the request names, before any device is made.
 struct Validated {
-  std::shared_ptr<const Scene> scene;
+  // The scene drawn and the full model it is made from: the same scene unless
+  // it has a level of detail, chosen for the view (withLevelOfDetail).
+  std::shared_ptr<const Scene> scene, full;
   Spec shadow, oit;
   RenderSettings settings;
   std::vector<float> probeDepths;
@@ -355,13 +357,16 @@ struct Validated {
 Validated validate(const RenderRequest& req, RenderCache* cache) {
   checkRequest(req, Spelling::Cli);
   Validated v;
-  v.scene = sceneFor(req.scene, cache);
+  v.full = sceneFor(req.scene, cache);
   v.shadow = Spec::parse(req.shadow);
   v.oit = Spec::parse(req.oit);
   // Unknown names and options are refused here, not by a half-made renderer.
   makeShadowTechnique(v.shadow);
   makeOitTechnique(v.oit);
-  v.settings = makeRenderSettings(req, *v.scene);
+  v.settings = makeRenderSettings(req, *v.full);  // the camera fits the full model
+  v.scene = v.full->groom.hasLod() ? std::make_shared<const Scene>(withLevelOfDetail(
+                                         *v.full, v.settings.camera, v.settings.height))
+                                   : v.full;
   if (req.probe) v.settings.probePoints = probeRay(v.settings.light, *req.probe, v.probeDepths);
   checkMoreReferences(req, v.settings, referenceShadowSpec(v.shadow));
   return v;
@@ -521,6 +526,16 @@ void outputs(const RenderRequest& req, const Validated& v, Plan& p, Device& dev,
                scene.strands.thicknessFallback ? "fallback" : "strands",
                scene.groom.guideCount,
                scene.groom.instanceCount()};
+  if (v.scene != v.full) {
+    const Groom& g = scene.groom;
+    RenderResult::Lod lod;
+    lod.by = g.lodPixels > 0 ? "lod_pixels" : "lod";
+    lod.setting = g.lodPixels > 0 ? g.lodPixels : g.lod;
+    lod.strandsFull = g.fullStrands();
+    lod.strandsDrawn = g.totalStrands();
+    for (const GroomInstanceLod& l : g.lods) lod.shares.push_back(double(l.kept) / g.strands);
+    out.lod = lod;
+  }
   out.shadow = v.shadow.str();
   out.oit = v.oit.str();
   out.shading = v.settings.shading.spec;
@@ -552,21 +567,27 @@ void measures(const RenderRequest& req, const Validated& v, Plan& p, Device& dev
   }
   if (req.reference || req.probe) {
     const Spec refShadow = referenceShadowSpec(v.shadow);
-    const std::string key = referenceKey(req, v.settings, refShadow);
-    RenderCache::Reference fresh;
-    const RenderCache::Reference* ref = nullptr;
-    if (cache && cache->references.count(key)) {
-      ref = &cache->references.at(key);
-    } else {
-      progress.phase("reference");
-      fresh = renderReference(dev, scene, v.settings, refShadow, req);
-      if (cache) {
-        ++cache->referenceRenders;
-        ref = &(cache->references[key] = std::move(fresh));
-      } else {
-        ref = &fresh;
-      }
-    }
+    // The exact reference of `drawn`, cached per sweep under `key`.
+    RenderCache::Reference fresh, freshFull;
+    auto exact = [&](const Scene& drawn, const std::string& key, RenderCache::Reference& mine,
+                     const std::string& phase) -> const RenderCache::Reference* {
+      if (cache && cache->references.count(key)) return &cache->references.at(key);
+      progress.phase(phase);
+      mine = renderReference(dev, drawn, v.settings, refShadow, req);
+      if (!cache) return &mine;
+      ++cache->referenceRenders;
+      return &(cache->references[key] = std::move(mine));
+    };
+    // The full model's key is the scene's without its level of detail, so a run with
+    // lod off and the full model's reference of a run with it on share one.
+    RenderRequest fullReq = req;
+    Spec fullSpec = Spec::parse(req.scene);
+    fullSpec.options.erase("lod");
+    fullSpec.options.erase("lod_pixels");
+    fullReq.scene = fullSpec.str();
+    const bool lod = v.scene != v.full;
+    const RenderCache::Reference* ref =
+        exact(scene, referenceKey(lod ? req : fullReq, v.settings, refShadow), fresh, "reference");
     for (const auto& w : ref->warnings) out.warnings.push_back(w);
     if (!out.eyeComplexity) out.eyeComplexity = ref->eye;
     if (!out.lightComplexity) out.lightComplexity = ref->light;
@@ -575,6 +596,11 @@ void measures(const RenderRequest& req, const Validated& v, Plan& p, Device& dev
       if (req.image) {
         out.referenceImage = ref->image;
         out.imageError = compareImages(out.image, out.referenceImage);
+        if (lod)
+          out.lod->fullModelError =
+              compareImages(out.image, exact(*v.full, referenceKey(fullReq, v.settings, refShadow),
+                                             freshFull, "the full model's reference")
+                                           ->image);
         // The image as its PNG shows it: display values (imaging/flip.h).
         out.flip = computeFlip(out.image, out.referenceImage);
       }

@@ -14,10 +14,10 @@
 #include "imaging/flip.h"
 #include "imaging/image.h"
 #include "imaging/metrics.h"
-#include "scenes/scene.h"
-#include "scenes/view.h"
 #include "render/common/technique.h"
 #include "render/common/unit.h"
+#include "scenes/scene.h"
+#include "scenes/view.h"
 
 namespace sb {
 
@@ -250,6 +250,17 @@ struct RenderResult {
   };
   std::vector<MoreReference> moreReferences;
   std::optional<AnimationResult> animation;  // with animate
+  // The level of detail (scene lod= or lod_pixels=; docs/geometry.md): what each
+  // instance kept, and the image's error against the full model's exact reference
+  // (with a reference and an image; error.image is against the strands drawn).
+  struct Lod {
+    std::string by;  // "lod" (a fixed share) or "lod_pixels" (by size on screen)
+    double setting = 0;
+    std::size_t strandsFull = 0, strandsDrawn = 0;
+    std::vector<double> shares;  // per instance: kept / strands
+    std::optional<ImageError> fullModelError;
+  };
+  std::optional<Lod> lod;
   std::optional<ProbeResult> probe;
   std::optional<std::vector<InvariantFailure>> invariants;  // when requested
   std::optional<DepthComplexity> eyeComplexity, lightComplexity;

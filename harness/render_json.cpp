@@ -5,8 +5,8 @@
 #include <nlohmann/json.hpp>
 
 #include "harness/render_steps.h"
-#include "reports/stats.h"
 #include "render/frame/renderer.h"
+#include "reports/stats.h"
 
 namespace sb {
 namespace {
@@ -29,6 +29,7 @@ nlohmann::json errorJson(const RenderResult& r) {
   if (r.imageError) error["image"] = toJson(*r.imageError);
   if (r.flip) error["image"]["flip"] = toJson(*r.flip);
   if (r.visibilityError) error["visibility"] = visibilityJson(*r.visibilityError);
+  if (r.lod && r.lod->fullModelError) error["full_model"]["image"] = toJson(*r.lod->fullModelError);
   if (r.own) {
     const OwnError& o = *r.own;
     nlohmann::json own = {{"technique", o.technique},
@@ -209,6 +210,21 @@ nlohmann::json renderJson(const RenderResult& r) {
   if (r.reference) j["reference"] = {{"shadow", r.reference->first}, {"oit", r.reference->second}};
   if (r.visibilityError) j["error"] = errorJson(r);
   if (r.animation) j["animation"] = animationJson(*r.animation);
+  if (r.lod) {
+    const RenderResult::Lod& l = *r.lod;
+    double lo = 1, hi = 0, sum = 0;
+    for (double s : l.shares) {
+      lo = std::min(lo, s);
+      hi = std::max(hi, s);
+      sum += s;
+    }
+    j["lod"] = {{"by", l.by},
+                {l.by, l.setting},
+                {"strands", l.strandsDrawn},
+                {"strands_full", l.strandsFull},
+                {"share", {{"min", lo}, {"mean", sum / double(l.shares.size())}, {"max", hi}}}};
+    if (l.shares.size() <= 100) j["lod"]["instances"] = l.shares;
+  }
   if (r.probe)
     j["probe"] = {{"texel", {r.probe->texel.x, r.probe->texel.y}},
                   {"map_size", r.probe->mapSize},

@@ -54,7 +54,7 @@ struct SceneOptions {
   bool zeroSegments = false;
   // The groom (scenes/groom.h, docs/geometry.md): guides, the generation rule, a crowd.
   uint32_t guides = 0, instances = 1;
-  float guideSpread = 0.5f, guideOffset = 0.5f, noise = 0.1f, clump = 0, lod = 1;
+  float guideSpread = 0.5f, guideOffset = 0.5f, noise = 0.1f, clump = 0, lod = 1, lodPixels = 0;
   InputError error(const std::string& what) const {
     return InputError("scene '" + scene + "': " + what);
   }
@@ -482,13 +482,19 @@ void applyGroom(const SO& o, Scene& scene) {
   g.noise = o.noise;
   g.clump = o.clump;
   g.lod = o.lod;
+  g.lodPixels = o.lodPixels;
   // The rule's shape options mean nothing without guides: refused rather than ignored.
   if (g.guideEvery == 0 &&
-      (g.spread != 0.5f || g.offset != 0.5f || g.noise != 0.1f || g.clump != 0.0f || g.lod != 1.0f))
+      (g.spread != 0.5f || g.offset != 0.5f || g.noise != 0.1f || g.clump != 0.0f))
     throw o.error(
-        "guide_spread=, guide_offset=, noise=, clump= and lod= need guides= (every "
-        "n-th strand a guide)");
-  if (g.guideEvery == 0 && g.instances == 1) return;
+        "guide_spread=, guide_offset=, noise= and clump= need guides= (every n-th strand a "
+        "guide)");
+  if (g.lod < 1.0f && g.lodPixels > 0)
+    throw o.error(
+        "lod= (a fixed share) and lod_pixels= (a share by size on screen) are two "
+        "levels of detail: give one");
+  // The level of detail thins a groom: without guides every strand is its own.
+  if (g.guideEvery == 0 && g.instances == 1 && g.lod == 1.0f && g.lodPixels == 0) return;
   scene.groom = makeGroom(scene.strands, g);
   checkTotal(o, 1, scene.groom.totalPoints());
   const bool fallback = scene.strands.thicknessFallback;
@@ -719,8 +725,11 @@ SceneOption groomOptions() {
        opt::number(&SO::clump, "clump", "0", 0.0, 1.0,
                    "guides=: pull to the home guide at the tip, 0..1"),
        positive(&SO::lod, "lod", "1", 1.0,
-                "guides=: level of detail, the share of the strands kept (0..1], their "
-                "thickness widened by 1/lod"),
+                "level of detail: the share of each instance's strands kept (0..1], their "
+                "thickness widened by the strands left out (docs/geometry.md)"),
+       opt::number(&SO::lodPixels, "lod_pixels", "0", 0.0, 100000.0,
+                   "level of detail by size on screen: an instance spanning s pixels keeps "
+                   "min(1, (s/lod_pixels)^2) of its strands, widened to match; 0: off"),
        opt::integer(&SO::instances, "instances", 1, 1, 10000,
                     "copies of the groom in a grid on the floor, each turned and made with its "
                     "own seed, 1..10000")});
@@ -891,6 +900,24 @@ Scene makeScene(const Spec& spec) {
   applyGroom(o, scene);
   scene.name = spec.str();
   return scene;
+}
+
+Scene withLevelOfDetail(const Scene& full, const Camera& camera, uint32_t imageHeight) {
+  Scene s;  // all but the strands, which the rule makes again
+  s.name = full.name;
+  s.mesh = full.mesh;
+  s.hairAlpha = full.hairAlpha;
+  s.shadowAlpha = full.shadowAlpha;
+  s.hairColor = full.hairColor;
+  s.frameByBox = full.frameByBox;
+  s.warnings = full.warnings;
+  s.up = full.up;
+  s.upReason = full.upReason;
+  s.groom = full.groom;
+  groomLevelOfDetail(s.groom, camera, imageHeight);
+  s.strands = generateStrands(s.groom);
+  s.strands.thicknessFallback = full.strands.thicknessFallback;
+  return s;
 }
 
 }  // namespace sb

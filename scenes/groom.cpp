@@ -11,6 +11,7 @@
 #include "base/errors.h"
 #include "scenes/groom_rule.h"
 #include "scenes/scene.h"
+#include "scenes/view.h"
 
 namespace sb {
 
@@ -89,11 +90,15 @@ Groom makeGroom(const Strands& strands, const GroomSettings& s) {
     }
   }
   g.alongStep = 1.0f / float(g.points - 1);
-  if (s.lod < 1.0f) {
-    // The first strands of each instance: home guide i mod guides spreads them evenly.
-    g.strands = std::max(1u, uint32_t(std::lround(double(s.lod) * g.strands)));
-    g.widen = 1.0f / s.lod;
-  }
+  g.lod = s.lod;
+  g.lodPixels = s.lodPixels;
+  // The order a row cut short by the level of detail keeps its guides: by a hash
+  // of the guide and the seed (integers: the same on every machine).
+  std::vector<std::pair<uint32_t, uint32_t>> keyed(g.guideCount);
+  for (uint32_t a = 0; a < g.guideCount; ++a)
+    keyed[a] = {groom_rule::groomHash(a ^ groom_rule::groomHash(s.seed + 0x2545f491u)), a};
+  std::sort(keyed.begin(), keyed.end());
+  for (const auto& k : keyed) g.guideOrder.push_back(k.second);
   if (s.guideEvery > 0) {
     g.spread = s.spread;
     g.offset = s.offset;
@@ -116,6 +121,8 @@ Groom makeGroom(const Strands& strands, const GroomSettings& s) {
   }
   const glm::vec3 centre = 0.5f * (lo + hi);
   const float extent = std::max({hi.x - lo.x, hi.z - lo.z, hi.y - lo.y, 1e-6f});
+  g.centre = centre;
+  g.radius = 0.5f * glm::length(hi - lo);
   const float spacing = 1.25f * extent;
   const uint32_t n = s.instances;
   const uint32_t cols = uint32_t(std::ceil(std::sqrt(double(n))));
@@ -135,7 +142,29 @@ Groom makeGroom(const Strands& strands, const GroomSettings& s) {
     g.placements.push_back({c, sn, centre.x - (c * centre.x - sn * centre.z) + gx,
                             centre.z - (sn * centre.x + c * centre.z) + gz});
   }
+  for (uint32_t k = 0; k < n; ++k) g.lods.push_back({k * g.strands, g.strands, 1.0f, 0});
   return g;
+}
+
+void groomLevelOfDetail(Groom& g, const Camera& camera, uint32_t imageHeight) {
+  // Pixels across the image's height per world unit at distance 1.
+  const double focal =
+      0.5 * imageHeight / std::tan(0.5 * double(camera.fovYDegrees) * std::numbers::pi / 180.0);
+  uint32_t first = 0;
+  for (uint32_t k = 0; k < g.instanceCount(); ++k) {
+    double share = 1;
+    if (g.lod < 1.0f) share = g.lod;
+    if (g.lodPixels > 0) {
+      // The placement turns an instance about its centre: its sphere moves with the grid.
+      const glm::vec3 c = groom_rule::groomPlace(g.centre, g.placements[k]);
+      const double d = glm::length(c - camera.eye);
+      const double pixels = d > g.radius ? 2.0 * g.radius * focal / d : 1e30;
+      share = std::min(1.0, (pixels / g.lodPixels) * (pixels / g.lodPixels));
+    }
+    const uint32_t kept = std::clamp(uint32_t(std::lround(share * g.strands)), 1u, g.strands);
+    g.lods[k] = {first, kept, float(double(g.strands) / double(kept)), 0};
+    first += kept;
+  }
 }
 
 Strands generateStrands(const Groom& g) {
@@ -149,8 +178,11 @@ Strands generateStrands(const Groom& g) {
   out.firstPoint.resize(std::size_t(g.totalStrands()));
   out.pointCount.assign(std::size_t(g.totalStrands()), g.points);
   for (uint32_t k = 0; k < g.instanceCount(); ++k) {
-    for (uint32_t i = 0; i < g.strands; ++i) {
-      const std::size_t strand = std::size_t(k) * g.strands + i;
+    const GroomInstanceLod lod = g.lods[k];
+    const uint32_t row = groomLodCutRow(lod.kept, g.strands, g.guideCount);
+    for (uint32_t t = 0; t < lod.kept; ++t) {
+      const uint32_t i = t < row ? t : row + g.guideOrder[t - row];
+      const std::size_t strand = std::size_t(lod.first) + t;
       const uint32_t seed = groomStrandSeed(g.instanceSeeds[k], i);
       const uint32_t home = i % g.guideCount;
       const uint32_t other =
@@ -167,7 +199,7 @@ Strands generateStrands(const Groom& g) {
         const std::size_t at = strand * g.points + j;
         const glm::vec4 c = g.guideColors[std::size_t(home) * g.points + j];
         out.points[at] = groomPlace(p, g.placements[k]);
-        out.thickness[at] = groomThickness(h.w, g.widen);
+        out.thickness[at] = groomThickness(h.w, lod.widen);
         out.colors[at] = glm::vec3(c);
         out.transparency[at] = c.w;
       }

@@ -22,9 +22,19 @@ struct GroomSettings {
   float offset = 0.5f;  // per-strand offset, in mean guide spacings
   float noise = 0.1f;   // per-point noise at the tip, in mean guide spacings
   float clump = 0.0f;   // pull towards the home guide at the tip (0..1)
-  // Level of detail: the share of the strands kept (the first of each instance,
-  // spread evenly over the guides), their thickness widened by 1 / lod.
+  // Level of detail (groomLevelOfDetail): a share of each instance's strands
+  // kept (lod < 1), or a share by the instance's size on screen (lodPixels > 0).
   float lod = 1.0f;
+  float lodPixels = 0;
+};
+
+// What the level of detail kept of one instance: its kept strands are strands
+// first .. first + kept - 1 of the groom's, widened by widen = strands / kept.
+// The generation pass reads it as a uvec4 (widen's bits in z).
+struct GroomInstanceLod {
+  uint32_t first = 0, kept = 0;
+  float widen = 1;
+  uint32_t unused = 0;
 };
 
 struct Groom {
@@ -43,11 +53,24 @@ struct Groom {
   // The rule's scalars, world units where they are lengths.
   float spread = 0, offset = 0, noise = 0, clump = 0;
   float alongStep = 0;  // 1 / (points - 1): j * alongStep is how far along point j is
-  float widen = 1;      // the thickness's factor (1 / lod)
+  // Level of detail: the settings, one instance's bounding sphere (before its
+  // placement, which turns it about its centre), the guides in the order a
+  // row cut short keeps them (groom_rule.h: groomLodCutRow) and, per instance,
+  // what groomLevelOfDetail kept (all of it until then).
+  float lod = 1, lodPixels = 0;
+  glm::vec3 centre{0};
+  float radius = 0;
+  std::vector<uint32_t> guideOrder;
+  std::vector<GroomInstanceLod> lods;
 
   bool empty() const { return guideCount == 0; }
+  bool hasLod() const { return lod < 1.0f || lodPixels > 0; }
   uint32_t instanceCount() const { return static_cast<uint32_t>(placements.size()); }
-  uint64_t totalStrands() const { return uint64_t(strands) * instanceCount(); }
+  uint64_t fullStrands() const { return uint64_t(strands) * instanceCount(); }
+  // The strands made: those the level of detail kept.
+  uint64_t totalStrands() const {
+    return lods.empty() ? 0 : uint64_t(lods.back().first) + lods.back().kept;
+  }
   uint64_t totalPoints() const { return totalStrands() * points; }
 };
 
@@ -57,8 +80,18 @@ struct Groom {
 // Throws InputError when nothing is left to guide or the crowd is too large.
 Groom makeGroom(const Strands& strands, const GroomSettings& settings);
 
-// The rule run on the CPU over every instance: strand g = instance * strands + i,
-// its point j at g * points + j (the layout the compute pass writes too).
+// The level of detail for a view (docs/geometry.md): with lod < 1 every
+// instance keeps round(lod * strands); with lodPixels = P an instance whose
+// bounding sphere spans s pixels across the image's height keeps
+// min(1, (s / P)^2) of its strands (the strands per pixel of screen held at
+// what they were at P pixels). At least one strand each; the kept strands are
+// widened by strands / kept. Without either, all are kept. Sets groom.lods.
+struct Camera;
+void groomLevelOfDetail(Groom& groom, const Camera& camera, uint32_t imageHeight);
+
+// The rule run on the CPU over every instance's kept strands: the t-th kept
+// strand of instance k is strand g = lods[k].first + t, its point j at
+// g * points + j (the layout the compute pass writes too).
 Strands generateStrands(const Groom& groom);
 
 }  // namespace sb

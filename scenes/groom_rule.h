@@ -89,8 +89,24 @@ SB_RULE_FN vec3 groomPlace(vec3 p, vec4 place) {
   return vec3(x, p.y, z);
 }
 
+// Level of detail (docs/geometry.md): an instance keeps `kept` of its `strands`
+// strands (the CPU chose how many, from a share or its size on screen). Strand
+// i's home guide is i mod guides, so the strands come in rows of `guides`, one
+// follower of each guide. An instance keeps its first kept / guides rows whole
+// and, of the row it cuts short, the guides first in the groom's guide order
+// (a shuffle: a cut row is spread over the groom, not its first guides). The
+// t-th kept strand (t < kept) is t below the cut row `row` this gives, and
+// row + order[t - row] from it on; `row` is `strands` where no whole row is cut
+// (kept a whole number of rows, or into the short last row, kept in order).
+// So the kept strands depend on integers only, and fewer kept are always a
+// subset of more (no strand comes and goes as the share changes).
+SB_RULE_FN uint groomLodCutRow(uint kept, uint strands, uint guides) {
+  uint row = kept / guides * guides;
+  return row + guides <= strands && row < kept ? row : strands;
+}
+
 // A point's thickness: the home guide's, widened for the strands the level of
-// detail left out (widen = 1 / lod, from the CPU).
+// detail left out (widen = strands / kept, the instance's, from the CPU).
 SB_RULE_FN float groomThickness(float guide, float widen) {
   SB_PRECISE float t = guide * widen;
   return t;

@@ -81,6 +81,13 @@ const std::vector<SceneInfo>& sceneCatalog();
 // out-of-range values and bad files throw InputError.
 Scene makeScene(const Spec& spec);
 
+// The scene as a view draws it: a scene whose groom has a level of detail
+// (lod=, lod_pixels=; Groom::hasLod) made again with the strands
+// groomLevelOfDetail keeps for this camera and image height. makeScene makes
+// the full model, which the camera is fitted to and the full model's reference draws.
+struct Camera;
+Scene withLevelOfDetail(const Scene& full, const Camera& camera, uint32_t imageHeight);
+
 // Loaders (throw InputError naming the file and the problem). `warnings`, when given,
 // receives what a loader accepted but the user should hear about ("<file>: <what>").
 // pointsPerStrand (PLY only; 0 = not given): a PLY without a 'strand' element is read as

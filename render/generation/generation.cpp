@@ -1,16 +1,16 @@
 #include "render/generation/generation.h"
 
-#include "render/graph/pass.h"
 #include "render/common/shader_library.h"
 #include "render/generation/slots.h"
 #include "render/generation/uniforms.h"
+#include "render/graph/pass.h"
 
 namespace sb {
 
 namespace {
 Pass generationPass(Buffer params, Buffer guidePoints, Buffer guideColors, Buffer neighbours,
-                    Buffer placements, Buffer seeds, Buffer points, Buffer colors,
-                    Buffer segments) {
+                    Buffer placements, Buffer seeds, Buffer lods, Buffer guideOrder, Buffer points,
+                    Buffer colors, Buffer segments) {
   Pass p("scene.generate");
   p.uniform(SB_SLOT_GEN_PARAMS, params)
       .readStorage(SB_SLOT_GEN_GUIDE_POINTS, guidePoints)
@@ -18,6 +18,8 @@ Pass generationPass(Buffer params, Buffer guidePoints, Buffer guideColors, Buffe
       .readStorage(SB_SLOT_GEN_NEIGHBOURS, neighbours)
       .readStorage(SB_SLOT_GEN_PLACEMENTS, placements)
       .readStorage(SB_SLOT_GEN_SEEDS, seeds)
+      .readStorage(SB_SLOT_GEN_LODS, lods)
+      .readStorage(SB_SLOT_GEN_GUIDE_ORDER, guideOrder)
       .storage(SB_SLOT_POINTS, points)
       .storage(SB_SLOT_COLORS, colors)
       .storage(SB_SLOT_SEGMENTS, segments);
@@ -48,7 +50,7 @@ void StrandGeneration::setup(Device& dev, const Scene& scene, GpuScene& gpu) {
   GenerationParams params{};
   params.genSizes = {g.guideCount, g.points, g.strands, g.instanceCount()};
   params.genRule = {g.spread, g.offset, g.noise, g.clump};
-  params.genMore = {g.alongStep, scene.hairAlpha, g.widen, 0.0f};
+  params.genMore = {g.alongStep, scene.hairAlpha, 0.0f, 0.0f};
   params.genTotal = {total_, 0u, 0u, 0u};
   params_ = dev.createBuffer(
       {"scene.generation_params", "scene", BufferUsage::Uniform, sizeof params}, &params);
@@ -62,6 +64,10 @@ void StrandGeneration::setup(Device& dev, const Scene& scene, GpuScene& gpu) {
                       g.placements.size() * sizeof(glm::vec4));
   seeds_ = input(dev, "instance_seeds", g.instanceSeeds.data(),
                  g.instanceSeeds.size() * sizeof(uint32_t));
+  static_assert(sizeof(GroomInstanceLod) == 16, "read as a uvec4");
+  lods_ = input(dev, "instance_lods", g.lods.data(), g.lods.size() * sizeof(GroomInstanceLod));
+  guideOrder_ =
+      input(dev, "guide_order", g.guideOrder.data(), g.guideOrder.size() * sizeof(uint32_t));
   const uint64_t segments = g.totalStrands() * (g.points - 1);
   points_ = dev.createBuffer({"scene.points", "scene", BufferUsage::Storage, total * 16});
   colors_ = dev.createBuffer({"scene.colors", "scene", BufferUsage::Storage, total * 16});
@@ -71,7 +77,7 @@ void StrandGeneration::setup(Device& dev, const Scene& scene, GpuScene& gpu) {
   gpu.segments = segments_;
   gpu.segmentCount = static_cast<uint32_t>(segments);
   const Pass pass = generationPass(params_, guidePoints_, guideColors_, neighbours_, placements_,
-                                   seeds_, points_, colors_, segments_);
+                                   seeds_, lods_, guideOrder_, points_, colors_, segments_);
   const ShaderCode code = loadShader("render/generation/generate.comp");
   PipelineDesc d = pass.pipeline(dev, "scene.generate", "generation");
   d.compute = &code;
@@ -80,7 +86,7 @@ void StrandGeneration::setup(Device& dev, const Scene& scene, GpuScene& gpu) {
 
 void StrandGeneration::run(Device& dev) {
   const Pass pass = generationPass(params_, guidePoints_, guideColors_, neighbours_, placements_,
-                                   seeds_, points_, colors_, segments_);
+                                   seeds_, lods_, guideOrder_, points_, colors_, segments_);
   const glm::uvec2 groups = dispatchGroups(total_);
   dev.beginFrame();
   pass.dispatch(dev, pipeline_, groups.x, groups.y);

@@ -23,7 +23,7 @@ class StrandGeneration {
   void run(Device& dev);
 
  private:
-  Buffer params_, guidePoints_, guideColors_, neighbours_, placements_, seeds_;
+  Buffer params_, guidePoints_, guideColors_, neighbours_, placements_, seeds_, lods_, guideOrder_;
   Buffer points_, colors_, segments_;
   Pipeline pipeline_;
   uint32_t total_ = 0;

@@ -10,5 +10,7 @@
 #define SB_SLOT_GEN_NEIGHBOURS 18    // uint: SB_GROOM_NEIGHBOURS per guide
 #define SB_SLOT_GEN_PLACEMENTS 19    // vec4 per instance: cosine, sine, x, z
 #define SB_SLOT_GEN_SEEDS 20         // uint per instance
+#define SB_SLOT_GEN_LODS 21          // uvec4 per instance: GroomInstanceLod (scenes/groom.h)
+#define SB_SLOT_GEN_GUIDE_ORDER 22   // uint per guide: the order a cut row keeps them
 
 #endif  // SB_GENERATION_SLOTS_H

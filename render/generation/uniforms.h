@@ -11,8 +11,8 @@
 SB_UNIFORM_BLOCK(GenerationParams, SB_SLOT_GEN_PARAMS)
   SB_FIELD(uvec4, genSizes)  // guides, points per strand, strands per instance, instances
   SB_FIELD(vec4, genRule)    // spread, offset, noise, clump (world units where lengths)
-  SB_FIELD(vec4, genMore)    // along step (1 / (points - 1)), scene opacity, thickness factor (1 / lod), 0
-  SB_FIELD(uvec4, genTotal)  // points in all, 0, 0, 0
+  SB_FIELD(vec4, genMore)    // along step (1 / (points - 1)), scene opacity, 0, 0
+  SB_FIELD(uvec4, genTotal)  // points in all (the kept strands'), 0, 0, 0
 SB_UNIFORM_BLOCK_END(GenerationParams)
 // clang-format on
 

@@ -6,9 +6,9 @@
 #include "base/errors.h"
 #include "base/options.h"
 #include "render/common/shader_library.h"
+#include "render/shading/hair_shading.h"
 #include "techniques/compute_raster/slots.h"
 #include "techniques/compute_raster/uniforms.h"
-#include "render/shading/hair_shading.h"
 
 namespace sb {
 
@@ -30,19 +30,6 @@ enum Status : uint32_t {
 };
 }  // namespace
 
-void ComputeRasterOit::check(Options& r) {
-  if (!(r.lod > 0.0f))
-    throw InputError("transparency technique 'compute_raster': lod=" + std::to_string(r.lod) +
-                     " keeps no strand; give a share in (0, 1]");
-}
-
-ComputeRasterOit::Strand ComputeRasterOit::strand(const Options& o, float frameWidth) {
-  const float base = o.width > 0 ? o.width : frameWidth;
-  const float thin = 1.0f / o.lod;  // what the kept strands stand for
-  const float widen = std::min(thin, o.lodWiden);
-  return {base * widen, widen, thin / widen};
-}
-
 void ComputeRasterOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
                              const HairShading& shading, const OitTargets& targets) {
   keepInputs(dev, scene, s, shading, targets);
@@ -54,18 +41,18 @@ void ComputeRasterOit::setup(Device& dev, const GpuScene& scene, const RenderSet
     throw InputError(
         "transparency technique 'compute_raster': --primitive world is not "
         "supported (its option thickness=on draws the strands' world widths)");
-  const Strand st = strand(o_, s.primitive == Primitive::Ribbons ? s.ribbonWidth : 1.0f);
+  const float frameWidth = s.primitive == Primitive::Ribbons ? s.ribbonWidth : 1.0f;
   CRasterParams p{};
   p.crTiles = glm::uvec4(tilesX_, tilesY_, o_.tile, tiles());
   p.crSize = glm::uvec4(s.width, s.height, 0, 0);
-  p.crStrand = glm::vec4(st.width, o_.lod, st.opacityExponent, o_.terminate);
+  p.crStrand = glm::vec4(o_.width > 0 ? o_.width : frameWidth, 0, 0, o_.terminate);
   p.crModel = glm::uvec4(o_.analytic ? 0u : 1u, s.primitive == Primitive::Lines ? 1u : 0u,
                          scene.segmentCount, o_.thickness ? 1u : 0u);
   // Pixels per world unit at clip w = 1: half the viewport times the length of
   // the view-projection's x row (the view is rigid: the projection's x scale).
   const glm::mat4 vp = cameraView(s).viewProj;
   const float xScale = glm::length(glm::vec3(vp[0][0], vp[1][0], vp[2][0]));
-  p.crWidth = glm::vec4(st.widen, 0.5f * float(s.width) * xScale, 0, 0);
+  p.crWidth = glm::vec4(0.5f * float(s.width) * xScale, 0, 0, 0);
   params_ = dev.createBuffer({name() + ".params", "frame", BufferUsage::Uniform, sizeof p}, &p);
   cursor_ = dev.createBuffer(
       {name() + ".cursor", "oit", BufferUsage::Storage, (kStatusWords + tiles()) * 4ull});

@@ -9,7 +9,7 @@
 #define SB_CR_DROPPED 1u     // fragments past their tile's capacity (overflow)
 #define SB_CR_OVERFLOWED 2u  // tiles that overflowed
 #define SB_CR_MAX_TILE 3u    // the most fragments one tile was given
-#define SB_CR_SEGMENTS 4u    // segments rasterized (those the LOD kept)
+#define SB_CR_SEGMENTS 4u    // segments rasterized
 #define SB_CR_TERMINATED 5u  // pixels whose walk stopped early (opaque enough)
 #define SB_CR_STATUS_WORDS 8u
 

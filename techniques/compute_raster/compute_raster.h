@@ -18,11 +18,9 @@
 // counting pass found in prepare(); with fragments=N each tile gets N entries
 // (the engines' fixed layout, tiles x N x 16 bytes), twice (the buckets). A
 // full list drops fragments, counted ("dropped_fragments", "overflowed_tiles")
-// and warned about, never silently. LOD thins strands as the engines do with
-// distance (here the share is the option lod=, not chosen from the distance):
-// only that share of the strands is drawn (chosen by a hash of the root), the
-// kept ones widened (up to lod_widen) and made more opaque for the rest, so
-// that the hair's coverage stays what all strands gave.
+// and warned about, never silently. Level of detail is the scene's (lod=,
+// lod_pixels=; docs/geometry.md), one mechanism for every technique and path:
+// this draws the strands it kept, and width_from=thickness their widened widths.
 #pragma once
 
 #include "render/common/hair_oit.h"
@@ -41,12 +39,9 @@ class ComputeRasterOit : public CompositedOit {
     bool perPoint = true;           // shading=point (else fragment)
     float width = 0;                // strand width in pixels; 0: the frame's (lines 1, ribbons)
     bool thickness = false;         // width_from=thickness: the scene's thickness, projected
-    float lod = 1;                  // share of strands kept, (0, 1]
-    float lodWiden = 2;             // most the kept strands are widened, >= 1
     float terminate = 1.0f / 1024;  // early-termination transmittance
   };
   explicit ComputeRasterOit(Options o) : o_(o) {}
-  static void check(Options& o);  // between options, after the registry read them
   std::string name() const override { return "compute_raster"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
              const HairShading& shading, const OitTargets& targets) override;
@@ -55,14 +50,6 @@ class ComputeRasterOit : public CompositedOit {
   void addPasses(FrameGraph& graph, Device& dev) override;
   std::vector<std::string> warnings(Device& dev) override;
   std::vector<Counter> counters(Device& dev) override;
-
-  // The strand width in pixels, the widening and the opacity exponent the LOD
-  // gives (kept share s: widened by min(1/s, lod_widen), opacity 1-(1-a)^e with
-  // e = 1/(s * widening)), for a frame drawing strands `frameWidth` wide.
-  struct Strand {
-    float width, widen, opacityExponent;
-  };
-  static Strand strand(const Options& o, float frameWidth);
 
  private:
   Pass shadePass() const;

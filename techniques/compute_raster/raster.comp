@@ -1,7 +1,7 @@
 // compute_raster's raster pass: one invocation per segment. The segment is
 // clipped at the near plane, projected, and walked along its major screen axis
 // one pixel column (or row) at a time; in each column the strand's footprint
-// (its width across, widened by the LOD) covers a run of pixels, each given a
+// (its width across) covers a run of pixels, each given a
 // coverage: analytic (the length of the footprint inside the pixel, a box
 // filter across the strand) or binary (pixel centres inside it, as the
 // hardware rasterizes the same lines or ribbons). Each covered pixel in front
@@ -15,28 +15,6 @@ layout(local_size_x = 64) in;
 #ifdef SB_CRASTER_OPAQUE
 layout(binding = SB_SLOT_CRASTER_OPAQUE) uniform sampler2D opaqueDepth;
 #endif
-
-uint hashU(uint x) {
-  x ^= x >> 16;
-  x *= 0x7feb352du;
-  x ^= x >> 15;
-  x *= 0x846ca68bu;
-  x ^= x >> 16;
-  return x;
-}
-
-// LOD: a strand is kept when the hash of its root point is under the share
-// kept; all its segments share the root (the segments of a strand are
-// consecutive, each starting one point after the previous).
-bool keptByLod(uint seg) {
-  if (crStrand.y >= 1.0) return true;
-  uint s = seg;
-  for (uint i = 0u; i < 65536u; ++i) {
-    if (s == 0u || segments[s - 1u] + 1u != segments[s]) break;
-    --s;
-  }
-  return float(hashU(segments[s]) >> 8u) * (1.0 / 16777216.0) < crStrand.y;
-}
 
 void emit(uint seg, ivec2 px, float depth, float t, float coverage) {
   if (coverage <= 0.0) return;
@@ -61,7 +39,7 @@ void emit(uint seg, ivec2 px, float depth, float t, float coverage) {
 
 void main() {
   uint seg = linearInvocation();
-  if (seg >= crModel.z || !keptByLod(seg)) return;
+  if (seg >= crModel.z) return;
 #ifndef SB_CRASTER_COUNT
   atomicAdd(cursor[SB_CR_SEGMENTS], 1u);
 #endif
@@ -117,7 +95,7 @@ void main() {
     if (crModel.w == 1u) {
       // 1/w is linear on screen; the thickness is linear along the segment.
       float w = 1.0 / mix(1.0 / wA, 1.0 / wB, s);
-      width = mix(thick0, thick1, t) * crWidth.x * crWidth.y / w;
+      width = mix(thick0, thick1, t) * crWidth.x / w;
       h = width / cosv;
     }
     float v = A.y + (uc - A.x) * slope;

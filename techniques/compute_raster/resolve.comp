@@ -6,8 +6,8 @@
 //    sort through shared memory into the buckets buffer, and each pixel's range;
 //  - composite: each pixel takes its fragments front to back, by (depth,
 //    segment), each time the nearest after the last (a selection: the list is
-//    never fully sorted), compositing them (opacity: the strand's alpha,
-//    compensated for the LOD, times the coverage) until what is left to see
+//    never fully sorted), compositing them (opacity: the strand's alpha
+//    times the coverage) until what is left to see
 //    drops under the early-termination transmittance.
 #if !defined(SB_CRASTER_BUCKET) && defined(SB_CRASTER_PER_FRAGMENT)
 #include "render/common/bindings.glsl"
@@ -104,8 +104,7 @@ void main() {
     last = bestKey;
     uvec4 f = buckets[r.x + best];
     vec4 c = fragmentColor(f);
-    float alpha = crStrand.z == 1.0 ? c.a : 1.0 - pow(max(1.0 - c.a, 0.0), crStrand.z);
-    float a = alpha * float(f.w & 0xFFFFu) * (1.0 / 65535.0);
+    float a = c.a * float(f.w & 0xFFFFu) * (1.0 / 65535.0);
     acc += (1.0 - acc.a) * vec4(c.rgb * a, a);
     if (1.0 - acc.a < crStrand.w) {
       atomicAdd(cursor[SB_CR_TERMINATED], 1u);

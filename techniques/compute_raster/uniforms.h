@@ -9,10 +9,10 @@
 // clang-format off
 SB_UNIFORM_BLOCK(CRasterParams, SB_SLOT_CRASTER_PARAMS)
   SB_FIELD(uvec4, crTiles)   // tiles across, tiles down, tile size, tile count
-  SB_FIELD(vec4, crStrand)   // width (pixels, LOD-widened), share of strands kept, opacity exponent, early-termination transmittance
+  SB_FIELD(vec4, crStrand)   // width (pixels), 0, 0, early-termination transmittance
   SB_FIELD(uvec4, crSize)    // frame width, height (pixels), 0, 0
   SB_FIELD(uvec4, crModel)   // coverage (0 analytic, 1 binary), lines (1) or ribbons (0), segments, width from thickness (1)
-  SB_FIELD(vec4, crWidth)    // width=thickness: LOD widening, pixels per world unit at clip w = 1, 0, 0
+  SB_FIELD(vec4, crWidth)    // width=thickness: pixels per world unit at clip w = 1, 0, 0, 0
 SB_UNIFORM_BLOCK_END(CRasterParams)
 // clang-format on
 

@@ -24,15 +24,8 @@ const OptionTable<O> kOptions(
                  "frame: width= pixels (or the frame's); thickness: the scene's strand "
                  "thickness (world units) projected at each pixel's depth, so far or thin "
                  "strands cover a sliver of a pixel"),
-     opt::number(&O::lod, "lod", "1", 0.0, 1.0,
-                 "share of strands kept (by a hash of the root), (0, 1]; the kept ones "
-                 "stand for the rest"),
-     opt::number(&O::lodWiden, "lod_widen", "2", 1.0, 16.0,
-                 "most the kept strands are widened (the rest of the LOD's compensation "
-                 "goes to opacity), 1..16"),
      opt::number(&O::terminate, "terminate", "0.0009765625", 0.0, 0.5,
-                 "a pixel stops compositing when the transmittance left is under this")},
-    ComputeRasterOit::check);
+                 "a pixel stops compositing when the transmittance left is under this")});
 }  // namespace
 }  // namespace sb
 
@@ -43,7 +36,8 @@ SB_TECHNIQUE(
      .paper = "Frostbite (Every Strand Counts), Unity Enemies, Unreal HairStrands",
      .help = "compute strand rasterizer: segments walked into screen tiles' lists with analytic "
              "coverage from the strand width, each tile bucketed by pixel and composited front to "
-             "back in depth order with early termination; LOD thins strands, widening the rest",
+             "back in depth order with early termination; level of detail is the scene's (lod=, "
+             "lod_pixels=)",
      .options = kOptions.infos(),
      .caps =
          {.msaaRefusal =
