@@ -83,6 +83,66 @@ TEST(TechniqueUnits, EveryDescriptorIsComplete) {
   }
 }
 
+// Each folder's unit.json describes the techniques its unit.cpp registers, and no others.
+TEST(TechniqueUnits, EveryUnitJsonEntryIsRegistered) {
+  std::set<std::string> registered, described;
+  for (const TechniqueDescriptor* d : all()) registered.insert(d->folder + "/" + d->name);
+  for (const auto& e : fs::directory_iterator(fs::path(SB_SOURCE_DIR) / "techniques")) {
+    const fs::path file = e.path() / "unit.json";
+    ASSERT_TRUE(fs::is_regular_file(file)) << file;
+    for (const auto& [name, v] : nlohmann::json::parse(sbtest::readFile(file)).items())
+      described.insert(e.path().filename().string() + "/" + name);
+  }
+  EXPECT_EQ(described, registered);
+}
+
+// describeUnit fills a descriptor from unit.json and names the file and key it refuses.
+TEST(TechniqueUnits, UnitJsonIsChecked) {
+  auto describe = [](const std::string& text, std::string name = "") {
+    TechniqueDescriptor d;
+    d.name = std::move(name);
+    sb::describeUnit(d, "techniques/x/unit.json", text);
+    return d;
+  };
+  const TechniqueDescriptor d = describe(
+      R"({"x": {"paper": "P 2000", "help": "h", "default": true,
+                "stepped": {"option": "size", "doubling": true, "min": 16, "max": 4096},
+                "capabilities": {"monotone": false, "msaa_refusal": "why"}}})");
+  EXPECT_EQ(d.name, "x");
+  EXPECT_EQ(d.paper, "P 2000");
+  EXPECT_EQ(d.help, "h");
+  EXPECT_TRUE(d.isDefault);
+  ASSERT_TRUE(d.stepped.has_value());
+  EXPECT_EQ(d.stepped->option, "size");
+  EXPECT_TRUE(d.stepped->doubling);
+  EXPECT_EQ(d.stepped->max, 4096);
+  EXPECT_FALSE(d.caps.monotone);
+  EXPECT_FALSE(d.caps.multisampling);
+  EXPECT_EQ(d.caps.msaaRefusal, "why");
+  EXPECT_EQ(
+      describe(R"({"a": {"paper": "", "help": "a"}, "b": {"paper": "", "help": "b"}})", "b").help,
+      "b");
+  auto refused = [&](const std::string& text, const std::string& name = "") {
+    try {
+      describe(text, name);
+    } catch (const std::logic_error& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(refused(R"({"x": {"paper": "", "hlep": "h"}})"),
+            "techniques/x/unit.json: x: unknown key \"hlep\"");
+  EXPECT_EQ(refused(R"({"x": {"help": "h"}})"),
+            "techniques/x/unit.json: x: \"paper\" and \"help\" are required");
+  EXPECT_EQ(refused(R"({"x": {"paper": "", "help": "h", "capabilities": {"exact": "yes"}}})"),
+            "techniques/x/unit.json: x: \"exact\" has the wrong type");
+  EXPECT_EQ(refused(R"({"a": {"paper": "", "help": "a"}, "b": {"paper": "", "help": "b"}})"),
+            "techniques/x/unit.json: several techniques; unit.cpp names the one it registers");
+  EXPECT_EQ(refused(R"({"a": {"paper": "", "help": "a"}})", "b"),
+            "techniques/x/unit.json: b is not described");
+  EXPECT_EQ(refused("{not json"), "techniques/x/unit.json: not a JSON object of technique names");
+}
+
 TEST(TechniqueUnits, TypedOptionsRefuseWithTheClosestName) {
   auto message = [](const std::string& spec) {
     try {
