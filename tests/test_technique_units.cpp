@@ -336,8 +336,8 @@ TEST(TechniqueUnits, NamesOutsideFoldersAreFound) {
 }
 
 // "file: line" for each read of an option by its name under `root`, in techniques/ and the
-// references (harness/reference_spec.*): a reader's method called with a string, a reader
-// (a parameter `const OptionReader& r`) used for anything but handing it on, or a
+// references' code in harness/ (harness/*reference*): a reader's method called with a string, a
+// reader (a parameter `const OptionReader& r`) used for anything but handing it on, or a
 // readOptions. Every option is declared once in an OptionTable bound to its struct member
 // (base/options.h), and the struct is what the code reads.
 std::vector<std::string> optionReadsByName(const fs::path& root) {
@@ -369,8 +369,12 @@ std::vector<std::string> optionReadsByName(const fs::path& root) {
   if (fs::is_directory(root / "techniques"))
     for (const auto& e : fs::recursive_directory_iterator(root / "techniques"))
       if (e.is_regular_file() && source(e.path())) scan(e.path());
-  for (const char* f : {"harness/reference_spec.cpp", "harness/reference_spec.h"})
-    if (fs::exists(root / f)) scan(root / f);
+  // The references' code in the harness: reference_spec.*, pbr_reference.*, render_references.
+  if (fs::is_directory(root / "harness"))
+    for (const auto& e : fs::directory_iterator(root / "harness"))
+      if (e.is_regular_file() && source(e.path()) &&
+          e.path().filename().string().find("reference") != std::string::npos)
+        scan(e.path());
   std::sort(found.begin(), found.end());
   return found;
 }
@@ -397,11 +401,12 @@ TEST(TechniqueUnits, NoOptionIsReadByName) {
 
 TEST(TechniqueUnits, OptionReadsByNameAreFound) {
   // The control: a copy of a technique's unit.cpp and of the references passes, and fails
-  // with a read by name planted in each (a shadow, a shading model, a reference).
+  // with a read by name planted in each (a shadow, a shading model, a reference, the pbr
+  // reference's harness code).
   const fs::path root = sbtest::tempDir("option-reads");
   const fs::path src(SB_SOURCE_DIR);
   for (const char* f : {"techniques/shadowmap/unit.cpp", "techniques/kajiya_kay/unit.cpp",
-                        "harness/reference_spec.cpp"}) {
+                        "harness/reference_spec.cpp", "harness/pbr_reference.cpp"}) {
     fs::create_directories((root / f).parent_path());
     fs::copy_file(src / f, root / f, fs::copy_options::overwrite_existing);
   }
@@ -415,12 +420,18 @@ TEST(TechniqueUnits, OptionReadsByNameAreFound) {
       << "// o.integer(\"samples\") in a comment is not a read\n"
          "int planted3(const sb::OptionReader& x);\n"
          "int planted4(const Reader& o) { return int(o.integer(\"samples\")); }\n";
+  // As pbr_reference.cpp read the exact shadow's bias before it went through its table.
+  std::ofstream(root / "harness" / "pbr_reference.cpp", std::ios::app)
+      << "double planted5(const Spec& s) { return readerFor(findTechnique(Family::Shadow, "
+         "s.name), s).number(\"bias\"); }\n";
   const std::vector<std::string> found = optionReadsByName(root);
-  ASSERT_EQ(found.size(), 3u);
-  EXPECT_EQ(found[0].rfind("harness/reference_spec.cpp:", 0), 0u) << found[0];
-  EXPECT_NE(found[0].find("o.integer(\"samples\")"), std::string::npos) << found[0];
-  EXPECT_EQ(found[1].rfind("techniques/kajiya_kay/unit.cpp:", 0), 0u) << found[1];
-  EXPECT_EQ(found[2].rfind("techniques/shadowmap/unit.cpp:", 0), 0u) << found[2];
+  ASSERT_EQ(found.size(), 4u);
+  EXPECT_EQ(found[0].rfind("harness/pbr_reference.cpp:", 0), 0u) << found[0];
+  EXPECT_NE(found[0].find(".number(\"bias\")"), std::string::npos) << found[0];
+  EXPECT_EQ(found[1].rfind("harness/reference_spec.cpp:", 0), 0u) << found[1];
+  EXPECT_NE(found[1].find("o.integer(\"samples\")"), std::string::npos) << found[1];
+  EXPECT_EQ(found[2].rfind("techniques/kajiya_kay/unit.cpp:", 0), 0u) << found[2];
+  EXPECT_EQ(found[3].rfind("techniques/shadowmap/unit.cpp:", 0), 0u) << found[3];
 }
 
 TEST(TechniqueUnits, TechniquesHoldsUnitFoldersOnly) {
