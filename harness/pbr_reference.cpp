@@ -54,13 +54,9 @@ uint64_t fnvVector(uint64_t h, const std::vector<T>& v) {
   return fnv1a(h, v.data(), v.size() * sizeof(T));
 }
 
-// The exact shadow's options (refShadow is always the exact shadow), through their table.
-ExactShadow::Options mapOptions(const Spec& refShadow) {
-  return ExactShadow::options().read(
-      readerFor(findTechnique(Family::Shadow, refShadow.name), refShadow));
-}
-long long mapSize(const Spec& refShadow) { return mapOptions(refShadow).size; }
-double mapBias(const Spec& refShadow) { return mapOptions(refShadow).bias; }
+// The exact shadow's map (refShadow is always the exact shadow).
+long long mapSize(const Spec& refShadow) { return ExactShadow::optionsOf(refShadow).size; }
+double mapBias(const Spec& refShadow) { return ExactShadow::optionsOf(refShadow).bias; }
 
 // Everything the reference's pixels depend on, as text (hashed into the cache's key).
 std::string cacheKeyText(const Scene& scene, const RenderSettings& s, const Spec& refShadow,

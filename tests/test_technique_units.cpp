@@ -90,7 +90,8 @@ TEST(TechniqueUnits, EveryUnitJsonEntryIsRegistered) {
   for (const auto& e : fs::directory_iterator(fs::path(SB_SOURCE_DIR) / "techniques")) {
     const fs::path file = e.path() / "unit.json";
     ASSERT_TRUE(fs::is_regular_file(file)) << file;
-    for (const auto& [name, v] : nlohmann::json::parse(sbtest::readFile(file)).items())
+    const nlohmann::json units = nlohmann::json::parse(sbtest::readFile(file));
+    for (const auto& [name, v] : units.items())
       described.insert(e.path().filename().string() + "/" + name);
   }
   EXPECT_EQ(described, registered);

@@ -22,9 +22,10 @@ class ExactShadow : public ShadowTechnique {
     float bias;
     uint32_t layers;
   };
-  // Its options, declared once (unit.cpp): the references read its map's size and bias
-  // through them (harness/pbr_reference.cpp).
+  // Its options, declared once (unit.cpp), and those of a spec of it (InputError when one
+  // is bad): the references read its map's size and bias through them (harness/).
   static const OptionTable<Options>& options();
+  static Options optionsOf(const Spec& spec);
   ExactShadow(Method method, uint32_t size, float bias, uint32_t maxLayers);
   std::string name() const override { return "exact"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s) override;

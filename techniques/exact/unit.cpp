@@ -15,6 +15,10 @@ const OptionTable<ExactShadow::Options>& ExactShadow::options() {
        opt::layersCap(&O::layers)});
   return table;
 }
+
+ExactShadow::Options ExactShadow::optionsOf(const Spec& spec) {
+  return options().read(readerFor(findTechnique(Family::Shadow, spec.name), spec));
+}
 }  // namespace sb
 
 SB_TECHNIQUE({.options = ExactShadow::options().infos(), .makeShadow = [](const OptionReader& r) {
