@@ -35,11 +35,11 @@ add_library(sb_techniques STATIC IMPORTED)
 set_target_properties(sb_techniques PROPERTIES IMPORTED_LOCATION ${_techniques})
 
 file(GLOB_RECURSE SB_SHADER_FILES techniques/*.glsl techniques/*.vert techniques/*.frag
-  techniques/*.comp techniques/slots.h techniques/*uniforms.h render/*.glsl render/*.vert
-  render/*.frag render/*.comp render/slots.h render/*uniforms.h render/common/uniform_block.h
+  techniques/*.comp techniques/slots.h techniques/*uniforms.h techniques/unit.json render/*.glsl
+  render/*.vert render/*.frag render/*.comp render/slots.h render/*uniforms.h render/common/uniform_block.h
   scenes/groom_rule.h)
-  # every folder's slots.h and uniforms.h (the new folders' too), the generation rule: the
-  # same list as CMakeLists.txt's
+  # every folder's slots.h, uniforms.h and unit.json (the new folders' too), the generation
+  # rule: the same list as CMakeLists.txt's
 string(REPLACE ";" "|" SB_SHADER_LIST "${SB_SHADER_FILES}")
 set(SB_SHADER_CPP ${CMAKE_BINARY_DIR}/generated/embedded_shaders.cpp)
 add_custom_command(

@@ -11,9 +11,10 @@
 #include "base/fnv.h"
 #include "harness/setting_values.h"
 #include "harness/stop.h"
-#include "reports/files.h"
 #include "render/common/unit.h"
 #include "render/shading/hair_shading.h"
+#include "reports/files.h"
+#include "techniques/exact/exact.h"
 
 namespace sb {
 
@@ -53,12 +54,9 @@ uint64_t fnvVector(uint64_t h, const std::vector<T>& v) {
   return fnv1a(h, v.data(), v.size() * sizeof(T));
 }
 
-long long mapSize(const Spec& refShadow) {
-  return readerFor(findTechnique(Family::Shadow, refShadow.name), refShadow).integer("size");
-}
-double mapBias(const Spec& refShadow) {
-  return readerFor(findTechnique(Family::Shadow, refShadow.name), refShadow).number("bias");
-}
+// The exact shadow's map (refShadow is always the exact shadow).
+long long mapSize(const Spec& refShadow) { return ExactShadow::optionsOf(refShadow).size; }
+double mapBias(const Spec& refShadow) { return ExactShadow::optionsOf(refShadow).bias; }
 
 // Everything the reference's pixels depend on, as text (hashed into the cache's key).
 std::string cacheKeyText(const Scene& scene, const RenderSettings& s, const Spec& refShadow,

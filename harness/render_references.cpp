@@ -16,6 +16,7 @@
 #include "imaging/metrics.h"
 #include "render/common/unit.h"
 #include "render/frame/renderer.h"
+#include "techniques/exact/exact.h"
 
 namespace sb {
 
@@ -91,11 +92,8 @@ AaSides aaSides(const RenderSettings& settings, const Spec& refShadow, int sampl
   const uint64_t s = static_cast<uint64_t>(samples);
   // The exact shadow's light map at `samples` times its side: samples x samples
   // per texel of the aliased reference's map, so light and eye are sampled alike.
-  const AaSides a{
-      settings.width * s, settings.height * s,
-      uint64_t(
-          readerFor(findTechnique(Family::Shadow, refShadow.name), refShadow).integer("size")) *
-          s};
+  const AaSides a{settings.width * s, settings.height * s,
+                  uint64_t(ExactShadow::optionsOf(refShadow).size) * s};
   if (a.width > kMaxSide || a.height > kMaxSide || a.lightSize > kMaxSide)
     throw InputError("reference '" + ReferenceSpec{"aa", samples}.str() + "' renders " +
                      sizeText(a.width, a.height) + " samples with a light map of " +

@@ -470,6 +470,19 @@ void applyScaleAndZeroSegments(const SO& o, Scene& scene) {
   scene.strands = std::move(out);
 }
 
+// The generation rule's shape: meaningful only with guides= (applyGroom refuses them without).
+SceneOption groomShapeOptions() {
+  return opt::group<SO>(
+      {opt::number(&SO::guideSpread, "guide_spread", "0.5", 0.0, 1.0,
+                   "guides=: how far a strand leans to a neighbouring guide, 0..1"),
+       opt::number(&SO::guideOffset, "guide_offset", "0.5", 0.0, 10.0,
+                   "guides=: per-strand offset in mean guide spacings, 0..10"),
+       opt::number(&SO::noise, "noise", "0.1", 0.0, 10.0,
+                   "guides=: per-point noise at the tip in mean guide spacings, 0..10"),
+       opt::number(&SO::clump, "clump", "0", 0.0, 1.0,
+                   "guides=: pull to the home guide at the tip, 0..1")});
+}
+
 // guides= and instances=: the groom kept with the scene, its strands made by the
 // rule on the CPU, and the mesh repeated with every instance.
 void applyGroom(const SO& o, Scene& scene) {
@@ -483,9 +496,10 @@ void applyGroom(const SO& o, Scene& scene) {
   g.clump = o.clump;
   g.lod = o.lod;
   g.lodPixels = o.lodPixels;
-  // The rule's shape options mean nothing without guides: refused rather than ignored.
-  if (g.guideEvery == 0 &&
-      (g.spread != 0.5f || g.offset != 0.5f || g.noise != 0.1f || g.clump != 0.0f))
+  // The rule's shape options mean nothing without guides: refused rather than ignored
+  // (any of them off its declared default).
+  static const OptionTable<SO> shape({groomShapeOptions()});
+  if (g.guideEvery == 0 && !shape.given(o).empty())
     throw o.error(
         "guide_spread=, guide_offset=, noise= and clump= need guides= (every n-th strand a "
         "guide)");
@@ -710,20 +724,14 @@ Scene makeFile(const SO& o) {
   return scene;
 }
 
-// The groom every scene may have (applyGroom): guides, the generation rule's shape, a crowd.
+// The groom every scene may have (applyGroom): guides, the generation rule's shape
+// (groomShapeOptions, above), a crowd.
 SceneOption groomOptions() {
   return opt::group<SO>(
       {opt::integer(&SO::guides, "guides", 0, 0, kMaxStrands,
                     "every n-th strand is a guide and the strands are made from the guides by "
                     "the generation rule (docs/geometry.md); 0: no guides"),
-       opt::number(&SO::guideSpread, "guide_spread", "0.5", 0.0, 1.0,
-                   "guides=: how far a strand leans to a neighbouring guide, 0..1"),
-       opt::number(&SO::guideOffset, "guide_offset", "0.5", 0.0, 10.0,
-                   "guides=: per-strand offset in mean guide spacings, 0..10"),
-       opt::number(&SO::noise, "noise", "0.1", 0.0, 10.0,
-                   "guides=: per-point noise at the tip in mean guide spacings, 0..10"),
-       opt::number(&SO::clump, "clump", "0", 0.0, 1.0,
-                   "guides=: pull to the home guide at the tip, 0..1"),
+       groomShapeOptions(),
        positive(&SO::lod, "lod", "1", 1.0,
                 "level of detail: the share of each instance's strands kept (0..1], their "
                 "thickness widened by the strands left out (docs/geometry.md)"),

@@ -129,35 +129,34 @@ const std::string kBless = "bless --baselines {dir}/baselines";
 TEST(BadInput, UnknownNamesGetTheClosestValidName) {
   Sandbox s;
   const std::string render = "render --size 16x16 --out {dir}/x.png ";
-  s.expectRejected(render + "--scene curli", {"unknown scene 'curli'", "did you mean 'curly'"});
-  s.expectRejected(render + "--shadow shadowmapp",
-                   {"unknown shadow technique 'shadowmapp'", "did you mean 'shadowmap'"});
-  s.expectRejected(render + "--oit wbiot",
-                   {"unknown transparency technique 'wbiot'", "did you mean 'wboit'"});
+  // `word` misspelt where `command` has {}: "unknown <what> '<word>'" and the closest name.
+  auto typo = [&](std::string command, const std::string& what, const std::string& word,
+                  const std::string& closest) {
+    command.replace(command.find("{}"), 2, word);
+    s.expectRejected(command,
+                     {"unknown " + what + " '" + word + "'", "did you mean '" + closest + "'"});
+  };
+  typo(render + "--scene {}", "scene", "curli", "curly");
+  typo(render + "--shadow {}", "shadow technique", "shadowmapp", "shadowmap");
+  typo(render + "--oit {}", "transparency technique", "wbiot", "wboit");
   s.expectRejected(render + "--scene straight:strandz=5",
                    {"unknown option 'strandz' for scene 'straight'", "did you mean 'strands'"});
   s.expectRejected(render + "--shadow dom:layres=3",
                    {"unknown option 'layres' for shadow technique 'dom'", "did you mean 'layers'"});
-  s.expectRejected(render + "--oit occupancy:slises=64",
-                   {"unknown option 'slises'", "did you mean 'slices'"});
+  typo(render + "--oit occupancy:{}=64", "option", "slises", "slices");
   s.expectRejected(render + "--backend vulcan",
                    {"--backend vulcan", "unknown backend 'vulcan'", "did you mean 'vulkan'"});
-  s.expectRejected(render + "--platform osmsa",
-                   {"unknown gl platform 'osmsa'", "did you mean 'osmesa'"});
-  s.expectRejected(render + "--platfrom egl",
-                   {"unknown render option '--platfrom'", "did you mean '--platform'"});
-  s.expectRejected("probe --shadow ocupancy --out {dir}/p.csv",
-                   {"unknown shadow technique 'ocupancy'", "did you mean 'occupancy'"});
-  s.expectRejected("probe --texl 1,1 --out {dir}/p.csv",
-                   {"unknown probe option '--texl'", "did you mean '--texel'"});
-  s.expectRejected("compare {dir}/a.png {dir}/b.png --heatmpa {dir}/h.png",
-                   {"unknown compare option '--heatmpa'", "did you mean '--heatmap'"});
-  s.expectRejected("bench-shadows --scene curli --size 16x16 --repeat 1",
-                   {"unknown scene 'curli'", "did you mean 'curly'"});
-  s.expectRejected("bench-oit --scene " + kScene + " --shadow shadowmapp --size 16x16",
-                   {"unknown shadow technique 'shadowmapp'", "did you mean 'shadowmap'"});
-  s.expectRejected("list --jsn", {"unknown list option '--jsn'", "did you mean '--json'"});
-  s.expectRejected(kCheck + " --filtr x", {"unknown check option '--filtr'", "'--filter'"});
+  typo(render + "--platform {}", "gl platform", "osmsa", "osmesa");
+  typo(render + "{} egl", "render option", "--platfrom", "--platform");
+  typo("probe --shadow {} --out {dir}/p.csv", "shadow technique", "ocupancy", "occupancy");
+  typo("probe {} 1,1 --out {dir}/p.csv", "probe option", "--texl", "--texel");
+  typo("compare {dir}/a.png {dir}/b.png {} {dir}/h.png", "compare option", "--heatmpa",
+       "--heatmap");
+  typo("bench-shadows --scene {} --size 16x16 --repeat 1", "scene", "curli", "curly");
+  typo("bench-oit --scene " + kScene + " --shadow {} --size 16x16", "shadow technique",
+       "shadowmapp", "shadowmap");
+  typo("list {}", "list option", "--jsn", "--json");
+  typo(kCheck + " {} x", "check option", "--filtr", "--filter");
   // A manifest case: the message names the manifest and the case. The valid
   // first case is not rendered either (nothing printed, no out folder).
   s.writeManifest(

@@ -36,8 +36,8 @@ std::vector<float> osmMaps(const std::vector<float>& frags, const std::vector<fl
 
 float osmVisibility(float z, const std::vector<float>& slices, const std::vector<float>& maps,
                     float alpha) {
-  glsl::osmSlicesCpu = slices.data();
-  glsl::osmMapsCpu = maps.data();
+  glsl::layerBoundsCpu = slices.data();
+  glsl::layerMapsCpu = maps.data();
   return glsl::opacityVisibility(glsl::osmOpacity(z, int(maps.size())), alpha);
 }
 
@@ -52,7 +52,7 @@ DomTexel domBuild(const std::vector<float>& frags, const std::vector<float>& d, 
   const int K = int(d.size()) - 1;
   t.layers.assign(std::size_t(K), 0.0f);
   for (float z : frags) t.z0 = std::min(t.z0, glsl::domQuantize(z, bits));
-  glsl::domDCpu = d.data();
+  glsl::layerBoundsCpu = d.data();
   for (float z : frags)
     for (int k = 1; k <= K; ++k)
       t.layers[std::size_t(k - 1)] += glsl::domContribution(std::max(z - t.z0, 0.0f), k, K, beyond);
@@ -60,8 +60,8 @@ DomTexel domBuild(const std::vector<float>& frags, const std::vector<float>& d, 
 }
 
 float domVisibility(float z, const DomTexel& t, const std::vector<float>& d, float alpha) {
-  glsl::domDCpu = d.data();
-  glsl::domLayersCpu = t.layers.data();
+  glsl::layerBoundsCpu = d.data();
+  glsl::layerMapsCpu = t.layers.data();
   return glsl::opacityVisibility(glsl::domOpacity(z, t.z0, int(d.size()) - 1), alpha);
 }
 
@@ -150,7 +150,7 @@ TEST(OpacityMath, DomCountingYukselAgainstTheThesis) {
   // preceding one: layer 1 = 3 (the three inside), layer 2 = 2, layer 3 = 1; beyond=last
   // counts the fourth in all three (4, 3, 2), beyond=ignore drops it.
   const std::vector<float> d = {0.0f, 0.1f, 0.2f, 0.3f};
-  glsl::domDCpu = d.data();
+  glsl::layerBoundsCpu = d.data();
   const std::vector<float> dz = {0.0f, 0.15f, 0.25f, 0.5f};
   auto layers = [&](bool thesis, int beyond) {
     std::vector<float> l(3, 0.0f);

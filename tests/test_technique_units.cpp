@@ -83,6 +83,67 @@ TEST(TechniqueUnits, EveryDescriptorIsComplete) {
   }
 }
 
+// Each folder's unit.json describes the techniques its unit.cpp registers, and no others.
+TEST(TechniqueUnits, EveryUnitJsonEntryIsRegistered) {
+  std::set<std::string> registered, described;
+  for (const TechniqueDescriptor* d : all()) registered.insert(d->folder + "/" + d->name);
+  for (const auto& e : fs::directory_iterator(fs::path(SB_SOURCE_DIR) / "techniques")) {
+    const fs::path file = e.path() / "unit.json";
+    ASSERT_TRUE(fs::is_regular_file(file)) << file;
+    const nlohmann::json units = nlohmann::json::parse(sbtest::readFile(file));
+    for (const auto& [name, v] : units.items())
+      described.insert(e.path().filename().string() + "/" + name);
+  }
+  EXPECT_EQ(described, registered);
+}
+
+// describeUnit fills a descriptor from unit.json and names the file and key it refuses.
+TEST(TechniqueUnits, UnitJsonIsChecked) {
+  auto describe = [](const std::string& text, std::string name = "") {
+    TechniqueDescriptor d;
+    d.name = std::move(name);
+    sb::describeUnit(d, "techniques/x/unit.json", text);
+    return d;
+  };
+  const TechniqueDescriptor d = describe(
+      R"({"x": {"paper": "P 2000", "help": "h", "default": true,
+                "stepped": {"option": "size", "doubling": true, "min": 16, "max": 4096},
+                "capabilities": {"monotone": false, "msaa_refusal": "why"}}})");
+  EXPECT_EQ(d.name, "x");
+  EXPECT_EQ(d.paper, "P 2000");
+  EXPECT_EQ(d.help, "h");
+  EXPECT_TRUE(d.isDefault);
+  ASSERT_TRUE(d.stepped.has_value());
+  EXPECT_EQ(d.stepped->option, "size");
+  EXPECT_TRUE(d.stepped->doubling);
+  EXPECT_EQ(d.stepped->max, 4096);
+  EXPECT_FALSE(d.caps.monotone);
+  EXPECT_FALSE(d.caps.multisampling);
+  EXPECT_EQ(d.caps.msaaRefusal, "why");
+  EXPECT_EQ(
+      describe(R"({"a": {"paper": "", "help": "a"}, "b": {"paper": "", "help": "b"}})", "b").help,
+      "b");
+  auto refused = [&](const std::string& text, const std::string& name = "") {
+    try {
+      describe(text, name);
+    } catch (const std::logic_error& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(refused(R"({"x": {"paper": "", "hlep": "h"}})"),
+            "techniques/x/unit.json: x: unknown key \"hlep\"");
+  EXPECT_EQ(refused(R"({"x": {"help": "h"}})"),
+            "techniques/x/unit.json: x: \"paper\" and \"help\" are required");
+  EXPECT_EQ(refused(R"({"x": {"paper": "", "help": "h", "capabilities": {"exact": "yes"}}})"),
+            "techniques/x/unit.json: x: \"exact\" has the wrong type");
+  EXPECT_EQ(refused(R"({"a": {"paper": "", "help": "a"}, "b": {"paper": "", "help": "b"}})"),
+            "techniques/x/unit.json: several techniques; unit.cpp names the one it registers");
+  EXPECT_EQ(refused(R"({"a": {"paper": "", "help": "a"}})", "b"),
+            "techniques/x/unit.json: b is not described");
+  EXPECT_EQ(refused("{not json"), "techniques/x/unit.json: not a JSON object of technique names");
+}
+
 TEST(TechniqueUnits, TypedOptionsRefuseWithTheClosestName) {
   auto message = [](const std::string& spec) {
     try {
@@ -276,8 +337,8 @@ TEST(TechniqueUnits, NamesOutsideFoldersAreFound) {
 }
 
 // "file: line" for each read of an option by its name under `root`, in techniques/ and the
-// references (harness/reference_spec.*): a reader's method called with a string, a reader
-// (a parameter `const OptionReader& r`) used for anything but handing it on, or a
+// references' code in harness/ (harness/*reference*): a reader's method called with a string, a
+// reader (a parameter `const OptionReader& r`) used for anything but handing it on, or a
 // readOptions. Every option is declared once in an OptionTable bound to its struct member
 // (base/options.h), and the struct is what the code reads.
 std::vector<std::string> optionReadsByName(const fs::path& root) {
@@ -309,8 +370,12 @@ std::vector<std::string> optionReadsByName(const fs::path& root) {
   if (fs::is_directory(root / "techniques"))
     for (const auto& e : fs::recursive_directory_iterator(root / "techniques"))
       if (e.is_regular_file() && source(e.path())) scan(e.path());
-  for (const char* f : {"harness/reference_spec.cpp", "harness/reference_spec.h"})
-    if (fs::exists(root / f)) scan(root / f);
+  // The references' code in the harness: reference_spec.*, pbr_reference.*, render_references.
+  if (fs::is_directory(root / "harness"))
+    for (const auto& e : fs::directory_iterator(root / "harness"))
+      if (e.is_regular_file() && source(e.path()) &&
+          e.path().filename().string().find("reference") != std::string::npos)
+        scan(e.path());
   std::sort(found.begin(), found.end());
   return found;
 }
@@ -337,11 +402,12 @@ TEST(TechniqueUnits, NoOptionIsReadByName) {
 
 TEST(TechniqueUnits, OptionReadsByNameAreFound) {
   // The control: a copy of a technique's unit.cpp and of the references passes, and fails
-  // with a read by name planted in each (a shadow, a shading model, a reference).
+  // with a read by name planted in each (a shadow, a shading model, a reference, the pbr
+  // reference's harness code).
   const fs::path root = sbtest::tempDir("option-reads");
   const fs::path src(SB_SOURCE_DIR);
   for (const char* f : {"techniques/shadowmap/unit.cpp", "techniques/kajiya_kay/unit.cpp",
-                        "harness/reference_spec.cpp"}) {
+                        "harness/reference_spec.cpp", "harness/pbr_reference.cpp"}) {
     fs::create_directories((root / f).parent_path());
     fs::copy_file(src / f, root / f, fs::copy_options::overwrite_existing);
   }
@@ -355,12 +421,18 @@ TEST(TechniqueUnits, OptionReadsByNameAreFound) {
       << "// o.integer(\"samples\") in a comment is not a read\n"
          "int planted3(const sb::OptionReader& x);\n"
          "int planted4(const Reader& o) { return int(o.integer(\"samples\")); }\n";
+  // As pbr_reference.cpp read the exact shadow's bias before it went through its table.
+  std::ofstream(root / "harness" / "pbr_reference.cpp", std::ios::app)
+      << "double planted5(const Spec& s) { return readerFor(findTechnique(Family::Shadow, "
+         "s.name), s).number(\"bias\"); }\n";
   const std::vector<std::string> found = optionReadsByName(root);
-  ASSERT_EQ(found.size(), 3u);
-  EXPECT_EQ(found[0].rfind("harness/reference_spec.cpp:", 0), 0u) << found[0];
-  EXPECT_NE(found[0].find("o.integer(\"samples\")"), std::string::npos) << found[0];
-  EXPECT_EQ(found[1].rfind("techniques/kajiya_kay/unit.cpp:", 0), 0u) << found[1];
-  EXPECT_EQ(found[2].rfind("techniques/shadowmap/unit.cpp:", 0), 0u) << found[2];
+  ASSERT_EQ(found.size(), 4u);
+  EXPECT_EQ(found[0].rfind("harness/pbr_reference.cpp:", 0), 0u) << found[0];
+  EXPECT_NE(found[0].find(".number(\"bias\")"), std::string::npos) << found[0];
+  EXPECT_EQ(found[1].rfind("harness/reference_spec.cpp:", 0), 0u) << found[1];
+  EXPECT_NE(found[1].find("o.integer(\"samples\")"), std::string::npos) << found[1];
+  EXPECT_EQ(found[2].rfind("techniques/kajiya_kay/unit.cpp:", 0), 0u) << found[2];
+  EXPECT_EQ(found[3].rfind("techniques/shadowmap/unit.cpp:", 0), 0u) << found[3];
 }
 
 TEST(TechniqueUnits, TechniquesHoldsUnitFoldersOnly) {

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <iterator>
 #include <map>
+#include <nlohmann/json.hpp>
 
+#include "render/common/shader_library.h"
 #include "render/common/unit.h"
 
 namespace sb {
@@ -32,7 +34,86 @@ const char* familyName(Family f) {
 
 const char* familyFlag(Family f) { return f == Family::Transparency ? "oit" : familyName(f); }
 
-TechniqueRegistrar::TechniqueRegistrar(TechniqueDescriptor d) {
+namespace {
+
+// The folder of a unit.cpp from its __FILE__ (absolute or relative): the one after the last
+// "techniques/".
+std::string unitFolder(const std::string& file) {
+  const std::size_t at = file.rfind("techniques/");
+  if (at == std::string::npos)
+    throw std::logic_error(file + ": a technique registers from techniques/<folder>/unit.cpp");
+  const std::size_t begin = at + std::string("techniques/").size();
+  return file.substr(begin, file.find('/', begin) - begin);
+}
+
+// A unit.json key's value as T, or `fallback` where it is absent.
+template <class T>
+T value(const nlohmann::json& j, const char* key, T fallback, const std::string& where) {
+  if (!j.contains(key)) return fallback;
+  try {
+    return j.at(key).get<T>();
+  } catch (const nlohmann::json::exception&) {
+    throw std::logic_error(where + ": \"" + key + "\" has the wrong type");
+  }
+}
+
+// Every key of `j` is one of `known`: a misspelt key is an error, not a silent default.
+void onlyKeys(const nlohmann::json& j, std::initializer_list<const char*> known,
+              const std::string& where) {
+  for (const auto& [key, v] : j.items())
+    if (std::find_if(known.begin(), known.end(), [&](const char* k) { return key == k; }) ==
+        known.end())
+      throw std::logic_error(where + ": unknown key \"" + key + "\"");
+}
+
+}  // namespace
+
+void describeUnit(TechniqueDescriptor& d, const std::string& path, const std::string& text) {
+  const nlohmann::json units = nlohmann::json::parse(text, nullptr, false);
+  if (!units.is_object() || units.empty())
+    throw std::logic_error(path + ": not a JSON object of technique names");
+  if (d.name.empty()) {
+    if (units.size() != 1)
+      throw std::logic_error(path + ": several techniques; unit.cpp names the one it registers");
+    d.name = units.begin().key();
+  }
+  const std::string where = path + ": " + d.name;
+  if (!units.contains(d.name) || !units[d.name].is_object())
+    throw std::logic_error(where + " is not described");
+  const nlohmann::json& u = units[d.name];
+  onlyKeys(u, {"paper", "help", "capabilities", "stepped", "default", "note"}, where);
+  if (!u.contains("paper") || !u.contains("help"))
+    throw std::logic_error(where + ": \"paper\" and \"help\" are required");
+  d.paper = value<std::string>(u, "paper", "", where);
+  d.help = value<std::string>(u, "help", "", where);
+  d.isDefault = value<bool>(u, "default", false, where);
+  const nlohmann::json caps =
+      value<nlohmann::json>(u, "capabilities", nlohmann::json::object(), where);
+  onlyKeys(caps,
+           {"multisampling", "interlock", "emulated_timing", "monotone", "exact", "msaa_refusal"},
+           where + " capabilities");
+  d.caps.multisampling = value<bool>(caps, "multisampling", false, where);
+  d.caps.interlock = value<bool>(caps, "interlock", false, where);
+  d.caps.emulatedTiming = value<bool>(caps, "emulated_timing", false, where);
+  d.caps.monotone = value<bool>(caps, "monotone", true, where);
+  d.caps.exact = value<bool>(caps, "exact", false, where);
+  d.caps.msaaRefusal = value<std::string>(caps, "msaa_refusal", "", where);
+  if (u.contains("stepped")) {
+    const nlohmann::json& s = u["stepped"];
+    onlyKeys(s, {"option", "doubling", "min", "max"}, where + " stepped");
+    d.stepped = SteppedOption{
+        value<std::string>(s, "option", "", where), value<bool>(s, "doubling", false, where),
+        value<long long>(s, "min", 0, where), value<long long>(s, "max", 0, where)};
+  }
+}
+
+TechniqueRegistrar::TechniqueRegistrar(const char* file, TechniqueDescriptor d) {
+  d.folder = unitFolder(file);
+  d.family = d.makeShading ? Family::Shading : d.makeOit ? Family::Transparency : Family::Shadow;
+  const std::string path = "techniques/" + d.folder + "/unit.json";
+  const auto json = embeddedShaders().find(path);
+  if (json == embeddedShaders().end()) throw std::logic_error(path + " is missing");
+  describeUnit(d, path, json->second);
   const Family f = d.family;
   const std::string name = d.name;
   if (!registry(f).emplace(name, std::move(d)).second)

@@ -29,6 +29,7 @@ struct ShaderDefines {
 // folder instead of the embedded copies (for editing shaders without a rebuild).
 ShaderCode loadShader(const std::string& path, const ShaderDefines& defs = {});
 
-const std::map<std::string, std::string>& embeddedShaders();  // generated
+// Generated: every shader file, and every unit folder's unit.json (the registry reads it).
+const std::map<std::string, std::string>& embeddedShaders();
 
 }  // namespace sb

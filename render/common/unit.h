@@ -1,6 +1,7 @@
-// A technique as a self-describing unit: each folder under techniques/ declares
-// its descriptor (CLI name, family, paper, typed options, capabilities, factory)
-// in its own unit.cpp and registers it there (SB_TECHNIQUE, below). Nothing
+// A technique as a self-describing unit: each folder under techniques/ states
+// what is data about it (CLI name, paper, help, capabilities, the viewer's
+// stepped option) in its unit.json, embedded by the build, and its typed options
+// and factory in its unit.cpp, which registers it (SB_TECHNIQUE, below). Nothing
 // central lists techniques: `strandbench list`, option validation, the viewer's
 // stepping, suite validation and docs/techniques.md all read this registry.
 // sb_techniques is linked whole (CMakeLists.txt) so that no registrar is dropped.
@@ -45,6 +46,9 @@ struct SteppedOption {
   long long min = 0, max = 0;
 };
 
+// unit.cpp gives `options` and one factory (and `name` where its unit.json names
+// several); the registry fills the rest: `folder` from where unit.cpp is, `family`
+// from its factory, the others from the folder's unit.json (describeUnit).
 struct TechniqueDescriptor {
   std::string name;  // --shadow NAME, --oit NAME, --shading NAME
   Family family = Family::Shadow;
@@ -61,18 +65,20 @@ struct TechniqueDescriptor {
   std::function<ShadingModel(const OptionReader&)> makeShading;
 };
 
+// `file`: the registering unit.cpp (__FILE__), whose folder's unit.json describes it.
 struct TechniqueRegistrar {
-  explicit TechniqueRegistrar(TechniqueDescriptor d);
+  TechniqueRegistrar(const char* file, TechniqueDescriptor d);
 };
 
 // A technique's folder registers it from its unit.cpp, at file scope:
-//   SB_TECHNIQUE({.name = "dom", .family = Family::Shadow, ...});
-// (a static registrar in namespace sb; one per line, so a file may register two names).
-#define SB_TECHNIQUE(...)                                                        \
-  namespace sb {                                                                 \
-  namespace {                                                                    \
-  const TechniqueRegistrar SB_TECHNIQUE_NAME(registered, __LINE__){__VA_ARGS__}; \
-  }                                                                              \
+//   SB_TECHNIQUE({.options = kOptions.infos(), .makeShadow = build<DeepOpacityMaps>(kOptions)});
+// (a static registrar in namespace sb; one per line, so a file may register two names, each
+// with its `.name`).
+#define SB_TECHNIQUE(...)                                                                  \
+  namespace sb {                                                                           \
+  namespace {                                                                              \
+  const TechniqueRegistrar SB_TECHNIQUE_NAME(registered, __LINE__){__FILE__, __VA_ARGS__}; \
+  }                                                                                        \
   }
 #define SB_TECHNIQUE_NAME(a, b) SB_TECHNIQUE_JOIN(a, b)
 #define SB_TECHNIQUE_JOIN(a, b) a##b
@@ -91,6 +97,13 @@ const TechniqueDescriptor* tryFindTechnique(Family f, const std::string& name);
 const TechniqueDescriptor& defaultTechnique(Family f);
 // The descriptor's reader for a spec: unknown options and bad values throw InputError.
 OptionReader readerFor(const TechniqueDescriptor& d, const Spec& spec);
+
+// Fills `d` from `text`, a unit.json (read from `path`: for messages): its name (the one
+// entry, or the entry d.name selects), paper, help, capabilities, stepped option and whether
+// it is its family's default. Throws std::logic_error naming the file and the key where it
+// is malformed (the registrar runs before main: a unit that cannot describe itself stops the
+// program).
+void describeUnit(TechniqueDescriptor& d, const std::string& path, const std::string& text);
 
 // Checks a spec as the registry builds it (name, options, values, the factory's
 // own checks between options), without a device. Throws InputError.

@@ -14,16 +14,6 @@ const OptionTable<O> kOptions(
 }  // namespace
 }  // namespace sb
 
-SB_TECHNIQUE({.name = "abuffer",
-              .family = Family::Transparency,
-              .folder = "abuffer",
-              .paper = "Carpenter 1984",
-              .help = "ground truth cross-check: per-pixel fragment lists, sorted and composited",
-              .options = kOptions.infos(),
-              .caps = {.exact = true,
-                       .msaaRefusal = "per-pixel fragment lists sorted and composited per pixel: "
-                                      "samples would multiply the lists' memory by N (or need a "
-                                      "coverage mask per fragment, not written); not supported"},
-              .makeOit = [](const OptionReader& r) {
+SB_TECHNIQUE({.options = kOptions.infos(), .makeOit = [](const OptionReader& r) {
                 return std::make_unique<ABufferOit>(kOptions.read(r).maxFragments);
               }});

@@ -15,11 +15,4 @@ const OptionTable<O> kOptions(
 }  // namespace
 }  // namespace sb
 
-SB_TECHNIQUE({.name = "adsm",
-              .family = Family::Shadow,
-              .folder = "adsm",
-              .paper = "TressFX (Tomb Raider 2013)",
-              .help = "approximated deep shadows (TressFX, Tomb Raider 2013): one front-depth map, "
-                      "(1-alpha)^(dz/(spacing x radius) + 1), Gaussian PCF",
-              .options = kOptions.infos(),
-              .makeShadow = build<ApproximatedDeepShadows>(kOptions)});
+SB_TECHNIQUE({.options = kOptions.infos(), .makeShadow = build<ApproximatedDeepShadows>(kOptions)});

@@ -13,14 +13,5 @@ const OptionTable<O> kOptions({opt::choice(&O::nodes, "nodes", "8",
 }  // namespace
 }  // namespace sb
 
-SB_TECHNIQUE(
-    {.name = "avsm",
-     .family = Family::Shadow,
-     .folder = "avsm",
-     .paper = "Salvi et al. 2010",
-     .help = "adaptive volumetric shadow maps (Salvi et al. 2010): per texel a curve of at most "
-             "`nodes` nodes, each fragment streamed in and the least-area node removed (timing "
-             "emulated: resolve in primitive order)",
-     .options = kOptions.infos(),
-     .caps = {.interlock = true, .emulatedTiming = true},
-     .makeShadow = build<AdaptiveVolumetricShadowMaps>(kOptions)});
+SB_TECHNIQUE({.options = kOptions.infos(),
+              .makeShadow = build<AdaptiveVolumetricShadowMaps>(kOptions)});

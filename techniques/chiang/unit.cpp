@@ -66,68 +66,63 @@ const OptionTable<O> kOptions(
 }  // namespace
 }  // namespace sb
 
-SB_TECHNIQUE(
-    {.name = "chiang",
-     .family = Family::Shading,
-     .folder = "chiang",
-     .paper = "Chiang et al. 2016",
-     .help = "Chiang et al. 2016: the path-traced reference's fibre (pbr/hair_bsdf.h, absorption "
-             "from the strand colour as it derives it), longitudinal lobes evaluated, azimuthal "
-             "lobes averaged over the fibre's width in a table; no diffuse term",
-     .options = kOptions.infos(),
-     .makeShading = [](const OptionReader& r) {
-       const O o = kOptions.read(r);
-       pbr::HairParams hp;
-       hp.betaM = o.betaM;
-       hp.betaN = o.betaN;
-       hp.alphaDeg = o.alpha;
-       hp.eta = o.eta;
-       const pbr::HairBsdf bsdf(hp);  // the same variances as the tracer's
-       ChiangParams p{};
-       for (int l = 0; l < 4; ++l) p.chiangVariance[l] = static_cast<float>(bsdf.variance(l));
-       const float a = hp.alphaDeg * kDegree;
-       p.chiangTilt1 = {std::sin(a), std::cos(a), std::sin(2 * a), std::cos(2 * a)};
-       // sqrt(sigma_a) = |ln c| / divisor: the divisor's inverse is sqrt(sigma_a) at c = 1/e.
-       const float inverse =
-           std::sqrt(pbr::sigmaAFromReflectance(glm::vec3(std::exp(-1.0f)), hp.betaN).x);
-       p.chiangTilt4 = {std::sin(4 * a), std::cos(4 * a), inverse, chiangXMax(hp.betaN)};
-       p.chiangBetaN = hp.betaN;
-       p.chiangEta = hp.eta;
-       p.chiangDensityF = o.densityF;
-       p.chiangDensityB = o.densityB;
-       p.chiangDualScattering = o.dual ? 1 : 0;
-       p.chiangFibreOpacity = o.fibreOpacity ? 1 : 0;
-       p.chiangOpacityRow = o.dual ? SB_DUAL_OPACITY : SB_CHIANG_OPACITY;
-       // Dual scattering reads chiang's table with its own appended (dual.glsl).
-       const std::vector<float>& lobes = chiangLobeTable(hp.betaN, hp.eta);
-       const std::vector<float>& table = o.dual ? dualTable(p) : lobes;
-       ShadingModel m;
-       m.tables.push_back({SB_SLOT_CHIANG_TABLE, &table});
-       m.ambient = o.ambient;
-       // The colour invariant's bound: pi times each lobe's largest M_p and table entry.
-       const std::size_t lobe = std::size_t(SB_CHIANG_X) * SB_CHIANG_SIN * SB_CHIANG_PHI;
-       double bound = 0;
-       for (int l = 0; l < SB_CHIANG_LOBES; ++l)
-         bound += mpBound(p.chiangVariance[l]) *
-                  *std::max_element(lobes.begin() + l * lobe, lobes.begin() + (l + 1) * lobe);
-       m.maxDirect = static_cast<float>(std::numbers::pi * bound);
-       if (o.dual) m.maxDirect += static_cast<float>(dualBound(p));
-       m.setParams(p);
-       // The CPU form is single scattering (the references' direct light).
-       m.direct = [p, &lobes](glm::vec3 T, glm::vec3 L, glm::vec3 V, glm::vec3 c) {
-         return chiangShade(p, lobes, T, L, V, c);
-       };
-       if (o.fibreOpacity) {
-         // A fragment's colour is divided by its opacity (shading.glsl's chiangOpacity): most
-         // for the clearest fibre; the CPU form over the fibre's shadow alpha likewise.
-         m.maxDirect /= chiangShadowAlpha(glm::vec3(1.0f), hp.betaN, hp.eta);
-         m.fibreShadowAlpha = [betaN = hp.betaN, eta = hp.eta](glm::vec3 c) {
-           return chiangShadowAlpha(c, betaN, eta);
-         };
-         m.direct = [p, &lobes, alpha = m.fibreShadowAlpha](glm::vec3 T, glm::vec3 L, glm::vec3 V,
-                                                            glm::vec3 c) {
-           return chiangShade(p, lobes, T, L, V, c) / alpha(c);
-         };
-       }
-       return m;
-     }});
+SB_TECHNIQUE({.options = kOptions.infos(), .makeShading = [](const OptionReader& r) {
+                const O o = kOptions.read(r);
+                pbr::HairParams hp;
+                hp.betaM = o.betaM;
+                hp.betaN = o.betaN;
+                hp.alphaDeg = o.alpha;
+                hp.eta = o.eta;
+                const pbr::HairBsdf bsdf(hp);  // the same variances as the tracer's
+                ChiangParams p{};
+                for (int l = 0; l < 4; ++l)
+                  p.chiangVariance[l] = static_cast<float>(bsdf.variance(l));
+                const float a = hp.alphaDeg * kDegree;
+                p.chiangTilt1 = {std::sin(a), std::cos(a), std::sin(2 * a), std::cos(2 * a)};
+                // sqrt(sigma_a) = |ln c| / divisor: the divisor's inverse is sqrt(sigma_a) at c =
+                // 1/e.
+                const float inverse =
+                    std::sqrt(pbr::sigmaAFromReflectance(glm::vec3(std::exp(-1.0f)), hp.betaN).x);
+                p.chiangTilt4 = {std::sin(4 * a), std::cos(4 * a), inverse, chiangXMax(hp.betaN)};
+                p.chiangBetaN = hp.betaN;
+                p.chiangEta = hp.eta;
+                p.chiangDensityF = o.densityF;
+                p.chiangDensityB = o.densityB;
+                p.chiangDualScattering = o.dual ? 1 : 0;
+                p.chiangFibreOpacity = o.fibreOpacity ? 1 : 0;
+                p.chiangOpacityRow = o.dual ? SB_DUAL_OPACITY : SB_CHIANG_OPACITY;
+                // Dual scattering reads chiang's table with its own appended (dual.glsl).
+                const std::vector<float>& lobes = chiangLobeTable(hp.betaN, hp.eta);
+                const std::vector<float>& table = o.dual ? dualTable(p) : lobes;
+                ShadingModel m;
+                m.tables.push_back({SB_SLOT_CHIANG_TABLE, &table});
+                m.ambient = o.ambient;
+                // The colour invariant's bound: pi times each lobe's largest M_p and table entry.
+                const std::size_t lobe = std::size_t(SB_CHIANG_X) * SB_CHIANG_SIN * SB_CHIANG_PHI;
+                double bound = 0;
+                for (int l = 0; l < SB_CHIANG_LOBES; ++l)
+                  bound +=
+                      mpBound(p.chiangVariance[l]) *
+                      *std::max_element(lobes.begin() + l * lobe, lobes.begin() + (l + 1) * lobe);
+                m.maxDirect = static_cast<float>(std::numbers::pi * bound);
+                if (o.dual) m.maxDirect += static_cast<float>(dualBound(p));
+                m.setParams(p);
+                // The CPU form is single scattering (the references' direct light).
+                m.direct = [p, &lobes](glm::vec3 T, glm::vec3 L, glm::vec3 V, glm::vec3 c) {
+                  return chiangShade(p, lobes, T, L, V, c);
+                };
+                if (o.fibreOpacity) {
+                  // A fragment's colour is divided by its opacity (shading.glsl's chiangOpacity):
+                  // most for the clearest fibre; the CPU form over the fibre's shadow alpha
+                  // likewise.
+                  m.maxDirect /= chiangShadowAlpha(glm::vec3(1.0f), hp.betaN, hp.eta);
+                  m.fibreShadowAlpha = [betaN = hp.betaN, eta = hp.eta](glm::vec3 c) {
+                    return chiangShadowAlpha(c, betaN, eta);
+                  };
+                  m.direct = [p, &lobes, alpha = m.fibreShadowAlpha](glm::vec3 T, glm::vec3 L,
+                                                                     glm::vec3 V, glm::vec3 c) {
+                    return chiangShade(p, lobes, T, L, V, c) / alpha(c);
+                  };
+                }
+                return m;
+              }});

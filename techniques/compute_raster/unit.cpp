@@ -29,18 +29,4 @@ const OptionTable<O> kOptions(
 }  // namespace
 }  // namespace sb
 
-SB_TECHNIQUE(
-    {.name = "compute_raster",
-     .family = Family::Transparency,
-     .folder = "compute_raster",
-     .paper = "Frostbite (Every Strand Counts), Unity Enemies, Unreal HairStrands",
-     .help = "compute strand rasterizer: segments walked into screen tiles' lists with analytic "
-             "coverage from the strand width, each tile bucketed by pixel and composited front to "
-             "back in depth order with early termination; level of detail is the scene's (lod=, "
-             "lod_pixels=)",
-     .options = kOptions.infos(),
-     .caps =
-         {.msaaRefusal =
-              "it rasterizes in compute with its own per-pixel coverage (coverage=analytic is its "
-              "anti-aliasing) and no hardware targets: the frame's samples would not be used"},
-     .makeOit = build<ComputeRasterOit>(kOptions)});
+SB_TECHNIQUE({.options = kOptions.infos(), .makeOit = build<ComputeRasterOit>(kOptions)});

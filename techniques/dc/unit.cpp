@@ -15,12 +15,4 @@ const OptionTable<O> kOptions(
 }  // namespace
 }  // namespace sb
 
-SB_TECHNIQUE(
-    {.name = "dc",
-     .family = Family::Shadow,
-     .folder = "dc",
-     .paper = "Mertens et al. 2004",
-     .help = "density clustering (Mertens et al. 2004): per-texel k-means of fragment depths",
-     .options = kOptions.infos(),
-     .stepped = SteppedOption{"clusters", false, 1, 8},
-     .makeShadow = build<DensityClusteringShadow>(kOptions)});
+SB_TECHNIQUE({.options = kOptions.infos(), .makeShadow = build<DensityClusteringShadow>(kOptions)});

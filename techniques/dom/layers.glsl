@@ -57,8 +57,9 @@ SB_INLINE float domQuantize(float z, int bits) {
   return floor(clamp(z, 0.0f, 1.0f) * levels) / levels;
 }
 
-#ifdef SB_DOM_D
-// SB_DOM_D(k): layer boundary d_k (k = 0..K, d_0 = 0, increasing), relative
+#ifdef SB_LAYER_BOUND
+// SB_LAYER_BOUND(k) (the layered maps' accessors: render/common/layered_glsl.h):
+// layer boundary d_k (k = 0..K, d_0 = 0, increasing), relative
 // to the texel's first hair depth z0. Layer k lies in [z0 + d_(k-1), z0 + d_k).
 
 // What a fragment dz = z - z0 behind the first hair adds to layer k: it counts
@@ -66,7 +67,7 @@ SB_INLINE float domQuantize(float z, int bits) {
 // ignored, or counted in the last layer (kDomLast). kDomExtend has its
 // boundaries stretched on the CPU to cover the hair.
 SB_INLINE float domContribution(float dz, int k, int K, int beyond) {
-  return (dz < SB_DOM_D(k) || (beyond == kDomLast && k == K)) ? 1.0f : 0.0f;
+  return (dz < SB_LAYER_BOUND(k) || (beyond == kDomLast && k == K)) ? 1.0f : 0.0f;
 }
 
 // The thesis's counting (Kraft 2018, Listing 3): a fragment counts in its own
@@ -75,21 +76,22 @@ SB_INLINE float domContribution(float dz, int k, int K, int beyond) {
 // ignored, or (kDomLast) counted in every layer, as the listing does.
 SB_INLINE float domContributionPreceding(float dz, int k, int K, int beyond) {
   if (k < 1 || k > K) return 0.0f;
-  if (!(dz < SB_DOM_D(K)) && beyond != kDomLast) return 0.0f;
-  return dz >= SB_DOM_D(k - 1) ? 1.0f : 0.0f;
+  if (!(dz < SB_LAYER_BOUND(K)) && beyond != kDomLast) return 0.0f;
+  return dz >= SB_LAYER_BOUND(k - 1) ? 1.0f : 0.0f;
 }
 
-#ifdef SB_DOM_LAYER
+#ifdef SB_LAYER_MAP
 // Opacity at depth z in a texel whose hair starts at z0, from K layers;
-// SB_DOM_LAYER(k) (k = 1..K) is layer k's accumulated opacity. Interpolated
+// SB_LAYER_MAP(k) (k = 1..K) is layer k's accumulated opacity. Interpolated
 // within the layer holding z (0 at z0); beyond the last layer the last value.
 SB_INLINE float domOpacity(float z, float z0, int K) {
   if (!(z >= z0) || K < 1) return 0.0f;
   float dz = z - z0;
   float prev = 0.0f;
   for (int k = 1; k <= K; ++k) {
-    float cur = SB_DOM_LAYER(k);
-    if (dz < SB_DOM_D(k)) return opacityLerp(dz, SB_DOM_D(k - 1), SB_DOM_D(k), prev, cur);
+    float cur = SB_LAYER_MAP(k);
+    if (dz < SB_LAYER_BOUND(k))
+      return opacityLerp(dz, SB_LAYER_BOUND(k - 1), SB_LAYER_BOUND(k), prev, cur);
     prev = cur;
   }
   return prev;

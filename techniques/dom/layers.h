@@ -7,20 +7,11 @@
 
 #include "render/common/opacity.h"
 
-namespace sb {
+// Its GLSL as C++ in sb::glsl, reading glsl::layerBoundsCpu and glsl::layerMapsCpu.
+#define SB_LAYERED_GLSL "techniques/dom/layers.glsl"
+#include "render/common/layered_glsl.h"
 
-namespace glsl {
-// Accessors the reconstruction reads through (set by the caller).
-inline const float* domDCpu = nullptr;       // d_0..d_K
-inline const float* domLayersCpu = nullptr;  // layer 1..K at [0..K-1]
-#define SB_INLINE inline
-#define SB_DOM_D(k) domDCpu[k]
-#define SB_DOM_LAYER(k) domLayersCpu[(k)-1]
-#include "techniques/dom/layers.glsl"
-#undef SB_DOM_LAYER
-#undef SB_DOM_D
-#undef SB_INLINE
-}  // namespace glsl
+namespace sb {
 
 // DOM boundaries d_0..d_K from layer sizes (s times the spacing, or an
 // explicit list of multiples of s); kDomExtend stretches them so the last

@@ -14,7 +14,7 @@ ivec2 domTexel;
 // Channel j of the packed maps: k = 1..K layer k (0 is unused).
 float domChannel(int j) { return texelFetch(domMaps, ivec3(domTexel, j / 4), 0)[j % 4]; }
 
-#define SB_DOM_LAYER(k) domChannel(k)
+#define SB_LAYER_MAP(k) domChannel(k)
 #include "layers.glsl"
 
 float domZ;  // the point's light depth, less the bias

@@ -1,9 +1,9 @@
 // --shadow dom: deep opacity maps.
 #include "render/common/unit.h"
 
-#include "techniques/dom/layers.h"
 #include "render/common/opacity_filter.h"
 #include "techniques/dom/dom.h"
+#include "techniques/dom/layers.h"
 
 namespace sb {
 namespace {
@@ -41,13 +41,4 @@ const OptionTable<O> kOptions(
 }  // namespace
 }  // namespace sb
 
-SB_TECHNIQUE(
-    {.name = "dom",
-     .family = Family::Shadow,
-     .folder = "dom",
-     .paper = "Yuksel & Keyser 2008",
-     .help = "deep opacity maps (Yuksel & Keyser 2008): layers that follow the hair from its first "
-             "depth",
-     .options = kOptions.infos(),
-     .stepped = SteppedOption{"layers", false, 1, 31},
-     .makeShadow = build<DeepOpacityMaps>(kOptions)});
+SB_TECHNIQUE({.options = kOptions.infos(), .makeShadow = build<DeepOpacityMaps>(kOptions)});

@@ -15,13 +15,4 @@ const OptionTable<O> kOptions(
 }  // namespace
 }  // namespace sb
 
-SB_TECHNIQUE(
-    {.name = "dsm",
-     .family = Family::Shadow,
-     .folder = "dsm",
-     .paper = "Lokovic & Veach 2000",
-     .help =
-         "deep shadow maps (Lokovic & Veach 2000): per texel, the exact visibility compressed to "
-         "a piecewise-linear curve within epsilon",
-     .options = kOptions.infos(),
-     .makeShadow = build<DeepShadowMaps>(kOptions)});
+SB_TECHNIQUE({.options = kOptions.infos(), .makeShadow = build<DeepShadowMaps>(kOptions)});

@@ -1,5 +1,6 @@
 #pragma once
 
+#include "base/options.h"
 #include "render/common/fragment_lists.h"
 #include "render/common/opaque_shadow.h"
 #include "render/common/technique.h"
@@ -15,6 +16,16 @@ namespace sb {
 class ExactShadow : public ShadowTechnique {
  public:
   enum class Method { Peel, ABuffer };
+  struct Options {
+    Method method;
+    uint32_t size;
+    float bias;
+    uint32_t layers;
+  };
+  // Its options, declared once (unit.cpp), and those of a spec of it (InputError when one
+  // is bad): the references read its map's size and bias through them (harness/).
+  static const OptionTable<Options>& options();
+  static Options optionsOf(const Spec& spec);
   ExactShadow(Method method, uint32_t size, float bias, uint32_t maxLayers);
   std::string name() const override { return "exact"; }
   void setup(Device& dev, const GpuScene& scene, const RenderSettings& s) override;

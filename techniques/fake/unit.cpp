@@ -3,12 +3,4 @@
 
 #include "techniques/fake/fake.h"
 
-SB_TECHNIQUE(
-    {.name = "fake",
-     .family = Family::Transparency,
-     .folder = "fake",
-     .paper = "Yuksel & Keyser 2008, section 4",
-     .help = "fake transparency (Yuksel & Keyser 2008, section 4): the strands in 3 interleaved "
-             "subsets, each drawn opaque into its own image, the 3 images blended equally",
-     .caps = {.multisampling = true},
-     .makeOit = [](const OptionReader&) { return std::make_unique<FakeTransparency>(); }});
+SB_TECHNIQUE({.makeOit = [](const OptionReader&) { return std::make_unique<FakeTransparency>(); }});

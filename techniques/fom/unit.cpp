@@ -14,15 +14,4 @@ const OptionTable<O> kOptions(
 }  // namespace
 }  // namespace sb
 
-SB_TECHNIQUE(
-    {.name = "fom",
-     .family = Family::Shadow,
-     .folder = "fom",
-     .paper = "Jansen & Bavoil 2010",
-     .help =
-         "Fourier opacity maps (Jansen & Bavoil 2010): absorption as a Fourier series in depth, "
-         "transmittance clamped to [0,1]",
-     .options = kOptions.infos(),
-     // Fourier ringing: clamped, not removed.
-     .caps = {.monotone = false},
-     .makeShadow = build<FourierOpacityMaps>(kOptions)});
+SB_TECHNIQUE({.options = kOptions.infos(), .makeShadow = build<FourierOpacityMaps>(kOptions)});

@@ -19,27 +19,19 @@ const OptionTable<O> kOptions(
 }  // namespace
 }  // namespace sb
 
-SB_TECHNIQUE(
-    {.name = "kajiya-kay",
-     .family = Family::Shading,
-     .folder = "kajiya_kay",
-     .paper = "Kajiya & Kay 1989",
-     .help = "Kajiya & Kay 1989: diffuse sin(T,L), specular cos^shininess on the reflection cone",
-     .options = kOptions.infos(),
-     .isDefault = true,
-     .makeShading = [](const OptionReader& r) {
-       const O o = kOptions.read(r);
-       KajiyaKayParams p{};
-       p.kajiyaKayDiffuse = o.diffuse;
-       p.kajiyaKaySpecular = o.specular;
-       p.kajiyaKayShininess = o.shininess;
-       ShadingModel m;
-       m.setParams(p);
-       m.ambient = o.ambient;
-       m.maxDirect = p.kajiyaKayDiffuse + p.kajiyaKaySpecular * 1.0f;  // both factors <= 1
-       m.direct = [p](glm::vec3 T, glm::vec3 L, glm::vec3 V, glm::vec3 c) {
-         const glm::vec2 kk = glsl::kajiyaKay(T, L, V, p.kajiyaKayShininess);
-         return p.kajiyaKayDiffuse * kk.x * c + glm::vec3(p.kajiyaKaySpecular * kk.y);
-       };
-       return m;
-     }});
+SB_TECHNIQUE({.options = kOptions.infos(), .makeShading = [](const OptionReader& r) {
+                const O o = kOptions.read(r);
+                KajiyaKayParams p{};
+                p.kajiyaKayDiffuse = o.diffuse;
+                p.kajiyaKaySpecular = o.specular;
+                p.kajiyaKayShininess = o.shininess;
+                ShadingModel m;
+                m.setParams(p);
+                m.ambient = o.ambient;
+                m.maxDirect = p.kajiyaKayDiffuse + p.kajiyaKaySpecular * 1.0f;  // both factors <= 1
+                m.direct = [p](glm::vec3 T, glm::vec3 L, glm::vec3 V, glm::vec3 c) {
+                  const glm::vec2 kk = glsl::kajiyaKay(T, L, V, p.kajiyaKayShininess);
+                  return p.kajiyaKayDiffuse * kk.x * c + glm::vec3(p.kajiyaKaySpecular * kk.y);
+                };
+                return m;
+              }});

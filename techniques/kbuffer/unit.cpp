@@ -15,14 +15,4 @@ const OptionTable<O> kOptions(
 }  // namespace
 }  // namespace sb
 
-SB_TECHNIQUE(
-    {.name = "kbuffer",
-     .family = Family::Transparency,
-     .folder = "kbuffer",
-     .paper = "TressFX 4 (Bavoil et al. 2007's k-buffer)",
-     .help = "k-buffer over per-pixel lists as TressFX 4 resolves them: the k nearest sorted, "
-             "the rest blended as a tail",
-     .options = kOptions.infos(),
-     .caps = {.msaaRefusal = "per-pixel fragment lists (the A-buffer's) resolved per pixel: "
-                             "samples would multiply the lists' memory by N; not supported"},
-     .makeOit = build<KBufferOit>(kOptions)});
+SB_TECHNIQUE({.options = kOptions.infos(), .makeOit = build<KBufferOit>(kOptions)});

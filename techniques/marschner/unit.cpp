@@ -38,34 +38,25 @@ float maxScattering(const MarschnerParams& p) {
 }  // namespace
 }  // namespace sb
 
-SB_TECHNIQUE(
-    {.name = "marschner",
-     .family = Family::Shading,
-     .folder = "marschner",
-     .paper = "Marschner et al. 2003",
-     .help =
-         "Marschner et al. 2003: R, TT, TRT lobes, longitudinal Gaussians, azimuthal terms with "
-         "Fresnel and absorption (from the strand colour)",
-     .options = kOptions.infos(),
-     .makeShading = [](const OptionReader& r) {
-       const O o = kOptions.read(r);
-       const ShadingLobes lobes = ShadingLobes::from(o.lobes);
-       MarschnerParams p{};
-       p.marschnerAlpha = lobes.alpha;
-       p.marschnerBeta = lobes.beta;
-       p.marschnerDiffuse = lobes.diffuse;
-       p.marschnerSpecular = lobes.specular;
-       p.marschnerEta = o.eta;
-       p.marschnerCaustic = o.caustic;
-       ShadingModel m;
-       m.setParams(p);
-       m.ambient = o.ambient;
-       m.maxDirect = p.marschnerDiffuse + p.marschnerSpecular * maxScattering(p);
-       m.direct = [p](glm::vec3 T, glm::vec3 L, glm::vec3 V, glm::vec3 c) {
-         const float tl = glm::dot(T, L);
-         const float diffuse = std::sqrt(std::max(0.0f, 1.0f - tl * tl));
-         const glm::vec3 specular = marschnerScattering(p, T, L, V, c) * diffuse;
-         return p.marschnerDiffuse * diffuse * c + p.marschnerSpecular * specular;
-       };
-       return m;
-     }});
+SB_TECHNIQUE({.options = kOptions.infos(), .makeShading = [](const OptionReader& r) {
+                const O o = kOptions.read(r);
+                const ShadingLobes lobes = ShadingLobes::from(o.lobes);
+                MarschnerParams p{};
+                p.marschnerAlpha = lobes.alpha;
+                p.marschnerBeta = lobes.beta;
+                p.marschnerDiffuse = lobes.diffuse;
+                p.marschnerSpecular = lobes.specular;
+                p.marschnerEta = o.eta;
+                p.marschnerCaustic = o.caustic;
+                ShadingModel m;
+                m.setParams(p);
+                m.ambient = o.ambient;
+                m.maxDirect = p.marschnerDiffuse + p.marschnerSpecular * maxScattering(p);
+                m.direct = [p](glm::vec3 T, glm::vec3 L, glm::vec3 V, glm::vec3 c) {
+                  const float tl = glm::dot(T, L);
+                  const float diffuse = std::sqrt(std::max(0.0f, 1.0f - tl * tl));
+                  const glm::vec3 specular = marschnerScattering(p, T, L, V, c) * diffuse;
+                  return p.marschnerDiffuse * diffuse * c + p.marschnerSpecular * specular;
+                };
+                return m;
+              }});

@@ -13,16 +13,4 @@ const OptionTable<O> kOptions(
 }  // namespace
 }  // namespace sb
 
-SB_TECHNIQUE(
-    {.name = "mboit",
-     .family = Family::Transparency,
-     .folder = "mboit",
-     .paper = "Muenstermann et al. 2018",
-     .help = "moment-based OIT (Muenstermann et al. 2018): transmittance from power or "
-             "trigonometric moments of log depth, the paper's bias; two hair passes",
-     .options = kOptions.infos(),
-     .caps =
-         {.msaaRefusal =
-              "its second pass reads the first pass's moments per pixel (sampler2D): multisampled "
-              "moments need per-sample reads of a multisampled target; not written"},
-     .makeOit = build<MomentOit>(kOptions)});
+SB_TECHNIQUE({.options = kOptions.infos(), .makeOit = build<MomentOit>(kOptions)});

@@ -3,10 +3,4 @@
 
 #include "techniques/none/none.h"
 
-SB_TECHNIQUE({.name = "none",
-              .family = Family::Shadow,
-              .folder = "none",
-              .paper = "",
-              .help = "no shadows: Kajiya-Kay shading with the light always visible",
-              .isDefault = true,
-              .makeShadow = [](const OptionReader&) { return std::make_unique<NoShadow>(); }});
+SB_TECHNIQUE({.makeShadow = [](const OptionReader&) { return std::make_unique<NoShadow>(); }});

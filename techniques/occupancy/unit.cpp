@@ -27,12 +27,4 @@ const OptionTable<O> kOptions(
 }  // namespace
 }  // namespace sb
 
-SB_TECHNIQUE(
-    {.name = "occupancy",
-     .family = Family::Shadow,
-     .folder = "occupancy",
-     .paper = "Sintorn & Assarsson 2009",
-     .help = "occupancy maps (Sintorn & Assarsson 2009): depth range, 1 bit per slice, slab counts",
-     .options = kOptions.infos(),
-     .stepped = SteppedOption{"slices", true, 32, 1024},
-     .makeShadow = build<OccupancyShadow>(kOptions)});
+SB_TECHNIQUE({.options = kOptions.infos(), .makeShadow = build<OccupancyShadow>(kOptions)});

@@ -25,15 +25,4 @@ const OptionTable<O> kOptions(
 }  // namespace
 }  // namespace sb
 
-SB_TECHNIQUE(
-    {.name = "occupancy",
-     .family = Family::Transparency,
-     .folder = "occupancy_oit",
-     .paper = "Sintorn & Assarsson 2009",
-     .help = "occupancy-ordered blending (Sintorn & Assarsson 2009): order from eye-space "
-             "occupancy maps",
-     .options = kOptions.infos(),
-     .caps = {.msaaRefusal = "its occupancy bits, slab counts and depth range are per-pixel maps "
-                             "that order the fragments: samples would multiply them by N and split "
-                             "one pixel's order; not supported"},
-     .makeOit = build<OccupancyOit>(kOptions)});
+SB_TECHNIQUE({.options = kOptions.infos(), .makeOit = build<OccupancyOit>(kOptions)});

@@ -18,7 +18,7 @@ float osmStored(int m) {
   return texelFetch(osmAtlases, ivec3(p, a), 0)[m % 4];
 }
 
-#define SB_OSM_MAP(i) osmStored((i)-1)
+#define SB_LAYER_MAP(i) osmStored((i)-1)
 #include "slicing.glsl"
 
 float osmZ;  // the point's light depth, less the bias

@@ -33,7 +33,7 @@ vec4 osmTarget(int k, float z) {
   vec4 o = vec4(0.0);
   for (int c = 0; c < 4; ++c) {
     int m = 4 * (osmPass.x + k) + c;  // map m + 1, depth D_(m+1)
-    if (m >= osmPass.y && m < osmPass.z && z < SB_OSM_SLICE(m + 1)) o[c] = osmParams.w;
+    if (m >= osmPass.y && m < osmPass.z && z < SB_LAYER_BOUND(m + 1)) o[c] = osmParams.w;
   }
   return o;
 }

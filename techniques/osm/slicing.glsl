@@ -19,26 +19,27 @@ SB_INLINE float osmSliceDepth(int i, int n, float nearZ, float farZ, int mode, f
   return nearZ + (farZ - nearZ) * f;
 }
 
-#ifdef SB_OSM_SLICE
-// Opacity at depth z from n opacity maps. The includer defines
-// SB_OSM_SLICE(i): depth D_i (i = 0..n, increasing, D_0 = the hair's near
-// depth) and SB_OSM_MAP(i): map i (1..n), the opacity of the fragments in
+#ifdef SB_LAYER_BOUND
+// Opacity at depth z from n opacity maps. The includer defines (the layered maps'
+// accessors: render/common/layered_glsl.h)
+// SB_LAYER_BOUND(i): depth D_i (i = 0..n, increasing, D_0 = the hair's near
+// depth) and SB_LAYER_MAP(i): map i (1..n), the opacity of the fragments in
 // front of D_i; map 0 is 0. Linear interpolation between the two maps
 // enclosing z; beyond D_n the last map.
 SB_INLINE float osmOpacity(float z, int n) {
-  if (n < 1 || !(z >= SB_OSM_SLICE(0))) return 0.0f;
-  if (z >= SB_OSM_SLICE(n)) return SB_OSM_MAP(n);
+  if (n < 1 || !(z >= SB_LAYER_BOUND(0))) return 0.0f;
+  if (z >= SB_LAYER_BOUND(n)) return SB_LAYER_MAP(n);
   int lo = 1;
   int hi = n;
   while (lo < hi) {  // smallest i with z < D_i
     int mid = (lo + hi) / 2;
-    if (z < SB_OSM_SLICE(mid))
+    if (z < SB_LAYER_BOUND(mid))
       hi = mid;
     else
       lo = mid + 1;
   }
-  float prev = lo > 1 ? SB_OSM_MAP(lo - 1) : 0.0f;
-  return opacityLerp(z, SB_OSM_SLICE(lo - 1), SB_OSM_SLICE(lo), prev, SB_OSM_MAP(lo));
+  float prev = lo > 1 ? SB_LAYER_MAP(lo - 1) : 0.0f;
+  return opacityLerp(z, SB_LAYER_BOUND(lo - 1), SB_LAYER_BOUND(lo), prev, SB_LAYER_MAP(lo));
 }
 #endif
 #endif  // SB_OSM_SLICING_GLSL

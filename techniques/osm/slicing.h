@@ -8,20 +8,11 @@
 
 #include "render/common/opacity.h"
 
-namespace sb {
+// Its GLSL as C++ in sb::glsl, reading glsl::layerBoundsCpu and glsl::layerMapsCpu.
+#define SB_LAYERED_GLSL "techniques/osm/slicing.glsl"
+#include "render/common/layered_glsl.h"
 
-namespace glsl {
-// Accessors the reconstruction reads through (set by the caller).
-inline const float* osmSlicesCpu = nullptr;  // D_0..D_n
-inline const float* osmMapsCpu = nullptr;    // map 1..n at [0..n-1]
-#define SB_INLINE inline
-#define SB_OSM_SLICE(i) osmSlicesCpu[i]
-#define SB_OSM_MAP(i) osmMapsCpu[(i)-1]
-#include "techniques/osm/slicing.glsl"
-#undef SB_OSM_MAP
-#undef SB_OSM_SLICE
-#undef SB_INLINE
-}  // namespace glsl
+namespace sb {
 
 // OSM slice depths D_0..D_n. D_n is nudged past the farthest hair so that
 // the last map counts every fragment. Density slicing (the paper's 1D BSP):

@@ -1,9 +1,9 @@
 // --shadow osm: opacity shadow maps.
 #include "render/common/unit.h"
 
-#include "techniques/osm/slicing.h"
 #include "render/common/opacity_filter.h"
 #include "techniques/osm/osm.h"
+#include "techniques/osm/slicing.h"
 
 namespace sb {
 namespace {
@@ -31,12 +31,4 @@ const OptionTable<O> kOptions(
 }  // namespace
 }  // namespace sb
 
-SB_TECHNIQUE(
-    {.name = "osm",
-     .family = Family::Shadow,
-     .folder = "osm",
-     .paper = "Kim & Neumann 2001",
-     .help = "opacity shadow maps (Kim & Neumann 2001): planar opacity maps, linear interpolation",
-     .options = kOptions.infos(),
-     .stepped = SteppedOption{"maps", true, 1, 256},
-     .makeShadow = build<OpacityShadowMaps>(kOptions)});
+SB_TECHNIQUE({.options = kOptions.infos(), .makeShadow = build<OpacityShadowMaps>(kOptions)});

@@ -21,16 +21,4 @@ const OptionTable<O> kOptions(
 }  // namespace
 }  // namespace sb
 
-SB_TECHNIQUE(
-    {.name = "rt",
-     .family = Family::Shadow,
-     .folder = "rt",
-     .paper = "",
-     .help = "ray-traced shadows: rays from the point to the light through a BVH of strand "
-             "segments (capsule cylinders as wide as the light map draws them), "
-             "(1-shadow_alpha) per strand crossed; software tier (BVH walked in the shader) or "
-             "ray-query tier (VK_KHR_ray_query over an acceleration structure of the segments' "
-             "boxes)",
-     .options = kOptions.infos(),
-     .stepped = SteppedOption{"rays", true, 1, 256},
-     .makeShadow = build<RayTracedShadow>(kOptions)});
+SB_TECHNIQUE({.options = kOptions.infos(), .makeShadow = build<RayTracedShadow>(kOptions)});

@@ -19,17 +19,4 @@ const OptionTable<O> kOptions(
 }  // namespace
 }  // namespace sb
 
-SB_TECHNIQUE(
-    {.name = "rt",
-     .family = Family::Transparency,
-     .folder = "rt_oit",
-     .paper = "",
-     .help = "ray-traced transparency: a primary ray per pixel centre through a BVH of strand "
-             "segments (capsule cylinders as wide as the frame draws strands), its hits shaded "
-             "with the shadow technique and composited front to back in depth order; software "
-             "tier (BVH walked in a compute shader) or ray-query tier (VK_KHR_ray_query over an "
-             "acceleration structure of the segments' boxes)",
-     .options = kOptions.infos(),
-     .caps = {.msaaRefusal = "one primary ray per pixel centre: samples would need a ray "
-                             "each; not supported"},
-     .makeOit = build<RayTracedOit>(kOptions)});
+SB_TECHNIQUE({.options = kOptions.infos(), .makeOit = build<RayTracedOit>(kOptions)});

@@ -30,39 +30,31 @@ const OptionTable<O> kOptions(
 }  // namespace
 }  // namespace sb
 
-SB_TECHNIQUE(
-    {.name = "sadeghi",
-     .family = Family::Shading,
-     .folder = "sadeghi",
-     .paper = "Sadeghi et al. 2010 (as Kraft 2018 implements it)",
-     .help = "Sadeghi et al. 2010, the artist-friendly model as Kraft 2018 implements it (eqs. "
-             "20-24; defaults: Listing 2, diffuse 0.4, specular 1, no ambient, the glints at the "
-             "TT width)",
-     .options = kOptions.infos(),
-     .makeShading = [](const OptionReader& r) {
-       const O o = kOptions.read(r);
-       const ShadingLobes lobes = ShadingLobes::from(o.lobes);
-       SadeghiParams p{};
-       p.sadeghiAlpha = lobes.alpha;
-       p.sadeghiBeta = lobes.beta;
-       p.sadeghiIntensity = {o.iR, o.iTT, o.iTRT, o.glint};
-       p.sadeghiDiffuse = lobes.diffuse;
-       p.sadeghiSpecular = lobes.specular;
-       p.sadeghiGlintAngle = o.glintAngle * kDegree;
-       p.sadeghiTtWidth = o.ttWidth * kDegree;
-       p.sadeghiGlintWidth = (o.glintWidth > 0.0f ? o.glintWidth : o.ttWidth) * kDegree;
-       ShadingModel m;
-       m.setParams(p);
-       m.ambient = o.ambient;
-       // The specular sum's largest value: every lobe at its peak, over the shader's bound on
-       // cos^2(theta_d).
-       const glm::vec4 i = p.sadeghiIntensity;
-       m.maxDirect =
-           p.sadeghiDiffuse + p.sadeghiSpecular * ((i.x + i.y + i.z * (1.0f + i.w)) / kMinCos2);
-       m.direct = [p](glm::vec3 T, glm::vec3 L, glm::vec3 V, glm::vec3 c) {
-         const float tl = glm::dot(T, L);
-         const float diffuse = std::sqrt(std::max(0.0f, 1.0f - tl * tl));
-         return p.sadeghiDiffuse * diffuse * c + p.sadeghiSpecular * sadeghiSpecular(p, T, L, V, c);
-       };
-       return m;
-     }});
+SB_TECHNIQUE({.options = kOptions.infos(), .makeShading = [](const OptionReader& r) {
+                const O o = kOptions.read(r);
+                const ShadingLobes lobes = ShadingLobes::from(o.lobes);
+                SadeghiParams p{};
+                p.sadeghiAlpha = lobes.alpha;
+                p.sadeghiBeta = lobes.beta;
+                p.sadeghiIntensity = {o.iR, o.iTT, o.iTRT, o.glint};
+                p.sadeghiDiffuse = lobes.diffuse;
+                p.sadeghiSpecular = lobes.specular;
+                p.sadeghiGlintAngle = o.glintAngle * kDegree;
+                p.sadeghiTtWidth = o.ttWidth * kDegree;
+                p.sadeghiGlintWidth = (o.glintWidth > 0.0f ? o.glintWidth : o.ttWidth) * kDegree;
+                ShadingModel m;
+                m.setParams(p);
+                m.ambient = o.ambient;
+                // The specular sum's largest value: every lobe at its peak, over the shader's bound
+                // on cos^2(theta_d).
+                const glm::vec4 i = p.sadeghiIntensity;
+                m.maxDirect = p.sadeghiDiffuse +
+                              p.sadeghiSpecular * ((i.x + i.y + i.z * (1.0f + i.w)) / kMinCos2);
+                m.direct = [p](glm::vec3 T, glm::vec3 L, glm::vec3 V, glm::vec3 c) {
+                  const float tl = glm::dot(T, L);
+                  const float diffuse = std::sqrt(std::max(0.0f, 1.0f - tl * tl));
+                  return p.sadeghiDiffuse * diffuse * c +
+                         p.sadeghiSpecular * sadeghiSpecular(p, T, L, V, c);
+                };
+                return m;
+              }});

@@ -14,14 +14,7 @@ const OptionTable<O> kOptions(
 }  // namespace
 }  // namespace sb
 
-SB_TECHNIQUE({.name = "shadowmap",
-              .family = Family::Shadow,
-              .folder = "shadowmap",
-              .paper = "Williams 1978",
-              .help = "hard shadow map (Williams 1978) cast by the mesh and the hair onto both",
-              .options = kOptions.infos(),
-              .stepped = SteppedOption{"size", true, 16, 4096},
-              .makeShadow = [](const OptionReader& r) {
+SB_TECHNIQUE({.options = kOptions.infos(), .makeShadow = [](const OptionReader& r) {
                 const O o = kOptions.read(r);
                 return std::make_unique<ShadowMap>(o.size, o.bias);
               }});

@@ -13,16 +13,6 @@ const OptionTable<O> kOptions({opt::integer(
 }  // namespace
 }  // namespace sb
 
-SB_TECHNIQUE(
-    {.name = "shortcut",
-     .family = Family::Transparency,
-     .folder = "shortcut",
-     .paper = "TressFX ShortCut",
-     .help = "TressFX ShortCut: the k nearest depths by atomic min, those fragments blended in "
-             "order, the rest as a weighted average under the product of (1 - alpha)",
-     .options = kOptions.infos(),
-     .caps = {.msaaRefusal = "the k nearest depths of each pixel are atomic mins in per-pixel "
-                             "storage buffers: samples would multiply them by N; not supported"},
-     .makeOit = [](const OptionReader& r) {
-       return std::make_unique<ShortCutOit>(kOptions.read(r).k);
-     }});
+SB_TECHNIQUE({.options = kOptions.infos(), .makeOit = [](const OptionReader& r) {
+                return std::make_unique<ShortCutOit>(kOptions.read(r).k);
+              }});

@@ -14,15 +14,4 @@ const OptionTable<O> kOptions(
 }  // namespace
 }  // namespace sb
 
-SB_TECHNIQUE(
-    {.name = "stochastic",
-     .family = Family::Transparency,
-     .folder = "stochastic",
-     .paper = "Enderton et al. 2010",
-     .help = "stochastic transparency (Enderton et al. 2010): random sample masks, S sample depths "
-             "per pixel, total alpha + depth + accumulate passes, alpha-corrected",
-     .options = kOptions.infos(),
-     .caps = {.msaaRefusal = "it is sample-based already: its S sample depths per pixel are a "
-                             "storage buffer (samples=), since Mesa's CPU drivers rasterize lines "
-                             "in a multisampled pass with one depth per pixel"},
-     .makeOit = build<StochasticOit>(kOptions)});
+SB_TECHNIQUE({.options = kOptions.infos(), .makeOit = build<StochasticOit>(kOptions)});

@@ -18,14 +18,4 @@ const OptionTable<O> kOptions(
 }  // namespace
 }  // namespace sb
 
-SB_TECHNIQUE(
-    {.name = "voxel",
-     .family = Family::Shadow,
-     .folder = "voxel",
-     .paper = "Unreal Engine's hair voxelization",
-     .help =
-         "voxelized hair density (as Unreal ships it): fragment counts splatted into a volume of "
-         "uint counters over the light's view, visibility exp(-density_scale w n), n the hair "
-         "count marched to the light",
-     .options = kOptions.infos(),
-     .makeShadow = build<VoxelDensityShadow>(kOptions)});
+SB_TECHNIQUE({.options = kOptions.infos(), .makeShadow = build<VoxelDensityShadow>(kOptions)});

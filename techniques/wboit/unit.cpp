@@ -19,15 +19,7 @@ const OptionTable<O> kOptions(
 }  // namespace
 }  // namespace sb
 
-SB_TECHNIQUE(
-    {.name = "wboit",
-     .family = Family::Transparency,
-     .folder = "wboit",
-     .paper = "McGuire & Bavoil 2013",
-     .help = "weighted blended OIT (McGuire & Bavoil 2013): depth-weighted average, exact coverage",
-     .options = kOptions.infos(),
-     .caps = {.multisampling = true},
-     .makeOit = [](const OptionReader& r) {
-       const O o = kOptions.read(r);
-       return std::make_unique<WeightedBlendedOit>(o.weight, o.precision);
-     }});
+SB_TECHNIQUE({.options = kOptions.infos(), .makeOit = [](const OptionReader& r) {
+                const O o = kOptions.read(r);
+                return std::make_unique<WeightedBlendedOit>(o.weight, o.precision);
+              }});
