@@ -511,7 +511,16 @@ int runCheck(const CheckOptions& opt, std::ostream& out) {
           ++checker.counts.skipped;
           out << "SKIP " << c.name << " " << backend << ": " << s->reason << "\n";
         }
-      const std::vector<Outcome> first = runComparisons(m, c, dir, driver, x, cache, hook, renders);
+      // A part this driver lacks (mesh shaders on Mesa 22.3.6): the case is skipped, as a
+      // sweep leaves such a case out.
+      std::vector<Outcome> first;
+      try {
+        first = runComparisons(m, c, dir, driver, x, cache, hook, renders);
+      } catch (const UnavailableError& e) {
+        ++checker.counts.skipped;
+        out << "SKIP " << c.name << ": " << e.what() << " (" << e.enable << ")\n";
+        continue;
+      }
       // A failure nobody expected is re-run, the whole case on a fresh device each time: a
       // comparison that passes on a re-run is a flake, one that fails every time a failure.
       std::set<std::string> pending;

@@ -10,7 +10,8 @@ Per case it runs `build/strandbench render --json` (and --out an EXR) and reads:
 frame time (median of the timed frames), memory.scene_bytes (the device's own accounting of
 the strand data and the groom), the error against the exact reference of the same scene
 (error.image.rmse) and, for lod < 1, the RMSE of the image against the exact reference of
-the full model (lod=1), from `strandbench compare`.
+the full model (lod=1), from `strandbench compare`. The mesh path is measured where the
+device has mesh shaders (Vulkan on Mesa 25.0.7's lavapipe, or a GPU's driver).
 """
 import argparse
 import datetime
@@ -44,6 +45,18 @@ def render(driver, backend, scene, shadow, geometry, extra):
     return json.loads(out)
 
 
+def paths(driver, backend):
+    """The generated paths this driver and backend run: compute, and mesh where the device
+    has mesh shaders (Vulkan with VK_EXT_mesh_shader; elsewhere refused, exit 2)."""
+    if backend != "vulkan":
+        return ["compute"]
+    try:
+        render(driver, backend, CROWD + ",instances=1", "none", "mesh", [])
+        return ["compute", "mesh"]
+    except RuntimeError:
+        return ["compute"]
+
+
 def compare(a, b):
     return json.loads(run(["compare", a, b]))["rmse"]
 
@@ -71,35 +84,40 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         for driver in drivers:
             for backend in a.backends.split(","):
+                generated = paths(driver, backend)
                 lines += ["## " + driver + ", " + backend, "",
-                          "Level of detail (`" + GROOM + ",lod=L`, `--geometry compute "
-                          "--primitive world`, " + SIZE + "): frame ms (median of 3), scene "
-                          "bytes, RMSE against the same scene's exact reference, RMSE against "
-                          "the full model's (lod=1) exact reference.", "",
-                          "| shadow | lod | frame ms | scene bytes | RMSE (own reference) | "
-                          "RMSE (full model's reference) |", "|---|---|---|---|---|---|"]
+                          "Level of detail (`" + GROOM + ",lod=L`, `--geometry " +
+                          "|".join(generated) + " --primitive world`, " + SIZE + "): frame ms "
+                          "(median of 3), scene bytes, RMSE against the same scene's exact "
+                          "reference, RMSE against the full model's (lod=1) exact reference." +
+                          ("" if "mesh" in generated else " No mesh path: the device lacks "
+                           "mesh shaders."), "",
+                          "| shadow | geometry | lod | frame ms | scene bytes | "
+                          "RMSE (own reference) | RMSE (full model's reference) |",
+                          "|---|---|---|---|---|---|---|"]
                 full = os.path.join(tmp, os.path.basename(driver) + "-" + backend + "-full.exr")
-                for shadow in SHADOWS:
-                    for lod in LODS:
-                        scene = GROOM + ",lod=" + str(lod)
-                        img = os.path.join(tmp, "case.exr")
-                        r = render(driver, backend, scene, shadow, "compute",
-                                   ["--primitive", "world", "--reference", "--out", img])
-                        if lod == 1 and not os.path.exists(full):
-                            # The full model drawn by the case's own reference techniques.
-                            render(driver, backend, scene, r["reference"]["shadow"], "compute",
-                                   ["--primitive", "world", "--oit", r["reference"]["oit"],
-                                    "--out", full])
-                        lines.append("| %s | %s | %.3f | %d | %.5f | %.5f |" % (
-                            shadow, lod, r["frame_ms"]["median"], r["memory"]["scene_bytes"],
-                            r["error"]["image"]["rmse"], compare(img, full)))
+                for shadow, geometry, lod in [(s, g, l) for s in SHADOWS for g in generated
+                                              for l in LODS]:
+                    scene = GROOM + ",lod=" + str(lod)
+                    img = os.path.join(tmp, "case.exr")
+                    r = render(driver, backend, scene, shadow, geometry,
+                               ["--primitive", "world", "--reference", "--out", img])
+                    if lod == 1 and not os.path.exists(full):
+                        # The full model drawn by the case's own reference techniques.
+                        render(driver, backend, scene, r["reference"]["shadow"], "compute",
+                               ["--primitive", "world", "--oit", r["reference"]["oit"],
+                                "--out", full])
+                    lines.append("| %s | %s | %s | %.3f | %d | %.5f | %.5f |" % (
+                        shadow, geometry, lod, r["frame_ms"]["median"],
+                        r["memory"]["scene_bytes"],
+                        r["error"]["image"]["rmse"], compare(img, full)))
                 lines += ["", "Crowds (`" + CROWD + ",instances=N`, lines): strand data on "
                           "each path (memory.scene_bytes, the device's accounting).", "",
                           "| shadow | instances | geometry | frame ms | scene bytes |",
                           "|---|---|---|---|---|"]
                 for shadow in SHADOWS:
                     for n in INSTANCES:
-                        for geometry in ["cpu", "compute"]:
+                        for geometry in ["cpu"] + generated:
                             r = render(driver, backend, CROWD + ",instances=" + str(n), shadow,
                                        geometry, [])
                             lines.append("| %s | %d | %s | %.3f | %d |" % (

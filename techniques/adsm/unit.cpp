@@ -22,4 +22,5 @@ SB_TECHNIQUE({.name = "adsm",
               .help = "approximated deep shadows (TressFX, Tomb Raider 2013): one front-depth map, "
                       "(1-alpha)^(dz/(spacing x radius) + 1), Gaussian PCF",
               .options = kOptions.infos(),
+              .caps = {.meshRefusal = "it reads the strands' thickness back from the device"},
               .makeShadow = build<ApproximatedDeepShadows>(kOptions)});

@@ -48,5 +48,6 @@ SB_TECHNIQUE(
      .caps =
          {.msaaRefusal =
               "it rasterizes in compute with its own per-pixel coverage (coverage=analytic is its "
-              "anti-aliasing) and no hardware targets: the frame's samples would not be used"},
+              "anti-aliasing) and no hardware targets: the frame's samples would not be used",
+          .meshRefusal = "its compute passes read the strands' points and segments"},
      .makeOit = build<ComputeRasterOit>(kOptions)});

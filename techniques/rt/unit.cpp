@@ -33,4 +33,5 @@ SB_TECHNIQUE(
              "boxes)",
      .options = kOptions.infos(),
      .stepped = SteppedOption{"rays", true, 1, 256},
+     .caps = {.meshRefusal = "it builds its BVH from the strands read back from the device"},
      .makeShadow = build<RayTracedShadow>(kOptions)});

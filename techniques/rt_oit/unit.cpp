@@ -31,5 +31,6 @@ SB_TECHNIQUE(
              "acceleration structure of the segments' boxes)",
      .options = kOptions.infos(),
      .caps = {.msaaRefusal = "one primary ray per pixel centre: samples would need a ray "
-                             "each; not supported"},
+                             "each; not supported",
+              .meshRefusal = "it builds its BVH from the strands read back from the device"},
      .makeOit = build<RayTracedOit>(kOptions)});
