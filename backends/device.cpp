@@ -293,6 +293,17 @@ Texture Device::createTexture(const TextureDesc& given) {
   return Texture{id};
 }
 
+std::string Device::meshPipelineRefusal() const {
+  const DeviceInfo i = info();
+  if (i.backend == "vulkan" && i.meshShaders) return "";
+  const std::string device = i.backend + " on " + i.device + " (driver " + i.driverName + ")";
+  return i.backend == "vulkan"
+             ? device +
+                   " lacks VK_EXT_mesh_shader (Mesa 25.0's lavapipe has it: --driver "
+                   "mesa-25.0)"
+             : "mesh pipelines are built on Vulkan only (VK_EXT_mesh_shader), not on " + device;
+}
+
 Pipeline Device::createPipeline(const PipelineDesc& desc) {
   const std::string where =
       "createPipeline('" + desc.name + "', technique '" + desc.technique + "')";
@@ -300,6 +311,10 @@ Pipeline Device::createPipeline(const PipelineDesc& desc) {
   const bool graphics = desc.vertex != nullptr && desc.fragment != nullptr;
   if (compute == (desc.vertex != nullptr || desc.fragment != nullptr) || (!compute && !graphics))
     throw DeviceError(where + ": give either vertex+fragment or compute shaders");
+  const bool mesh = graphics && desc.vertex->meshGroupVertices > 0;
+  if (mesh)
+    if (const std::string why = meshPipelineRefusal(); !why.empty())
+      throw DeviceError(where + ": " + why);
   if (graphics && desc.hasDepth && !isDepthFormat(desc.depthFormat))
     throw DeviceError(where + ": depthFormat " + formatName(desc.depthFormat) +
                       " is not a depth format");
@@ -318,7 +333,7 @@ Pipeline Device::createPipeline(const PipelineDesc& desc) {
         throw DeviceError(where + ": binding " + std::to_string(desc.bindings[i].binding) +
                           " declared twice");
   auto rec = std::make_unique<PipelineRec>(PipelineRec{
-      desc, deferPipelines_ ? nullptr : driver_->createPipeline(desc), compute, group_, {}});
+      desc, deferPipelines_ ? nullptr : driver_->createPipeline(desc), compute, group_, {}, mesh});
   if (deferPipelines_)
     for (const ShaderCode* code : {desc.vertex, desc.fragment, desc.compute})
       if (code) rec->shaders.push_back(*code);
@@ -616,6 +631,9 @@ void Device::draw(Pipeline pipe, const std::vector<Binding>& bindings, uint32_t 
     throw DeviceError(where + ": the pipeline has " + std::to_string(p.desc.samples) +
                       " samples, pass '" + pass_->name + "' " + std::to_string(pass_->samples) +
                       " (they must be the same)");
+  if (p.mesh && instanceCount != 1)
+    throw DeviceError(where + ": a mesh pipeline draws one instance (" +
+                      std::to_string(instanceCount) + " asked)");
   const auto resolved = resolve(p, bindings, where, true, *pass_);
   ++pass_->work.draws;
   driver_->draw(*compiled(p), p.desc, resolved, vertexCount, instanceCount);

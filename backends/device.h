@@ -163,12 +163,21 @@ struct ShaderCode {
   std::string name;                    // e.g. "techniques/shadowmap/depth.frag"
   std::string text;                    // GLSL 4.50 body without #version / preamble
   std::vector<std::string> fileNames;  // index = source-string number used in #line
+  // > 0: a mesh shader given as a pipeline's vertex shader (Vulkan with
+  // info().meshShaders; Device::meshPipelineRefusal), which keeps the vertex
+  // path's draw: a draw of vertexCount vertices (one instance) runs
+  // ceil(vertexCount / meshGroupVertices) workgroups, each emitting the primitives of
+  // its vertices. The groups are laid out in rows (gl_NumWorkGroups.x wide): the
+  // shader's group is y * gl_NumWorkGroups.x + x, and the last row's extra groups
+  // emit nothing.
+  uint32_t meshGroupVertices = 0;
 };
 
 struct PipelineDesc {
   std::string name;
   std::string technique;  // named in compile errors
-  // Either vertex+fragment (graphics) or compute alone.
+  // Either vertex+fragment (graphics) or compute alone. The vertex shader may be a
+  // mesh shader standing in for it (ShaderCode::meshGroupVertices): a mesh pipeline.
   const ShaderCode* vertex = nullptr;
   const ShaderCode* fragment = nullptr;
   const ShaderCode* compute = nullptr;
@@ -395,6 +404,8 @@ class Device {
   // Contents are zero (colour) or 1 (depth) until first written.
   Texture createTexture(const TextureDesc& desc);
   Pipeline createPipeline(const PipelineDesc& desc);  // throws DeviceError
+  // Why this device makes no mesh pipelines (PipelineDesc::mesh), or "" when it does.
+  std::string meshPipelineRefusal() const;
   // While deferral is on, a pipeline created is checked at once but compiled
   // only by compilePipelines or when first drawn or dispatched: the renderer
   // declares every technique's pipelines, culls its frame graph, and compiles

@@ -39,6 +39,7 @@ struct Device::PipelineRec {
   uint32_t group = 0;
   // A deferred pipeline's shaders (vertex, fragment or compute alone) until it is compiled.
   std::vector<ShaderCode> shaders;
+  bool mesh = false;  // its vertex shader is a mesh shader (ShaderCode::meshGroupVertices)
 };
 struct Device::OpenPass {
   std::string name;

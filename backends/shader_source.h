@@ -9,7 +9,7 @@
 namespace sb {
 
 enum class ShaderApi { GL, Vulkan };
-enum class ShaderStage { Vertex, Fragment, Compute };
+enum class ShaderStage { Vertex, Fragment, Compute, Mesh };
 
 // The complete text handed to the GL or glslang compiler.
 std::string completeShaderSource(const ShaderCode& code, ShaderApi api);

@@ -12,6 +12,7 @@
 #include "harness/render.h"
 #include "harness/technique_list.h"
 #include "scenes/scene.h"
+#include "render/common/unit.h"
 #include "render/generation/generation.h"
 
 namespace sb {
@@ -75,6 +76,33 @@ void checkOutputFolder(const std::string& option, const std::string& path) {
     throw InputError(what + "folder " + existing.string() + " is not writable");
 }
 
+namespace {
+// Why --geometry mesh cannot run this request before any device is made (the
+// backend, the techniques' capabilities), or "". A Vulkan device without
+// VK_EXT_mesh_shader is refused once it is made (render.cpp, openDevice).
+std::string meshPathRefusal(const RenderRequest& req) {
+  if (req.backend != "vulkan")
+    return "mesh shaders run on Vulkan only (VK_EXT_mesh_shader), not on --backend " + req.backend +
+           "; use --backend vulkan (Mesa 25.0's lavapipe has them: --driver "
+           "mesa-25.0)";
+  const auto refusing = [](const TechniqueDescriptor& d) { return !d.caps.meshRefusal.empty(); };
+  for (const auto& [family, spec] :
+       {std::pair{Family::Shadow, req.shadow}, std::pair{Family::Transparency, req.oit}}) {
+    const TechniqueDescriptor& d = findTechnique(family, Spec::parse(spec).name);
+    if (!refusing(d)) continue;
+    std::string names;
+    for (const std::string& n : techniqueNames(family, refusing))
+      names += (names.empty() ? "" : ", ") + n;
+    return std::string(familyName(family)) + " technique '" + d.name +
+           "' does not run on it: " + d.caps.meshRefusal +
+           ", and the mesh path makes the strands only inside the strand draw (not on the mesh "
+           "path: " +
+           names + "; use --geometry compute)";
+  }
+  return "";
+}
+}  // namespace
+
 void checkRenderRequest(const RenderRequest& req, bool device, RenderCache* cache,
                         Spelling spelling) {
   checkRequest(req, spelling);
@@ -97,6 +125,9 @@ void checkRenderRequest(const RenderRequest& req, bool device, RenderCache* cach
   // --geometry: refused up front where the path cannot make this scene's strands.
   if (const std::string why = geometryRefusal(req.geometry, *scene); !why.empty())
     throw InputError(settingMessage(*findSetting("geometry"), spelling, req.geometry, why));
+  if (req.geometry == "mesh")
+    if (const std::string why = meshPathRefusal(req); !why.empty())
+      throw InputError(settingMessage(*findSetting("geometry"), spelling, req.geometry, why));
   makeRenderSettings(req, *scene);
   if (device) makeRequestDevice(req);
 }

@@ -56,7 +56,9 @@ RenderSettings makeRenderSettings(const RenderRequest& req, const Scene& scene) 
                 : req.primitive == "world" ? Primitive::World
                                            : Primitive::Lines;
   s.ribbonWidth = req.ribbonWidth;
-  s.geometry = req.geometry == "compute" ? GeometryPath::Compute : GeometryPath::Cpu;
+  s.geometry = req.geometry == "compute" ? GeometryPath::Compute
+               : req.geometry == "mesh"  ? GeometryPath::Mesh
+                                         : GeometryPath::Cpu;
   s.shading = ShadingModel::fromSpec(req.shading);
   s.msaa = static_cast<uint32_t>(req.msaa);
 
@@ -389,6 +391,10 @@ RunDevice openDevice(const RenderRequest& req, const RenderSettings& settings, D
                                     std::to_string(settings.msaa),
                                     "the device has " + d.dev->sampleCountsText() +
                                         " samples per pixel (" + d.dev->info().device + ")"));
+  if (settings.geometry == GeometryPath::Mesh)
+    if (const std::string why = d.dev->meshPipelineRefusal(); !why.empty())
+      throw UnavailableError(settingMessage(*findSetting("geometry"), Spelling::Cli, "mesh", why),
+                             "Mesa 25.0's lavapipe: --driver mesa-25.0 (scripts/drivers.sh)");
   return d;
 }
 

@@ -178,8 +178,9 @@ std::vector<Setting> buildTable() {
     Setting& s = add(make("geometry", "--geometry", T::Enum, "cpu",
                           "where the strands are made (docs/geometry.md): cpu (expanded on the "
                           "CPU and uploaded), compute (made from the scene's groom, guides= or "
-                          "instances=, by a compute pass on the device); mesh (mesh shaders) is "
-                          "refused: not built yet",
+                          "instances=, by a compute pass on the device), mesh (made from the groom "
+                          "in mesh shaders as they are drawn: Vulkan with VK_EXT_mesh_shader, "
+                          "e.g. --driver mesa-25.0)",
                           "compute", "gpu"));
     s.choices = {"cpu", "compute", "mesh"};
     plain(s, &RenderRequest::geometry);

@@ -21,8 +21,8 @@
 #include "harness/baselines.h"
 #include "imaging/image.h"
 #include "imaging/metrics.h"
-#include "scenes/scene.h"
 #include "render/common/unit.h"
+#include "scenes/scene.h"
 #include "test_util.h"
 
 namespace fs = std::filesystem;
@@ -202,15 +202,26 @@ TEST(Check, CommittedBaselinesPassOnBothBackends) {
   const auto r = s.check();
   ASSERT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_TRUE(hasLine(r.out, "0 failed, 0 missing") ||
-              r.out.find(" passed, 0 failed, 0 missing\n") != std::string::npos)
+              r.out.find(" passed, 0 failed, 0 missing") != std::string::npos)
       << r.out;
   const sb::Manifest m = sb::loadManifest(s.baselines / "manifest.json");
+  std::size_t comparisons = 0;
   for (const auto& c : m.cases) {
-    EXPECT_TRUE(hasLine(r.out, "OK " + c.name + " gl:")) << c.name << "\n" << r.out;
-    EXPECT_TRUE(hasLine(r.out, "OK " + c.name + " vulkan:")) << c.name << "\n" << r.out;
-    EXPECT_TRUE(hasLine(r.out, "OK " + c.name + " gl-vs-vulkan:")) << c.name << "\n" << r.out;
+    // A case on a part this driver lacks (mesh shaders on Mesa 22.3.6) is skipped with the
+    // reason; only those (--geometry mesh) may be.
+    if (hasLine(r.out, "SKIP " + c.name + ":")) {
+      EXPECT_EQ(c.request.geometry, "mesh") << c.name << "\n" << r.out;
+      continue;
+    }
+    for (const std::string& backend : c.backends) {
+      EXPECT_TRUE(hasLine(r.out, "OK " + c.name + " " + backend + ":")) << c.name << "\n" << r.out;
+    }
+    if (c.backends.size() == 2) {
+      EXPECT_TRUE(hasLine(r.out, "OK " + c.name + " gl-vs-vulkan:")) << c.name << "\n" << r.out;
+    }
+    comparisons += 2 * c.backends.size() - 1;
   }
-  const std::string summary = std::to_string(3 * m.cases.size()) + " passed, 0 failed, 0 missing";
+  const std::string summary = std::to_string(comparisons) + " passed, 0 failed, 0 missing";
   EXPECT_TRUE(hasLine(r.out, summary)) << r.out;
   EXPECT_FALSE(fs::exists(s.out)) << "nothing is written when everything passes";
   EXPECT_EQ(snapshot(s.baselines), snapshot(kCommitted));

@@ -180,7 +180,7 @@ Slots allSlots() {
 std::vector<std::string> shaderFiles() {
   return sourceFiles([](const fs::path& p) {
     const std::string ext = p.extension().string();
-    return ext == ".glsl" || ext == ".vert" || ext == ".frag" || ext == ".comp";
+    return ext == ".glsl" || ext == ".vert" || ext == ".frag" || ext == ".comp" || ext == ".mesh";
   });
 }
 

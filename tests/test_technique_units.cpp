@@ -289,8 +289,9 @@ std::vector<std::string> namesOutsideFolders(const fs::path& root) {
   std::vector<std::string> found;
   for (const auto& entry : fs::recursive_directory_iterator(root)) {
     const std::string ext = entry.path().extension().string();
-    if (!entry.is_regular_file() || !(ext == ".cpp" || ext == ".h" || ext == ".glsl" ||
-                                      ext == ".vert" || ext == ".frag" || ext == ".comp"))
+    if (!entry.is_regular_file() ||
+        !(ext == ".cpp" || ext == ".h" || ext == ".glsl" || ext == ".vert" || ext == ".frag" ||
+          ext == ".comp" || ext == ".mesh"))
       continue;
     const std::string rel = fs::relative(entry.path(), root).generic_string();
     if (rel.rfind("tests/", 0) == 0 || rel.rfind("build", 0) == 0 || rel.rfind("fuzz/", 0) == 0 ||

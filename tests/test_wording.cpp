@@ -20,9 +20,9 @@ namespace {
 
 TEST(Wording, NoIssueNumbersInSourcesOutputOrSuites) {
   const fs::path root = SB_SOURCE_DIR;
-  const std::set<std::string> text = {".cpp",  ".h",    ".glsl", ".vert", ".frag", ".comp",
-                                      ".json", ".sh",   ".md",   ".py",   ".txt",  ".cmake",
-                                      ".dict", ".supp", ".yml",  ".yaml", ".in",   ".sbatch"};
+  const std::set<std::string> text = {
+      ".cpp", ".h",   ".glsl",  ".vert", ".frag", ".comp", ".mesh", ".json", ".sh",    ".md",
+      ".py",  ".txt", ".cmake", ".dict", ".supp", ".yml",  ".yaml", ".in",   ".sbatch"};
   // "issue" or "issues" and a number, with or without "#", either case.
   const std::regex number(R"([Ii]ssues? #?[0-9])");
   std::vector<std::string> found;

@@ -177,8 +177,9 @@ class VulkanDriver final : public Driver {
       csSpv = compileVulkanSpirv(*desc.compute, ShaderStage::Compute, desc.technique,
                                  uniformsAsStorage_);
     } else {
-      vsSpv =
-          compileVulkanSpirv(*desc.vertex, ShaderStage::Vertex, desc.technique, uniformsAsStorage_);
+      const bool mesh = desc.vertex->meshGroupVertices > 0;
+      vsSpv = compileVulkanSpirv(*desc.vertex, mesh ? ShaderStage::Mesh : ShaderStage::Vertex,
+                                 desc.technique, uniformsAsStorage_);
       fsSpv = compileVulkanSpirv(*desc.fragment, ShaderStage::Fragment, desc.technique,
                                  uniformsAsStorage_);
     }
@@ -233,6 +234,7 @@ class VulkanDriver final : public Driver {
         check(vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &ci, nullptr, &p.pipeline),
               "vkCreateComputePipelines");
       } else {
+        p.meshGroupVertices = desc.vertex->meshGroupVertices;
         p.pipeline = createGraphicsPipeline(*platform_, desc, p.layout, makeModule(vsSpv),
                                             makeModule(fsSpv));
       }
@@ -346,8 +348,9 @@ class VulkanDriver final : public Driver {
     beginCounting(true);
   }
 
-  void draw(DriverObject& pipeline, const PipelineDesc&, const std::vector<DriverBinding>& bindings,
-            uint32_t vertexCount, uint32_t instanceCount) override {
+  void draw(DriverObject& pipeline, const PipelineDesc& desc,
+            const std::vector<DriverBinding>& bindings, uint32_t vertexCount,
+            uint32_t instanceCount) override {
     auto& p = static_cast<PipelineRes&>(pipeline);
     VkDescriptorSet set = makeSet(p, bindings);
     if (boundPipeline_ != p.pipeline) {
@@ -358,9 +361,21 @@ class VulkanDriver final : public Driver {
       vkCmdBindDescriptorSets(frameCmd_, VK_PIPELINE_BIND_POINT_GRAPHICS, p.layout, 0, 1, &set, 0,
                               nullptr);
     }
-    if (vertexCount > 0 && instanceCount > 0) {
+    if (vertexCount == 0 || instanceCount == 0) return;
+    if (p.meshGroupVertices == 0) {
       vkCmdDraw(frameCmd_, vertexCount, instanceCount, 0, 0);
+      return;
     }
+    // The vertex path's vertices in groups of meshGroupVertices, in rows of at most
+    // maxMeshGroupsX (ShaderCode::meshGroupVertices).
+    const uint64_t groups = (uint64_t{vertexCount} + p.meshGroupVertices - 1) / p.meshGroupVertices;
+    const uint64_t x = std::min<uint64_t>(groups, platform_->maxMeshGroupsX);
+    const uint64_t y = (groups + x - 1) / x;
+    if (x * y > platform_->maxMeshGroupsTotal)
+      throw DeviceError("draw('" + desc.name + "'): " + std::to_string(groups) +
+                        " mesh workgroups, over the device's " +
+                        std::to_string(platform_->maxMeshGroupsTotal) + " per draw");
+    platform_->drawMeshTasks(frameCmd_, static_cast<uint32_t>(x), static_cast<uint32_t>(y), 1);
   }
 
   void endPass() override {

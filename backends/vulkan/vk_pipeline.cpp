@@ -14,7 +14,9 @@ VkPipeline createGraphicsPipeline(const VulkanPlatform& platform, const Pipeline
   VkPipelineShaderStageCreateInfo stages[2] = {
       {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
       {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
-  stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
+  // A mesh pipeline's mesh shader stands in for the vertex stage (no vertex input).
+  const bool mesh = desc.vertex->meshGroupVertices > 0;
+  stages[0].stage = mesh ? VK_SHADER_STAGE_MESH_BIT_EXT : VK_SHADER_STAGE_VERTEX_BIT;
   stages[0].module = vs;
   stages[0].pName = "main";
   stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
@@ -104,8 +106,8 @@ VkPipeline createGraphicsPipeline(const VulkanPlatform& platform, const Pipeline
   VkGraphicsPipelineCreateInfo ci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO, &rendering};
   ci.stageCount = 2;
   ci.pStages = stages;
-  ci.pVertexInputState = &vi;
-  ci.pInputAssemblyState = &ia;
+  ci.pVertexInputState = mesh ? nullptr : &vi;
+  ci.pInputAssemblyState = mesh ? nullptr : &ia;
   ci.pViewportState = &vps;
   ci.pRasterizationState = &rs;
   ci.pMultisampleState = &ms;

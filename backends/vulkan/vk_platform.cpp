@@ -301,9 +301,16 @@ void VulkanPlatform::createLogicalDevice() {
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR};
   VkPhysicalDeviceAccelerationStructureFeaturesKHR accelFeature{
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR, &rayQueryFeature};
+  // Mesh shaders (the mesh geometry path): the meshShader feature alone, no task shaders.
+  VkPhysicalDeviceMeshShaderFeaturesEXT meshFeature{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MESH_SHADER_FEATURES_EXT};
   VkPhysicalDeviceLineRasterizationFeaturesEXT line{
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_LINE_RASTERIZATION_FEATURES_EXT,
       info.rayQuery ? &accelFeature : nullptr};
+  if (info.meshShaders) {
+    meshFeature.pNext = line.pNext;
+    line.pNext = &meshFeature;
+  }
   VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
                                        haveLineExt ? static_cast<void*>(&line) : line.pNext};
   VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &f13};
@@ -328,8 +335,16 @@ void VulkanPlatform::createLogicalDevice() {
   accelFeature = {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR,
                   &rayQueryFeature};
   accelFeature.accelerationStructure = VK_TRUE;
+  // Only the mesh stage itself: no task shaders, multiview or shading rate.
+  info.meshShaders = info.meshShaders && meshFeature.meshShader == VK_TRUE;
+  meshFeature = {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MESH_SHADER_FEATURES_EXT};
+  meshFeature.meshShader = VK_TRUE;
   rayQueryFeature.pNext = nullptr;
-  if (!info.rayQuery) line.pNext = nullptr;
+  line.pNext = info.rayQuery ? &accelFeature : nullptr;
+  if (info.meshShaders) {
+    meshFeature.pNext = line.pNext;
+    line.pNext = &meshFeature;
+  }
   f12.bufferDeviceAddressCaptureReplay = VK_FALSE;
   f12.bufferDeviceAddressMultiDevice = VK_FALSE;
   logicOp = f2.features.logicOp == VK_TRUE;
@@ -359,6 +374,7 @@ void VulkanPlatform::createLogicalDevice() {
          {VK_KHR_RAY_QUERY_EXTENSION_NAME, VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME,
           VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME})
       enabled.push_back(e);
+  if (info.meshShaders) enabled.push_back(VK_EXT_MESH_SHADER_EXTENSION_NAME);
   // Unchained where unused: a feature struct of an extension not enabled is invalid.
   if (!bresenham) f13.pNext = line.pNext;
 
@@ -374,6 +390,17 @@ void VulkanPlatform::createLogicalDevice() {
   ci.ppEnabledExtensionNames = enabled.data();
   check(vkCreateDevice(physical, &ci, nullptr, &device), "vkCreateDevice");
   vkGetDeviceQueue(device, queueFamily, 0, &queue);
+  if (info.meshShaders) {
+    drawMeshTasks = reinterpret_cast<PFN_vkCmdDrawMeshTasksEXT>(
+        vkGetDeviceProcAddr(device, "vkCmdDrawMeshTasksEXT"));
+    VkPhysicalDeviceMeshShaderPropertiesEXT mp{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MESH_SHADER_PROPERTIES_EXT};
+    VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &mp};
+    vkGetPhysicalDeviceProperties2(physical, &p2);
+    maxMeshGroupsX = mp.maxMeshWorkGroupCount[0];
+    maxMeshGroupsTotal = mp.maxMeshWorkGroupTotalCount;
+    info.meshShaders = drawMeshTasks != nullptr;
+  }
   vkGetPhysicalDeviceMemoryProperties(physical, &memProps);
 }
 void VulkanPlatform::destroy() {

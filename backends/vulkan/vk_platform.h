@@ -63,6 +63,10 @@ class VulkanPlatform {
   // (pipelineStatisticsQuery and hostQueryReset), precise occlusion queries.
   bool statistics = false;
   bool preciseOcclusion = false;
+  // Mesh pipelines (info.meshShaders: VK_EXT_mesh_shader and its meshShader feature,
+  // enabled only then): the draw and the most workgroups one draw may have (x, total).
+  PFN_vkCmdDrawMeshTasksEXT drawMeshTasks = nullptr;
+  uint32_t maxMeshGroupsX = 0, maxMeshGroupsTotal = 0;
   DeviceInfo info;  // backend, platform, device, driver, timing, lines
 
  private:

@@ -48,6 +48,7 @@ struct PipelineRes : DriverObject {
   VkPipeline pipeline = VK_NULL_HANDLE;
   VkPipelineLayout layout = VK_NULL_HANDLE;
   VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
+  uint32_t meshGroupVertices = 0;  // a mesh pipeline (ShaderCode::meshGroupVertices)
 };
 
 // A device buffer with its own memory and device address (the parts of an

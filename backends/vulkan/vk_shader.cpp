@@ -24,6 +24,8 @@ EShLanguage toLanguage(ShaderStage stage) {
       return EShLangFragment;
     case ShaderStage::Compute:
       return EShLangCompute;
+    case ShaderStage::Mesh:
+      return EShLangMesh;
   }
   return EShLangVertex;
 }

@@ -2,6 +2,7 @@
 
 #include "render/common/shader_library.h"
 #include "render/common/technique.h"
+#include "render/generation/groom_table.h"
 
 namespace sb {
 
@@ -36,7 +37,12 @@ ShaderCode Geometry::strandVertexShader(const RenderSettings& s) {
   ShaderDefines d;
   if (s.primitive != Primitive::Lines) d.defines.push_back({"SB_RIBBONS", "1"});
   if (s.primitive == Primitive::World) d.defines.push_back({"SB_WORLD", "1"});
-  return loadShader("render/common/strands.vert", d);
+  if (s.geometry != GeometryPath::Mesh) return loadShader("render/common/strands.vert", d);
+  // The mesh path: a mesh shader in the vertex shader's place, drawing the same
+  // vertices (ShaderCode::meshGroupVertices) from the groom.
+  ShaderCode mesh = loadShader("render/generation/strands.mesh", d);
+  mesh.meshGroupVertices = SB_MESH_SEGMENTS * (s.primitive == Primitive::Lines ? 2u : 6u);
+  return mesh;
 }
 
 ShaderCode Geometry::meshVertexShader() { return loadShader("render/common/mesh.vert"); }

@@ -90,7 +90,8 @@ void describeUnit(TechniqueDescriptor& d, const std::string& path, const std::st
   const nlohmann::json caps =
       value<nlohmann::json>(u, "capabilities", nlohmann::json::object(), where);
   onlyKeys(caps,
-           {"multisampling", "interlock", "emulated_timing", "monotone", "exact", "msaa_refusal"},
+           {"multisampling", "interlock", "emulated_timing", "monotone", "exact", "msaa_refusal",
+            "mesh_refusal"},
            where + " capabilities");
   d.caps.multisampling = value<bool>(caps, "multisampling", false, where);
   d.caps.interlock = value<bool>(caps, "interlock", false, where);
@@ -98,6 +99,7 @@ void describeUnit(TechniqueDescriptor& d, const std::string& path, const std::st
   d.caps.monotone = value<bool>(caps, "monotone", true, where);
   d.caps.exact = value<bool>(caps, "exact", false, where);
   d.caps.msaaRefusal = value<std::string>(caps, "msaa_refusal", "", where);
+  d.caps.meshRefusal = value<std::string>(caps, "mesh_refusal", "", where);
   if (u.contains("stepped")) {
     const nlohmann::json& s = u["stepped"];
     onlyKeys(s, {"option", "doubling", "min", "max"}, where + " stepped");

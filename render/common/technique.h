@@ -26,8 +26,9 @@ namespace sb {
 // World: ribbons of the strands' world width, at least a pixel, alpha times coverage.
 enum class Primitive { Lines, Ribbons, World };
 // Where the strands are made (render --geometry, docs/geometry.md): expanded on the
-// CPU and uploaded, or made from the scene's groom by a compute pass on the device.
-enum class GeometryPath { Cpu, Compute };
+// CPU and uploaded, made from the scene's groom by a compute pass on the device,
+// or made from it in mesh shaders as they are drawn (Geometry::strandVertexShader).
+enum class GeometryPath { Cpu, Compute, Mesh };
 
 struct RenderSettings {
   ShadingModel shading;  // hair shading model of the final passes

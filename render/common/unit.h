@@ -36,6 +36,11 @@ struct Capabilities {
   // N"). Every transparency technique that is not multisampling states one
   // (TechniqueUnits.EveryTransparencyTakesMsaaOrSaysWhyNot).
   std::string msaaRefusal;
+  // Why it does not run on the mesh geometry path (render --geometry mesh), where
+  // the strands exist only inside the strand draw (Geometry::strandVertexShader):
+  // set by the techniques that read the scene's strand buffers otherwise (in
+  // compute passes or back on the CPU). Empty: it runs there.
+  std::string meshRefusal;
 };
 
 // The option the viewer's arrow keys step (x2 and /2 when doubling, else +1 and

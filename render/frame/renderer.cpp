@@ -5,6 +5,7 @@
 
 #include "render/common/composite.h"
 #include "render/common/unit.h"
+#include "render/generation/mesh_groom.h"
 
 namespace sb {
 
@@ -317,8 +318,11 @@ void Renderer::upload(const Scene& scene) {
                      "this run (at least: the groom and the strands made from it on the device)");
     generation_.run(dev_);
   }
+  // --geometry mesh: only the groom is on the device (Geometry::strandVertexShader).
+  const bool meshPath = settings_.geometry == GeometryPath::Mesh;
+  if (meshPath) uploadMeshGroom(dev_, scene, gpu_);
   static const Strands kNone;
-  const Strands& st = generated ? kNone : scene.strands;
+  const Strands& st = generated || meshPath ? kNone : scene.strands;
   std::vector<glm::vec4> points(st.points.size()), colors(st.points.size());
   glm::vec3 lastColor(0.0f);
   float lastAlpha = 1.0f;
@@ -352,7 +356,7 @@ void Renderer::upload(const Scene& scene) {
     normals[i] = glm::vec4(i < m.normals.size() ? m.normals[i] : glm::vec3(0, 1, 0), 0.0f);
   }
 
-  if (!generated) {
+  if (!generated && !meshPath) {
     gpu_.points =
         makeBuffer(dev_, "scene.points", points.data(), points.size() * sizeof(glm::vec4));
     gpu_.colors =

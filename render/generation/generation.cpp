@@ -32,9 +32,9 @@ Buffer input(Device& dev, const std::string& name, const void* data, std::size_t
 }  // namespace
 
 std::string geometryRefusal(const std::string& geometry, const Scene& scene) {
-  if (geometry == "mesh")
-    return "mesh shaders are not built yet (they need a mesh-shader pipeline in the Device, "
-           "VK_EXT_mesh_shader); use compute, which makes the same strands";
+  if (geometry == "mesh" && scene.groom.empty())
+    return "mesh makes the strands from the scene's groom: give the scene guides=N (every "
+           "n-th strand a guide) or instances=N (docs/geometry.md)";
   if (geometry == "compute" && scene.groom.empty())
     return "compute makes the strands from the scene's groom: give the scene guides=N (every "
            "n-th strand a guide) or instances=N (docs/geometry.md)";
