@@ -1,7 +1,7 @@
 // The Device's memory: a resource is made on the device when first used (never
 // when only culled passes use it), every making asks the memory guard first, and
-// what is made, declared or planned is counted here (allocations, declared,
-// allocationsAfterUsing, guardMemory).
+// what is made or declared is counted here (allocations, declared, inventory:
+// the frame graph plans from it, render/graph/frame_planner.h).
 #include <algorithm>
 
 #include "backends/device.h"
@@ -60,18 +60,20 @@ void Device::setBufferSize(Buffer b, std::size_t bytes) {
   r.desc.bytes = bytes;
 }
 
-std::vector<ResourceBytes> Device::resources(bool createdOnly,
-                                             const std::set<uint32_t>& alsoIds) const {
-  std::vector<std::pair<uint32_t, ResourceBytes>> all;
+std::vector<Device::Held> Device::inventory() const {
+  std::vector<Held> all;
   for (const auto& [id, r] : buffers_)
-    if (r->object || !createdOnly || alsoIds.count(id))
-      all.push_back({id, {r->desc.name, r->desc.owner, r->desc.bytes}});
+    all.push_back({id, {r->desc.name, r->desc.owner, r->desc.bytes}, r->object != nullptr});
   for (const auto& [id, t] : textures_)
-    if (t->object || !createdOnly || alsoIds.count(id))
-      all.push_back({id, {t->desc.name, t->desc.owner, textureBytes(t->desc)}});
-  std::sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    all.push_back({id, {t->desc.name, t->desc.owner, textureBytes(t->desc)}, t->object != nullptr});
+  std::sort(all.begin(), all.end(), [](const Held& a, const Held& b) { return a.id < b.id; });
+  return all;
+}
+
+std::vector<ResourceBytes> Device::resources(bool createdOnly) const {
   std::vector<ResourceBytes> out;
-  for (auto& [id, r] : all) out.push_back(std::move(r));
+  for (Held& h : inventory())
+    if (h.made || !createdOnly) out.push_back(std::move(h.bytes));
   return out;
 }
 
@@ -80,16 +82,11 @@ void Device::makeDeferredBuffers() {
     if (!r->object && !r->pending.empty()) created(*r);
 }
 
-std::vector<ResourceBytes> Device::allocations() const { return resources(true, {}); }
+std::vector<ResourceBytes> Device::allocations() const { return resources(true); }
 
-std::vector<ResourceBytes> Device::allocationsAfterUsing(const std::set<uint32_t>& ids) const {
-  return resources(true, ids);
-}
+std::vector<ResourceBytes> Device::declared() const { return resources(false); }
 
-std::vector<ResourceBytes> Device::declared() const { return resources(false, {}); }
-
-void Device::guardMemory(const std::set<uint32_t>& ids, const std::string& what) const {
-  if (memoryGuard_) memoryGuard_(resources(true, ids), what);
+void Device::checkStorageRanges(const std::set<uint32_t>& ids) const {
   for (const uint32_t id : ids)
     if (auto it = buffers_.find(id); it != buffers_.end()) checkStorageRange(it->second->desc);
 }
@@ -109,10 +106,7 @@ void Device::checkStorageRange(const BufferDesc& desc) const {
 
 void Device::guardMaking(const std::string& name, const std::string& owner,
                          std::size_t bytes) const {
-  if (!memoryGuard_) return;
-  std::vector<ResourceBytes> planned = allocations();
-  planned.push_back({name, owner, bytes});
-  memoryGuard_(planned, "making '" + name + "' (" + owner + ")");
+  if (hook_) hook_->beforeMaking({name, owner, bytes});
 }
 
 std::set<uint32_t> Device::resourceIdsFrom(uint32_t first) const {

@@ -21,8 +21,9 @@
 #include "harness/settings.h"
 #include "harness/stop.h"
 #include "imaging/metrics.h"
-#include "reports/stats.h"
 #include "render/frame/renderer.h"
+#include "render/graph/frame_planner.h"
+#include "reports/stats.h"
 
 namespace sb {
 
@@ -275,31 +276,32 @@ void checkMemory(const std::vector<ResourceBytes>& planned, const std::vector<Re
 
 namespace {
 
-// checkMemory for every resource a run makes until it goes (Device::setMemoryGuard).
+// checkMemory for every resource a run makes until it goes (FramePlanner::setMemoryGuard).
 class RunMemoryGuard {
  public:
-  RunMemoryGuard(Device& dev, long long limit, const MemoryBudget& budget) : dev_(dev) {
-    dev_.setMemoryGuard(
+  RunMemoryGuard(Device& dev, long long limit, const MemoryBudget& budget)
+      : planner_(FramePlanner::of(dev)) {
+    planner_.setMemoryGuard(
         [&dev, limit, budget](const std::vector<ResourceBytes>& planned, const std::string& what) {
           checkMemory(planned, dev.allocations(), limit, budget, what);
         });
   }
-  ~RunMemoryGuard() { dev_.setMemoryGuard(nullptr); }
+  ~RunMemoryGuard() { planner_.setMemoryGuard(nullptr); }
   RunMemoryGuard(const RunMemoryGuard&) = delete;
   RunMemoryGuard& operator=(const RunMemoryGuard&) = delete;
 
  private:
-  Device& dev_;
+  FramePlanner& planner_;
 };
 
 // The progress line of a render and the stop check, between the device's
 // passes: a frame of depth peeling is hundreds of passes and can take minutes.
 class RenderProgress {
  public:
-  explicit RenderProgress(Device& dev) : dev_(dev), line_("render") {
-    dev_.setPassObserver([this](const std::string& pass) { onPass(pass); });
+  explicit RenderProgress(Device& dev) : planner_(FramePlanner::of(dev)), line_("render") {
+    planner_.setPassObserver([this](const std::string& pass) { onPass(pass); });
   }
-  ~RenderProgress() { dev_.setPassObserver(nullptr); }
+  ~RenderProgress() { planner_.setPassObserver(nullptr); }
   RenderProgress(const RenderProgress&) = delete;
   RenderProgress& operator=(const RenderProgress&) = delete;
 
@@ -332,7 +334,7 @@ class RenderProgress {
     line_.update(text + ": " + pass);
   }
 
-  Device& dev_;
+  FramePlanner& planner_;
   ProgressLine line_;
   std::string phase_ = "setup";
   uint32_t layers_ = 0, layer_ = 0;
@@ -410,7 +412,8 @@ Plan plan(const RenderRequest& req, const Validated& v, Device& dev, RenderResul
   const MemoryBudget budget = dev.memoryBudget();
   p.guard = std::make_unique<RunMemoryGuard>(dev, req.memoryLimit, budget);
   p.renderer = std::make_unique<Renderer>(dev, *v.scene, v.settings, v.shadow, v.oit, outputs);
-  const auto planned = dev.allocationsAfterUsing(p.renderer->graphResources(p.timed));
+  const auto planned =
+      FramePlanner::of(dev).allocationsAfterUsing(p.renderer->graphResources(p.timed));
   for (const auto& r : planned) out.estimatedBytes += r.bytes;
   checkMemory(planned, dev.allocations(), req.memoryLimit, budget, "this run",
               req.image ? imageHostBytes(v.settings) : 0);

@@ -13,6 +13,7 @@
 #include "harness/stop.h"
 #include "imaging/metrics.h"
 #include "render/frame/renderer.h"
+#include "render/graph/frame_planner.h"
 
 namespace sb {
 
@@ -47,8 +48,9 @@ RenderCache::Reference renderReference(Device& dev, const Scene& scene,
   RenderSettings exactSettings = settings;
   exactSettings.msaa = 1;
   Renderer ref(dev, scene, exactSettings, refShadow, Spec::parse(kReferenceOit), outputs);
-  checkMemory(dev.allocationsAfterUsing(ref.graphResources(outputs)), dev.allocations(), 0,
-              dev.memoryBudget(), "the reference", req.image ? imageHostBytes(settings) : 0);
+  checkMemory(FramePlanner::of(dev).allocationsAfterUsing(ref.graphResources(outputs)),
+              dev.allocations(), 0, dev.memoryBudget(), "the reference",
+              req.image ? imageHostBytes(settings) : 0);
   ref.renderFrame();
   RenderCache::Reference r;
   if (req.image) r.image = colorImage(ref, settings);
@@ -75,8 +77,7 @@ std::vector<InvariantFailure> checkInvariants(const RenderRequest& req, const Re
     for (const auto& [kind, e] : errors.items())
       for (const auto& [metric, v] : e.items())
         // PSNR is infinite (null) exactly when the images are identical.
-        if (kind != "own" &&
-            kind != "by_eye_layers" &&  // copies and objects, checked apart
+        if (kind != "own" && kind != "by_eye_layers" &&  // copies and objects, checked apart
             ((v.is_null() && !(metric == "psnr" && e.value("identical", false))) ||
              (v.is_number_float() && !std::isfinite(v.get<double>()))))
           failures.push_back({"reference", "error " + kind + "." + metric + " is not a number"});

@@ -5,6 +5,7 @@
 
 #include "render/common/composite.h"
 #include "render/common/unit.h"
+#include "render/graph/frame_planner.h"
 
 namespace sb {
 
@@ -170,9 +171,10 @@ void Renderer::guardPlan(const std::set<std::string>& outputs) const {
       counted = counted || light->oit->needsPrepare();
     }
   }
-  dev_.guardMemory(ids, counted ? "this run (its whole plan; the fragment lists before the "
-                                  "counting pass that sizes them)"
-                                : "this run (its whole plan)");
+  FramePlanner::of(dev_).guardMemory(
+      ids, counted ? "this run (its whole plan; the fragment lists before the "
+                     "counting pass that sizes them)"
+                   : "this run (its whole plan)");
 }
 
 bool Renderer::kept(const Unit& unit) const {
@@ -249,11 +251,11 @@ void Renderer::buildLight(LightChain& light, std::size_t index) {
     if (unit.kind == Unit::Kind::Shadow) {
       // A preparation makes what its technique declared (a counting pass's
       // maps and lists) and runs frames: the memory guard sees it first.
-      dev.guardMemory(light.shadowIds, preparing("shadow", light.shadow->name()));
+      FramePlanner::of(dev).guardMemory(light.shadowIds, preparing("shadow", light.shadow->name()));
       light.shadow->prepare(dev);
       preparations_.push_back(lightPrefix(index) + light.shadow->name() + ".prepare");
     } else if (unit.kind == Unit::Kind::Oit && light.oit->needsPrepare()) {
-      dev.guardMemory(light.oitIds, preparing("transparency", light.oit->name()));
+      FramePlanner::of(dev).guardMemory(light.oitIds, preparing("transparency", light.oit->name()));
       // The transparency technique sizes itself against the opaque depth,
       // drawn by the nodes before its own.
       if (light.shading.drawsMesh()) {
@@ -313,8 +315,9 @@ void Renderer::upload(const Scene& scene) {
     // then (the opacity maps' depth range from the light).
     const uint32_t first = dev_.nextHandleId();
     generation_.setup(dev_, scene, gpu_);
-    dev_.guardMemory(dev_.resourceIdsFrom(first),
-                     "this run (at least: the groom and the strands made from it on the device)");
+    FramePlanner::of(dev_).guardMemory(
+        dev_.resourceIdsFrom(first),
+        "this run (at least: the groom and the strands made from it on the device)");
     generation_.run(dev_);
   }
   static const Strands kNone;

@@ -23,8 +23,8 @@
 #include "render/common/technique.h"
 #include "render/generation/generation.h"
 #include "render/outputs/probe/probe.h"
-#include "render/shading/hair_shading.h"
 #include "render/outputs/visibility/visibility.h"
+#include "render/shading/hair_shading.h"
 
 namespace sb {
 
@@ -57,7 +57,7 @@ class Renderer {
   std::vector<PassTime> renderFrame(const std::set<std::string>& outputs);
   std::vector<std::string> graphPasses(const std::set<std::string>& outputs) const;
   // The ids of the resources a frame for `outputs` uses (what its kept passes
-  // read and write): with Device::allocationsAfterUsing, its memory before it runs.
+  // read and write): with FramePlanner::allocationsAfterUsing, its memory before it runs.
   std::set<uint32_t> graphResources(const std::set<std::string>& outputs) const;
   // RGBA32F, rows bottom-up (row 0 = NDC y=-1).
   std::vector<uint8_t> readColor();
