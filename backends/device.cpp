@@ -205,8 +205,8 @@ Buffer Device::createBuffer(const BufferDesc& given, const void* data) {
   // deferred); otherwise when first used.
   auto rec = std::make_unique<BufferRec>(BufferRec{
       desc,
-      now ? namingAllocation("making buffer '" + desc.name + "' (" + desc.owner + ")", desc.bytes,
-                             [&] { return driver_->createBuffer(desc, data); })
+      now ? namingAllocation("making buffer '" + desc.name + "' (" + ownerName(desc.owner) + ")",
+                             desc.bytes, [&] { return driver_->createBuffer(desc, data); })
           : nullptr,
       group_});
   if (data && !now) {
@@ -242,8 +242,8 @@ void Device::fillBuffer(Buffer b, uint32_t value) {
   driver_->fillBuffer(*created(r), r.desc, value);
 }
 
-Buffer Device::createAccelerationStructure(const std::string& name, const std::string& owner,
-                                           Buffer aabbs, uint32_t boxes) {
+Buffer Device::createAccelerationStructure(const std::string& name, Owner owner, Buffer aabbs,
+                                           uint32_t boxes) {
   const std::string where = quoted("createAccelerationStructure", labelled(name));
   if (!driver_->info().rayQuery)
     throw DeviceError(where + ": this device offers no ray queries (DeviceInfo::rayQuery)");

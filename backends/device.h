@@ -24,6 +24,7 @@
 #include <utility>
 #include <vector>
 
+#include "backends/owner.h"
 #include "base/errors.h"  // DeviceError
 
 namespace sb {
@@ -61,15 +62,15 @@ struct Pipeline {
 enum class BufferUsage { Uniform, Storage, AccelerationStructure };
 
 struct BufferDesc {
-  std::string name;   // reported in memory accounting
-  std::string owner;  // "scene", "shadow", "oit", "frame"
+  std::string name;  // reported in memory accounting
+  Owner owner = Owner::None;
   BufferUsage usage = BufferUsage::Storage;
   std::size_t bytes = 0;
 };
 
 struct TextureDesc {
   std::string name;
-  std::string owner;
+  Owner owner = Owner::None;
   Format format = Format::RGBA8;
   uint32_t width = 1, height = 1;
   // Every texture can be a render target, sampled and read back. Sampling is
@@ -278,7 +279,7 @@ struct PassTiming {
 
 struct ResourceBytes {
   std::string name;
-  std::string owner;
+  Owner owner = Owner::None;
   std::size_t bytes = 0;
 };
 
@@ -387,8 +388,8 @@ class Device {
   // It is made, and built on the device, when first used, like any buffer,
   // from the boxes' contents at that moment: give them at creation or by
   // updateBuffer outside frames.
-  Buffer createAccelerationStructure(const std::string& name, const std::string& owner,
-                                     Buffer aabbs, uint32_t boxes);
+  Buffer createAccelerationStructure(const std::string& name, Owner owner, Buffer aabbs,
+                                     uint32_t boxes);
   // Ordered with the recorded work: allowed between passes inside a frame.
   void updateBuffer(Buffer b, const void* data, std::size_t bytes, std::size_t offset = 0);
   void fillBuffer(Buffer b, uint32_t value);  // between passes
@@ -548,7 +549,7 @@ class Device {
   bool deferMaking_ = false;
   DriverObject* compiled(PipelineRec& p);
   std::string labelled(const std::string& name) const { return hook_ ? hook_->label(name) : name; }
-  void guardMaking(const std::string& name, const std::string& owner, std::size_t bytes) const;
+  void guardMaking(const std::string& name, Owner owner, std::size_t bytes) const;
   void checkStorageRange(const BufferDesc& desc) const;
   void requireContents(const BufferRec& r, const char* call) const;
 };

@@ -18,7 +18,8 @@ using device_detail::textureBytes;
 // never allocated, and allocations() counts exactly what was made.
 DriverObject* Device::created(BufferRec& r) {
   if (!r.object) {
-    const std::string what = "making buffer '" + r.desc.name + "' (" + r.desc.owner + ")";
+    const std::string what =
+        "making buffer '" + r.desc.name + "' (" + ownerName(r.desc.owner) + ")";
     if (r.desc.usage == BufferUsage::AccelerationStructure) {
       // Its boxes first (their own accounting), then the structure built from them.
       DriverObject* boxes =
@@ -43,9 +44,9 @@ DriverObject* Device::created(TextureRec& t) {
   if (!t.object) guardMaking(t.desc.name, t.desc.owner, textureBytes(t.desc));
   if (!t.object)
     t.object = namingAllocation(
-        "making texture '" + t.desc.name + "' (" + t.desc.owner + ", " + formatName(t.desc.format) +
-            " " + std::to_string(t.desc.width) + "x" + std::to_string(t.desc.height) + "x" +
-            std::to_string(t.desc.layers) + ")",
+        "making texture '" + t.desc.name + "' (" + ownerName(t.desc.owner) + ", " +
+            formatName(t.desc.format) + " " + std::to_string(t.desc.width) + "x" +
+            std::to_string(t.desc.height) + "x" + std::to_string(t.desc.layers) + ")",
         textureBytes(t.desc), [&] { return driver_->createTexture(t.desc); });
   return t.object.get();
 }
@@ -100,12 +101,11 @@ void Device::checkStorageRange(const BufferDesc& desc) const {
   throw DeviceError(quoted("createBuffer", desc.name) + ": " + std::to_string(desc.bytes) +
                     " bytes, more than this device binds as one storage buffer (" +
                     std::to_string(most) + " bytes" +
-                    (desc.owner.empty() ? "" : ", owner " + desc.owner) +
+                    (desc.owner == Owner::None ? "" : ", owner " + ownerName(desc.owner)) +
                     "); a smaller --size, map size=, scene or samples= would fit");
 }
 
-void Device::guardMaking(const std::string& name, const std::string& owner,
-                         std::size_t bytes) const {
+void Device::guardMaking(const std::string& name, Owner owner, std::size_t bytes) const {
   if (hook_) hook_->beforeMaking({name, owner, bytes});
 }
 

@@ -40,9 +40,9 @@ Spec referenceShadowSpec(const Spec& shadow) {
 RenderCache::Reference renderReference(Device& dev, const Scene& scene,
                                        const RenderSettings& settings, const Spec& refShadow,
                                        const RenderRequest& req) {
-  std::set<std::string> outputs = {"visibility"};
-  if (req.image) outputs.insert("color");
-  if (req.probe) outputs.insert("probe");
+  Outputs outputs = {Output::Visibility};
+  if (req.image) outputs.insert(Output::Color);
+  if (req.probe) outputs.insert(Output::Probe);
   // The reference is exact at each pixel's centre: one sample, whatever
   // --msaa the run has (its error then includes what anti-aliasing changed).
   RenderSettings exactSettings = settings;
@@ -172,8 +172,8 @@ AnimationResult runAnimation(const RenderRequest& req, const Scene& scene,
   a.stripFrames = stripFrames(a.spec.frames);
   RenderRequest refReq = req;
   refReq.probe.reset();
-  std::set<std::string> outputs = {"visibility"};
-  if (req.image) outputs.insert("color");
+  Outputs outputs = {Output::Visibility};
+  if (req.image) outputs.insert(Output::Color);
 
   Image prevT = out.image, prevR = out.referenceImage;
   std::vector<float> prevVT = visibilityFloats(out.visibility);
@@ -309,9 +309,9 @@ std::vector<RenderResult::LightShare> lightShares(const RenderSettings& s, const
   }
   for (const ResourceBytes& res : r.resources) {
     const int i = lightOfName(res.name, shares.size());
-    if (i < 0 || (i == 0 && res.owner == "scene")) continue;
+    if (i < 0 || (i == 0 && res.owner == Owner::Scene)) continue;
     shares[i].bytes += res.bytes;
-    if (res.owner == "shadow") shares[i].shadowBytes += res.bytes;
+    if (res.owner == Owner::Shadow) shares[i].shadowBytes += res.bytes;
   }
   return shares;
 }
@@ -352,7 +352,7 @@ OwnError ownError(const RenderRequest& req, Device& dev, const Scene& scene,
   } else if (cache && cache->ownReferences.count(key)) {
     image = &cache->ownReferences.at(key);
   } else {
-    Renderer r(dev, scene, own, o.shadow, o.oit, {"color"});
+    Renderer r(dev, scene, own, o.shadow, o.oit, {Output::Color});
     r.renderFrame();
     fresh = colorImage(r, own);
     image = cache ? &(cache->ownReferences[key] = std::move(fresh)) : &fresh;

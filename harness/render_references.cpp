@@ -170,8 +170,8 @@ RenderResult::MoreReference renderAaReference(const RenderRequest& req, const Sc
     FramePlanner& p;
     ~Unguard() { p.setMemoryGuard(nullptr); }
   } unguard{planner};
-  Renderer r(d, scene, hi, shadow, Spec::parse(kReferenceOit), {"color"});
-  check(planner.allocationsAfterUsing(r.graphResources({"color"})));
+  Renderer r(d, scene, hi, shadow, Spec::parse(kReferenceOit), {Output::Color});
+  check(planner.allocationsAfterUsing(r.graphResources({Output::Color})));
   for (const PassTime& t : r.renderFrame()) m.frameMs += t.ms;
   for (const ResourceBytes& b : d.allocations()) m.bytes += b.bytes;
   for (const std::string& warning : r.warnings())

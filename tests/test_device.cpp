@@ -133,7 +133,7 @@ class DeviceTest : public ::testing::TestWithParam<std::string> {
     return makeBuffer("color", BufferUsage::Uniform, c, sizeof(c));
   }
   Texture target(Format f, const std::string& name = "target") {
-    return dev_->createTexture({name, "test", f, kSize, kSize, false});
+    return dev_->createTexture({name, Owner::Test, f, kSize, kSize, false});
   }
   PipelineDesc colorPipeline(Format f, const ShaderCode* frag = &kColorFrag) {
     PipelineDesc d;
@@ -488,8 +488,8 @@ TEST_P(DeviceTest, LinesTopology) {
 TEST_P(DeviceTest, DeferredMakingKeepsContentsUntilTheBufferIsMade) {
   const std::vector<uint32_t> words = {1, 2, 3, 4};
   dev_->setDeferMaking(true);
-  const Buffer a = dev_->createBuffer({"a", "scene", BufferUsage::Storage, 16}, words.data());
-  const Buffer b = dev_->createBuffer({"b", "scene", BufferUsage::Storage, 16}, words.data());
+  const Buffer a = dev_->createBuffer({"a", Owner::Scene, BufferUsage::Storage, 16}, words.data());
+  const Buffer b = dev_->createBuffer({"b", Owner::Scene, BufferUsage::Storage, 16}, words.data());
   dev_->setDeferMaking(false);
   EXPECT_TRUE(dev_->allocations().empty());
   EXPECT_EQ(dev_->declared().size(), 2u);
@@ -503,17 +503,17 @@ TEST_P(DeviceTest, DeferredMakingKeepsContentsUntilTheBufferIsMade) {
   EXPECT_EQ(dev_->allocations().size(), 2u);
   EXPECT_EQ(dev_->readBuffer(b), expected);
   // Control: not deferred, it is made at once.
-  dev_->createBuffer({"c", "scene", BufferUsage::Storage, 16}, words.data());
+  dev_->createBuffer({"c", Owner::Scene, BufferUsage::Storage, 16}, words.data());
   EXPECT_EQ(dev_->allocations().size(), 3u);
 }
 
 TEST_P(DeviceTest, MemoryAccounting) {
   EXPECT_TRUE(dev_->allocations().empty());
-  Buffer a = dev_->createBuffer({"hair-vertices", "scene", BufferUsage::Storage, 1000});
-  Buffer u = dev_->createBuffer({"params", "frame", BufferUsage::Uniform, 64});
-  Texture t = dev_->createTexture({"occupancy", "shadow", Format::RGBA32UI, 16, 8, false});
-  Texture d = dev_->createTexture({"depth", "shadow", Format::Depth32F, 7, 3, false});
-  Texture c = dev_->createTexture({"accum", "oit", Format::RGBA16F, 5, 5, true});
+  Buffer a = dev_->createBuffer({"hair-vertices", Owner::Scene, BufferUsage::Storage, 1000});
+  Buffer u = dev_->createBuffer({"params", Owner::Frame, BufferUsage::Uniform, 64});
+  Texture t = dev_->createTexture({"occupancy", Owner::Shadow, Format::RGBA32UI, 16, 8, false});
+  Texture d = dev_->createTexture({"depth", Owner::Shadow, Format::Depth32F, 7, 3, false});
+  Texture c = dev_->createTexture({"accum", Owner::Oit, Format::RGBA16F, 5, 5, true});
   // Declared, not yet made: nothing has used them.
   EXPECT_TRUE(dev_->allocations().empty());
   EXPECT_EQ(dev_->declared().size(), 5u);
@@ -531,14 +531,14 @@ TEST_P(DeviceTest, MemoryAccounting) {
     return ResourceBytes{};
   };
   EXPECT_EQ(find("hair-vertices").bytes, 1000u);
-  EXPECT_EQ(find("hair-vertices").owner, "scene");
+  EXPECT_EQ(find("hair-vertices").owner, Owner::Scene);
   EXPECT_EQ(find("params").bytes, 64u);
-  EXPECT_EQ(find("params").owner, "frame");
+  EXPECT_EQ(find("params").owner, Owner::Frame);
   EXPECT_EQ(find("occupancy").bytes, 16u * 8 * 16);
-  EXPECT_EQ(find("occupancy").owner, "shadow");
+  EXPECT_EQ(find("occupancy").owner, Owner::Shadow);
   EXPECT_EQ(find("depth").bytes, 7u * 3 * 4);
   EXPECT_EQ(find("accum").bytes, 5u * 5 * 8);
-  EXPECT_EQ(find("accum").owner, "oit");
+  EXPECT_EQ(find("accum").owner, Owner::Oit);
   dev_->destroy(a);
   dev_->destroy(t);
   all = dev_->allocations();
@@ -673,7 +673,7 @@ TEST_P(DeviceTest, ManyDrawsAndPassesInOneFrame) {
 // read back layer after layer.
 TEST_P(DeviceTest, RenderIntoTwoLayersOfOneArrayAndSampleThem) {
   const Texture arr =
-      dev_->createTexture({"layers", "test", Format::RGBA32F, kSize, kSize, false, 3});
+      dev_->createTexture({"layers", Owner::Test, Format::RGBA32F, kSize, kSize, false, 3});
   const Texture out = target(Format::RGBA32F, "out");
   Buffer lower = positions(quad(-1, -1, 1, 0));
   Buffer full = positions(quad(-1, -1, 1, 1));

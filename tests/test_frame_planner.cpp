@@ -12,8 +12,10 @@
 
 #include "backends/device.h"
 #include "base/errors.h"
+#include "harness/render.h"
 #include "render/graph/frame_planner.h"
 #include "render/graph/pass.h"
+#include "render_request.h"
 
 namespace sb {
 namespace {
@@ -49,15 +51,15 @@ class FramePlannerTest : public ::testing::TestWithParam<std::string> {
 TEST_P(FramePlannerTest, AFramesMemoryIsKnownBeforeAnythingIsMade) {
   FramePlanner& planner = FramePlanner::of(*dev_);
   const uint32_t first = dev_->nextHandleId();
-  const Buffer a = dev_->createBuffer({"a", "oit", BufferUsage::Storage, 4096});
-  dev_->createTexture({"t", "frame", Format::RGBA32F, 8, 4, false});
+  const Buffer a = dev_->createBuffer({"a", Owner::Oit, BufferUsage::Storage, 4096});
+  dev_->createTexture({"t", Owner::Frame, Format::RGBA32F, 8, 4, false});
   const std::set<uint32_t> ids = dev_->resourceIdsFrom(first);
   ASSERT_EQ(ids.size(), 2u);
   EXPECT_TRUE(dev_->allocations().empty());
   const auto planned = planner.allocationsAfterUsing(ids);
   ASSERT_EQ(planned.size(), 2u);
   EXPECT_EQ(planned[0].name, "a");
-  EXPECT_EQ(planned[1].owner, "frame");
+  EXPECT_EQ(planned[1].owner, Owner::Frame);
   EXPECT_EQ(total(planned), 4096u + 8 * 4 * 16);
   // Control: a plan of nothing holds only what is made; using one makes it.
   EXPECT_TRUE(planner.allocationsAfterUsing({}).empty());
@@ -70,7 +72,7 @@ TEST_P(FramePlannerTest, TheMemoryGuardRefusesAPlanAndAMakingOverIt) {
   FramePlanner& planner = FramePlanner::of(*dev_);
   limitTo(8192);
   const uint32_t first = dev_->nextHandleId();
-  const Buffer big = dev_->createBuffer({"big", "oit", BufferUsage::Storage, 8192 + 4});
+  const Buffer big = dev_->createBuffer({"big", Owner::Oit, BufferUsage::Storage, 8192 + 4});
   EXPECT_THROW(planner.guardMemory(dev_->resourceIdsFrom(first), "preparing oit"),
                OutOfMemoryError);
   try {
@@ -81,7 +83,7 @@ TEST_P(FramePlannerTest, TheMemoryGuardRefusesAPlanAndAMakingOverIt) {
   }
   EXPECT_TRUE(dev_->allocations().empty());
   // Control: under the limit it is made; without a guard anything is.
-  const Buffer small = dev_->createBuffer({"small", "oit", BufferUsage::Storage, 4096});
+  const Buffer small = dev_->createBuffer({"small", Owner::Oit, BufferUsage::Storage, 4096});
   EXPECT_NO_THROW(dev_->fillBuffer(small, 0));
   planner.setMemoryGuard(nullptr);
   EXPECT_NO_THROW(dev_->fillBuffer(big, 0));
@@ -110,7 +112,7 @@ TEST_P(FramePlannerTest, StorageBufferOverTheDevicesRangeIsRefusedBeforeItIsMade
     }
   };
   const uint32_t first = dev_->nextHandleId();
-  const Buffer big = dev_->createBuffer({"fragments", "oit", BufferUsage::Storage, most + 4});
+  const Buffer big = dev_->createBuffer({"fragments", Owner::Oit, BufferUsage::Storage, most + 4});
   expectRefused([&] { planner.guardMemory(dev_->resourceIdsFrom(first), "preparing oit"); },
                 "planned");
   expectRefused([&] { dev_->readBuffer(big); }, "first used");
@@ -124,7 +126,7 @@ TEST_P(FramePlannerTest, StorageBufferOverTheDevicesRangeIsRefusedBeforeItIsMade
   planner.setMemoryGuard(nullptr);
   // At the limit it is taken (planned only: making 128 MiB would spend time).
   const uint32_t atLimit = dev_->nextHandleId();
-  dev_->createBuffer({"fragments", "oit", BufferUsage::Storage, most});
+  dev_->createBuffer({"fragments", Owner::Oit, BufferUsage::Storage, most});
   EXPECT_NO_THROW(planner.guardMemory(dev_->resourceIdsFrom(atLimit), "preparing oit"));
 }
 
@@ -138,10 +140,10 @@ TEST_P(FramePlannerTest, LabelsAndThePassObserver) {
   Texture plain, lit;
   {
     LabelScope light(*dev_, "light2.");
-    lit = dev_->createTexture({"t", "frame", Format::RGBA8, 4, 4, false});
+    lit = dev_->createTexture({"t", Owner::Frame, Format::RGBA8, 4, 4, false});
     {
       LabelScope key(*dev_, "");
-      plain = dev_->createTexture({"t", "frame", Format::RGBA8, 4, 4, false});
+      plain = dev_->createTexture({"t", Owner::Frame, Format::RGBA8, 4, 4, false});
     }
     EXPECT_EQ(planner.labelPrefix(), "light2.");
     dev_->beginFrame();
@@ -162,6 +164,34 @@ TEST_P(FramePlannerTest, LabelsAndThePassObserver) {
   struct Stopped {};
   planner.setPassObserver([](const std::string&) { throw Stopped{}; });
   EXPECT_THROW(Pass("clear").color(plain, LoadOp::Clear).draw(*dev_, Pipeline{}, 0), Stopped);
+}
+
+// Each timed pass carries the owner of the graph node that began it: the
+// bench sums a shadow technique's time by owner, not by name, so the passes a
+// technique borrows (dsm runs the exact shadow's, named "exact.") count too.
+TEST_P(FramePlannerTest, EachTimedPassCarriesItsOwner) {
+  dev_.reset();  // runRender makes its own
+  for (const char* shadow : {"osm:maps=2", "dsm"}) {
+    SCOPED_TRACE(shadow);
+    const RenderResult r = runRender(sbtest::smallRender(
+        GetParam(), "straight:strands=20,points=4,head=1,alpha=0.5", shadow, "wavg", 16));
+    std::size_t shadowPasses = 0, borrowed = 0;
+    for (const PassTimes& p : r.passes) {
+      SCOPED_TRACE(p.name);
+      const auto startsWith = [&p](const char* prefix) { return p.name.rfind(prefix, 0) == 0; };
+      EXPECT_NE(p.owner, Owner::None);
+      if (startsWith("wavg.")) EXPECT_EQ(p.owner, Owner::Oit);
+      if (startsWith("osm.") || startsWith("dsm.") || startsWith("exact.")) {
+        EXPECT_EQ(p.owner, Owner::Shadow);
+        ++shadowPasses;
+        borrowed += startsWith("exact.") ? 1 : 0;
+      } else {
+        EXPECT_NE(p.owner, Owner::Shadow);
+      }
+    }
+    EXPECT_GT(shadowPasses, 0u);
+    if (std::string(shadow) == "dsm") EXPECT_GT(borrowed, 0u);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, FramePlannerTest, ::testing::Values("gl", "vulkan"),

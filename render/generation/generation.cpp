@@ -1,9 +1,9 @@
 #include "render/generation/generation.h"
 
-#include "render/graph/pass.h"
 #include "render/common/shader_library.h"
 #include "render/generation/slots.h"
 #include "render/generation/uniforms.h"
+#include "render/graph/pass.h"
 
 namespace sb {
 
@@ -25,7 +25,7 @@ Pass generationPass(Buffer params, Buffer guidePoints, Buffer guideColors, Buffe
 }
 
 Buffer input(Device& dev, const std::string& name, const void* data, std::size_t bytes) {
-  return dev.createBuffer({"scene." + name, "scene", BufferUsage::Storage, bytes}, data);
+  return dev.createBuffer({"scene." + name, Owner::Scene, BufferUsage::Storage, bytes}, data);
 }
 }  // namespace
 
@@ -51,7 +51,7 @@ void StrandGeneration::setup(Device& dev, const Scene& scene, GpuScene& gpu) {
   params.genMore = {g.alongStep, scene.hairAlpha, g.widen, 0.0f};
   params.genTotal = {total_, 0u, 0u, 0u};
   params_ = dev.createBuffer(
-      {"scene.generation_params", "scene", BufferUsage::Uniform, sizeof params}, &params);
+      {"scene.generation_params", Owner::Scene, BufferUsage::Uniform, sizeof params}, &params);
   guidePoints_ =
       input(dev, "guide_points", g.guidePoints.data(), g.guidePoints.size() * sizeof(glm::vec4));
   guideColors_ =
@@ -63,9 +63,10 @@ void StrandGeneration::setup(Device& dev, const Scene& scene, GpuScene& gpu) {
   seeds_ = input(dev, "instance_seeds", g.instanceSeeds.data(),
                  g.instanceSeeds.size() * sizeof(uint32_t));
   const uint64_t segments = g.totalStrands() * (g.points - 1);
-  points_ = dev.createBuffer({"scene.points", "scene", BufferUsage::Storage, total * 16});
-  colors_ = dev.createBuffer({"scene.colors", "scene", BufferUsage::Storage, total * 16});
-  segments_ = dev.createBuffer({"scene.segments", "scene", BufferUsage::Storage, segments * 4});
+  points_ = dev.createBuffer({"scene.points", Owner::Scene, BufferUsage::Storage, total * 16});
+  colors_ = dev.createBuffer({"scene.colors", Owner::Scene, BufferUsage::Storage, total * 16});
+  segments_ =
+      dev.createBuffer({"scene.segments", Owner::Scene, BufferUsage::Storage, segments * 4});
   gpu.points = points_;
   gpu.colors = colors_;
   gpu.segments = segments_;

@@ -29,10 +29,11 @@ void FramePlanner::beforeMaking(const ResourceBytes& resource) {
   if (!memoryGuard_) return;
   std::vector<ResourceBytes> planned = dev_.allocations();
   planned.push_back(resource);
-  memoryGuard_(planned, "making '" + resource.name + "' (" + resource.owner + ")");
+  memoryGuard_(planned, "making '" + resource.name + "' (" + ownerName(resource.owner) + ")");
 }
 
 void FramePlanner::beforePass(const std::string& pass) {
+  ++passesBegun_;
   if (passObserver_) passObserver_(pass);
 }
 

@@ -41,6 +41,10 @@ class FramePlanner final : public Device::Hook {
     passObserver_ = std::move(observer);
   }
 
+  // Passes begun or dispatched on the device so far (a node's are the
+  // difference across its execution).
+  std::size_t passesBegun() const { return passesBegun_; }
+
   // Puts `prefix` before the name of every buffer and texture created and every
   // pass begun or dispatched from now on ("" stops): the renderer's extra lights
   // run the same techniques again, and their memory and times stand apart by
@@ -60,6 +64,7 @@ class FramePlanner final : public Device::Hook {
   MemoryGuard memoryGuard_;
   std::function<void(const std::string&)> passObserver_;
   std::string labelPrefix_;
+  std::size_t passesBegun_ = 0;
 };
 
 // FramePlanner::setLabelPrefix for the lifetime of the scope, then the previous prefix again.
