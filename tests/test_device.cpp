@@ -123,7 +123,7 @@ class DeviceTest : public ::testing::TestWithParam<std::string> {
 
   Buffer makeBuffer(const std::string& name, BufferUsage usage, const void* data,
                     std::size_t bytes) {
-    return dev_->createBuffer({name, "test", usage, bytes}, data);
+    return dev_->createBuffer({name, Owner::Test, usage, bytes}, data);
   }
   Buffer positions(const Quad& q) {
     return makeBuffer("positions", BufferUsage::Storage, q.data(), q.size() * sizeof(float));

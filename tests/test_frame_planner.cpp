@@ -180,7 +180,9 @@ TEST_P(FramePlannerTest, EachTimedPassCarriesItsOwner) {
       SCOPED_TRACE(p.name);
       const auto startsWith = [&p](const char* prefix) { return p.name.rfind(prefix, 0) == 0; };
       EXPECT_NE(p.owner, Owner::None);
-      if (startsWith("wavg.")) EXPECT_EQ(p.owner, Owner::Oit);
+      if (startsWith("wavg.")) {
+        EXPECT_EQ(p.owner, Owner::Oit);
+      }
       if (startsWith("osm.") || startsWith("dsm.") || startsWith("exact.")) {
         EXPECT_EQ(p.owner, Owner::Shadow);
         ++shadowPasses;
@@ -190,7 +192,9 @@ TEST_P(FramePlannerTest, EachTimedPassCarriesItsOwner) {
       }
     }
     EXPECT_GT(shadowPasses, 0u);
-    if (std::string(shadow) == "dsm") EXPECT_GT(borrowed, 0u);
+    if (std::string(shadow) == "dsm") {
+      EXPECT_GT(borrowed, 0u);
+    }
   }
 }
 
