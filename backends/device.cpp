@@ -191,7 +191,7 @@ void Device::requireFrame(const std::string& where, bool inFrame, bool inPass) c
 
 Buffer Device::createBuffer(const BufferDesc& given, const void* data) {
   BufferDesc desc = given;
-  desc.name = labelPrefix_ + given.name;
+  desc.name = labelled(given.name);
   const std::string where = quoted("createBuffer", desc.name);
   if (desc.bytes == 0) throw DeviceError(where + ": zero size");
   if (desc.usage == BufferUsage::AccelerationStructure)
@@ -205,8 +205,8 @@ Buffer Device::createBuffer(const BufferDesc& given, const void* data) {
   // deferred); otherwise when first used.
   auto rec = std::make_unique<BufferRec>(BufferRec{
       desc,
-      now ? namingAllocation("making buffer '" + desc.name + "' (" + desc.owner + ")", desc.bytes,
-                             [&] { return driver_->createBuffer(desc, data); })
+      now ? namingAllocation("making buffer '" + desc.name + "' (" + ownerName(desc.owner) + ")",
+                             desc.bytes, [&] { return driver_->createBuffer(desc, data); })
           : nullptr,
       group_});
   if (data && !now) {
@@ -242,9 +242,9 @@ void Device::fillBuffer(Buffer b, uint32_t value) {
   driver_->fillBuffer(*created(r), r.desc, value);
 }
 
-Buffer Device::createAccelerationStructure(const std::string& name, const std::string& owner,
-                                           Buffer aabbs, uint32_t boxes) {
-  const std::string where = quoted("createAccelerationStructure", labelPrefix_ + name);
+Buffer Device::createAccelerationStructure(const std::string& name, Owner owner, Buffer aabbs,
+                                           uint32_t boxes) {
+  const std::string where = quoted("createAccelerationStructure", labelled(name));
   if (!driver_->info().rayQuery)
     throw DeviceError(where + ": this device offers no ray queries (DeviceInfo::rayQuery)");
   const BufferRec& src = buffer(aabbs, where);
@@ -253,7 +253,7 @@ Buffer Device::createAccelerationStructure(const std::string& name, const std::s
     throw DeviceError(where + ": the boxes need a storage buffer of " +
                       std::to_string(std::size_t{boxes} * 24) + " bytes or more; '" +
                       src.desc.name + "' is not one");
-  BufferDesc desc{labelPrefix_ + name, owner, BufferUsage::AccelerationStructure,
+  BufferDesc desc{labelled(name), owner, BufferUsage::AccelerationStructure,
                   driver_->accelerationStructureBytes(boxes)};
   auto rec = std::make_unique<BufferRec>(BufferRec{desc, nullptr, group_, aabbs, boxes});
   const uint32_t id = nextId_++;
@@ -263,7 +263,7 @@ Buffer Device::createAccelerationStructure(const std::string& name, const std::s
 
 Texture Device::createTexture(const TextureDesc& given) {
   TextureDesc desc = given;
-  desc.name = labelPrefix_ + given.name;
+  desc.name = labelled(given.name);
   if (desc.width == 0 || desc.height == 0)
     throw DeviceError(quoted("createTexture", desc.name) + ": zero size (" +
                       std::to_string(desc.width) + "x" + std::to_string(desc.height) + ")");
@@ -432,8 +432,8 @@ void Device::beginFrame() {
 }
 
 void Device::beginPass(const PassDesc& pd) {
-  const std::string name = labelPrefix_ + pd.name;
-  if (passObserver_) passObserver_(name);
+  const std::string name = labelled(pd.name);
+  if (hook_) hook_->beforePass(name);
   const std::string where = quoted("beginPass", name);
   requireFrame(where, true, false);
   checkColorCount(where, pd.color.size(), maxColorAttachments_);
@@ -648,8 +648,8 @@ void Device::endPass() {
 
 void Device::dispatch(const std::string& givenName, Pipeline pipe,
                       const std::vector<Binding>& bindings, uint32_t x, uint32_t y, uint32_t z) {
-  const std::string passName = labelPrefix_ + givenName;
-  if (passObserver_) passObserver_(passName);
+  const std::string passName = labelled(givenName);
+  if (hook_) hook_->beforePass(passName);
   const std::string where = quoted("dispatch", passName);
   requireFrame(where, true, false);
   PipelineRec& p = pipeline(pipe, where);

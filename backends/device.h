@@ -24,6 +24,7 @@
 #include <utility>
 #include <vector>
 
+#include "backends/owner.h"
 #include "base/errors.h"  // DeviceError
 
 namespace sb {
@@ -61,15 +62,15 @@ struct Pipeline {
 enum class BufferUsage { Uniform, Storage, AccelerationStructure };
 
 struct BufferDesc {
-  std::string name;   // reported in memory accounting
-  std::string owner;  // "scene", "shadow", "oit", "frame"
+  std::string name;  // reported in memory accounting
+  Owner owner = Owner::None;
   BufferUsage usage = BufferUsage::Storage;
   std::size_t bytes = 0;
 };
 
 struct TextureDesc {
   std::string name;
-  std::string owner;
+  Owner owner = Owner::None;
   Format format = Format::RGBA8;
   uint32_t width = 1, height = 1;
   // Every texture can be a render target, sampled and read back. Sampling is
@@ -287,7 +288,7 @@ struct PassTiming {
 
 struct ResourceBytes {
   std::string name;
-  std::string owner;
+  Owner owner = Owner::None;
   std::size_t bytes = 0;
 };
 
@@ -396,8 +397,8 @@ class Device {
   // It is made, and built on the device, when first used, like any buffer,
   // from the boxes' contents at that moment: give them at creation or by
   // updateBuffer outside frames.
-  Buffer createAccelerationStructure(const std::string& name, const std::string& owner,
-                                     Buffer aabbs, uint32_t boxes);
+  Buffer createAccelerationStructure(const std::string& name, Owner owner, Buffer aabbs,
+                                     uint32_t boxes);
   // Ordered with the recorded work: allowed between passes inside a frame.
   void updateBuffer(Buffer b, const void* data, std::size_t bytes, std::size_t offset = 0);
   void fillBuffer(Buffer b, uint32_t value);  // between passes
@@ -479,22 +480,19 @@ class Device {
   // on the device, in creation order. A resource is made when first used (by a
   // pass, a binding, an update or a read), or at once when created with data.
   std::vector<ResourceBytes> allocations() const;
-  // What allocations() will be once the resources with these ids (buffer and
-  // texture handle ids) have been used: known before any of them is made.
-  std::vector<ResourceBytes> allocationsAfterUsing(const std::set<uint32_t>& ids) const;
   // The same for every live resource declared, made or not.
   std::vector<ResourceBytes> declared() const;
-
-  // A refusal before memory is taken: set (by the harness) for a run, the
-  // guard is called with what the device will hold (allocationsAfterUsing)
-  // before any resource is made, and by guardMemory; it throws to refuse.
-  using MemoryGuard =
-      std::function<void(const std::vector<ResourceBytes>& planned, const std::string& what)>;
-  void setMemoryGuard(MemoryGuard guard) { memoryGuard_ = std::move(guard); }
-  // The guard's verdict on making the resources with these ids (the renderer
-  // asks it before a technique's preparation, which makes what it declared),
-  // then a refusal of any storage buffer among them over maxStorageBufferBytes.
-  void guardMemory(const std::set<uint32_t>& ids, const std::string& what) const;
+  // Every live resource in creation order, made or only declared: what the
+  // frame graph plans a frame's memory from (render/graph/frame_planner.h).
+  struct Held {
+    uint32_t id = 0;
+    ResourceBytes bytes;
+    bool made = false;
+  };
+  std::vector<Held> inventory() const;
+  // Refuses (DeviceError) any storage buffer among these ids over
+  // maxStorageBufferBytes, before it is made.
+  void checkStorageRanges(const std::set<uint32_t>& ids) const;
   // Handle ids grow with creation: the ids of the live buffers and textures
   // created since nextHandleId() returned `first`.
   uint32_t nextHandleId() const { return nextId_; }
@@ -510,18 +508,20 @@ class Device {
   // resources are made.
   MemoryBudget memoryBudget() const;
 
-  // Called with a pass's name before it is recorded (beginPass, dispatch): the
-  // harness counts passes for its progress line and stops a run there
-  // (whatever it throws leaves the device to be destroyed, not reused).
-  void setPassObserver(std::function<void(const std::string& pass)> observer) {
-    passObserver_ = std::move(observer);
-  }
-  // Puts `prefix` before the name of every buffer and texture created and every
-  // pass begun or dispatched from now on ("" stops): the renderer's extra lights
-  // run the same techniques again, and their memory and times stand apart by
-  // name ("light2.osm.atlases", "light2.osm.map"). LabelScope sets it for a block.
-  void setLabelPrefix(std::string prefix) { labelPrefix_ = std::move(prefix); }
-  const std::string& labelPrefix() const { return labelPrefix_; }
+  // The one hook below the frame graph's planning (render/graph/frame_planner.h
+  // installs it; the device owns it): the name a new resource or pass takes
+  // (an extra light's prefix), a resource about to be made (the memory guard:
+  // it throws to refuse) and a pass about to be recorded (beginPass, dispatch:
+  // what it throws leaves the device to be destroyed, not reused).
+  class Hook {
+   public:
+    virtual ~Hook() = default;
+    virtual std::string label(const std::string& name) const = 0;
+    virtual void beforeMaking(const ResourceBytes& resource) = 0;
+    virtual void beforePass(const std::string& pass) = 0;
+  };
+  void setHook(std::unique_ptr<Hook> hook) { hook_ = std::move(hook); }
+  Hook* hook() const { return hook_.get(); }
 
  private:
   struct BufferRec;
@@ -538,7 +538,7 @@ class Device {
   void destroyIn(Table& table, uint32_t id, const char* kind);
   DriverObject* created(BufferRec& r);
   DriverObject* created(TextureRec& t);
-  std::vector<ResourceBytes> resources(bool createdOnly, const std::set<uint32_t>& alsoIds) const;
+  std::vector<ResourceBytes> resources(bool createdOnly) const;
   // Counts what it binds in `counted` (the open pass, or a dispatch's own).
   std::vector<DriverBinding> resolve(const PipelineRec& p, const std::vector<Binding>& given,
                                      const std::string& where, bool inPass, OpenPass& counted);
@@ -554,14 +554,13 @@ class Device {
   std::unique_ptr<OpenPass> pass_;
   std::vector<PassWork> frameWork_;      // the open frame's passes, in order
   std::vector<PassTiming> lastTimings_;  // the last frame's, with their work
-  std::function<void(const std::string&)> passObserver_;
-  std::string labelPrefix_;
+  std::unique_ptr<Hook> hook_;
   uint32_t nextGroup_ = 1, group_ = 0;
   bool deferPipelines_ = false;
   bool deferMaking_ = false;
   DriverObject* compiled(PipelineRec& p);
-  MemoryGuard memoryGuard_;
-  void guardMaking(const std::string& name, const std::string& owner, std::size_t bytes) const;
+  std::string labelled(const std::string& name) const { return hook_ ? hook_->label(name) : name; }
+  void guardMaking(const std::string& name, Owner owner, std::size_t bytes) const;
   void checkStorageRange(const BufferDesc& desc) const;
   void requireContents(const BufferRec& r, const char* call) const;
 };
@@ -585,21 +584,6 @@ MemoryBudget hostMemoryBudget();
 
 // Validation messages seen by Vulkan devices in this process (0 for GL).
 std::size_t validationMessageCount();
-
-// Device::setLabelPrefix for the lifetime of the scope, then the previous prefix again.
-class LabelScope {
- public:
-  LabelScope(Device& dev, std::string prefix) : dev_(dev), previous_(dev.labelPrefix()) {
-    dev_.setLabelPrefix(std::move(prefix));
-  }
-  ~LabelScope() { dev_.setLabelPrefix(previous_); }
-  LabelScope(const LabelScope&) = delete;
-  LabelScope& operator=(const LabelScope&) = delete;
-
- private:
-  Device& dev_;
-  std::string previous_;
-};
 
 // Owns what is created on a device while it is current (GroupScope) and
 // destroys it all when it goes (Device::destroyGroup).

@@ -1,7 +1,7 @@
 // The Device's memory: a resource is made on the device when first used (never
 // when only culled passes use it), every making asks the memory guard first, and
-// what is made, declared or planned is counted here (allocations, declared,
-// allocationsAfterUsing, guardMemory).
+// what is made or declared is counted here (allocations, declared, inventory:
+// the frame graph plans from it, render/graph/frame_planner.h).
 #include <algorithm>
 
 #include "backends/device.h"
@@ -18,7 +18,8 @@ using device_detail::textureBytes;
 // never allocated, and allocations() counts exactly what was made.
 DriverObject* Device::created(BufferRec& r) {
   if (!r.object) {
-    const std::string what = "making buffer '" + r.desc.name + "' (" + r.desc.owner + ")";
+    const std::string what =
+        "making buffer '" + r.desc.name + "' (" + ownerName(r.desc.owner) + ")";
     if (r.desc.usage == BufferUsage::AccelerationStructure) {
       // Its boxes first (their own accounting), then the structure built from them.
       DriverObject* boxes =
@@ -43,9 +44,9 @@ DriverObject* Device::created(TextureRec& t) {
   if (!t.object) guardMaking(t.desc.name, t.desc.owner, textureBytes(t.desc));
   if (!t.object)
     t.object = namingAllocation(
-        "making texture '" + t.desc.name + "' (" + t.desc.owner + ", " + formatName(t.desc.format) +
-            " " + std::to_string(t.desc.width) + "x" + std::to_string(t.desc.height) + "x" +
-            std::to_string(t.desc.layers) + ")",
+        "making texture '" + t.desc.name + "' (" + ownerName(t.desc.owner) + ", " +
+            formatName(t.desc.format) + " " + std::to_string(t.desc.width) + "x" +
+            std::to_string(t.desc.height) + "x" + std::to_string(t.desc.layers) + ")",
         textureBytes(t.desc), [&] { return driver_->createTexture(t.desc); });
   return t.object.get();
 }
@@ -60,18 +61,20 @@ void Device::setBufferSize(Buffer b, std::size_t bytes) {
   r.desc.bytes = bytes;
 }
 
-std::vector<ResourceBytes> Device::resources(bool createdOnly,
-                                             const std::set<uint32_t>& alsoIds) const {
-  std::vector<std::pair<uint32_t, ResourceBytes>> all;
+std::vector<Device::Held> Device::inventory() const {
+  std::vector<Held> all;
   for (const auto& [id, r] : buffers_)
-    if (r->object || !createdOnly || alsoIds.count(id))
-      all.push_back({id, {r->desc.name, r->desc.owner, r->desc.bytes}});
+    all.push_back({id, {r->desc.name, r->desc.owner, r->desc.bytes}, r->object != nullptr});
   for (const auto& [id, t] : textures_)
-    if (t->object || !createdOnly || alsoIds.count(id))
-      all.push_back({id, {t->desc.name, t->desc.owner, textureBytes(t->desc)}});
-  std::sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    all.push_back({id, {t->desc.name, t->desc.owner, textureBytes(t->desc)}, t->object != nullptr});
+  std::sort(all.begin(), all.end(), [](const Held& a, const Held& b) { return a.id < b.id; });
+  return all;
+}
+
+std::vector<ResourceBytes> Device::resources(bool createdOnly) const {
   std::vector<ResourceBytes> out;
-  for (auto& [id, r] : all) out.push_back(std::move(r));
+  for (Held& h : inventory())
+    if (h.made || !createdOnly) out.push_back(std::move(h.bytes));
   return out;
 }
 
@@ -80,16 +83,11 @@ void Device::makeDeferredBuffers() {
     if (!r->object && !r->pending.empty()) created(*r);
 }
 
-std::vector<ResourceBytes> Device::allocations() const { return resources(true, {}); }
+std::vector<ResourceBytes> Device::allocations() const { return resources(true); }
 
-std::vector<ResourceBytes> Device::allocationsAfterUsing(const std::set<uint32_t>& ids) const {
-  return resources(true, ids);
-}
+std::vector<ResourceBytes> Device::declared() const { return resources(false); }
 
-std::vector<ResourceBytes> Device::declared() const { return resources(false, {}); }
-
-void Device::guardMemory(const std::set<uint32_t>& ids, const std::string& what) const {
-  if (memoryGuard_) memoryGuard_(resources(true, ids), what);
+void Device::checkStorageRanges(const std::set<uint32_t>& ids) const {
   for (const uint32_t id : ids)
     if (auto it = buffers_.find(id); it != buffers_.end()) checkStorageRange(it->second->desc);
 }
@@ -103,16 +101,12 @@ void Device::checkStorageRange(const BufferDesc& desc) const {
   throw DeviceError(quoted("createBuffer", desc.name) + ": " + std::to_string(desc.bytes) +
                     " bytes, more than this device binds as one storage buffer (" +
                     std::to_string(most) + " bytes" +
-                    (desc.owner.empty() ? "" : ", owner " + desc.owner) +
+                    (desc.owner == Owner::None ? "" : ", owner " + ownerName(desc.owner)) +
                     "); a smaller --size, map size=, scene or samples= would fit");
 }
 
-void Device::guardMaking(const std::string& name, const std::string& owner,
-                         std::size_t bytes) const {
-  if (!memoryGuard_) return;
-  std::vector<ResourceBytes> planned = allocations();
-  planned.push_back({name, owner, bytes});
-  memoryGuard_(planned, "making '" + name + "' (" + owner + ")");
+void Device::guardMaking(const std::string& name, Owner owner, std::size_t bytes) const {
+  if (hook_) hook_->beforeMaking({name, owner, bytes});
 }
 
 std::set<uint32_t> Device::resourceIdsFrom(uint32_t first) const {

@@ -28,7 +28,7 @@ struct BenchOptions {
 };
 
 struct Measured {
-  double shadowMs = 0;  // sum of the shadow technique's pass medians
+  double shadowMs = 0;  // sum of the shadow technique's pass medians (its passes by owner)
   double frameMs = 0;
   std::size_t shadowBytes = 0;
 };
@@ -38,11 +38,10 @@ Measured measure(const RenderRequest& base, const std::string& shadow) {
   r.shadow = shadow;
   const RenderResult out = runRender(r);
   Measured m;
-  const std::string prefix = Spec::parse(shadow).name + ".";
   for (const PassTimes& p : out.passes)
-    if (p.name.rfind(prefix, 0) == 0) m.shadowMs += summarize(p.ms).median;
+    if (p.owner == Owner::Shadow) m.shadowMs += summarize(p.ms).median;
   m.frameMs = summarize(out.frameMs).median;
-  m.shadowBytes = out.bytesOwnedBy("shadow");
+  m.shadowBytes = out.bytesOwnedBy(Owner::Shadow);
   return m;
 }
 

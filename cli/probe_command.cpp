@@ -8,8 +8,8 @@
 
 #include "cli/commands.h"
 #include "harness/render.h"
-#include "reports/files.h"
 #include "render/frame/renderer.h"
+#include "reports/files.h"
 
 namespace sb {
 
@@ -54,7 +54,7 @@ int runProbe(const ProbeRequest& p) {
   std::vector<std::vector<float>> curves;
   for (auto& t : techniques) {
     Renderer r(*dev, scene, settings, std::move(t), makeOitTechnique(Spec::parse("none")),
-               {"probe"});
+               {Output::Probe});
     r.renderFrame();
     curves.push_back(r.readProbe());
   }

@@ -34,8 +34,8 @@
 #include "harness/settings.h"
 #include "imaging/image.h"
 #include "imaging/metrics.h"
-#include "reports/stats.h"
 #include "render/common/unit.h"
+#include "reports/stats.h"
 
 namespace sb {
 namespace {
@@ -517,8 +517,8 @@ class Viewer {
     if (!display_ || dev_->describe(display_).width != uint32_t(img.width) ||
         dev_->describe(display_).height != uint32_t(img.height)) {
       dev_->destroy(display_);
-      display_ = dev_->createTexture(
-          {"view.display", "view", Format::RGBA32F, uint32_t(img.width), uint32_t(img.height)});
+      display_ = dev_->createTexture({"view.display", Owner::View, Format::RGBA32F,
+                                      uint32_t(img.width), uint32_t(img.height)});
     }
     std::vector<float> rows(std::size_t(img.width) * img.height * 4, 1.0f);
     for (int y = 0; y < img.height; ++y)
@@ -543,7 +543,7 @@ class Viewer {
   std::size_t renderBytes() const {
     std::size_t bytes = 0;
     for (const auto& r : result_.resources)
-      if (r.owner != "view") bytes += r.bytes;
+      if (r.owner != Owner::View) bytes += r.bytes;
     return bytes;
   }
 

@@ -110,10 +110,10 @@ Texture ViewOverlay::compose(Device& dev, Texture shown, uint64_t shownVersion,
     format_ = d.format;
     width_ = d.width;
     height_ = d.height;
-    text_ = dev.createTexture({"view.overlay.text", "view", Format::RGBA8, width_, height_});
+    text_ = dev.createTexture({"view.overlay.text", Owner::View, Format::RGBA8, width_, height_});
     // Float like the shown image, so that where there is no text the window
     // shows exactly what it would without the overlay.
-    target_ = dev.createTexture({"view.overlay", "view", d.format, width_, height_});
+    target_ = dev.createTexture({"view.overlay", Owner::View, d.format, width_, height_});
     lines_.clear();
     redraw = true;
   }

@@ -22,6 +22,7 @@
 #include "harness/stop.h"
 #include "imaging/metrics.h"
 #include "render/frame/renderer.h"
+#include "render/graph/frame_planner.h"
 #include "reports/stats.h"
 
 namespace sb {
@@ -227,7 +228,7 @@ void checkMemory(const std::vector<ResourceBytes>& planned, const std::vector<Re
   }
   std::vector<ResourceBytes> largest = planned;
   if (need > total)  // over the budget, which counts the host's image
-    largest.push_back({"image read back", "host", host});
+    largest.push_back({"image read back", Owner::Host, host});
   auto bigger = [](const ResourceBytes& a, const ResourceBytes& b) { return a.bytes > b.bytes; };
   std::stable_sort(largest.begin(), largest.end(), bigger);
   // The same bytes by owner: what each part of the run takes, and what shrinks it.
@@ -235,7 +236,7 @@ void checkMemory(const std::vector<ResourceBytes>& planned, const std::vector<Re
   for (const auto& r : largest) {
     auto o = std::find_if(owners.begin(), owners.end(),
                           [&](const ResourceBytes& x) { return x.owner == r.owner; });
-    if (o == owners.end()) o = owners.insert(owners.end(), {r.owner, r.owner, 0});
+    if (o == owners.end()) o = owners.insert(owners.end(), {ownerName(r.owner), r.owner, 0});
     o->bytes += r.bytes;
   }
   std::stable_sort(owners.begin(), owners.end(), bigger);
@@ -244,26 +245,27 @@ void checkMemory(const std::vector<ResourceBytes>& planned, const std::vector<Re
                   "; refused before they were made (made so far: " + std::to_string(already) +
                   " bytes), nothing written.\nBy owner:";
   for (const auto& o : owners)
-    m += " " + o.owner + " " + mib(o.bytes) + " (" +
+    m += " " + o.name + " " + mib(o.bytes) + " (" +
          std::to_string(need ? (o.bytes * 100 + need / 2) / need : 0) + "%);";
   m.back() = '.';
   m += "\nLargest resources:";
   for (std::size_t i = 0; i < largest.size() && i < 8; ++i)
-    m += "\n  " + largest[i].name + " (" + largest[i].owner + "): " + mib(largest[i].bytes);
+    m += "\n  " + largest[i].name + " (" + ownerName(largest[i].owner) +
+         "): " + mib(largest[i].bytes);
   char factor[96];
   std::snprintf(factor, sizeof factor, "%.1fx less memory: %s needed, %s allowed",
                 fit ? double(need) / double(fit) : 0.0, mib(need).c_str(), mib(fit).c_str());
   m += std::string("\nTo fit (") + factor + "), shrink";
-  static const std::map<std::string, std::string> kAdvice = {
-      {"shadow",
+  static const std::map<Owner, std::string> kAdvice = {
+      {Owner::Shadow,
        "the shadow technique's maps and lists: a smaller map size= (they scale with its "
        "texels) or fewer of its maps=, layers= or slices="},
-      {"oit",
+      {Owner::Oit,
        "the transparency technique's lists and targets: a smaller --size (they scale with its "
        "pixels and depth complexity)"},
-      {"frame", "the frame's targets: a smaller --size (they scale with its pixels)"},
-      {"host", "the image read back: a smaller --size"},
-      {"scene", "the scene: fewer strands or points"}};
+      {Owner::Frame, "the frame's targets: a smaller --size (they scale with its pixels)"},
+      {Owner::Host, "the image read back: a smaller --size"},
+      {Owner::Scene, "the scene: fewer strands or points"}};
   for (const auto& o : owners) {
     const auto advice = kAdvice.find(o.owner);
     if (advice == kAdvice.end() || o.bytes * 20 < need) continue;  // under 5%: cannot help much
@@ -277,31 +279,32 @@ void checkMemory(const std::vector<ResourceBytes>& planned, const std::vector<Re
 
 namespace {
 
-// checkMemory for every resource a run makes until it goes (Device::setMemoryGuard).
+// checkMemory for every resource a run makes until it goes (FramePlanner::setMemoryGuard).
 class RunMemoryGuard {
  public:
-  RunMemoryGuard(Device& dev, long long limit, const MemoryBudget& budget) : dev_(dev) {
-    dev_.setMemoryGuard(
+  RunMemoryGuard(Device& dev, long long limit, const MemoryBudget& budget)
+      : planner_(FramePlanner::of(dev)) {
+    planner_.setMemoryGuard(
         [&dev, limit, budget](const std::vector<ResourceBytes>& planned, const std::string& what) {
           checkMemory(planned, dev.allocations(), limit, budget, what);
         });
   }
-  ~RunMemoryGuard() { dev_.setMemoryGuard(nullptr); }
+  ~RunMemoryGuard() { planner_.setMemoryGuard(nullptr); }
   RunMemoryGuard(const RunMemoryGuard&) = delete;
   RunMemoryGuard& operator=(const RunMemoryGuard&) = delete;
 
  private:
-  Device& dev_;
+  FramePlanner& planner_;
 };
 
 // The progress line of a render and the stop check, between the device's
 // passes: a frame of depth peeling is hundreds of passes and can take minutes.
 class RenderProgress {
  public:
-  explicit RenderProgress(Device& dev) : dev_(dev), line_("render") {
-    dev_.setPassObserver([this](const std::string& pass) { onPass(pass); });
+  explicit RenderProgress(Device& dev) : planner_(FramePlanner::of(dev)), line_("render") {
+    planner_.setPassObserver([this](const std::string& pass) { onPass(pass); });
   }
-  ~RenderProgress() { dev_.setPassObserver(nullptr); }
+  ~RenderProgress() { planner_.setPassObserver(nullptr); }
   RenderProgress(const RenderProgress&) = delete;
   RenderProgress& operator=(const RenderProgress&) = delete;
 
@@ -334,7 +337,7 @@ class RenderProgress {
     line_.update(text + ": " + pass);
   }
 
-  Device& dev_;
+  FramePlanner& planner_;
   ProgressLine line_;
   std::string phase_ = "setup";
   uint32_t layers_ = 0, layer_ = 0;
@@ -406,7 +409,7 @@ struct Plan {
   // The timed frames produce what the run is for: the shaded image, or (for a
   // visibility-only run) the visibility image. Error measurements run after
   // them in untimed frames.
-  std::set<std::string> timed;
+  Outputs timed;
   std::unique_ptr<RunMemoryGuard> guard;
   std::unique_ptr<Renderer> renderer;
   uint32_t layers = 0;  // the most layers a peeling loop will take (progress)
@@ -414,14 +417,15 @@ struct Plan {
 
 Plan plan(const RenderRequest& req, const Validated& v, Device& dev, RenderResult& out) {
   Plan p;
-  p.timed = {req.image ? "color" : "visibility"};
-  std::set<std::string> outputs = p.timed;
-  if (req.reference) outputs.insert("visibility");
-  if (req.probe) outputs.insert("probe");
+  p.timed = {req.image ? Output::Color : Output::Visibility};
+  Outputs outputs = p.timed;
+  if (req.reference) outputs.insert(Output::Visibility);
+  if (req.probe) outputs.insert(Output::Probe);
   const MemoryBudget budget = dev.memoryBudget();
   p.guard = std::make_unique<RunMemoryGuard>(dev, req.memoryLimit, budget);
   p.renderer = std::make_unique<Renderer>(dev, *v.scene, v.settings, v.shadow, v.oit, outputs);
-  const auto planned = dev.allocationsAfterUsing(p.renderer->graphResources(p.timed));
+  const auto planned =
+      FramePlanner::of(dev).allocationsAfterUsing(p.renderer->graphResources(p.timed));
   for (const auto& r : planned) out.estimatedBytes += r.bytes;
   checkMemory(planned, dev.allocations(), req.memoryLimit, budget, "this run",
               req.image ? imageHostBytes(v.settings) : 0);
@@ -458,7 +462,7 @@ void frames(const RenderRequest& req, Plan& p, const RunDevice& d, RenderProgres
       auto pass = std::find_if(out.passes.begin(), out.passes.end(),
                                [&](const PassTimes& pt) { return pt.name == t.name; });
       if (pass == out.passes.end())
-        pass = out.passes.insert(out.passes.end(), {t.name, 0, {}, t.work});
+        pass = out.passes.insert(out.passes.end(), {t.name, t.owner, 0, {}, t.work});
       // Work is exact: a timed frame that did other work than the first is named.
       if (!pass->ms.empty() && !(t.work == pass->work) &&
           std::find(out.workVaries.begin(), out.workVaries.end(), t.name) == out.workVaries.end())
@@ -563,9 +567,10 @@ void measures(const RenderRequest& req, const Validated& v, Plan& p, Device& dev
               RenderProgress& progress, RenderCache* cache, RenderResult& out) {
   Renderer& renderer = *p.renderer;
   const Scene& scene = *v.scene;
-  std::set<std::string> measured;
-  if (req.reference && req.image) measured.insert("visibility");  // else the timed frames made it
-  if (req.probe) measured.insert("probe");
+  Outputs measured;
+  if (req.reference && req.image)
+    measured.insert(Output::Visibility);  // else the timed frames made it
+  if (req.probe) measured.insert(Output::Probe);
   if (!measured.empty()) {
     out.measurementGraph = renderer.graphPasses(measured);
     progress.phase("measurement frame", p.layers);
@@ -634,7 +639,7 @@ void measures(const RenderRequest& req, const Validated& v, Plan& p, Device& dev
 
 }  // namespace
 
-std::size_t RenderResult::bytesOwnedBy(const std::string& owner) const {
+std::size_t RenderResult::bytesOwnedBy(Owner owner) const {
   std::size_t bytes = 0;
   for (const auto& r : resources)
     if (r.owner == owner) bytes += r.bytes;

@@ -106,9 +106,10 @@ struct RenderRequest {
 // One pass's time in each timed frame.
 struct PassTimes {
   std::string name;
-  int executions = 0;      // times the pass ran in a frame
-  std::vector<double> ms;  // one per timed frame
-  PassWork work;           // of the first timed frame (the others are checked equal)
+  Owner owner = Owner::None;  // whose pass (Renderer's PassTime::owner)
+  int executions = 0;         // times the pass ran in a frame
+  std::vector<double> ms;     // one per timed frame
+  PassWork work;              // of the first timed frame (the others are checked equal)
 };
 
 struct SceneSummary {
@@ -305,7 +306,7 @@ struct RenderResult {
   std::vector<uint8_t> visibility;  // R32F visibility image (with a reference)
 
   // Bytes of this run's resources whose owner is `owner` (shadow, oit, scene, frame).
-  std::size_t bytesOwnedBy(const std::string& owner) const;
+  std::size_t bytesOwnedBy(Owner owner) const;
 };
 
 // An animation's strip: its strip frames side by side, the technique's above

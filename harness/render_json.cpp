@@ -177,13 +177,14 @@ nlohmann::json renderJson(const RenderResult& r) {
   nlohmann::json resources = nlohmann::json::array();
   std::size_t total = 0;
   for (const auto& res : r.resources) {
-    resources.push_back({{"name", res.name}, {"owner", res.owner}, {"bytes", res.bytes}});
+    resources.push_back(
+        {{"name", res.name}, {"owner", ownerName(res.owner)}, {"bytes", res.bytes}});
     total += res.bytes;
   }
-  j["memory"] = {{"shadow_bytes", r.bytesOwnedBy("shadow")},
-                 {"oit_bytes", r.bytesOwnedBy("oit")},
-                 {"scene_bytes", r.bytesOwnedBy("scene")},
-                 {"frame_bytes", r.bytesOwnedBy("frame")},
+  j["memory"] = {{"shadow_bytes", r.bytesOwnedBy(Owner::Shadow)},
+                 {"oit_bytes", r.bytesOwnedBy(Owner::Oit)},
+                 {"scene_bytes", r.bytesOwnedBy(Owner::Scene)},
+                 {"frame_bytes", r.bytesOwnedBy(Owner::Frame)},
                  {"total_bytes", total},
                  {"estimated_bytes", r.estimatedBytes},
                  {"resources", resources}};

@@ -13,6 +13,7 @@
 #include "harness/stop.h"
 #include "imaging/metrics.h"
 #include "render/frame/renderer.h"
+#include "render/graph/frame_planner.h"
 
 namespace sb {
 
@@ -39,16 +40,17 @@ Spec referenceShadowSpec(const Spec& shadow) {
 RenderCache::Reference renderReference(Device& dev, const Scene& scene,
                                        const RenderSettings& settings, const Spec& refShadow,
                                        const RenderRequest& req) {
-  std::set<std::string> outputs = {"visibility"};
-  if (req.image) outputs.insert("color");
-  if (req.probe) outputs.insert("probe");
+  Outputs outputs = {Output::Visibility};
+  if (req.image) outputs.insert(Output::Color);
+  if (req.probe) outputs.insert(Output::Probe);
   // The reference is exact at each pixel's centre: one sample, whatever
   // --msaa the run has (its error then includes what anti-aliasing changed).
   RenderSettings exactSettings = settings;
   exactSettings.msaa = 1;
   Renderer ref(dev, scene, exactSettings, refShadow, Spec::parse(kReferenceOit), outputs);
-  checkMemory(dev.allocationsAfterUsing(ref.graphResources(outputs)), dev.allocations(), 0,
-              dev.memoryBudget(), "the reference", req.image ? imageHostBytes(settings) : 0);
+  checkMemory(FramePlanner::of(dev).allocationsAfterUsing(ref.graphResources(outputs)),
+              dev.allocations(), 0, dev.memoryBudget(), "the reference",
+              req.image ? imageHostBytes(settings) : 0);
   ref.renderFrame();
   RenderCache::Reference r;
   if (req.image) r.image = colorImage(ref, settings);
@@ -75,8 +77,7 @@ std::vector<InvariantFailure> checkInvariants(const RenderRequest& req, const Re
     for (const auto& [kind, e] : errors.items())
       for (const auto& [metric, v] : e.items())
         // PSNR is infinite (null) exactly when the images are identical.
-        if (kind != "own" &&
-            kind != "by_eye_layers" &&  // copies and objects, checked apart
+        if (kind != "own" && kind != "by_eye_layers" &&  // copies and objects, checked apart
             ((v.is_null() && !(metric == "psnr" && e.value("identical", false))) ||
              (v.is_number_float() && !std::isfinite(v.get<double>()))))
           failures.push_back({"reference", "error " + kind + "." + metric + " is not a number"});
@@ -171,8 +172,8 @@ AnimationResult runAnimation(const RenderRequest& req, const Scene& scene,
   a.stripFrames = stripFrames(a.spec.frames);
   RenderRequest refReq = req;
   refReq.probe.reset();
-  std::set<std::string> outputs = {"visibility"};
-  if (req.image) outputs.insert("color");
+  Outputs outputs = {Output::Visibility};
+  if (req.image) outputs.insert(Output::Color);
 
   Image prevT = out.image, prevR = out.referenceImage;
   std::vector<float> prevVT = visibilityFloats(out.visibility);
@@ -308,9 +309,9 @@ std::vector<RenderResult::LightShare> lightShares(const RenderSettings& s, const
   }
   for (const ResourceBytes& res : r.resources) {
     const int i = lightOfName(res.name, shares.size());
-    if (i < 0 || (i == 0 && res.owner == "scene")) continue;
+    if (i < 0 || (i == 0 && res.owner == Owner::Scene)) continue;
     shares[i].bytes += res.bytes;
-    if (res.owner == "shadow") shares[i].shadowBytes += res.bytes;
+    if (res.owner == Owner::Shadow) shares[i].shadowBytes += res.bytes;
   }
   return shares;
 }
@@ -351,7 +352,7 @@ OwnError ownError(const RenderRequest& req, Device& dev, const Scene& scene,
   } else if (cache && cache->ownReferences.count(key)) {
     image = &cache->ownReferences.at(key);
   } else {
-    Renderer r(dev, scene, own, o.shadow, o.oit, {"color"});
+    Renderer r(dev, scene, own, o.shadow, o.oit, {Output::Color});
     r.renderFrame();
     fresh = colorImage(r, own);
     image = cache ? &(cache->ownReferences[key] = std::move(fresh)) : &fresh;

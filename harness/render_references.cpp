@@ -16,6 +16,7 @@
 #include "imaging/metrics.h"
 #include "render/common/unit.h"
 #include "render/frame/renderer.h"
+#include "render/graph/frame_planner.h"
 #include "techniques/exact/exact.h"
 
 namespace sb {
@@ -160,14 +161,15 @@ RenderResult::MoreReference renderAaReference(const RenderRequest& req, const Sc
                              " Its memory grows with samples^2: fewer samples= would fit sooner.");
     }
   };
-  d.setMemoryGuard(
+  FramePlanner& planner = FramePlanner::of(d);
+  planner.setMemoryGuard(
       [&check](const std::vector<ResourceBytes>& planned, const std::string&) { check(planned); });
   struct Unguard {
-    Device& d;
-    ~Unguard() { d.setMemoryGuard(nullptr); }
-  } unguard{d};
-  Renderer r(d, scene, hi, shadow, Spec::parse(kReferenceOit), {"color"});
-  check(d.allocationsAfterUsing(r.graphResources({"color"})));
+    FramePlanner& p;
+    ~Unguard() { p.setMemoryGuard(nullptr); }
+  } unguard{planner};
+  Renderer r(d, scene, hi, shadow, Spec::parse(kReferenceOit), {Output::Color});
+  check(planner.allocationsAfterUsing(r.graphResources({Output::Color})));
   for (const PassTime& t : r.renderFrame()) m.frameMs += t.ms;
   for (const ResourceBytes& b : d.allocations()) m.bytes += b.bytes;
   for (const std::string& warning : r.warnings())

@@ -16,9 +16,9 @@
 #include "base/options.h"
 #include "gpu_test_util.h"
 #include "imaging/metrics.h"
+#include "render/frame/renderer.h"
 #include "scenes/view.h"
 #include "techniques/dc/dc_math.h"
-#include "render/frame/renderer.h"
 #include "techniques/occupancy/occupancy_math.h"
 
 namespace sb {
@@ -309,16 +309,16 @@ Frame render(Device& dev, const std::string& sceneSpec, const std::string& shado
   s.primitive = primitive;
   std::size_t before = 0;  // the device keeps earlier renderers' resources
   for (const auto& a : dev.allocations())
-    if (a.owner == "shadow") before += a.bytes;
+    if (a.owner == Owner::Shadow) before += a.bytes;
   Renderer r(dev, scene, s, makeShadowTechnique(Spec::parse(shadowSpec)),
-             makeOitTechnique(Spec::parse("none")), {"color", "visibility"});
+             makeOitTechnique(Spec::parse("none")), {Output::Color, Output::Visibility});
   r.renderFrame();
   Frame f;
   f.color = floats(r.readColor());
   f.visibility = floats(r.readVisibility());
   f.warnings = r.warnings();
   for (const auto& a : dev.allocations())
-    if (a.owner == "shadow") f.shadowBytes += a.bytes;
+    if (a.owner == Owner::Shadow) f.shadowBytes += a.bytes;
   f.shadowBytes -= before;
   return f;
 }

@@ -50,12 +50,12 @@ struct World {
   Buffer data;
   Pipeline draw, drawArray, compute;
   explicit World(Device& d) : dev(d) {
-    color = dev.createTexture({"color", "test", Format::RGBA32F, 8, 8, false});
-    other = dev.createTexture({"other", "test", Format::RGBA32F, 8, 8, false});
-    depth = dev.createTexture({"depth", "test", Format::Depth32F, 8, 8, false});
-    small = dev.createTexture({"small", "test", Format::RGBA32F, 4, 4, false});
-    array = dev.createTexture({"array", "test", Format::RGBA32F, 8, 8, false, 2});
-    data = dev.createBuffer({"data", "test", BufferUsage::Storage, 64});
+    color = dev.createTexture({"color", Owner::Test, Format::RGBA32F, 8, 8, false});
+    other = dev.createTexture({"other", Owner::Test, Format::RGBA32F, 8, 8, false});
+    depth = dev.createTexture({"depth", Owner::Test, Format::Depth32F, 8, 8, false});
+    small = dev.createTexture({"small", Owner::Test, Format::RGBA32F, 4, 4, false});
+    array = dev.createTexture({"array", Owner::Test, Format::RGBA32F, 8, 8, false, 2});
+    data = dev.createBuffer({"data", Owner::Test, BufferUsage::Storage, 64});
     PipelineDesc g;
     g.name = "contract.draw";
     g.technique = "tests";
@@ -87,7 +87,8 @@ struct World {
   }
   // A pass onto `targets` layers of one array, and a pipeline with as many targets.
   PassDesc widePass(uint32_t targets) const {
-    const Texture wide = dev.createTexture({"wide", "test", Format::RGBA8, 8, 8, false, targets});
+    const Texture wide =
+        dev.createTexture({"wide", Owner::Test, Format::RGBA8, 8, 8, false, targets});
     PassDesc p;
     p.name = "contract.wide";
     for (uint32_t i = 0; i < targets; ++i) p.color.push_back({wide, LoadOp::Clear, {}, {}, i});
@@ -96,7 +97,7 @@ struct World {
   }
   // An 8x8 RGBA32F texture with 4 samples per pixel.
   Texture multisampled() const {
-    return dev.createTexture({"ms", "test", Format::RGBA32F, 8, 8, false, 1, 4});
+    return dev.createTexture({"ms", Owner::Test, Format::RGBA32F, 8, 8, false, 1, 4});
   }
   Pipeline widePipeline(uint32_t targets) const {
     PipelineDesc d;
@@ -120,19 +121,19 @@ std::vector<Rule> rules() {
   return {
       {"zero-size buffer", "createBuffer('empty'): zero size",
        [](World& w) {
-         w.dev.createBuffer({"empty", "test", BufferUsage::Storage, 0});
+         w.dev.createBuffer({"empty", Owner::Test, BufferUsage::Storage, 0});
        }},
       {"buffer made an acceleration structure by its usage",
        "createBuffer('tlas'): usage AccelerationStructure (use createAccelerationStructure)",
        [](World& w) {
-         w.dev.createBuffer({"tlas", "test", BufferUsage::AccelerationStructure, 64});
+         w.dev.createBuffer({"tlas", Owner::Test, BufferUsage::AccelerationStructure, 64});
        }},
       // The system's Mesa 22.3 has no ray queries on either API (Mesa 25.0.7's
       // lavapipe has: tests/test_rt_shadows.cpp, RtTiers).
       {"acceleration structure without ray queries", "createAccelerationStructure('scene'): ",
        [](World& w) {
          try {
-           w.dev.createAccelerationStructure("scene", "test", w.data, 2);
+           w.dev.createAccelerationStructure("scene", Owner::Test, w.data, 2);
          } catch (const DeviceError& e) {
            if (std::string(e.what()).find("offers no ray queries (DeviceInfo::rayQuery)") ==
                std::string::npos)
@@ -142,19 +143,19 @@ std::vector<Rule> rules() {
        }},
       {"zero-size texture", "createTexture('flat'): zero size",
        [](World& w) {
-         w.dev.createTexture({"flat", "test", Format::RGBA8, 0, 4, false});
+         w.dev.createTexture({"flat", Owner::Test, Format::RGBA8, 0, 4, false});
        }},
       {"texture without layers", "createTexture('none'): 0 layers (1..256)",
        [](World& w) {
-         w.dev.createTexture({"none", "test", Format::RGBA8, 4, 4, false, 0});
+         w.dev.createTexture({"none", Owner::Test, Format::RGBA8, 4, 4, false, 0});
        }},
       {"texture with too many layers", "createTexture('deep'): 257 layers (1..256)",
        [](World& w) {
-         w.dev.createTexture({"deep", "test", Format::RGBA8, 4, 4, false, 257});
+         w.dev.createTexture({"deep", Owner::Test, Format::RGBA8, 4, 4, false, 257});
        }},
       {"depth texture with layers", "createTexture('depths'): a depth texture has one layer, not 2",
        [](World& w) {
-         w.dev.createTexture({"depths", "test", Format::Depth32F, 4, 4, false, 2});
+         w.dev.createTexture({"depths", Owner::Test, Format::Depth32F, 4, 4, false, 2});
        }},
       {"pipeline without shaders", "give either vertex+fragment or compute shaders",
        [](World& w) {
@@ -407,15 +408,15 @@ std::vector<Rule> rules() {
       {"unsupported sample count",
        "createTexture('odd'): 3 samples: not a count the device supports",
        [](World& w) {
-         w.dev.createTexture({"odd", "test", Format::RGBA32F, 8, 8, false, 1, 3});
+         w.dev.createTexture({"odd", Owner::Test, Format::RGBA32F, 8, 8, false, 1, 3});
        }},
       {"multisampled array", "createTexture('msarray'): 4 samples and 2 layers",
        [](World& w) {
-         w.dev.createTexture({"msarray", "test", Format::RGBA32F, 8, 8, false, 2, 4});
+         w.dev.createTexture({"msarray", Owner::Test, Format::RGBA32F, 8, 8, false, 2, 4});
        }},
       {"multisampled integer texture", "of integer format RGBA32UI",
        [](World& w) {
-         w.dev.createTexture({"msuint", "test", Format::RGBA32UI, 8, 8, false, 1, 4});
+         w.dev.createTexture({"msuint", Owner::Test, Format::RGBA32UI, 8, 8, false, 1, 4});
        }},
       {"pipeline with unsupported samples", "3 samples: not a count the device supports",
        [](World& w) {
@@ -454,7 +455,8 @@ std::vector<Rule> rules() {
       {"resolve into another format", "resolve of 'ms' into 'narrow': formats differ",
        [](World& w) {
          PassDesc p = w.pass(w.multisampled());
-         p.color[0].resolve = w.dev.createTexture({"narrow", "test", Format::RGBA8, 8, 8, false});
+         p.color[0].resolve =
+             w.dev.createTexture({"narrow", Owner::Test, Format::RGBA8, 8, 8, false});
          w.dev.beginFrame();
          w.dev.beginPass(p);
        }},
@@ -626,11 +628,12 @@ void main() {
       continue;
     }
     ++ran;
-    const Buffer pos = dev->createBuffer({"pos", "test", BufferUsage::Storage, sizeof tri}, tri);
-    const Texture ms = dev->createTexture({"ms", "test", Format::RGBA32F, 8, 8, false, 1, 4});
+    const Buffer pos =
+        dev->createBuffer({"pos", Owner::Test, BufferUsage::Storage, sizeof tri}, tri);
+    const Texture ms = dev->createTexture({"ms", Owner::Test, Format::RGBA32F, 8, 8, false, 1, 4});
     const Texture msDepth =
-        dev->createTexture({"msd", "test", Format::Depth32F, 8, 8, false, 1, 4});
-    const Texture out = dev->createTexture({"out", "test", Format::RGBA32F, 8, 8, false});
+        dev->createTexture({"msd", Owner::Test, Format::Depth32F, 8, 8, false, 1, 4});
+    const Texture out = dev->createTexture({"out", Owner::Test, Format::RGBA32F, 8, 8, false});
     PipelineDesc d;
     d.name = "contract.mask";
     d.technique = "tests";
@@ -642,7 +645,7 @@ void main() {
     d.bindings = {{0, BindingKind::StorageBuffer}, {1, BindingKind::StorageBuffer}};
     const Pipeline p = dev->createPipeline(d);
     for (const int mask : {0x3, 0xf}) {
-      const Buffer m = dev->createBuffer({"mask", "test", BufferUsage::Storage, 4}, &mask);
+      const Buffer m = dev->createBuffer({"mask", Owner::Test, BufferUsage::Storage, 4}, &mask);
       PassDesc pass;
       pass.name = "contract.ms";
       pass.color = {{ms, LoadOp::Clear, {0, 0, 0, 0}, {}, 0, out}};
@@ -673,9 +676,9 @@ void main() {
 // Fresh resources read back as zero (colour, buffers) and 1 (depth) on both APIs.
 TEST(DeviceContract, FreshResourcesHaveDefinedContents) {
   for (auto& [backend, dev] : availableDevices()) {
-    const Texture c = dev->createTexture({"c", "test", Format::RGBA32F, 4, 4, false});
-    const Texture d = dev->createTexture({"d", "test", Format::Depth32F, 4, 4, false});
-    const Buffer b = dev->createBuffer({"b", "test", BufferUsage::Storage, 40});
+    const Texture c = dev->createTexture({"c", Owner::Test, Format::RGBA32F, 4, 4, false});
+    const Texture d = dev->createTexture({"d", Owner::Test, Format::Depth32F, 4, 4, false});
+    const Buffer b = dev->createBuffer({"b", Owner::Test, BufferUsage::Storage, 40});
     for (uint8_t byte : dev->readTexture(c)) EXPECT_EQ(byte, 0) << backend;
     for (uint8_t byte : dev->readBuffer(b)) EXPECT_EQ(byte, 0) << backend;
     const auto depth = dev->readTexture(d);
@@ -692,8 +695,8 @@ TEST(DeviceContract, FreshResourcesHaveDefinedContents) {
 TEST(DeviceContract, WriteTextureRoundTripsAndPresentNeedsAWindow) {
   for (auto& [backend, dev] : availableDevices()) {
     for (const TextureDesc& desc :
-         {TextureDesc{"one", "test", Format::RGBA8, 5, 3, false},
-          TextureDesc{"array", "test", Format::RGBA32F, 4, 2, false, 3}}) {
+         {TextureDesc{"one", Owner::Test, Format::RGBA8, 5, 3, false},
+          TextureDesc{"array", Owner::Test, Format::RGBA32F, 4, 2, false, 3}}) {
       const Texture t = dev->createTexture(desc);
       std::vector<uint8_t> bytes(dev->readTexture(t).size());
       for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = uint8_t(i * 7 + 1);
@@ -707,7 +710,7 @@ TEST(DeviceContract, WriteTextureRoundTripsAndPresentNeedsAWindow) {
       EXPECT_THROW(dev->writeTexture(t, std::vector<uint8_t>(bytes.size() - 1)), DeviceError);
     }
     EXPECT_EQ(dev->window(), nullptr) << backend;
-    const Texture c = dev->createTexture({"c", "test", Format::RGBA32F, 4, 4, false});
+    const Texture c = dev->createTexture({"c", Owner::Test, Format::RGBA32F, 4, 4, false});
     EXPECT_THROW(dev->present(c), DeviceError) << backend;
   }
 }

@@ -107,12 +107,13 @@ void main() {
                 {2, BindingKind::UniformBuffer}};
   const Pipeline pipeline = dev.createPipeline(d);
   const Buffer in = dev.createBuffer(
-      {"probe.in", "test", BufferUsage::Storage, probes.size() * sizeof(Probe)}, probes.data());
-  const Buffer out =
-      dev.createBuffer({"probe.out", "test", BufferUsage::Storage, probes.size() * sizeof(float)});
+      {"probe.in", Owner::Test, BufferUsage::Storage, probes.size() * sizeof(Probe)},
+      probes.data());
+  const Buffer out = dev.createBuffer(
+      {"probe.out", Owner::Test, BufferUsage::Storage, probes.size() * sizeof(float)});
   const glm::uvec4 count(uint32_t(probes.size()), 0, 0, 0);
   const Buffer ubo =
-      dev.createBuffer({"probe.count", "test", BufferUsage::Uniform, sizeof count}, &count);
+      dev.createBuffer({"probe.count", Owner::Test, BufferUsage::Uniform, sizeof count}, &count);
   dev.beginFrame();
   dev.dispatch("mboit.probe", pipeline,
                {Binding::buf(0, in), Binding::buf(1, out), Binding::buf(2, ubo)},

@@ -175,14 +175,14 @@ Rendered render(Device& dev, const std::string& sceneSpec, uint32_t size,
   const RenderSettings s = sbtest::fittedSettings(scene, size);
   std::size_t before = 0;
   for (const auto& a : dev.allocations())
-    if (a.owner == "oit") before += a.bytes;
+    if (a.owner == Owner::Oit) before += a.bytes;
   Renderer r(dev, scene, s, makeShadowTechnique(Spec::parse(shadowSpec)),
              makeOitTechnique(Spec::parse(oitSpec)));
   r.renderFrame();
   Rendered out;
   out.image = imageFromRows(r.readColor(), int(size), int(size), PixelType::Float32, 4);
   for (const auto& a : dev.allocations())
-    if (a.owner == "oit") out.oitBytes += a.bytes;
+    if (a.owner == Owner::Oit) out.oitBytes += a.bytes;
   out.oitBytes -= before;
   if (auto c = r.oit().depthComplexity()) out.eye = *c;
   out.warnings = r.warnings();

@@ -12,8 +12,8 @@
 #include "gpu_test_util.h"
 #include "imaging/image.h"
 #include "imaging/metrics.h"
-#include "scenes/scene.h"
 #include "render/frame/renderer.h"
+#include "scenes/scene.h"
 #include "techniques/stochastic/stochastic_math.h"
 
 namespace sb {
@@ -124,7 +124,7 @@ Rendered render(Device& dev, const Scene& scene, const std::string& oit, uint32_
   const auto oitBytes = [&dev] {
     std::size_t n = 0;
     for (const ResourceBytes& b : dev.allocations())
-      if (b.owner == "oit") n += b.bytes;
+      if (b.owner == Owner::Oit) n += b.bytes;
     return n;
   };
   const std::size_t before = oitBytes();

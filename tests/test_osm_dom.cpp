@@ -212,7 +212,7 @@ struct Result {
 std::size_t shadowBytes(Device& dev) {
   std::size_t n = 0;
   for (const auto& a : dev.allocations())
-    if (a.owner == "shadow") n += a.bytes;
+    if (a.owner == Owner::Shadow) n += a.bytes;
   return n;
 }
 
@@ -224,7 +224,7 @@ Result render(Device& dev, const std::string& sceneSpec, const std::string& shad
   const std::size_t before = shadowBytes(dev);
   Renderer r(dev, scene, sbtest::fittedSettings(scene, size),
              makeShadowTechnique(Spec::parse(shadow)), makeOitTechnique(Spec::parse("none")),
-             {"color", "visibility"});
+             {Output::Color, Output::Visibility});
   r.renderFrame();
   Result out;
   out.shadowBytes = shadowBytes(dev) - before;

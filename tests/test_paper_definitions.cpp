@@ -157,7 +157,7 @@ TEST_P(PaperDefinitions, DomFirstPassIsDepthOnly) {
   const Scene scene = makeScene(Spec::parse(std::string(kScene) + ",head=0"));  // no mesh pass
   Renderer r(*dev_, scene, sbtest::fittedSettings(scene, 32),
              makeShadowTechnique(Spec::parse("dom:size=64")), makeOitTechnique(Spec::parse("none")),
-             {"visibility"});
+             {Output::Visibility});
   const auto passes = r.graphPasses();
   ASSERT_FALSE(passes.empty());
   EXPECT_EQ(passes.front(), "dom.depth");
@@ -185,7 +185,7 @@ TEST_P(PaperDefinitions, PointLightOsmSlicesAreEquallySpacedInDistance) {
   const Scene scene = makeScene(Spec::parse(kScene));
   const RenderSettings s = pointLit(scene, 32);
   Renderer r(*dev_, scene, s, makeShadowTechnique(Spec::parse("osm:size=64,maps=8")),
-             makeOitTechnique(Spec::parse("none")), {"visibility"});
+             makeOitTechnique(Spec::parse("none")), {Output::Visibility});
   const auto& slices = dynamic_cast<OpacityShadowMaps&>(r.shadow()).slices();
   ASSERT_EQ(slices.size(), 9u);
   const float n = s.light.nearPlane, f = s.light.farPlane;
@@ -273,7 +273,7 @@ TEST_P(PaperDefinitions, FakeTransparencySplitsTheStrandsInThree) {
   const Scene scene = makeScene(Spec::parse("curly:strands=200,points=32,seed=7,alpha=0.4,head=0"));
   Renderer r(*dev_, scene, sbtest::fittedSettings(scene, 32),
              makeShadowTechnique(Spec::parse("none")), makeOitTechnique(Spec::parse("fake")),
-             {"color"});
+             {Output::Color});
   const auto& counts = dynamic_cast<FakeTransparency&>(r.oit()).subsetSegments();
   EXPECT_EQ(counts[0] + counts[1] + counts[2], r.gpuScene().segmentCount);
   // 200 strands of 31 segments: 67, 67 and 66 strands.

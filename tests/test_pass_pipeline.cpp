@@ -15,7 +15,7 @@ using namespace sb;
 class PassPipeline : public sbtest::BackendTest {
  protected:
   Texture texture(const std::string& name, Format f, uint32_t samples = 1, uint32_t layers = 1) {
-    return dev_->createTexture({name, "test", f, 16, 16, false, layers, samples});
+    return dev_->createTexture({name, Owner::Test, f, 16, 16, false, layers, samples});
   }
 };
 
@@ -23,7 +23,7 @@ TEST_P(PassPipeline, TakesFormatsDepthAndSlotsFromThePass) {
   const Texture color = texture("color", Format::RGBA32F), count = texture("count", Format::R32F);
   const Texture layered = texture("layered", Format::RGBA32UI, 1, 2);
   const Texture depth = texture("depth", Format::Depth32F);
-  const Buffer params = dev_->createBuffer({"params", "test", BufferUsage::Uniform, 16});
+  const Buffer params = dev_->createBuffer({"params", Owner::Test, BufferUsage::Uniform, 16});
   const Pass p = Pass("test.accumulate")
                      .color(color, LoadOp::Clear)
                      .color(count, LoadOp::Load)

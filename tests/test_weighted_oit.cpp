@@ -13,8 +13,8 @@
 #include "gpu_test_util.h"
 #include "imaging/image.h"
 #include "imaging/metrics.h"
-#include "scenes/scene.h"
 #include "render/frame/renderer.h"
+#include "scenes/scene.h"
 #include "techniques/wboit/wboit_math.h"
 #include "techniques/weighted/weighted_math.h"
 
@@ -202,7 +202,7 @@ Result render(Device& dev, const std::string& sceneSpec, const std::string& oit,
   const auto oitBytes = [&dev] {
     std::size_t n = 0;
     for (const ResourceBytes& b : dev.allocations())
-      if (b.owner == "oit") n += b.bytes;
+      if (b.owner == Owner::Oit) n += b.bytes;
     return n;
   };
   const std::size_t before = oitBytes();

@@ -83,7 +83,8 @@ TEST_P(WindowTest, PresentFollowsResize) {
   auto dev = sb::createDevice(o);
   ASSERT_NE(dev->window(), nullptr);
   EXPECT_EQ(dev->info().platform, "window");
-  const sb::Texture t = dev->createTexture({"shown", "frame", sb::Format::RGBA32F, 40, 24});
+  const sb::Texture t =
+      dev->createTexture({"shown", sb::Owner::Frame, sb::Format::RGBA32F, 40, 24});
   dev->beginFrame();
   sb::PassDesc pass;
   pass.name = "clear";
@@ -118,7 +119,8 @@ TEST_P(WindowTest, PresentFollowsResize) {
   dev->window()->minimize(false);
   expectShown(16, 16);
   // Integer and array textures cannot be shown.
-  const sb::Texture ints = dev->createTexture({"ints", "frame", sb::Format::RGBA32UI, 4, 4});
+  const sb::Texture ints =
+      dev->createTexture({"ints", sb::Owner::Frame, sb::Format::RGBA32UI, 4, 4});
   EXPECT_THROW(dev->present(ints), sb::DeviceError);
 }
 

@@ -21,8 +21,8 @@ void AccumComposite::setup(Device& dev, const RenderSettings& s, Buffer viewUbo,
   settings_ = s;
   targets_ = targets;
   viewUbo_ = viewUbo;
-  accum_ = dev.createBuffer(
-      {technique + ".accum", "oit", BufferUsage::Storage, std::size_t(s.width) * s.height * 16});
+  accum_ = dev.createBuffer({technique + ".accum", Owner::Oit, BufferUsage::Storage,
+                             std::size_t(s.width) * s.height * 16});
   const ShaderCode vert = loadShader("render/common/composite.vert");
   const ShaderCode frag = loadShader("render/common/composite.frag");
   PipelineDesc d = pass().pipeline(dev, technique + ".composite", technique);

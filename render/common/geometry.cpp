@@ -29,8 +29,8 @@ ViewUniforms lightView(const RenderSettings& s, uint32_t mapWidth, uint32_t mapH
 }
 
 Buffer createLightViewBuffer(Device& dev, const ViewUniforms& view, const std::string& technique) {
-  return dev.createBuffer({technique + ".light_view", "frame", BufferUsage::Uniform, sizeof view},
-                          &view);
+  return dev.createBuffer(
+      {technique + ".light_view", Owner::Frame, BufferUsage::Uniform, sizeof view}, &view);
 }
 
 ShaderCode Geometry::strandVertexShader(const RenderSettings& s) {

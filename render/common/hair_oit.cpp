@@ -34,7 +34,7 @@ void HairOit::setupCommon(Device& dev, const GpuScene& scene, const RenderSettin
                           const HairShading& shading, const OitTargets& targets) {
   keepInputs(dev, scene, s, shading, targets);
   counts_ = dev.createBuffer(
-      {name() + ".counts", "oit", BufferUsage::Storage, std::size_t(s.width) * s.height * 4});
+      {name() + ".counts", Owner::Oit, BufferUsage::Storage, std::size_t(s.width) * s.height * 4});
   count_ = makeHairCountPipeline(dev, s, countPass(), kCountsBinding, name());
 }
 

@@ -9,7 +9,7 @@ void OpaqueShadow::setup(Device& dev, const GpuScene& scene, uint32_t size, Buff
   lightView_ = lightViewUbo;
   if (!scene.hasMesh()) return;
   depth_ = dev.createTexture(
-      {technique + ".opaque_depth", "shadow", Format::Depth32F, size, size, false});
+      {technique + ".opaque_depth", Owner::Shadow, Format::Depth32F, size, size, false});
   const ShaderCode vert = Geometry::meshVertexShader();
   const ShaderCode frag = loadShader("render/common/depth_only.frag");
   PipelineDesc d = pass().pipeline(dev, technique + ".opaque", technique);

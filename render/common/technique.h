@@ -12,14 +12,14 @@
 #include <vector>
 
 #include "backends/device.h"
-#include "scenes/scene.h"
-#include "scenes/view.h"
-#include "render/graph/frame_graph.h"
-#include "render/graph/pass.h"
 #include "render/common/shader_library.h"
-#include "render/shading/shading_model.h"
 #include "render/common/slots.h"
 #include "render/common/view_uniforms.h"
+#include "render/graph/frame_graph.h"
+#include "render/graph/pass.h"
+#include "render/shading/shading_model.h"
+#include "scenes/scene.h"
+#include "scenes/view.h"
 
 namespace sb {
 
@@ -93,7 +93,8 @@ Buffer createLightLookupParams(Device& dev, const ViewUniforms& view, float bias
                                float shadowAlpha, const std::string& technique) {
   static_assert(sizeof(Block) == sizeof(glm::mat4) + sizeof(glm::vec4), "a mat4 and a vec4");
   const Block p{view.viewProj, glm::vec4(bias, float(size), shadowAlpha, 0.0f)};
-  return dev.createBuffer({technique + ".params", "frame", BufferUsage::Uniform, sizeof p}, &p);
+  return dev.createBuffer({technique + ".params", Owner::Frame, BufferUsage::Uniform, sizeof p},
+                          &p);
 }
 
 // Binding numbers shared by every shader, named in render/common/slots.h

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <optional>
+#include <stdexcept>
 
 #include "render/common/composite.h"
 #include "render/common/unit.h"
 #include "render/generation/mesh_groom.h"
+#include "render/graph/frame_planner.h"
 
 namespace sb {
 
@@ -23,8 +25,8 @@ std::string multisampledNames() {
 // 16-byte placeholders (reported like any other buffer).
 Buffer makeBuffer(Device& dev, const std::string& name, const void* data, std::size_t bytes) {
   static const uint8_t kZeros[16] = {};
-  if (bytes == 0) return dev.createBuffer({name, "scene", BufferUsage::Storage, 16}, kZeros);
-  return dev.createBuffer({name, "scene", BufferUsage::Storage, bytes}, data);
+  if (bytes == 0) return dev.createBuffer({name, Owner::Scene, BufferUsage::Storage, 16}, kZeros);
+  return dev.createBuffer({name, Owner::Scene, BufferUsage::Storage, bytes}, data);
 }
 
 // Names graph resources in messages.
@@ -68,11 +70,11 @@ std::string preparing(const std::string& family, const std::string& technique) {
 
 Renderer::Renderer(Device& dev, const Scene& scene, const RenderSettings& settings,
                    std::unique_ptr<ShadowTechnique> shadow, std::unique_ptr<OitTechnique> oit,
-                   const std::set<std::string>& outputs)
+                   const Outputs& outputs)
     : Renderer(dev, scene, settings, one(std::move(shadow), std::move(oit), settings), outputs) {}
 
 Renderer::Renderer(Device& dev, const Scene& scene, const RenderSettings& settings,
-                   const Spec& shadow, const Spec& oit, const std::set<std::string>& outputs)
+                   const Spec& shadow, const Spec& oit, const Outputs& outputs)
     : Renderer(dev, scene, settings, perLight(shadow, oit, settings), outputs) {}
 
 std::vector<Renderer::Techniques> Renderer::one(std::unique_ptr<ShadowTechnique> shadow,
@@ -99,7 +101,7 @@ std::string Renderer::lightPrefix(std::size_t i) {
 }
 
 Renderer::Renderer(Device& dev, const Scene& scene, const RenderSettings& settings,
-                   std::vector<Techniques> techniques, const std::set<std::string>& outputs)
+                   std::vector<Techniques> techniques, const Outputs& outputs)
     : dev_(dev), group_(dev), settings_(settings), graph_(resourceNamer(dev)) {
   GroupScope owned(dev_, group_);
   // Nothing is made, the scene's buffers included, until the whole plan has
@@ -134,8 +136,8 @@ Renderer::Renderer(Device& dev, const Scene& scene, const RenderSettings& settin
                      "; a technique may have its own samples= option)");
   }
   // The visibility and probe outputs are the key light's.
-  wantVisibility_ = outputs.count("visibility") > 0;
-  wantProbe_ = outputs.count("probe") > 0;
+  wantVisibility_ = outputs.count(Output::Visibility) > 0;
+  wantProbe_ = outputs.count(Output::Probe) > 0;
   // Cull before building: every part declares its nodes first; only the
   // parts with a kept node compile their pipelines and run their preparation.
   std::set<uint32_t> sumPipelines;
@@ -154,14 +156,14 @@ Renderer::Renderer(Device& dev, const Scene& scene, const RenderSettings& settin
   if (settings_.geometry == GeometryPath::Compute) preparations_.push_back("scene.generate");
   for (std::size_t i = 0; i < lights_.size(); ++i) buildLight(*lights_[i], i);
   if (lights_.size() > 1 &&
-      kept({Unit::Kind::Outputs, lights_.back()->endNode, graph_.nodes().size(), {}}))
+      kept({Unit::Kind::Measures, lights_.back()->endNode, graph_.nodes().size(), {}}))
     dev_.compilePipelines(sumPipelines);
 }
 
 // The whole plan before anything is made: what the kept passes use and what
 // the kept techniques declared (their preparations' too), lists that a counting
 // pass sizes at their declared size.
-void Renderer::guardPlan(const std::set<std::string>& outputs) const {
+void Renderer::guardPlan(const Outputs& outputs) const {
   std::set<uint32_t> ids = graphResources(outputs);
   bool counted = false;
   for (const auto& light : lights_) {
@@ -171,9 +173,10 @@ void Renderer::guardPlan(const std::set<std::string>& outputs) const {
       counted = counted || light->oit->needsPrepare();
     }
   }
-  dev_.guardMemory(ids, counted ? "this run (its whole plan; the fragment lists before the "
-                                  "counting pass that sizes them)"
-                                : "this run (its whole plan)");
+  FramePlanner::of(dev_).guardMemory(
+      ids, counted ? "this run (its whole plan; the fragment lists before the "
+                     "counting pass that sizes them)"
+                   : "this run (its whole plan)");
 }
 
 bool Renderer::kept(const Unit& unit) const {
@@ -184,25 +187,36 @@ bool Renderer::kept(const Unit& unit) const {
   });
 }
 
+Owner Renderer::ownerOf(std::size_t node) const {
+  for (const auto& light : lights_)
+    for (const Unit& unit : light->units)
+      if (node >= unit.firstNode && node < unit.endNode) {
+        if (unit.kind == Unit::Kind::Shadow) return Owner::Shadow;
+        if (unit.kind == Unit::Kind::Oit) return Owner::Oit;
+        return Owner::Frame;
+      }
+  return Owner::Frame;  // the lights' sum
+}
+
 void Renderer::declareLight(LightChain& light, std::size_t index) {
   Device& dev = dev_;
   LabelScope scope(dev, lightPrefix(index));
   const RenderSettings& s = light.settings;
   const uint32_t n = s.msaa;
   light.color =
-      dev.createTexture({"frame.color", "frame", Format::RGBA32F, s.width, s.height, false});
+      dev.createTexture({"frame.color", Owner::Frame, Format::RGBA32F, s.width, s.height, false});
   Texture renderColor = light.color, resolved;
   if (n > 1) {
     renderColor = dev.createTexture(
-        {"frame.color_ms", "frame", Format::RGBA32F, s.width, s.height, false, 1, n});
+        {"frame.color_ms", Owner::Frame, Format::RGBA32F, s.width, s.height, false, 1, n});
     resolved = light.color;
   }
   // Every light draws its mesh into the same depth, before its hair reads it.
   if (index == 0)
-    depth_ = dev.createTexture({n > 1 ? "frame.depth_ms" : "frame.depth", "frame", Format::Depth32F,
-                                s.width, s.height, false, 1, n});
+    depth_ = dev.createTexture({n > 1 ? "frame.depth_ms" : "frame.depth", Owner::Frame,
+                                Format::Depth32F, s.width, s.height, false, 1, n});
   using Kind = Unit::Kind;
-  light.units = {{Kind::Shadow}, {Kind::Shading}, {Kind::Oit}, {Kind::Outputs}};
+  light.units = {{Kind::Shadow}, {Kind::Shading}, {Kind::Oit}, {Kind::Measures}};
   // Each part's setup, then its passes: the pipelines each declared.
   auto declared = [&](Unit& unit, const auto& declare) {
     const uint32_t first = dev.nextHandleId();
@@ -250,11 +264,11 @@ void Renderer::buildLight(LightChain& light, std::size_t index) {
     if (unit.kind == Unit::Kind::Shadow) {
       // A preparation makes what its technique declared (a counting pass's
       // maps and lists) and runs frames: the memory guard sees it first.
-      dev.guardMemory(light.shadowIds, preparing("shadow", light.shadow->name()));
+      FramePlanner::of(dev).guardMemory(light.shadowIds, preparing("shadow", light.shadow->name()));
       light.shadow->prepare(dev);
       preparations_.push_back(lightPrefix(index) + light.shadow->name() + ".prepare");
     } else if (unit.kind == Unit::Kind::Oit && light.oit->needsPrepare()) {
-      dev.guardMemory(light.oitIds, preparing("transparency", light.oit->name()));
+      FramePlanner::of(dev).guardMemory(light.oitIds, preparing("transparency", light.oit->name()));
       // The transparency technique sizes itself against the opaque depth,
       // drawn by the nodes before its own.
       if (light.shading.drawsMesh()) {
@@ -290,17 +304,17 @@ void Renderer::addSumPass() {
   });
 }
 
-std::vector<GraphResource> Renderer::resources(const std::set<std::string>& outputs) const {
+std::vector<GraphResource> Renderer::resources(const Outputs& outputs) const {
   std::vector<GraphResource> r;
   for (const auto& o : outputs) {
-    if (o == "color")
+    if (o == Output::Color)
       r.push_back(GraphResource::of(color_));
-    else if (o == "visibility" && wantVisibility_)
+    else if (o == Output::Visibility && wantVisibility_)
       r.push_back(GraphResource::of(visibility_.image()));
-    else if (o == "probe" && wantProbe_)
+    else if (o == Output::Probe && wantProbe_)
       r.push_back(GraphResource::of(probe_.values()));
     else
-      throw DeviceError("renderer: output '" + o + "' was not set up");
+      throw DeviceError("renderer: output '" + outputName(o) + "' was not set up");
   }
   return r;
 }
@@ -314,8 +328,9 @@ void Renderer::upload(const Scene& scene) {
     // then (the opacity maps' depth range from the light).
     const uint32_t first = dev_.nextHandleId();
     generation_.setup(dev_, scene, gpu_);
-    dev_.guardMemory(dev_.resourceIdsFrom(first),
-                     "this run (at least: the groom and the strands made from it on the device)");
+    FramePlanner::of(dev_).guardMemory(
+        dev_.resourceIdsFrom(first),
+        "this run (at least: the groom and the strands made from it on the device)");
     generation_.run(dev_);
   }
   // --geometry mesh: only the groom is on the device (Geometry::strandVertexShader).
@@ -383,13 +398,13 @@ std::vector<std::string> Renderer::graphPasses() const {
   return names;
 }
 
-std::vector<std::string> Renderer::graphPasses(const std::set<std::string>& outputs) const {
+std::vector<std::string> Renderer::graphPasses(const Outputs& outputs) const {
   std::vector<std::string> names;
   for (const auto* p : graph_.compile(resources(outputs))) names.push_back(p->name);
   return names;
 }
 
-std::set<uint32_t> Renderer::graphResources(const std::set<std::string>& outputs) const {
+std::set<uint32_t> Renderer::graphResources(const Outputs& outputs) const {
   std::set<uint32_t> ids;
   for (const auto* p : graph_.compile(resources(outputs))) {
     for (const auto& r : p->reads) ids.insert(r.id);
@@ -400,13 +415,15 @@ std::set<uint32_t> Renderer::graphResources(const std::set<std::string>& outputs
 
 std::vector<PassTime> Renderer::renderFrame() { return run(passes_); }
 
-std::vector<PassTime> Renderer::renderFrame(const std::set<std::string>& outputs) {
+std::vector<PassTime> Renderer::renderFrame(const Outputs& outputs) {
   return run(graph_.compile(resources(outputs)));
 }
 
 std::vector<PassTime> Renderer::run(const std::vector<const PassNode*>& passes) {
   GroupScope owned(dev_, group_);
   dev_.beginFrame();
+  FramePlanner& planner = FramePlanner::of(dev_);
+  std::vector<Owner> owners;  // of each pass begun, in order
   const PassNode* first = graph_.nodes().data();
   for (const auto* p : passes) {
     // An extra light's passes carry its prefix; the sum is the frame's.
@@ -414,15 +431,22 @@ std::vector<PassTime> Renderer::run(const std::vector<const PassNode*>& passes) 
     std::size_t light = 0;
     while (light < lights_.size() && index >= lights_[light]->endNode) ++light;
     LabelScope scope(dev_, lightPrefix(light < lights_.size() ? light : 0));
+    // The device times each pass the node begins, in order: they are the node's owner's.
+    const std::size_t before = planner.passesBegun();
     p->execute();
+    owners.insert(owners.end(), planner.passesBegun() - before, ownerOf(index));
   }
   dev_.endFrame();
   lastTimings_ = dev_.lastFrameTimings();
+  if (owners.size() != lastTimings_.size())
+    throw std::logic_error("renderer: " + std::to_string(lastTimings_.size()) + " passes timed, " +
+                           std::to_string(owners.size()) + " begun");
   std::vector<PassTime> out;
-  for (const auto& t : lastTimings_) {
+  for (std::size_t i = 0; i < lastTimings_.size(); ++i) {
+    const PassTiming& t = lastTimings_[i];
     auto it =
         std::find_if(out.begin(), out.end(), [&](const PassTime& x) { return x.name == t.name; });
-    if (it == out.end()) it = out.insert(out.end(), {t.name, 0.0, 0, {}});
+    if (it == out.end()) it = out.insert(out.end(), {t.name, owners[i], 0.0, 0, {}});
     it->ms += t.ms;
     ++it->executions;
     it->work += t.work;

@@ -1,7 +1,7 @@
 // Puts a frame together: the scene on the device, the shadow technique's
 // passes, the opaque mesh, the transparency technique and the optional
 // visibility and probe outputs, as a frame graph culled to the requested
-// outputs ("color", "visibility", "probe"). Runs frames and reads back the images.
+// outputs (Output: color, visibility, probe). Runs frames and reads back the images.
 //
 // Several lights (RenderSettings::extraLights) are drawn as multipass lighting:
 // each extra light gets its own shadow technique, shading and transparency
@@ -21,15 +21,19 @@
 #include <vector>
 
 #include "render/common/technique.h"
+#include "render/frame/output.h"
 #include "render/generation/generation.h"
 #include "render/outputs/probe/probe.h"
-#include "render/shading/hair_shading.h"
 #include "render/outputs/visibility/visibility.h"
+#include "render/shading/hair_shading.h"
 
 namespace sb {
 
 struct PassTime {
   std::string name;
+  // Whose pass it is: the shadow technique's (Shadow), the transparency
+  // technique's (Oit), or the frame's (Frame: shading, outputs, the lights' sum).
+  Owner owner = Owner::None;
   double ms = 0;  // summed over every execution of the pass in the frame
   int executions = 0;
   PassWork work;  // likewise summed
@@ -40,10 +44,10 @@ class Renderer {
   // One light: settings.extraLights must be empty.
   Renderer(Device& dev, const Scene& scene, const RenderSettings& settings,
            std::unique_ptr<ShadowTechnique> shadow, std::unique_ptr<OitTechnique> oit,
-           const std::set<std::string>& outputs = {"color"});
+           const Outputs& outputs = {Output::Color});
   // Any number of lights: the techniques are made from their specs once per light.
   Renderer(Device& dev, const Scene& scene, const RenderSettings& settings, const Spec& shadow,
-           const Spec& oit, const std::set<std::string>& outputs = {"color"});
+           const Spec& oit, const Outputs& outputs = {Output::Color});
   // The names of light i's passes and resources begin with this: "" for the
   // key light (i = 0), "light2." for the first extra light, and so on.
   static std::string lightPrefix(std::size_t i);
@@ -52,20 +56,20 @@ class Renderer {
   std::vector<std::string> graphPasses() const;
   // Records and runs one frame; device passes with the same name are summed.
   std::vector<PassTime> renderFrame();
-  // One frame for a subset of the constructor's outputs (e.g. only "visibility",
+  // One frame for a subset of the constructor's outputs (e.g. only Output::Visibility,
   // to measure an error without shading or timing the measurement).
-  std::vector<PassTime> renderFrame(const std::set<std::string>& outputs);
-  std::vector<std::string> graphPasses(const std::set<std::string>& outputs) const;
+  std::vector<PassTime> renderFrame(const Outputs& outputs);
+  std::vector<std::string> graphPasses(const Outputs& outputs) const;
   // The ids of the resources a frame for `outputs` uses (what its kept passes
-  // read and write): with Device::allocationsAfterUsing, its memory before it runs.
-  std::set<uint32_t> graphResources(const std::set<std::string>& outputs) const;
+  // read and write): with FramePlanner::allocationsAfterUsing, its memory before it runs.
+  std::set<uint32_t> graphResources(const Outputs& outputs) const;
   // RGBA32F, rows bottom-up (row 0 = NDC y=-1).
   std::vector<uint8_t> readColor();
   // The texture readColor reads (to show it in a window: Device::present).
   Texture colorTexture() const { return color_; }
   // R32F, rows bottom-up; -1 where no surface.
   std::vector<uint8_t> readVisibility();
-  // The shadow technique's visibility at settings.probePoints ("probe" output).
+  // The shadow technique's visibility at settings.probePoints (Output::Probe).
   std::vector<float> readProbe();
   const GpuScene& gpuScene() const { return gpu_; }
   // What building the frame ran (render --json "build"): the pipelines
@@ -90,7 +94,7 @@ class Renderer {
   // nodes [firstNode, endNode) and the pipelines it declared. Built (its
   // pipelines compiled, its preparation run) only when a node of it is kept.
   struct Unit {
-    enum class Kind { Shadow, Shading, Oit, Outputs } kind;
+    enum class Kind { Shadow, Shading, Oit, Measures } kind;
     std::size_t firstNode = 0, endNode = 0;
     std::set<uint32_t> pipelines;
   };
@@ -110,7 +114,7 @@ class Renderer {
     std::unique_ptr<OitTechnique> oit;
   };
   Renderer(Device& dev, const Scene& scene, const RenderSettings& settings,
-           std::vector<Techniques> techniques, const std::set<std::string>& outputs);
+           std::vector<Techniques> techniques, const Outputs& outputs);
   static std::vector<Techniques> one(std::unique_ptr<ShadowTechnique> shadow,
                                      std::unique_ptr<OitTechnique> oit,
                                      const RenderSettings& settings);
@@ -121,11 +125,12 @@ class Renderer {
   void declareLight(LightChain& light, std::size_t index);
   void buildLight(LightChain& light, std::size_t index);
   bool kept(const Unit& unit) const;
-  void guardPlan(const std::set<std::string>& outputs) const;
+  Owner ownerOf(std::size_t node) const;
+  void guardPlan(const Outputs& outputs) const;
   void addSumPass();
   void upload(const Scene& scene);
-  // The graph resources behind the outputs "color", "visibility" and "probe".
-  std::vector<GraphResource> resources(const std::set<std::string>& outputs) const;
+  // The graph resources behind the outputs.
+  std::vector<GraphResource> resources(const Outputs& outputs) const;
   std::vector<PassTime> run(const std::vector<const PassNode*>& passes);
 
  public:

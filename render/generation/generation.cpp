@@ -27,7 +27,7 @@ Pass generationPass(Buffer params, Buffer guidePoints, Buffer guideColors, Buffe
 }
 
 Buffer input(Device& dev, const std::string& name, const void* data, std::size_t bytes) {
-  return dev.createBuffer({"scene." + name, "scene", BufferUsage::Storage, bytes}, data);
+  return dev.createBuffer({"scene." + name, Owner::Scene, BufferUsage::Storage, bytes}, data);
 }
 }  // namespace
 
@@ -53,7 +53,7 @@ void StrandGeneration::setup(Device& dev, const Scene& scene, GpuScene& gpu) {
   params.genMore = {g.alongStep, scene.hairAlpha, 0.0f, 0.0f};
   params.genTotal = {total_, 0u, 0u, 0u};
   params_ = dev.createBuffer(
-      {"scene.generation_params", "scene", BufferUsage::Uniform, sizeof params}, &params);
+      {"scene.generation_params", Owner::Scene, BufferUsage::Uniform, sizeof params}, &params);
   guidePoints_ =
       input(dev, "guide_points", g.guidePoints.data(), g.guidePoints.size() * sizeof(glm::vec4));
   guideColors_ =
@@ -69,9 +69,10 @@ void StrandGeneration::setup(Device& dev, const Scene& scene, GpuScene& gpu) {
   guideOrder_ =
       input(dev, "guide_order", g.guideOrder.data(), g.guideOrder.size() * sizeof(uint32_t));
   const uint64_t segments = g.totalStrands() * (g.points - 1);
-  points_ = dev.createBuffer({"scene.points", "scene", BufferUsage::Storage, total * 16});
-  colors_ = dev.createBuffer({"scene.colors", "scene", BufferUsage::Storage, total * 16});
-  segments_ = dev.createBuffer({"scene.segments", "scene", BufferUsage::Storage, segments * 4});
+  points_ = dev.createBuffer({"scene.points", Owner::Scene, BufferUsage::Storage, total * 16});
+  colors_ = dev.createBuffer({"scene.colors", Owner::Scene, BufferUsage::Storage, total * 16});
+  segments_ =
+      dev.createBuffer({"scene.segments", Owner::Scene, BufferUsage::Storage, segments * 4});
   gpu.points = points_;
   gpu.colors = colors_;
   gpu.segments = segments_;

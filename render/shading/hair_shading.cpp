@@ -35,7 +35,8 @@ void HairShading::setup(Device& dev, const GpuScene& scene, const RenderSettings
   color_ = color;
   depth_ = depth;
   const ViewUniforms view = cameraView(s);
-  viewUbo_ = dev.createBuffer({"shading.view", "frame", BufferUsage::Uniform, sizeof view}, &view);
+  viewUbo_ =
+      dev.createBuffer({"shading.view", Owner::Frame, BufferUsage::Uniform, sizeof view}, &view);
   ShadingUniforms u{};
   u.eyePos = glm::vec4(s.camera.eye, 1);
   u.lightPos = s.light.type == LightType::Point ? glm::vec4(s.light.position, 1)
@@ -46,16 +47,17 @@ void HairShading::setup(Device& dev, const GpuScene& scene, const RenderSettings
       s.ambient ? settings_.shading.ambient : 0.0f;  // none in an extra light's shading
   if (!s.ambient) u.meshMaterial.w = 0;
   u.sceneParams = glm::vec4(scene.hairAlpha, scene.shadowAlpha, ambient, 0);
-  shadingUbo_ = dev.createBuffer({"shading.params", "frame", BufferUsage::Uniform, sizeof u}, &u);
+  shadingUbo_ =
+      dev.createBuffer({"shading.params", Owner::Frame, BufferUsage::Uniform, sizeof u}, &u);
   // The model's own block and tables (its folder's uniforms.h and slots.h).
   const ShadingModel& model = settings_.shading;
   const std::vector<std::byte>& params = model.params;
-  modelUbo_ = dev.createBuffer({"shading.model", "frame", BufferUsage::Uniform, params.size()},
+  modelUbo_ = dev.createBuffer({"shading.model", Owner::Frame, BufferUsage::Uniform, params.size()},
                                params.data());
   tables_.clear();
   for (const ShadingModel::Table& t : model.tables)
     tables_.push_back(
-        {t.slot, dev.createBuffer({"shading.lobe_table", "frame", BufferUsage::Storage,
+        {t.slot, dev.createBuffer({"shading.lobe_table", Owner::Frame, BufferUsage::Storage,
                                    t.data->size() * sizeof(float)},
                                   t.data->data())});
 

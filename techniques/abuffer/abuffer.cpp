@@ -2,9 +2,9 @@
 
 #include <cstring>
 
-#include "techniques/abuffer/uniforms.h"
 #include "render/common/shader_library.h"
 #include "render/shading/hair_shading.h"
+#include "techniques/abuffer/uniforms.h"
 
 namespace sb {
 
@@ -26,18 +26,20 @@ std::string bytesText(uint64_t bytes) {
 void ABufferOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
                        const HairShading& shading, const OitTargets& targets) {
   setupCommon(dev, scene, s, shading, targets);
-  offsets_ = dev.createBuffer({name() + ".offsets", "oit", BufferUsage::Storage, pixels() * 4ull});
-  cursor_ = dev.createBuffer({name() + ".cursor", "oit", BufferUsage::Storage, pixels() * 4ull});
-  status_ = dev.createBuffer({name() + ".status", "oit", BufferUsage::Storage, 16});
+  offsets_ =
+      dev.createBuffer({name() + ".offsets", Owner::Oit, BufferUsage::Storage, pixels() * 4ull});
+  cursor_ =
+      dev.createBuffer({name() + ".cursor", Owner::Oit, BufferUsage::Storage, pixels() * 4ull});
+  status_ = dev.createBuffer({name() + ".status", Owner::Oit, BufferUsage::Storage, 16});
   // Sized by prepare()'s count.
   pageShift_ = poolPageShift(dev.info(), kFragmentBytes);
   for (uint32_t page = 0; page < kPages; ++page)
     pages_[page] = dev.createBuffer(
-        {name() + ".fragments" + (page ? ".page" + std::to_string(page) : std::string()), "oit",
-         BufferUsage::Storage, kFragmentBytes});
+        {name() + ".fragments" + (page ? ".page" + std::to_string(page) : std::string()),
+         Owner::Oit, BufferUsage::Storage, kFragmentBytes});
   const AbufferSize size{glm::uvec4(pixels(), s.width, s.height, 0)};
   sizeUbo_ =
-      dev.createBuffer({name() + ".size", "frame", BufferUsage::Uniform, sizeof size}, &size);
+      dev.createBuffer({name() + ".size", Owner::Frame, BufferUsage::Uniform, sizeof size}, &size);
   makePipelines(dev);
 }
 

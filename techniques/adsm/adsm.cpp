@@ -3,9 +3,9 @@
 #include <cmath>
 #include <cstring>
 
+#include "render/common/shader_library.h"
 #include "techniques/adsm/slots.h"
 #include "techniques/adsm/uniforms.h"
-#include "render/common/shader_library.h"
 
 namespace sb {
 
@@ -39,9 +39,9 @@ void ApproximatedDeepShadows::setup(Device& dev, const GpuScene& scene, const Re
   p.adsmViewProj = view.viewProj;
   p.adsmParams = glm::vec4(opt_.bias, float(opt_.size), scene.shadowAlpha, 0.0f);
   p.adsmFiber = glm::vec4(worldPerDepth_, opt_.spacing * radius_, float(opt_.kernel), 0.0f);
-  params_ = dev.createBuffer({"adsm.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
-  depth_ =
-      dev.createTexture({"adsm.depth", "shadow", Format::Depth32F, opt_.size, opt_.size, false});
+  params_ = dev.createBuffer({"adsm.params", Owner::Frame, BufferUsage::Uniform, sizeof p}, &p);
+  depth_ = dev.createTexture(
+      {"adsm.depth", Owner::Shadow, Format::Depth32F, opt_.size, opt_.size, false});
   if (!scene.hasHair()) return;
   const ShaderCode vert = Geometry::strandVertexShader(s);
   const ShaderCode frag = loadShader("render/common/depth_only.frag");

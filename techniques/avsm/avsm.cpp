@@ -2,10 +2,10 @@
 
 #include <cstring>
 
+#include "render/common/shader_library.h"
 #include "techniques/avsm/resolve_uniforms.h"
 #include "techniques/avsm/slots.h"
 #include "techniques/avsm/uniforms.h"
-#include "render/common/shader_library.h"
 
 namespace sb {
 
@@ -35,12 +35,12 @@ void AdaptiveVolumetricShadowMaps::setup(Device& dev, const GpuScene& scene,
   params_ = createLightLookupParams<AvsmLookupParams>(dev, view, opt_.bias, opt_.size,
                                                       scene.shadowAlpha, "avsm");
   const AvsmResolve r{glm::vec4(1.0f - scene.shadowAlpha, float(opt_.size), 0.0f, 0.0f)};
-  resolve_ = dev.createBuffer({"avsm.resolve", "frame", BufferUsage::Uniform, sizeof r}, &r);
+  resolve_ = dev.createBuffer({"avsm.resolve", Owner::Frame, BufferUsage::Uniform, sizeof r}, &r);
   const std::size_t texels = std::size_t(opt_.size) * opt_.size;
-  count_ = dev.createBuffer({"avsm.count", "shadow", BufferUsage::Storage, texels * 4});
-  nodes_ = dev.createBuffer({"avsm.nodes", "shadow", BufferUsage::Storage,
+  count_ = dev.createBuffer({"avsm.count", Owner::Shadow, BufferUsage::Storage, texels * 4});
+  nodes_ = dev.createBuffer({"avsm.nodes", Owner::Shadow, BufferUsage::Storage,
                              texels * (opt_.nodes + 2) * sizeof(glm::vec2)});
-  status_ = dev.createBuffer({"avsm.status", "shadow", BufferUsage::Storage, 16});
+  status_ = dev.createBuffer({"avsm.status", Owner::Shadow, BufferUsage::Storage, 16});
   // No interlock path is written (it could not run here): with or without the
   // extension the curves are built in the resolve, in primitive order.
   emulated_ = std::string(

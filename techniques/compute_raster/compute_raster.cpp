@@ -53,9 +53,10 @@ void ComputeRasterOit::setup(Device& dev, const GpuScene& scene, const RenderSet
   const glm::mat4 vp = cameraView(s).viewProj;
   const float xScale = glm::length(glm::vec3(vp[0][0], vp[1][0], vp[2][0]));
   p.crWidth = glm::vec4(0.5f * float(s.width) * xScale, 0, 0, 0);
-  params_ = dev.createBuffer({name() + ".params", "frame", BufferUsage::Uniform, sizeof p}, &p);
+  params_ =
+      dev.createBuffer({name() + ".params", Owner::Frame, BufferUsage::Uniform, sizeof p}, &p);
   cursor_ = dev.createBuffer(
-      {name() + ".cursor", "oit", BufferUsage::Storage, (kStatusWords + tiles()) * 4ull});
+      {name() + ".cursor", Owner::Oit, BufferUsage::Storage, (kStatusWords + tiles()) * 4ull});
   if (o_.fragments > 0) {
     // The engines' fixed layout: every tile owns `fragments` entries.
     if (uint64_t(tiles()) * o_.fragments > 0xFFFFFFFFull)
@@ -66,20 +67,20 @@ void ComputeRasterOit::setup(Device& dev, const GpuScene& scene, const RenderSet
     for (uint32_t t = 0; t < tiles(); ++t) layout[t] = {t * o_.fragments, o_.fragments};
     pool_ = uint64_t(tiles()) * o_.fragments;
     layout_ = dev.createBuffer(
-        {name() + ".layout", "oit", BufferUsage::Storage, layout.size() * sizeof(glm::uvec2)},
+        {name() + ".layout", Owner::Oit, BufferUsage::Storage, layout.size() * sizeof(glm::uvec2)},
         layout.data());
   } else {
     layout_ = dev.createBuffer(
-        {name() + ".layout", "oit", BufferUsage::Storage, tiles() * sizeof(glm::uvec2)});
+        {name() + ".layout", Owner::Oit, BufferUsage::Storage, tiles() * sizeof(glm::uvec2)});
   }
-  fragments_ = dev.createBuffer({name() + ".fragments", "oit", BufferUsage::Storage,
+  fragments_ = dev.createBuffer({name() + ".fragments", Owner::Oit, BufferUsage::Storage,
                                  std::max<uint64_t>(pool_, 1) * kFragmentBytes});
-  buckets_ = dev.createBuffer({name() + ".buckets", "oit", BufferUsage::Storage,
+  buckets_ = dev.createBuffer({name() + ".buckets", Owner::Oit, BufferUsage::Storage,
                                std::max<uint64_t>(pool_, 1) * kFragmentBytes});
   ranges_ = dev.createBuffer(
-      {name() + ".ranges", "oit", BufferUsage::Storage, std::size_t(s.width) * s.height * 8});
+      {name() + ".ranges", Owner::Oit, BufferUsage::Storage, std::size_t(s.width) * s.height * 8});
   if (o_.perPoint)
-    shaded_ = dev.createBuffer({name() + ".shaded", "oit", BufferUsage::Storage,
+    shaded_ = dev.createBuffer({name() + ".shaded", Owner::Oit, BufferUsage::Storage,
                                 std::max<std::size_t>(scene.segmentCount, 1) * 2 * 16});
 
   ShaderDefines raster;

@@ -38,7 +38,7 @@ void DensityClusteringShadow::setup(Device& dev, const GpuScene& scene, const Re
   lightView_ = createLightViewBuffer(dev, view, "dc");
   params_ = createLightLookupParams<DcParams>(dev, view, opts_.bias, size, scene.shadowAlpha, "dc");
   auto map = [&](const std::string& what, Format f, uint32_t layers) {
-    return dev.createTexture({"dc." + what, "shadow", f, size, size, false, layers});
+    return dev.createTexture({"dc." + what, Owner::Shadow, f, size, size, false, layers});
   };
   range_ = map("depth_range", Format::RG32F, 1);
   centres_ = map("centres", Format::RGBA32F, layers());

@@ -59,13 +59,13 @@ void DeepOpacityMaps::setup(Device& dev, const GpuScene& scene, const RenderSett
   p.domParams = glm::vec4(opt_.bias, float(opt_.size), scene.shadowAlpha, float(opt_.depthBits));
   p.domLayout = glm::ivec4(K, int(targets()), opt_.beyond, opt_.filter);
   for (int k = 0; k <= K; ++k) p.domD[k / 4][k % 4] = d_[std::size_t(k)];
-  params_ = dev.createBuffer({"dom.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
+  params_ = dev.createBuffer({"dom.params", Owner::Frame, BufferUsage::Uniform, sizeof p}, &p);
 
   // z0: the depth buffer of a depth-only pass (the paper's depth map).
-  depth_ =
-      dev.createTexture({"dom.depth", "shadow", Format::Depth32F, opt_.size, opt_.size, false});
+  depth_ = dev.createTexture(
+      {"dom.depth", Owner::Shadow, Format::Depth32F, opt_.size, opt_.size, false});
   maps_ = dev.createTexture(
-      {"dom.opacity", "shadow", Format::RGBA32F, opt_.size, opt_.size, false, targets()});
+      {"dom.opacity", Owner::Shadow, Format::RGBA32F, opt_.size, opt_.size, false, targets()});
   if (!scene.hasHair()) return;
 
   const ShaderCode vert = Geometry::strandVertexShader(s);

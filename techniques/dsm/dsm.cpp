@@ -28,13 +28,13 @@ void DeepShadowMaps::setup(Device& dev, const GpuScene& scene, const RenderSetti
                                                      scene.shadowAlpha, "dsm");
   const DsmCompressParams c{
       glm::vec4(opt_.epsilon, 1.0f - scene.shadowAlpha, float(opt_.size), float(opt_.maxNodes))};
-  compress_ = dev.createBuffer({"dsm.compress", "frame", BufferUsage::Uniform, sizeof c}, &c);
+  compress_ = dev.createBuffer({"dsm.compress", Owner::Frame, BufferUsage::Uniform, sizeof c}, &c);
   const std::size_t texels = std::size_t(opt_.size) * opt_.size;
-  kept_ = dev.createBuffer({"dsm.kept", "shadow", BufferUsage::Storage, texels * 4});
-  offsets_ = dev.createBuffer({"dsm.offsets", "shadow", BufferUsage::Storage, texels * 4});
-  status_ = dev.createBuffer({"dsm.status", "shadow", BufferUsage::Storage, 16});
-  nodes_ =
-      dev.createBuffer({"dsm.nodes", "shadow", BufferUsage::Storage, 8});  // sized by prepare()
+  kept_ = dev.createBuffer({"dsm.kept", Owner::Shadow, BufferUsage::Storage, texels * 4});
+  offsets_ = dev.createBuffer({"dsm.offsets", Owner::Shadow, BufferUsage::Storage, texels * 4});
+  status_ = dev.createBuffer({"dsm.status", Owner::Shadow, BufferUsage::Storage, 16});
+  nodes_ = dev.createBuffer(
+      {"dsm.nodes", Owner::Shadow, BufferUsage::Storage, 8});  // sized by prepare()
 
   const ShaderCode comp = loadShader("techniques/dsm/compress.comp");
   PipelineDesc c2 = compressPass().pipeline(dev, "dsm.compress", "dsm");

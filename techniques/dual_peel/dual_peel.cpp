@@ -1,8 +1,8 @@
 #include "techniques/dual_peel/dual_peel.h"
 
 #include "render/common/composite.h"
-#include "techniques/dual_peel/slots.h"
 #include "render/shading/hair_shading.h"
+#include "techniques/dual_peel/slots.h"
 
 namespace sb {
 
@@ -20,11 +20,12 @@ void DualPeelOit::setup(Device& dev, const GpuScene& scene, const RenderSettings
   const uint32_t w = s.width, h = s.height;
   for (int i = 0; i < 2; ++i) {
     const std::string n = std::to_string(i);
-    depth_[i] = dev.createTexture({"dual_peel.depth" + n, "oit", Format::RG32F, w, h, false});
-    front_[i] = dev.createTexture({"dual_peel.front" + n, "oit", Format::RGBA32F, w, h, false});
+    depth_[i] = dev.createTexture({"dual_peel.depth" + n, Owner::Oit, Format::RG32F, w, h, false});
+    front_[i] =
+        dev.createTexture({"dual_peel.front" + n, Owner::Oit, Format::RGBA32F, w, h, false});
   }
-  backTemp_ = dev.createTexture({"dual_peel.back_layer", "oit", Format::RGBA32F, w, h, false});
-  back_ = dev.createTexture({"dual_peel.back", "oit", Format::RGBA32F, w, h, false});
+  backTemp_ = dev.createTexture({"dual_peel.back_layer", Owner::Oit, Format::RGBA32F, w, h, false});
+  back_ = dev.createTexture({"dual_peel.back", Owner::Oit, Format::RGBA32F, w, h, false});
 
   // The geometry passes: MAX blending on every target, no depth test (the
   // opaque depth is tested in the shader).

@@ -30,19 +30,20 @@ void ExactShadow::setup(Device& dev, const GpuScene& scene, const RenderSettings
   params_ = createLightLookupParams<ExactShadowParams>(dev, view, bias_, size_, scene.shadowAlpha,
                                                        "exact");
   const PeelSize sizeData{glm::uvec4(uint32_t(texels), size_, 0, 0)};
-  sizeUbo_ =
-      dev.createBuffer({"exact.size", "frame", BufferUsage::Uniform, sizeof sizeData}, &sizeData);
-  counts_ = dev.createBuffer({"exact.counts", "shadow", BufferUsage::Storage, texels * 4});
-  offsets_ = dev.createBuffer({"exact.offsets", "shadow", BufferUsage::Storage, texels * 4});
-  cursor_ = dev.createBuffer({"exact.cursor", "shadow", BufferUsage::Storage, texels * 4});
-  status_ = dev.createBuffer({"exact.status", "shadow", BufferUsage::Storage, 16});
+  sizeUbo_ = dev.createBuffer({"exact.size", Owner::Frame, BufferUsage::Uniform, sizeof sizeData},
+                              &sizeData);
+  counts_ = dev.createBuffer({"exact.counts", Owner::Shadow, BufferUsage::Storage, texels * 4});
+  offsets_ = dev.createBuffer({"exact.offsets", Owner::Shadow, BufferUsage::Storage, texels * 4});
+  cursor_ = dev.createBuffer({"exact.cursor", Owner::Shadow, BufferUsage::Storage, texels * 4});
+  status_ = dev.createBuffer({"exact.status", Owner::Shadow, BufferUsage::Storage, 16});
   // Sized by prepare()'s count; declared now so that the frame graph is built
   // (and culled) before any preparation runs.
-  nodes_ = dev.createBuffer({"exact.nodes", "shadow", BufferUsage::Storage, 8});
+  nodes_ = dev.createBuffer({"exact.nodes", Owner::Shadow, BufferUsage::Storage, 8});
   if (method_ == Method::Peel)
-    state_ = dev.createBuffer({"exact.peel_state", "shadow", BufferUsage::Storage, texels * 16});
+    state_ =
+        dev.createBuffer({"exact.peel_state", Owner::Shadow, BufferUsage::Storage, texels * 16});
   else
-    state_ = dev.createBuffer({"exact.peel_state", "shadow", BufferUsage::Storage, 16});
+    state_ = dev.createBuffer({"exact.peel_state", Owner::Shadow, BufferUsage::Storage, 16});
   opaque_.setup(dev, scene, size_, lightView_, "exact");
 
   count_ = makeHairCountPipeline(dev, s, countPass(), kCounts, "exact");

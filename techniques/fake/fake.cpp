@@ -3,8 +3,8 @@
 #include <cstring>
 
 #include "render/common/shader_library.h"
-#include "techniques/fake/slots.h"
 #include "render/shading/hair_shading.h"
+#include "techniques/fake/slots.h"
 
 namespace sb {
 
@@ -33,20 +33,20 @@ void FakeTransparency::setup(Device& dev, const GpuScene& scene, const RenderSet
   for (uint32_t k = 0; k < kSubsets; ++k) {
     counts_[k] = static_cast<uint32_t>(subsets[k].size());
     if (subsets[k].empty()) subsets[k].push_back(0);  // a buffer is never empty; not drawn
-    segments_[k] = dev.createBuffer({"fake.segments" + std::to_string(k), "oit",
+    segments_[k] = dev.createBuffer({"fake.segments" + std::to_string(k), Owner::Oit,
                                      BufferUsage::Storage, subsets[k].size() * sizeof(uint32_t)},
                                     subsets[k].data());
     images_[k] = dev.createTexture(
-        {"fake.image" + std::to_string(k), "oit", Format::RGBA32F, s.width, s.height, false});
+        {"fake.image" + std::to_string(k), Owner::Oit, Format::RGBA32F, s.width, s.height, false});
     // --msaa N: each subset draws into N samples, averaged into its image at the
     // end of its pass; the images are premultiplied (alpha 1 where hair was
     // drawn, (0, 0, 0, 0) elsewhere), so the averages are its coverage and colour.
     if (s.msaa > 1)
-      imagesMs_[k] = dev.createTexture({"fake.image" + std::to_string(k) + "_ms", "oit",
+      imagesMs_[k] = dev.createTexture({"fake.image" + std::to_string(k) + "_ms", Owner::Oit,
                                         Format::RGBA32F, s.width, s.height, false, 1, s.msaa});
   }
   depth_ = dev.createTexture(
-      {"fake.depth", "oit", Format::Depth32F, s.width, s.height, false, 1, s.msaa});
+      {"fake.depth", Owner::Oit, Format::Depth32F, s.width, s.height, false, 1, s.msaa});
 
   // Each subset: opaque hair, shaded as --oit none shades it, depth-tested.
   const ShaderCode vert = Geometry::strandVertexShader(s);

@@ -23,9 +23,9 @@ void FourierOpacityMaps::setup(Device& dev, const GpuScene& scene, const RenderS
   p.fomViewProj = view.viewProj;
   p.fomParams = glm::vec4(opt_.bias, float(opt_.size), scene.shadowAlpha, 0.0f);
   p.fomRange = glm::vec4(r.nearZ, r.farZ, float(opt_.coefficients), 0.0f);
-  params_ = dev.createBuffer({"fom.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
+  params_ = dev.createBuffer({"fom.params", Owner::Frame, BufferUsage::Uniform, sizeof p}, &p);
   maps_ = dev.createTexture(
-      {"fom.coefficients", "shadow", Format::RGBA32F, opt_.size, opt_.size, false, layers()});
+      {"fom.coefficients", Owner::Shadow, Format::RGBA32F, opt_.size, opt_.size, false, layers()});
   if (!scene.hasHair()) return;
   const ShaderCode vert = Geometry::strandVertexShader(s);
   for (uint32_t first = 0; first < layers(); first += kTargetsPerPass) {

@@ -4,10 +4,10 @@
 
 #include "base/options.h"
 #include "render/common/hair_oit.h"
+#include "render/shading/hair_shading.h"
 #include "techniques/mboit/mboit_math.h"
 #include "techniques/mboit/slots.h"
 #include "techniques/mboit/uniforms.h"
-#include "render/shading/hair_shading.h"
 
 namespace sb {
 
@@ -40,13 +40,13 @@ void MomentOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& 
   MboitParams p{{std::log(range.x), 1.0f / (std::log(range.y) - std::log(range.x)),
                  glsl::mboitKindBias(kind, o_.moments, o_.bits), SB_MBOIT_OVERESTIMATION},
                 {o_.moments / 2, o_.bits, kind, 0}};
-  params_ = dev.createBuffer({"mboit.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
+  params_ = dev.createBuffer({"mboit.params", Owner::Frame, BufferUsage::Uniform, sizeof p}, &p);
   const Format f = o_.bits == 16 ? Format::RGBA16F : Format::RGBA32F;
-  b0_ = dev.createTexture({"mboit.b0", "oit", Format::R32F, s.width, s.height, false});
-  low_ = dev.createTexture({"mboit.moments_1_4", "oit", f, s.width, s.height, false});
+  b0_ = dev.createTexture({"mboit.b0", Owner::Oit, Format::R32F, s.width, s.height, false});
+  low_ = dev.createTexture({"mboit.moments_1_4", Owner::Oit, f, s.width, s.height, false});
   if (highTarget())
-    high_ = dev.createTexture({"mboit.moments_5_8", "oit", f, s.width, s.height, false});
-  accum_ = dev.createTexture({"mboit.accum", "oit", f, s.width, s.height, false});
+    high_ = dev.createTexture({"mboit.moments_5_8", Owner::Oit, f, s.width, s.height, false});
+  accum_ = dev.createTexture({"mboit.accum", Owner::Oit, f, s.width, s.height, false});
 
   ShaderDefines defs;
   if (highTarget()) defs.defines.push_back({"SB_MBOIT_HIGH", "1"});

@@ -26,13 +26,13 @@ void MomentShadowMaps::setup(Device& dev, const GpuScene& scene, const RenderSet
                           glsl::mboitKindBias(kind(opt_), opt_.moments, 32));
   p.msmRange = glm::vec4(r.nearZ, r.farZ, SB_MBOIT_OVERESTIMATION, 0.0f);
   p.msmN = glm::ivec4(opt_.moments, kind(opt_), 0, 0);
-  params_ = dev.createBuffer({"msm.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
-  b0_ = dev.createTexture({"msm.b0", "shadow", Format::R32F, opt_.size, opt_.size, false});
+  params_ = dev.createBuffer({"msm.params", Owner::Frame, BufferUsage::Uniform, sizeof p}, &p);
+  b0_ = dev.createTexture({"msm.b0", Owner::Shadow, Format::R32F, opt_.size, opt_.size, false});
   low_ = dev.createTexture(
-      {"msm.moments_1_4", "shadow", Format::RGBA32F, opt_.size, opt_.size, false});
+      {"msm.moments_1_4", Owner::Shadow, Format::RGBA32F, opt_.size, opt_.size, false});
   if (highTarget())
     high_ = dev.createTexture(
-        {"msm.moments_5_8", "shadow", Format::RGBA32F, opt_.size, opt_.size, false});
+        {"msm.moments_5_8", Owner::Shadow, Format::RGBA32F, opt_.size, opt_.size, false});
   if (!scene.hasHair()) return;
   ShaderDefines defs;
   if (highTarget()) defs.defines.push_back({"SB_MSM_HIGH", "1"});

@@ -44,7 +44,7 @@ void OccupancyShadow::setup(Device& dev, const GpuScene& scene, const RenderSett
                                                      "occupancy");
   OccupancyMaps::Config c;
   c.prefix = "occupancy";
-  c.owner = "shadow";
+  c.owner = Owner::Shadow;
   c.width = c.height = size;
   c.slices = opts_.slices;
   c.slabs = opts_.slabs;

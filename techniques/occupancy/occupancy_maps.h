@@ -19,8 +19,8 @@ namespace sb {
 class OccupancyMaps {
  public:
   struct Config {
-    std::string prefix;  // names of passes and textures
-    std::string owner;   // memory owner of the textures
+    std::string prefix;         // names of passes and textures
+    Owner owner = Owner::None;  // memory owner of the textures
     uint32_t width = 0, height = 0;
     uint32_t slices = 128, slabs = 4;  // at most kMaxSlices, kMaxSlabs
     bool slabMap = true;

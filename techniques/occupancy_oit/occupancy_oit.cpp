@@ -4,8 +4,8 @@
 
 #include "base/options.h"
 #include "render/common/shader_library.h"
-#include "techniques/occupancy_oit/slots.h"
 #include "render/shading/hair_shading.h"
+#include "techniques/occupancy_oit/slots.h"
 
 namespace sb {
 
@@ -31,10 +31,10 @@ void OccupancyOit::setup(Device& dev, const GpuScene& scene, const RenderSetting
                          const HairShading& shading, const OitTargets& targets) {
   keep(scene, s, shading, targets);
   const uint32_t w = s.width, h = s.height;
-  // Every target of the technique (owner "oit"); no buffers, no uniforms.
+  // Every target of the technique (owner Oit); no buffers, no uniforms.
   OccupancyMaps::Config c;
   c.prefix = "occupancy_oit";
-  c.owner = "oit";
+  c.owner = Owner::Oit;
   c.width = w;
   c.height = h;
   c.slices = opts_.slices;
@@ -42,9 +42,9 @@ void OccupancyOit::setup(Device& dev, const GpuScene& scene, const RenderSetting
   c.depth = targets.depth;
   c.clearDepth = !targets.opaqueDrawn;
   maps_.setup(dev, scene, s, shading.viewUbo(), c);
-  accum_ = dev.createTexture({"occupancy_oit.accum", "oit", Format::RGBA32F, w, h, false});
-  log2T_ =
-      dev.createTexture({"occupancy_oit.log2_transmittance", "oit", Format::R32F, w, h, false});
+  accum_ = dev.createTexture({"occupancy_oit.accum", Owner::Oit, Format::RGBA32F, w, h, false});
+  log2T_ = dev.createTexture(
+      {"occupancy_oit.log2_transmittance", Owner::Oit, Format::R32F, w, h, false});
 
   ShaderDefines defs = maps_.defines();
   // order=printed takes Lambda as printed too (hair.a / Lambda).

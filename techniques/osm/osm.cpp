@@ -87,11 +87,11 @@ void OpacityShadowMaps::setup(Device& dev, const GpuScene& scene, const RenderSe
   p.osmParams = glm::vec4(opt_.bias, float(opt_.size), scene.shadowAlpha, weight_);
   p.osmLayout = glm::ivec4(int(layout_.cols), n, int(layout_.atlases), opt_.filter);
   for (int i = 0; i <= n; ++i) p.osmSlices[i / 4][i % 4] = slices_[std::size_t(i)];
-  params_ = dev.createBuffer({"osm.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
+  params_ = dev.createBuffer({"osm.params", Owner::Frame, BufferUsage::Uniform, sizeof p}, &p);
 
   const Format format = mapFormat(opt_.bits);
   const uint32_t w = layout_.cols * opt_.size, h = layout_.rows * opt_.size;
-  atlases_ = dev.createTexture({"osm.maps", "shadow", format, w, h, false, layout_.atlases});
+  atlases_ = dev.createTexture({"osm.maps", Owner::Shadow, format, w, h, false, layout_.atlases});
 
   // The light's view pointed at each tile: x' = x / cols + offset, so tile
   // pixels are the map's pixels shifted by whole tiles.
@@ -106,7 +106,7 @@ void OpacityShadowMaps::setup(Device& dev, const GpuScene& scene, const RenderSe
     tv.viewProj = m * view.viewProj;
     tv.viewViewport = glm::vec4(float(w), float(h), s.ribbonWidth, 0.0f);
     tileViews_.push_back(dev.createBuffer(
-        {"osm.tile_view" + std::to_string(t), "frame", BufferUsage::Uniform, sizeof tv}, &tv));
+        {"osm.tile_view" + std::to_string(t), Owner::Frame, BufferUsage::Uniform, sizeof tv}, &tv));
   }
 
   auto tileRect = [&](uint32_t t) {
@@ -116,9 +116,9 @@ void OpacityShadowMaps::setup(Device& dev, const GpuScene& scene, const RenderSe
   auto addPass = [&](uint32_t targets, uint32_t tile, bool clear, glm::ivec4 range) {
     const OsmPass pp{range, tileRect(tile)};
     MapPass mp{targets, tile, clear, {}};
-    mp.params = dev.createBuffer(
-        {"osm.pass" + std::to_string(passes_.size()), "frame", BufferUsage::Uniform, sizeof pp},
-        &pp);
+    mp.params = dev.createBuffer({"osm.pass" + std::to_string(passes_.size()), Owner::Frame,
+                                  BufferUsage::Uniform, sizeof pp},
+                                 &pp);
     passes_.push_back(mp);
   };
   if (opt_.multi) {

@@ -14,10 +14,11 @@ constexpr uint32_t kSize = SB_SLOT_PEEL_ADVANCE_SIZE;  // peel_advance.comp's si
 void PeelOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
                     const HairShading& shading, const OitTargets& targets) {
   setupCommon(dev, scene, s, shading, targets);
-  state_ = dev.createBuffer({"peel.state", "oit", BufferUsage::Storage, pixels() * 16ull});
-  peeled_ = dev.createBuffer({"peel.layers", "oit", BufferUsage::Storage, pixels() * 4ull});
+  state_ = dev.createBuffer({"peel.state", Owner::Oit, BufferUsage::Storage, pixels() * 16ull});
+  peeled_ = dev.createBuffer({"peel.layers", Owner::Oit, BufferUsage::Storage, pixels() * 4ull});
   const PeelSize size{glm::uvec4(pixels(), s.width, s.height, 0)};
-  sizeUbo_ = dev.createBuffer({"peel.size", "frame", BufferUsage::Uniform, sizeof size}, &size);
+  sizeUbo_ =
+      dev.createBuffer({"peel.size", Owner::Frame, BufferUsage::Uniform, sizeof size}, &size);
   for (int step = 0; step < 3; ++step) {
     ShaderDefines defs;
     defs.defines.push_back({"SB_PEEL_PASS", std::to_string(step)});

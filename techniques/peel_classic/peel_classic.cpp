@@ -19,13 +19,13 @@ void ClassicPeelOit::setup(Device& dev, const GpuScene& scene, const RenderSetti
                            const HairShading& shading, const OitTargets& targets) {
   setupCommon(dev, scene, s, shading, targets);
   const uint32_t w = s.width, h = s.height;
-  layerColor_ = dev.createTexture({"peel_classic.layer", "oit", Format::RGBA32F, w, h, false});
+  layerColor_ = dev.createTexture({"peel_classic.layer", Owner::Oit, Format::RGBA32F, w, h, false});
   for (int i = 0; i < 2; ++i)
     layerDepth_[i] = dev.createTexture(
-        {"peel_classic.layer_depth" + std::to_string(i), "oit", Format::R32F, w, h, false});
-  peelDepth_ = dev.createTexture({"peel_classic.depth", "oit", Format::Depth32F, w, h, false});
-  under_ = dev.createTexture({"peel_classic.under", "oit", Format::RGBA32F, w, h, false});
-  peeled_ = dev.createTexture({"peel_classic.peeled", "oit", Format::R32F, w, h, false});
+        {"peel_classic.layer_depth" + std::to_string(i), Owner::Oit, Format::R32F, w, h, false});
+  peelDepth_ = dev.createTexture({"peel_classic.depth", Owner::Oit, Format::Depth32F, w, h, false});
+  under_ = dev.createTexture({"peel_classic.under", Owner::Oit, Format::RGBA32F, w, h, false});
+  peeled_ = dev.createTexture({"peel_classic.peeled", Owner::Oit, Format::R32F, w, h, false});
 
   // The layer: colour (a c, a) and its depth, nearest by the depth test.
   const Pass lp = layerPass(0);

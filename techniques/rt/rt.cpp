@@ -45,9 +45,9 @@ void RayTracedShadow::setup(Device& dev, const GpuScene& scene, const RenderSett
   // The light view's right and up axes: rows 0 and 1 of its rotation.
   p.rtAxisU = glm::vec4(lightV[0][0], lightV[1][0], lightV[2][0], float(opt_.maxHits));
   p.rtAxisV = glm::vec4(lightV[0][1], lightV[1][1], lightV[2][1], perW);
-  params_ = dev.createBuffer({"rt.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
-  walk_ = rt::uploadWalk(dev, walk, rayQuery_, "rt.", "shadow");
-  status_ = dev.createBuffer({"rt.status", "shadow", BufferUsage::Storage, 16});
+  params_ = dev.createBuffer({"rt.params", Owner::Frame, BufferUsage::Uniform, sizeof p}, &p);
+  walk_ = rt::uploadWalk(dev, walk, rayQuery_, "rt.", Owner::Shadow);
+  status_ = dev.createBuffer({"rt.status", Owner::Shadow, BufferUsage::Storage, 16});
 }
 
 // Clears the capped-ray count before the shading passes add to it.

@@ -86,7 +86,7 @@ Walk buildWalk(const std::vector<Segment>& segs, bool rayQuery, bool sah) {
 }
 
 WalkBuffers uploadWalk(Device& dev, const Walk& w, bool rayQuery, const std::string& prefix,
-                       const std::string& owner) {
+                       Owner owner) {
   WalkBuffers b;
   if (rayQuery) {
     b.boxes = dev.createBuffer(

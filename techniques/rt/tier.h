@@ -65,6 +65,6 @@ struct WalkBuffers {
   Buffer nodes, segments, boxes, scene;
 };
 WalkBuffers uploadWalk(Device& dev, const Walk& w, bool rayQuery, const std::string& prefix,
-                       const std::string& owner);
+                       Owner owner);
 
 }  // namespace sb::rt

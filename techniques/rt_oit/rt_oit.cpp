@@ -4,9 +4,9 @@
 #include "base/options.h"
 #include "render/common/readback.h"
 #include "render/common/shader_library.h"
+#include "render/shading/hair_shading.h"
 #include "techniques/rt_oit/slots.h"
 #include "techniques/rt_oit/uniforms.h"
-#include "render/shading/hair_shading.h"
 
 namespace sb {
 
@@ -63,9 +63,9 @@ void RayTracedOit::setup(Device& dev, const GpuScene& scene, const RenderSetting
   RtOitParams p{};
   p.rtoInvViewProj = glm::mat4(glm::inverse(glm::dmat4(vp)));
   p.rtoSize = glm::uvec4(s.width, s.height, o_.k, o_.maxHits);
-  params_ = dev.createBuffer({"rt.oit_params", "frame", BufferUsage::Uniform, sizeof p}, &p);
-  walk_ = rt::uploadWalk(dev, walk, rayQuery_, "rt.oit_", "oit");
-  status_ = dev.createBuffer({"rt.oit_status", "oit", BufferUsage::Storage, 16});
+  params_ = dev.createBuffer({"rt.oit_params", Owner::Frame, BufferUsage::Uniform, sizeof p}, &p);
+  walk_ = rt::uploadWalk(dev, walk, rayQuery_, "rt.oit_", Owner::Oit);
+  status_ = dev.createBuffer({"rt.oit_status", Owner::Oit, BufferUsage::Storage, 16});
 
   ShaderDefines defs = shading.hairDefines();
   if (targets.opaqueDrawn) defs.defines.push_back({"SB_RT_OIT_OPAQUE", "1"});

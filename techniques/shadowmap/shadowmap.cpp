@@ -13,11 +13,13 @@ constexpr uint32_t kDepth = SB_SLOT_SHADOWMAP_DEPTH, kParams = SB_SLOT_SHADOWMAP
 void ShadowMap::setup(Device& dev, const GpuScene& scene, const RenderSettings& s) {
   scene_ = &scene;
   settings_ = s;
-  depth_ = dev.createTexture({"shadowmap.depth", "shadow", Format::Depth32F, size_, size_, false});
+  depth_ =
+      dev.createTexture({"shadowmap.depth", Owner::Shadow, Format::Depth32F, size_, size_, false});
   const ViewUniforms view = lightView(s, size_, size_);
   lightViewUbo_ = createLightViewBuffer(dev, view, "shadowmap");
   const ShadowMapParams p{view.viewProj, glm::vec4(bias_, 0, 0, 0)};
-  paramsUbo_ = dev.createBuffer({"shadowmap.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
+  paramsUbo_ =
+      dev.createBuffer({"shadowmap.params", Owner::Frame, BufferUsage::Uniform, sizeof p}, &p);
 
   const ShaderCode frag = loadShader("render/common/depth_only.frag");
   PipelineDesc d = pass().pipeline(dev, "shadowmap.depth", "shadowmap");

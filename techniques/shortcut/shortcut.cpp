@@ -16,12 +16,13 @@ void ShortCutOit::setup(Device& dev, const GpuScene& scene, const RenderSettings
                         const HairShading& shading, const OitTargets& targets) {
   keep(scene, s, shading, targets);
   const std::size_t slots = std::size_t(s.width) * s.height * std::size_t(k_);
-  depths_ = dev.createBuffer({"shortcut.depths", "oit", BufferUsage::Storage, slots * 4});
-  colors_ = dev.createBuffer({"shortcut.colors", "oit", BufferUsage::Storage, slots * 16});
-  claims_ = dev.createBuffer({"shortcut.claims", "oit", BufferUsage::Storage, slots * 4});
-  tail_ = dev.createTexture({"shortcut.tail", "oit", Format::RGBA32F, s.width, s.height, false});
+  depths_ = dev.createBuffer({"shortcut.depths", Owner::Oit, BufferUsage::Storage, slots * 4});
+  colors_ = dev.createBuffer({"shortcut.colors", Owner::Oit, BufferUsage::Storage, slots * 16});
+  claims_ = dev.createBuffer({"shortcut.claims", Owner::Oit, BufferUsage::Storage, slots * 4});
+  tail_ =
+      dev.createTexture({"shortcut.tail", Owner::Oit, Format::RGBA32F, s.width, s.height, false});
   revealage_ =
-      dev.createTexture({"shortcut.revealage", "oit", Format::R32F, s.width, s.height, false});
+      dev.createTexture({"shortcut.revealage", Owner::Oit, Format::R32F, s.width, s.height, false});
 
   ShaderDefines defs;
   defs.defines.push_back({"SB_SHORTCUT_K", std::to_string(k_)});

@@ -17,12 +17,13 @@ void StochasticOit::setup(Device& dev, const GpuScene& scene, const RenderSettin
                           const HairShading& shading, const OitTargets& targets) {
   keep(scene, s, shading, targets);
   const StochasticParams p{glm::uvec4(options_.seed, options_.samples, 0, 0)};
-  params_ = dev.createBuffer({"stochastic.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
+  params_ =
+      dev.createBuffer({"stochastic.params", Owner::Frame, BufferUsage::Uniform, sizeof p}, &p);
   const uint32_t w = s.width, h = s.height;
-  depths_ = dev.createBuffer({"stochastic.depths", "oit", BufferUsage::Storage,
+  depths_ = dev.createBuffer({"stochastic.depths", Owner::Oit, BufferUsage::Storage,
                               std::size_t(w) * h * options_.samples * 4});
-  accum_ = dev.createTexture({"stochastic.accum", "oit", Format::RGBA32F, w, h, false});
-  alpha_ = dev.createTexture({"stochastic.alpha", "oit", Format::R32F, w, h, false});
+  accum_ = dev.createTexture({"stochastic.accum", Owner::Oit, Format::RGBA32F, w, h, false});
+  alpha_ = dev.createTexture({"stochastic.alpha", Owner::Oit, Format::R32F, w, h, false});
 
   const ShaderDefines defs = shading.hairDefines();
   const ShaderCode vert = Geometry::strandVertexShader(s);

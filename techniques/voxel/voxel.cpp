@@ -25,9 +25,9 @@ void VoxelDensityShadow::setup(Device& dev, const GpuScene& scene, const RenderS
   p.voxelParams = glm::vec4(opt_.bias, float(opt_.size), scene.shadowAlpha, opt_.densityScale);
   p.voxelRange = glm::vec4(r.nearZ, r.farZ, float(opt_.steps), 0.0f);
   p.voxelCells = glm::vec4(float(columns()), float(opt_.grid), 0.0f, 0.0f);
-  params_ = dev.createBuffer({"voxel.params", "frame", BufferUsage::Uniform, sizeof p}, &p);
+  params_ = dev.createBuffer({"voxel.params", Owner::Frame, BufferUsage::Uniform, sizeof p}, &p);
   const std::size_t voxels = std::size_t(columns()) * columns() * opt_.grid;
-  grid_ = dev.createBuffer({"voxel.grid", "shadow", BufferUsage::Storage, voxels * 4});
+  grid_ = dev.createBuffer({"voxel.grid", Owner::Shadow, BufferUsage::Storage, voxels * 4});
   if (!scene.hasHair()) return;
   const ShaderCode vert = Geometry::strandVertexShader(s);
   const ShaderCode frag = loadShader("techniques/voxel/splat.frag");

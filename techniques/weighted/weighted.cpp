@@ -22,10 +22,10 @@ void BlendedOitBase::setup(Device& dev, const GpuScene& scene, const RenderSetti
   const uint32_t n = s.msaa;
   for (const Target& t : cfg.targets) {
     textures_.push_back(
-        dev.createTexture({name() + "." + t.name, "oit", t.format, s.width, s.height, false}));
+        dev.createTexture({name() + "." + t.name, Owner::Oit, t.format, s.width, s.height, false}));
     if (n > 1)
       samplesTextures_.push_back(dev.createTexture(
-          {name() + "." + t.name + "_ms", "oit", t.format, s.width, s.height, false, 1, n}));
+          {name() + "." + t.name + "_ms", Owner::Oit, t.format, s.width, s.height, false, 1, n}));
   }
 
   // Accumulation: the hair, shaded through the shadow lookup, depth-tested

@@ -2,8 +2,8 @@
 
 #include <cstring>
 
-#include "render/shading/hair_shading.h"
 #include "render/outputs/probe/slots.h"
+#include "render/shading/hair_shading.h"
 
 namespace sb {
 
@@ -18,8 +18,8 @@ void ProbeOutput::setup(Device& dev, const std::vector<glm::vec3>& points,
   std::vector<glm::vec4> p;
   for (const auto& x : points) p.emplace_back(x, 1.0f);
   points_ = dev.createBuffer(
-      {"probe.points", "frame", BufferUsage::Storage, p.size() * sizeof(glm::vec4)}, p.data());
-  values_ = dev.createBuffer({"probe.values", "frame", BufferUsage::Storage, p.size() * 4});
+      {"probe.points", Owner::Frame, BufferUsage::Storage, p.size() * sizeof(glm::vec4)}, p.data());
+  values_ = dev.createBuffer({"probe.values", Owner::Frame, BufferUsage::Storage, p.size() * 4});
   const ShaderCode comp = loadShader("render/outputs/probe/probe.comp", shading.hairDefines());
   PipelineDesc d = pass().pipeline(dev, "probe", "probe+" + shading.shadow().name());
   d.compute = &comp;

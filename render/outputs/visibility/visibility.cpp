@@ -10,9 +10,10 @@ void VisibilityOutput::setup(Device& dev, const GpuScene& scene, const RenderSet
   scene_ = &scene;
   shading_ = &shading;
   settings_ = s;
-  image_ = dev.createTexture({"visibility.image", "frame", Format::R32F, s.width, s.height, false});
-  depth_ =
-      dev.createTexture({"visibility.depth", "frame", Format::Depth32F, s.width, s.height, false});
+  image_ =
+      dev.createTexture({"visibility.image", Owner::Frame, Format::R32F, s.width, s.height, false});
+  depth_ = dev.createTexture(
+      {"visibility.depth", Owner::Frame, Format::Depth32F, s.width, s.height, false});
   const ShaderCode frag =
       loadShader("render/outputs/visibility/visibility.frag", shading.hairDefines());
   PipelineDesc d = pass().pipeline(dev, "visibility", "visibility+" + shading.shadow().name());
