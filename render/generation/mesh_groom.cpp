@@ -40,7 +40,7 @@ void uploadMeshGroom(Device& dev, const Scene& scene, GpuScene& gpu) {
     for (int k = 0; k < 4; ++k) table.push_back(std::bit_cast<uint32_t>(p[k]));
 
   auto input = [&](const std::string& name, const void* data, std::size_t bytes) {
-    return dev.createBuffer({"scene." + name, "scene", BufferUsage::Storage, bytes}, data);
+    return dev.createBuffer({"scene." + name, Owner::Scene, BufferUsage::Storage, bytes}, data);
   };
   gpu.points =
       input("guide_points", g.guidePoints.data(), g.guidePoints.size() * sizeof(glm::vec4));
