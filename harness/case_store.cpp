@@ -107,6 +107,8 @@ std::string CaseStore::key(const SweepCase& c, const RepetitionOptions& rounds,
                                         std::tuple{"shading", Family::Shading, q.shading}})
     settings[k] = canonicalSpec(spec, techniqueOptions(family, Spec::parse(spec).name));
   settings["run_to_run"] = q.runToRun;
+  // Interleaved, a case's frames are its rounds (below); its `repeat` only set their default.
+  if (interleave) settings.erase("repeat");
   const ojson key = {{"format", kFormat},
                      {"settings", settings},
                      {"rounds",

@@ -67,6 +67,7 @@ if [ $list = 0 ] && [ ${#stale_pages[@]} -gt 0 ] && [ -z "${SB_FIGURE_CASES:-}" 
   trap 'rm -rf "$SB_FIGURE_CASES"' EXIT
 fi
 export SB_FIGURE_CASES
+[ -z "${SB_FIGURE_CASES:-}" ] || echo "case store of the figures: $SB_FIGURE_CASES"
 for page in "${stale_pages[@]}"; do
   # The header's command: `strandbench figure NAME [--small] [--min-reps N] --backend B --out X --docs D`.
   header=$(head -n 1 "$page" | sed -n 's/.*written by `strandbench \(figure [^`]*\)`.*/\1/p')

@@ -182,6 +182,11 @@ TEST(FigureCases, TheKeyIsTheCanonicalCaseAndItsRounds) {
   EXPECT_NE(key(0), key(2));
   EXPECT_NE(key(0), key(3));
   EXPECT_NE(key(0, three), key(0, five));
+  // Interleaved, `repeat` is only the rounds' default: the rounds are the key.
+  sb::SweepCase repeated = s.cases[0];
+  repeated.request.repeat = 5;
+  EXPECT_EQ(store.key(repeated, three, true), key(0, three));
+  EXPECT_NE(store.key(repeated, three, false), store.key(s.cases[0], three, false));
   EXPECT_NE(store.key(s.cases[0], three, true), store.key(s.cases[0], three, false));
   EXPECT_NE(key(0).find("\"commit\""), std::string::npos);
   EXPECT_NE(key(0).find("\"executable\""), std::string::npos);
