@@ -38,6 +38,11 @@ void registerFigureCommand(CLI::App& app) {
   cmd->add_option("--docs", o->docs,
                   "also write DIR/NAME.md and DIR/NAME.png, the page the docs include "
                   "(docs/figures; its first line names the command, commit and digest)");
+  cmd->add_option("--cases", o->cases,
+                  "the shared case store, one folder for a whole refresh (default "
+                  "$SB_FIGURE_CASES): a case another figure measured there on this build is "
+                  "taken, not measured again, and this figure's cases are kept there")
+      ->envname("SB_FIGURE_CASES");
   cmd->callback([o, list, runs] {
     runGuarded("figure", [&] {
       o->rounds = runs->read();

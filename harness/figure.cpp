@@ -341,6 +341,8 @@ int runFigure(const FigureOptions& o) {
     so.shownOut = out.string();  // tmp is renamed to it when the figure is done
     so.progressBar = o.progressBar;
     so.rounds = o.rounds;
+    so.interleaveAcrossGroups = true;
+    so.cases = o.cases;
     const int status = runSweep(so);
     // The sweep records the suite file it read; name the figure instead of the temporary file.
     auto sweepDoc = readJsonFile<ojson>(tmp / "sweep.json");

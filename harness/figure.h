@@ -23,6 +23,9 @@ struct FigureOptions {
   std::string out;    // the folder written (default: figures/NAME, or NAME-small)
   RunOptions rounds;  // the sweep's rounds (--min-reps 0: the figure's repeat)
   std::string docs;   // also write docs/NAME.md and NAME.png into this folder (docs/figures)
+  // The shared case store (harness/case_store.h; --cases, $SB_FIGURE_CASES): a case another
+  // figure measured for the same key is taken from it, and this figure's cases are kept in it.
+  std::string cases;
   bool progressBar = false;
 };
 
@@ -40,8 +43,10 @@ std::vector<std::string> figureNames();
 nlohmann::ordered_json figureSuite(const std::string& name, bool small, const std::string& backend);
 
 // Runs the figure into o.out (written in a temporary folder beside it and renamed into place:
-// an existing figure folder there is replaced, anything else is refused). Returns 0, or 1
-// when a case failed (its cell says so).
+// an existing figure folder there is replaced, anything else is refused): every case of the
+// figure in one interleaved run (its paper tables compare cases of different groups), but the
+// cases o.cases holds, which are taken from it. Returns 0, or 1 when a case failed (its cell
+// says so).
 // Refused with --docs (InputError) on a tree with uncommitted code (run_context.h
 // uncommittedCode): the page names the commit that ran.
 int runFigure(const FigureOptions& o);

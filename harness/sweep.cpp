@@ -16,6 +16,8 @@
 #include <thread>
 
 #include "backends/driver_env.h"
+#include "base/fnv.h"
+#include "harness/case_store.h"
 #include "harness/measure.h"
 #include "harness/stop.h"
 #include "imaging/image.h"
@@ -284,8 +286,10 @@ RepetitionOptions groupRepetitions(const SweepOptions& o,
 
 // How a case's frame times were taken, with the median's bootstrap 95% interval and the
 // samples Tukey's fences mark as outliers (marked, never dropped).
+// `run` names the interleaved run (one per batch of cases measured together): two cases'
+// ratio is a measurement of one run only where they share it (figure claims).
 ojson measurementJson(const SweepOptions& o, const RenderResult& out,
-                      const std::vector<double>& startS) {
+                      const std::vector<double>& startS, const std::string& run) {
   const Interval ci = bootstrapMedian(out.frameMs);
   const std::vector<bool> marks = tukeyOutliers(out.frameMs);
   ojson outliers = ojson::array();
@@ -296,7 +300,10 @@ ojson measurementJson(const SweepOptions& o, const RenderResult& out,
              {"median_ms", ci.estimate},
              {"median_ci95_ms", {ci.low, ci.high}},
              {"outliers", outliers}};
-  if (o.interleave) m["round_start_s"] = startS;
+  if (o.interleave) {
+    m["round_start_s"] = startS;
+    m["interleaved_run"] = run;
+  }
   return m;
 }
 
@@ -468,6 +475,9 @@ int runSweep(const SweepOptions& o) {
 
   RenderCache cache;
   std::vector<std::string> failures;
+  std::optional<CaseStore> store;
+  if (!o.cases.empty()) store.emplace(o.cases);
+  int taken = 0, stored = 0;             // cases taken from the store; measured here and kept in it
   ProgressLine::enable(!o.progressBar);  // the bar is the sweep's one line
   const auto start = std::chrono::steady_clock::now();
   const int startDone = done;
@@ -480,10 +490,44 @@ int runSweep(const SweepOptions& o) {
     // case of the group once (harness/measure.h), so a drift of the machine hits them alike.
     for (std::size_t g = 0; g < todo.size();) {
       std::size_t end = g;
-      while (end < todo.size() && todo[end]->group == todo[g]->group) ++end;
-      const std::vector<const SweepCase*> batch(todo.begin() + long(g), todo.begin() + long(end));
+      while (end < todo.size() && (o.interleaveAcrossGroups || todo[end]->group == todo[g]->group))
+        ++end;
+      std::vector<const SweepCase*> batch(todo.begin() + long(g), todo.begin() + long(end));
       g = end;
       const RepetitionOptions reps = groupRepetitions(o, batch);
+      // Cases another sweep measured for the same key: taken whole, not run again.
+      std::vector<std::string> keys;
+      if (store) {
+        std::vector<const SweepCase*> rest;
+        for (const SweepCase* c : batch) {
+          const std::string key = store->key(*c, reps, o.interleave);
+          const std::optional<ojson> result = store->take(key, dir, *c);
+          if (!result) {
+            rest.push_back(c);
+            keys.push_back(key);
+            continue;
+          }
+          writeFileAtomic(caseFile(dir, *c), result->dump(1) + "\n");
+          ++taken;
+          ++done;
+          if (o.progressBar) std::cout << "\n";
+          std::cout << "[" << done << "/" << total << "] " << c->id << "  " << caseSummary(*result)
+                    << "  (measured once: taken from the case store, measured for "
+                    << (*result)["shared"].value("measured_for", "?") << ")\n"
+                    << std::flush;
+          for (const auto& line : invariantFailures(*result)) {
+            std::cout << line << "\n";
+            failures.push_back(line);
+          }
+        }
+        batch = rest;
+        if (batch.empty()) continue;
+      }
+      // Names this batch's interleaved run in its cases' measurements.
+      const std::string runText =
+          suite.name + "|" + batch.front()->id + "|" + std::to_string(::getpid()) + "|" +
+          std::to_string(std::chrono::system_clock::now().time_since_epoch().count());
+      const std::string run = hex64(fnv1a(kFnvOffset, runText.data(), runText.size()));
       std::vector<CaseRun> runs(batch.size());
       std::vector<std::vector<double>> startS(batch.size());  // each round's start
       std::vector<bool> failed(batch.size(), false), written(batch.size(), false);
@@ -494,7 +538,7 @@ int runSweep(const SweepOptions& o) {
       // or at a stop with the rounds it had. Its line is printed then, from the result: the
       // median the report shows, not the first round's time.
       auto writeResult = [&](std::size_t i, bool stoppedEarly = false) {
-        ojson measurement = measurementJson(o, runs[i].out, startS[i]);
+        ojson measurement = measurementJson(o, runs[i].out, startS[i], run);
         if (stoppedEarly) {
           const int rounds = static_cast<int>(startS[i].size());
           measurement["stopped"] = {{"rounds", rounds}, {"min_rounds", reps.minReps}};
@@ -505,6 +549,10 @@ int runSweep(const SweepOptions& o) {
         }
         const ojson result = writeCaseResult(dir, *batch[i], runs[i], measurement);
         written[i] = true;
+        // A case timed in fewer rounds than its key says is not kept for others.
+        if (store && !stoppedEarly) {
+          stored += store->put(keys[i], dir, *batch[i], result, suite.name) ? 1 : 0;
+        }
         if (!o.progressBar)
           std::cout << "[" << number[i] << "/" << total << "] " << batch[i]->id << "  "
                     << caseSummary(result) << "  (" << std::fixed << std::setprecision(1)
@@ -596,8 +644,10 @@ int runSweep(const SweepOptions& o) {
         if (!written[i]) writeResult(i);
       }
       if (o.interleave && reps.maxReps > 1 && measured && !o.progressBar)
-        std::cout << "  group " << batch.front()->group << ": " << measured << " cases, "
-                  << (startS.empty() ? 0 : startS.front().size()) << " interleaved rounds each\n"
+        std::cout << "  "
+                  << (o.interleaveAcrossGroups ? "every group" : "group " + batch.front()->group)
+                  << ": " << measured << " cases, " << (startS.empty() ? 0 : startS.front().size())
+                  << " interleaved rounds each\n"
                   << std::flush;
     }
   } catch (const StopAtFailure&) {
@@ -611,6 +661,10 @@ int runSweep(const SweepOptions& o) {
     std::cout << "\n";
   }
   std::cout << "references rendered: " << cache.referenceRenders << "\n";
+  if (store)
+    std::cout << "case store " << store->dir().string() << ": " << taken
+              << " taken (measured once, by an earlier sweep), " << stored
+              << " measured here and kept\n";
   {
     // The load after the cases, beside the load before them (a busy machine explains noise).
     ojson context = readJsonFile<ojson>(dir / "context.json");

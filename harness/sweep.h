@@ -36,6 +36,12 @@ struct SweepOptions {
   // (interleave false): one run of each case with its `repeat` frames, as `render` does.
   bool interleave = true;
   RunOptions rounds;  // --min-reps (0: the group's largest `repeat`), --max-reps, --target-ci
+  // Every case of the sweep in one interleaved run, not one run per group (figure: its paper
+  // tables compare cases of different groups, and a time verdict needs one interleaved run).
+  bool interleaveAcrossGroups = false;
+  // The shared case store (harness/case_store.h; empty: none): a case it holds for the same
+  // key is taken from it, not run; a case measured here is kept in it.
+  std::string cases;
   // Cases on another driver than the process's ("drivers" in the suite) run in a child
   // sweep per driver, started with --driver D and this set: it runs only the cases of its
   // own driver and leaves the reports to the parent.

@@ -1,6 +1,7 @@
 #include "reports/figure_report.h"
 
 #include <cmath>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -48,6 +49,31 @@ std::vector<double> frameSamples(const json* r) {
   return v;
 }
 
+// The interleaved run that timed a result (sweep.cpp: every case timed in it shares the
+// name); "" where it was not timed in rounds.
+std::string interleavedRun(const json* r) {
+  return r ? text(find(*r, {"measurement", "interleaved_run"})) : "";
+}
+
+// Where a cell's measurement was taken from the shared case store: the figure it was
+// measured for; "" for a case measured by this run.
+std::string measuredFor(const json* r) {
+  return r ? text(find(*r, {"shared", "measured_for"})) : "";
+}
+
+// "date, CPU, load average A (1 min) when it started, B when it ended": the machine and load
+// of a run (a results context or a stored case's).
+std::string machineText(const json& c) {
+  std::string s;
+  auto add = [&](const std::string& part) { s += (s.empty() ? "" : ", ") + part; };
+  if (const std::string d = text(find(c, {"date"})); !d.empty()) add(d);
+  if (const std::string cpu = text(find(c, {"cpu"})); !cpu.empty()) add(cpu);
+  if (const auto l = number(find(c, {"load_before", "1min"})))
+    add("load average " + formatSig(*l) + " (1 min) when it started");
+  if (const auto l = number(find(c, {"load_after", "1min"}))) add(formatSig(*l) + " when it ended");
+  return s;
+}
+
 // The median frame time's 95% bootstrap interval, "[a, b]"; kNone with fewer than 2 samples.
 Cell intervalCell(const json* r) {
   const std::vector<double> v = frameSamples(r);
@@ -63,13 +89,37 @@ std::string contextLine(const json& results, const std::string& command) {
   const json* dirty = c ? find(*c, {"commit_dirty"}) : nullptr;
   std::string s = "Written by `" + command + "` on commit `" + commit.substr(0, 12) + "`";
   if (dirty && *dirty == true) s += " (with uncommitted changes)";
-  if (c) {
-    if (const std::string d = text(find(*c, {"date"})); !d.empty()) s += ", " + d;
-    if (const std::string cpu = text(find(*c, {"cpu"})); !cpu.empty()) s += ", " + cpu;
-    if (const auto l = number(find(*c, {"load_before", "1min"})))
-      s += ", load average " + formatSig(*l) + " (1 min) when it started";
-  }
-  return s + ".";
+  if (c)
+    if (const std::string m = machineText(*c); !m.empty()) s += ", " + m;
+  return s +
+         ". Frame times are this machine's under this load, from this run's rounds: a time on "
+         "another page or from another run is not comparable with them unless a ratio of one "
+         "interleaved run says so.";
+}
+
+bool anyShared(const FigureGrid& g) {
+  for (const auto& row : g.cells)
+    for (const FigureCell& c : row)
+      if (!measuredFor(c.result).empty()) return true;
+  return false;
+}
+
+// The cells whose measurement another figure's run made (the shared case store): which run,
+// on which machine and load, so their times are read as that run's.
+void sharedCells(std::ostringstream& o, const FigureGrid& g) {
+  std::map<std::string, std::string> runs;  // figure -> its machine and load
+  for (const auto& row : g.cells)
+    for (const FigureCell& c : row)
+      if (const std::string f = measuredFor(c.result); !f.empty() && c.note.empty())
+        if (const json* ctx = find(*c.result, {"shared", "context"})) runs[f] = machineText(*ctx);
+  if (runs.empty()) return;
+  o << "Measured once: the cells whose note names another figure were measured by that "
+       "figure's run in the same refresh (the shared case store, `strandbench figure --cases`) "
+       "and are shown as it measured them (time, interval, errors, images), so every page that "
+       "shows the case prints the same numbers. Their times are that run's, on its machine and "
+       "load:\n\n";
+  for (const auto& [f, m] : runs) o << "- " << md(f) << ": " << md(m) << "\n";
+  o << "\n";
 }
 
 }  // namespace
@@ -159,8 +209,15 @@ std::vector<FigureClaim> figureClaims(const json& results) {
       const json* ours = first(groupOfRow(r), find(r, {"match"}));
       const std::vector<double> num = frameSamples(ours), den = frameSamples(baseResult);
       c.time = c.fragments = c.bytes = "-";
-      if (!num.empty() && !den.empty()) {
-        const Interval i = bootstrapRatio(num, den, false);
+      // A verdict in time only from a ratio of one interleaved run (round r timed both cases,
+      // paired): two runs' medians differ by the machine's state as much as by technique.
+      const std::string run = interleavedRun(ours);
+      c.oneRun = !run.empty() && run == interleavedRun(baseResult) && num.size() == den.size();
+      if (!num.empty() && !den.empty() && !c.oneRun) {
+        c.estimate = median(num) / median(den);
+        c.time = "none: not timed in one interleaved run";
+      } else if (!num.empty() && !den.empty()) {
+        const Interval i = bootstrapRatio(num, den, /*paired=*/true);
         c.low = i.low;
         c.estimate = i.estimate;
         c.high = i.high;
@@ -345,6 +402,7 @@ json figureJson(const FigureGrid& g, const json& layout) {
       put("segments", at(r, {"scene", "segments"}));
       put("banding", c.banding);
       if (!c.note.empty()) jc["note"] = c.note;
+      if (const std::string f = measuredFor(r); !f.empty()) jc["measured_for"] = f;
       jr.push_back(std::move(jc));
     }
     cells.push_back(std::move(jr));
@@ -390,14 +448,23 @@ std::string renderFigureMarkdown(const FigureGrid& g, const json& results,
                                  numCell(at(r, {"error", "visibility", "rmse"})),
                                  numCell(r ? memoryMiB(*r, "shadow_bytes") : std::nullopt)};
       if (banding) cells.insert(cells.begin() + 8, numCell(c.banding));
-      cells.push_back({c.note});
+      std::string note = c.note;
+      if (const std::string f = measuredFor(r); !f.empty())
+        note += (note.empty() ? "" : "; ") + std::string("measured once, for ") + f + " (case " +
+                text(find(*r, {"shared", "case"})) + ")";
+      cells.push_back({note});
       t.rows.push_back(std::move(cells));
     }
   mdTable(o, t);
+  sharedCells(o, g);
 
   const ReportData d = buildReport(results);
   if (!d.paperTables.empty()) {
     o << "## Our numbers beside the paper's\n\n";
+    if (anyShared(g))
+      o << "A row whose case was measured once for another figure (its cell's note) divides "
+           "medians of two runs: its ratio is not a measurement of one run (the claims below "
+           "give it no verdict in time).\n\n";
     for (const PaperTable& pt : d.paperTables) {
       o << "### " << md(pt.title) << "\n\n" << md(pt.about) << "\n\n";
       mdTable(o, pt.table);
@@ -443,14 +510,19 @@ std::string renderFigureMarkdown(const FigureGrid& g, const json& results,
     o << "## The paper's claims, at 95%\n\n";
     o << "Each row of a paper table against its baseline: the paper's ratio says whether the "
          "row is faster (below 1) or slower; our ratio of median frame times with its "
-         "bootstrap interval gives the verdict in time, the frame's fragment shader "
-         "invocations and bytes the verdict in work (counted, the same on every device).\n\n";
+         "bootstrap interval (the rounds paired) gives the verdict in time only where both "
+         "cases were timed in one interleaved run (a case measured for another figure was "
+         "not: its ratio compares two runs and has no verdict in time); the frame's fragment "
+         "shader invocations and bytes give the verdict in work (counted, the same on every "
+         "device).\n\n";
     Table ct;
     ct.header = {"Table", "Claim", "Paper ratio", "Our ratio [95%]", "Time", "Fragments", "Bytes"};
     for (const FigureClaim& c : claims) {
       std::string ours = kNone;
-      if (c.estimate)
+      if (c.estimate && c.oneRun)
         ours = formatSig(*c.estimate) + " [" + formatSig(*c.low) + ", " + formatSig(*c.high) + "]";
+      else if (c.estimate)
+        ours = formatSig(*c.estimate) + " (two runs)";
       ct.rows.push_back(
           {{c.table},
            {c.row + (c.paperRatio < 1 ? " faster than " : " slower than ") + c.baseline},

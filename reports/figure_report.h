@@ -86,14 +86,18 @@ std::optional<FigureHeader> parseFigureHeader(const std::string& markdown);
 // A paper's claim on one row of a paper table with a baseline: the row is faster (ratio
 // below 1) or slower than the baseline, as the paper's own ratio says. Verdicts at 95%: in
 // time, "holds" / "fails" / "undecided" by the bootstrap interval of our median ratio (the
-// frame samples of both cases; orderingVerdict); in work, by the fragment shader
+// frame samples of both cases, paired by round; orderingVerdict) where both were timed in one
+// interleaved run, else none; in work, by the fragment shader
 // invocations and bytes ratios (counted, not sampled: "holds" or "fails" on their side of 1,
 // "-" without counters).
 struct FigureClaim {
   std::string table, row, baseline;
   double paperRatio = 0;
   std::optional<double> low, estimate, high;  // our ratio's interval (time)
-  std::string time, fragments, bytes;         // verdicts
+  // Both cases timed in one interleaved run (their measurements' "interleaved_run"): only
+  // then has the ratio an interval and a verdict in time; else the medians' ratio alone.
+  bool oneRun = false;
+  std::string time, fragments, bytes;  // verdicts
 };
 std::vector<FigureClaim> figureClaims(const nlohmann::json& results);
 

@@ -11,6 +11,9 @@
 #   --list           print what would be re-run, run nothing
 #   --only-runs      the stored runs only;  --only-figures: the figure pages only
 # SB_FIGURES_OUT: where the figure runs' folders go (default out/figures).
+# SB_FIGURE_CASES: the shared case store of the refresh (default: a new folder in
+# SB_FIGURES_OUT, removed at the end): a case several stale figures run is measured once, by the
+# first, and the others' pages print that measurement (harness/case_store.h).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 list=0 runs=1 figures=1
@@ -58,6 +61,13 @@ for run in "${stale_runs[@]}"; do
   echo "run $run: $(($(date +%s) - start)) s"
 done
 out=${SB_FIGURES_OUT:-out/figures}
+if [ $list = 0 ] && [ ${#stale_pages[@]} -gt 0 ] && [ -z "${SB_FIGURE_CASES:-}" ]; then
+  mkdir -p "$out"
+  SB_FIGURE_CASES=$(mktemp -d "$out/cases.XXXXXX")
+  trap 'rm -rf "$SB_FIGURE_CASES"' EXIT
+fi
+export SB_FIGURE_CASES
+[ -z "${SB_FIGURE_CASES:-}" ] || echo "case store of the figures: $SB_FIGURE_CASES"
 for page in "${stale_pages[@]}"; do
   # The header's command: `strandbench figure NAME [--small] [--min-reps N] --backend B --out X --docs D`.
   header=$(head -n 1 "$page" | sed -n 's/.*written by `strandbench \(figure [^`]*\)`.*/\1/p')
