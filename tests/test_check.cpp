@@ -180,9 +180,9 @@ TEST(Baselines, ManifestCoversScenesTechniquesAndPrimitives) {
     shadows.insert(sb::Spec::parse(r.shadow).name);
     oits.insert(sb::Spec::parse(r.oit).name);
     // Both APIs, but for the mesh path's cases: mesh shaders are Vulkan's only.
-    const std::vector<std::string> apis =
-        r.geometry == "mesh" ? std::vector<std::string>{"vulkan"}
-                             : std::vector<std::string>{"gl", "vulkan"};
+    const std::vector<std::string> apis = r.geometry == "mesh"
+                                              ? std::vector<std::string>{"vulkan"}
+                                              : std::vector<std::string>{"gl", "vulkan"};
     EXPECT_EQ(c.backends, apis) << c.name;
     EXPECT_LE(r.width * r.height, 128u * 128u) << c.name;
     for (const auto& b : c.backends)
