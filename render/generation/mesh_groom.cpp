@@ -14,8 +14,9 @@ void uploadMeshGroom(Device& dev, const Scene& scene, GpuScene& gpu) {
   // detail's per-instance shares and guide order (generate.comp does), so it refuses rather
   // than draw the full model.
   if (g.hasLod())
-    throw InputError("--geometry mesh: the level of detail (lod=, lod_pixels=) is not on the "
-                     "mesh path yet; use --geometry compute or cpu");
+    throw InputError(
+        "--geometry mesh: the level of detail (lod=, lod_pixels=) is not on the "
+        "mesh path yet; use --geometry compute or cpu");
   const uint64_t segments = g.totalStrands() * (g.points - 1);
   if (segments > UINT32_MAX)
     throw InputError("--geometry mesh: " + std::to_string(segments) +
@@ -25,8 +26,7 @@ void uploadMeshGroom(Device& dev, const Scene& scene, GpuScene& gpu) {
   table[SB_GROOM_TABLE_POINTS] = g.points;
   table[SB_GROOM_TABLE_STRANDS] = g.strands;
   table[SB_GROOM_TABLE_SEGMENTS] = static_cast<uint32_t>(segments);
-  const float floats[] = {g.spread,    g.offset,        g.noise, g.clump,
-                          g.alongStep, scene.hairAlpha, 1.0f};
+  const float floats[] = {g.spread, g.offset, g.noise, g.clump, g.alongStep, scene.hairAlpha, 1.0f};
   const uint32_t at[] = {SB_GROOM_TABLE_RULE,     SB_GROOM_TABLE_RULE + 1, SB_GROOM_TABLE_RULE + 2,
                          SB_GROOM_TABLE_RULE + 3, SB_GROOM_TABLE_ALONG,    SB_GROOM_TABLE_ALPHA,
                          SB_GROOM_TABLE_WIDEN};
