@@ -23,9 +23,9 @@
 #include "imaging/flip.h"
 #include "imaging/image.h"
 #include "imaging/metrics.h"
+#include "render/common/technique.h"
 #include "reports/files.h"
 #include "scenes/scene.h"
-#include "render/common/technique.h"
 
 namespace sb {
 namespace {
@@ -164,9 +164,8 @@ void registerRender(CLI::App& app) {
                   "ui.perfetto.dev or chrome://tracing)");
   cmd->add_option("--reference-out", *referenceOut,
                   "with --reference: write the reference asked for (the exact one; with "
-                  "only further ones, --reference aa:samples=4, the first of those); each "
-                  "other one asked for beside it, its name before the extension (ref.png: "
-                  "ref.aa.png)");
+                  "only further ones, the first of those); each other one asked for beside "
+                  "it, its name before the extension (ref.png: ref.NAME.png)");
   cmd->add_option("--strip", *strip,
                   "with --animate: write up to four frames side by side, the technique's above "
                   "the reference's");
@@ -222,7 +221,7 @@ void registerRender(CLI::App& app) {
         const CLI::Option* asked = cmd->get_option("--reference");
         bool exactAsked = asked->results().size() < asked->count();  // bare, no value
         for (const std::string& t : asked->results())
-          exactAsked |= t.empty() || parseReferenceSpec(t).name == "exact";
+          exactAsked |= t.empty() || parseReferenceSpec(t).name == defaultReference().name;
         std::vector<std::pair<std::string, const Image*>> refs;  // name, image
         if (exactAsked || result.moreReferences.empty())
           refs.emplace_back("exact", &result.referenceImage);

@@ -58,7 +58,7 @@ foreach(_folder IN LISTS SB_UNIT_FOLDERS)
   list(APPEND _sources ${_folder_sources})
   list(APPEND _tests ${_folder_tests})
 endforeach()
-set(_libs sb_cli sb_harness sb_imaging sb_reports sb_pbr
+set(_libs sb_cli "$<LINK_LIBRARY:WHOLE_ARCHIVE,sb_harness>" sb_imaging sb_reports sb_pbr
   "$<LINK_LIBRARY:WHOLE_ARCHIVE,sb_techniques>" sb_backends sb_scenes sb_base
   CLI11::CLI11 nlohmann_json::nlohmann_json
   glm::glm tinyobjloader::tinyobjloader Vulkan::Vulkan PkgConfig::EGL PkgConfig::GLFW

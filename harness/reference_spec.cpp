@@ -1,84 +1,74 @@
+// The registry the reference folders fill (harness/reference_spec.h) and the specs read
+// through it.
 #include "harness/reference_spec.h"
 
-#include <sstream>
+#include <algorithm>
+#include <map>
+#include <stdexcept>
 
 #include "base/errors.h"
 
 namespace sb {
 
 namespace {
-constexpr int kMaxAaSamples = 8;
-constexpr int kMaxPbrSpp = 1 << 16;
-}  // namespace
 
-const std::vector<ReferenceKind>& referenceCatalog() {
-  using R = ReferenceSpec;
-  static const OptionTable<R> kExact({});
-  static const OptionTable<R> kAa({opt::integer(&R::samples, "samples", 4, 1, kMaxAaSamples,
-                                                "samples per pixel along each axis, 1..8")});
-  static const OptionTable<R> kPbr(
-      {opt::choice(&R::mode, "mode", "path", {"transmittance", "single", "path"},
-                   "transmittance, single or path"),
-       opt::integer(&R::spp, "spp", 16, 1, kMaxPbrSpp,
-                    "samples per pixel at most, 1..65536 (transmittance: 1 = the pixel centre)"),
-       opt::integer(
-           &R::bounces, "bounces", 64, 1, 1024,
-           "path: scattering events at most, 1..1024 (Russian roulette ends most paths first)"),
-       opt::choice(&R::width, "width", "auto", {"auto", "footprint", "world"},
-                   "the strands' width: footprint (the raster's: ribbon_width pixels from the eye, "
-                   "ribbon_width light texels from each light), world (the file's thickness, else "
-                   "thickness=), auto (footprint for transmittance, world for single and path)"),
-       opt::number(&R::thickness, "thickness", "0", 0, 1e6,
-                   "world width of strands the file gives none (0: one pixel at the scene's "
-                   "centre)"),
-       opt::number(&R::noise, "noise", "0", 0, 1,
-                   "stop once the noise (the RMS over pixels of each pixel's standard error) is "
-                   "below this, after at least 8 samples (0: run all spp)"),
-       opt::integer(&R::seed, "seed", 1, 0, 2147483647, "the samples' seed, 0..2^31-1")});
-  static const std::vector<ReferenceKind> kinds = {
-      {"exact",
-       "the aliased exact reference: exact shadows and transparency at one sample per pixel "
-       "(error.image, error.visibility, error.own)",
-       kExact.infos(), &kExact},
-      {"aa",
-       "the anti-aliased exact reference: the same at samples x samples per pixel and per light "
-       "texel, strands drawn with their true width, box-filtered (error.aa)",
-       kAa.infos(), &kAa},
-      {"pbr",
-       "the CPU strand reference over Embree's curves (pbr/, docs/physics-reference.md): "
-       "mode=transmittance shades with the scene's model, each light's visibility the exact "
-       "transmittance through every strand crossed; mode=single traces the hair BSDF's single "
-       "scattering, every fibre crossed attenuating the light by its forward transmittance; "
-       "mode=path path-traces the hair BSDF with multiple scattering. Cached by a hash of its "
-       "inputs (error.pbr)",
-       kPbr.infos(), &kPbr},
-  };
-  return kinds;
+// Filled during static initialisation, hence a function-local static.
+std::map<std::string, ReferenceDescriptor>& registry() {
+  static std::map<std::string, ReferenceDescriptor> references;
+  return references;
 }
 
-std::string ReferenceSpec::str() const {
-  if (name == "aa") return "aa:samples=" + std::to_string(samples);
-  if (name != "pbr") return name;
-  std::ostringstream o;
-  o.precision(9);
-  o << "pbr:mode=" << mode << ",spp=" << spp << ",bounces=" << bounces << ",width=" << width
-    << ",thickness=" << thickness << ",noise=" << noise << ",seed=" << seed;
-  return o.str();
+// The folder of a unit.cpp from its __FILE__: the one after the last "references/".
+std::string referenceFolder(const std::string& file) {
+  const std::string root = "harness/references/";
+  const std::size_t at = file.rfind(root);
+  if (at == std::string::npos)
+    throw std::logic_error(file + ": a reference registers from " + root + "<folder>/unit.cpp");
+  const std::size_t begin = at + root.size();
+  return file.substr(begin, file.find('/', begin) - begin);
+}
+
+}  // namespace
+
+RenderResult::MoreReference Reference::render(const ReferenceInputs&) const {
+  throw std::logic_error("reference " + str() + " is the run's own: it renders with the run");
+}
+
+ReferenceRegistrar::ReferenceRegistrar(const char* file, ReferenceDescriptor d) {
+  d.folder = referenceFolder(file);
+  if (d.name.empty() || d.help.empty() || !d.make)
+    throw std::logic_error(std::string(file) + ": a reference needs a name, help and make");
+  const std::string name = d.name;
+  if (!registry().emplace(name, std::move(d)).second)
+    throw std::logic_error("two references named " + name);
+}
+
+std::vector<const ReferenceDescriptor*> referenceCatalog() {
+  std::vector<const ReferenceDescriptor*> out;
+  for (const auto& [name, d] : registry()) out.push_back(&d);
+  std::stable_partition(out.begin(), out.end(),
+                        [](const ReferenceDescriptor* d) { return d->isDefault; });
+  return out;
+}
+
+const ReferenceDescriptor& defaultReference() {
+  const std::vector<const ReferenceDescriptor*> all = referenceCatalog();
+  if (all.empty() || !all.front()->isDefault || (all.size() > 1 && all[1]->isDefault))
+    throw std::logic_error("not one default reference");
+  return *all.front();
 }
 
 ReferenceSpec parseReferenceSpec(const std::string& text) {
   const Spec spec = Spec::parse(text);
   std::vector<std::string> names;
-  const ReferenceKind* kind = nullptr;
-  for (const ReferenceKind& k : referenceCatalog()) {
-    names.push_back(k.name);
-    if (k.name == spec.name) kind = &k;
+  const ReferenceDescriptor* kind = nullptr;
+  for (const ReferenceDescriptor* d : referenceCatalog()) {
+    names.push_back(d->name);
+    if (d->name == spec.name) kind = d;
   }
   if (!kind) throw InputError(unknownNameMessage("reference", spec.name, names));
-  // Each kind's table fills its own fields; the others keep their defaults.
-  ReferenceSpec r = kind->table->read(spec, "reference '" + spec.name + "'");
-  r.name = spec.name;
-  return r;
+  return {kind->name,
+          kind->make(OptionReader(spec, kind->options, "reference '" + spec.name + "'"))};
 }
 
 }  // namespace sb

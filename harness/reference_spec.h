@@ -1,47 +1,96 @@
 // The references a render is compared with (`--reference [SPEC]`, the suite key
-// "reference"): a name and key=value options, parsed as technique specs are
-// (Spec::parse, an OptionTable per kind). `exact` is the aliased exact reference (exact
-// shadows and transparency at one sample per pixel), the default and always
-// rendered when any reference is asked for; `aa:samples=S` the same techniques
-// at S x S samples per pixel, box-filtered (harness/render_steps.h,
-// renderAaReference); `pbr:mode=transmittance|single|path,...` the CPU strand references
-// over Embree (pbr/, harness/pbr_reference.h). A later reference adds itself to
-// referenceCatalog().
+// "reference"), each a unit as techniques are: a folder harness/references/<name>/ whose
+// unit.cpp registers it (SB_REFERENCE, below) with its name, help, typed options
+// (an OptionTable bound to its own struct) and factory. Nothing central lists them:
+// referenceCatalog(), the settings' help and the specs' checks read this registry. The
+// default (isDefault) is rendered with the run itself (harness/render_measures.cpp); the
+// others render on their own (Reference::render) and are compared with the image
+// (moreReferences, harness/render_references.cpp), each writing its own slice of
+// error.<name> (ReferenceSlice).
 #pragma once
 
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
-#include "scenes/scene.h"
+#include "base/options.h"
+#include "harness/render.h"
 
 namespace sb {
 
-struct ReferenceSpec {
-  std::string name = "exact";
-  int samples = 1;  // aa: samples per pixel along each axis (S x S per pixel)
-  // pbr: the mode (transmittance, single, path), samples per pixel, the path's scattering
-  // events at most, the strands' width model (auto: footprint in transmittance mode, world
-  // otherwise), the world width of strands without one (0: one pixel at the scene's centre),
-  // the noise target (RMS standard error; 0: all spp) and the seed.
-  std::string mode = "path";
-  int spp = 16, bounces = 64;
-  std::string width = "auto";
-  double thickness = 0, noise = 0;
-  int seed = 1;
-  // Canonical text: "exact", "aa:samples=4", "pbr:mode=path,spp=16,bounces=64,...".
-  std::string str() const;
-  bool operator==(const ReferenceSpec&) const = default;
+// What a reference renders from: the run's request, scene and settings and its exact shadow
+// (harness/references/exact/exact_reference.h: the default reference's, whose light map the
+// others scale or trace).
+struct ReferenceInputs {
+  const RenderRequest& req;
+  const Scene& scene;
+  const RenderSettings& settings;
+  const Spec& refShadow;
 };
 
-struct ReferenceKind {
-  std::string name;
+// A reference's own part of its result (what only it measures, kept with the result in the
+// sweep's cache), and its fields in error.<name> beside the core ones.
+class ReferenceSlice {
+ public:
+  virtual ~ReferenceSlice() = default;
+  // Adds its fields to `e` (error.<name>), after the comparison filled m's core fields.
+  virtual void json(const RenderResult::MoreReference& m, nlohmann::json& e) const = 0;
+};
+
+// One spec of a reference, its options read into the unit's own struct.
+class Reference {
+ public:
+  virtual ~Reference() = default;
+  // Canonical text: "exact", "aa:samples=4", "pbr:mode=path,spp=16,...".
+  virtual std::string str() const = 0;
+  // Refuses (InputError) what cannot be made at any memory, before any work.
+  virtual void check(const RenderSettings& /*settings*/, const Spec& /*refShadow*/) const {}
+  // The reference image and its cost (the core fields but the comparison's, and its slice).
+  // The default reference has none of its own: it is the run's (throws std::logic_error).
+  virtual RenderResult::MoreReference render(const ReferenceInputs& in) const;
+};
+
+// unit.cpp gives name, help, options and make; the registrar fills `folder` from where
+// unit.cpp is.
+struct ReferenceDescriptor {
+  std::string name;  // --reference NAME[:options], error.NAME
   std::string help;
-  std::vector<OptionInfo> options;                    // table->infos()
-  const OptionTable<ReferenceSpec>* table = nullptr;  // its options, read into the spec
+  std::string example;  // a cheap valid spec (the settings' example); "": the name
+  std::vector<OptionInfo> options;
+  bool isDefault = false;  // rendered whenever any reference is
+  std::string folder;      // harness/references/<folder>/
+  // From a reader made with `options` (every value already checked).
+  std::function<std::shared_ptr<const Reference>(const OptionReader&)> make;
 };
 
-// Every reference, the default (exact) first.
-const std::vector<ReferenceKind>& referenceCatalog();
+struct ReferenceRegistrar {
+  ReferenceRegistrar(const char* file, ReferenceDescriptor d);
+};
+
+// A reference's folder registers it from its unit.cpp, at file scope:
+//   SB_REFERENCE({.name = "aa", .help = "...", .options = kTable.infos(), .make = ...});
+#define SB_REFERENCE(...)                                                                  \
+  namespace sb {                                                                           \
+  namespace {                                                                              \
+  const ReferenceRegistrar SB_REFERENCE_NAME(registered, __LINE__){__FILE__, __VA_ARGS__}; \
+  }                                                                                        \
+  }
+#define SB_REFERENCE_NAME(a, b) SB_REFERENCE_JOIN(a, b)
+#define SB_REFERENCE_JOIN(a, b) a##b
+
+// Every reference, the default first, then by name.
+std::vector<const ReferenceDescriptor*> referenceCatalog();
+const ReferenceDescriptor& defaultReference();
+
+// A parsed spec: the unit's name and its options read.
+struct ReferenceSpec {
+  std::string name;
+  std::shared_ptr<const Reference> unit;
+  std::string str() const { return unit ? unit->str() : name; }
+  bool operator==(const ReferenceSpec& o) const { return str() == o.str(); }
+};
 
 // Throws InputError ("reference 'aa': option samples=9 is out of range [1, 8]")
 // for a malformed spec, an unknown name, an unknown option or a value out of range.

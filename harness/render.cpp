@@ -15,8 +15,6 @@
 
 #include "backends/device.h"
 #include "backends/window.h"
-#include "harness/pbr_reference.h"
-#include "harness/reference_spec.h"
 #include "harness/render_steps.h"
 #include "harness/settings.h"
 #include "harness/stop.h"
@@ -97,8 +95,18 @@ RenderSettings makeRenderSettings(const RenderRequest& req, const Scene& scene) 
   // World strands without a thickness of their own: one pixel at the scene's centre, the
   // path-traced reference's width for them too.
   if (s.primitive == Primitive::World)
-    s.worldThickness = static_cast<float>(pbrThickness(scene, s, ReferenceSpec{}));
+    s.worldThickness = static_cast<float>(pixelAtSceneCentre(scene, s));
   return s;
+}
+
+float worldPixelAt(const glm::mat4& proj, const glm::mat4& viewProj, glm::vec3 p, float side) {
+  const float w = (viewProj * glm::vec4(p, 1.0f)).w;
+  return 2.0f * std::abs(w) / (std::abs(proj[1][1]) * side);
+}
+
+double pixelAtSceneCentre(const Scene& scene, const RenderSettings& s) {
+  const glm::mat4 proj = s.camera.projection(float(s.width) / float(s.height));
+  return worldPixelAt(proj, proj * s.camera.view(), scene.bounds().center(), float(s.height));
 }
 
 std::size_t imageHostBytes(const RenderSettings& s) {

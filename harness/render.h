@@ -21,6 +21,8 @@
 
 namespace sb {
 
+class ReferenceSlice;  // harness/reference_spec.h
+
 // The settings of a request, their CLI flags, suite and manifest keys, ranges and
 // defaults are one table: harness/settings.h.
 
@@ -73,7 +75,7 @@ struct RenderRequest {
   std::string oit = defaultTechnique(Family::Transparency).name;
   std::string shading = defaultTechnique(Family::Shading).name;
   bool reference = false;  // also render the reference and report errors against it
-  // More references beside it (harness/reference_spec.h: "aa:samples=4"), each
+  // More references beside it (harness/reference_spec.h: a unit's spec), each
   // name once; the error against each is error.<name>. Needs reference.
   std::vector<std::string> references;
   bool image = true;  // false: no final shading; only the visibility error (needs reference)
@@ -214,8 +216,8 @@ struct RenderResult {
   // The error against each further reference (RenderRequest::references), in
   // their order: error.<name> in JSON, the same fields as error.image.
   struct MoreReference {
-    std::string name, spec;          // "aa", "aa:samples=4"
-    int samples = 1;                 // aa: per pixel along each axis
+    std::string name, spec;          // the unit's name and canonical spec
+    int samples = 1;                 // per pixel (along each axis where the unit says so)
     uint32_t width = 0, height = 0;  // the samples rendered (image size times samples)
     uint32_t lightSize = 0;          // its exact shadow's light map (size times samples)
     double frameMs = 0;              // its frame's passes
@@ -226,28 +228,16 @@ struct RenderResult {
     std::vector<std::string> warnings;  // its techniques' (a fragment list overflow)
     ImageError image;                   // of the image against it
     FlipResult flip;
-    // Means over pixels and RGB of the image and of the reference (pbr's JSON: how much
-    // brighter or darker one is, the part of the error a scale would explain).
+    // Means over pixels and RGB of the image and of the reference (how much brighter or
+    // darker one is, the part of the error a scale would explain; written by a slice: pbr's).
     double imageMean = 0, referenceMean = 0;
     // The exposure scale s that brings the image nearest the reference (least squares over
     // pixels and RGB: sum(image reference) / sum(image^2)), and the RMSE of s * image.
     double bestScale = 1, scaledRmse = 0;
     Image referenceImage;  // the filtered reference, the image's size
-    // pbr (harness/pbr_reference.h): what it rendered, its noise and its disk cache.
-    struct Pbr {
-      std::string mode, width;      // width: footprint or world (auto resolved)
-      double rasterAmbient = 0;     // the raster's ambient term in this render (the tracer: none)
-      std::string shadowRays;       // how a strand between a point and a light counts
-      double thickness = 0;         // world: the strands' mean width
-      std::string thicknessSource;  // world: "strands" (the file's or scene's) or "fallback"
-      uint32_t spp = 0;             // samples per pixel rendered
-      bool stoppedAtTarget = false;
-      double meanStderr = 0, noiseRmse = 0;  // per pixel; noiseRmse: sqrt(mean stderr^2)
-      std::string key, file;                 // the cache's hash (hex) and file
-      bool cacheHit = false;
-      double renderMs = 0;  // the render that made it (also on a cache hit: the first's)
-    };
-    std::optional<Pbr> pbr;
+    // The reference's own part (pbr's noise, cache, ...), written by it into error.<name>
+    // (harness/reference_spec.h); null where it has none.
+    std::shared_ptr<const ReferenceSlice> slice;
   };
   std::vector<MoreReference> moreReferences;
   std::optional<AnimationResult> animation;  // with animate

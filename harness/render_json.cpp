@@ -4,6 +4,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "harness/reference_spec.h"
 #include "harness/render_steps.h"
 #include "render/frame/renderer.h"
 #include "reports/stats.h"
@@ -52,32 +53,7 @@ nlohmann::json errorJson(const RenderResult& r) {
                       {"bytes", m.bytes},
                       {"host_bytes", m.hostBytes},
                       {"cached", m.cached}};
-    if (m.pbr) {
-      // The reference's own noise: sqrt(mean stderr^2) is the RMSE a perfect image would
-      // score against it, so rmse^2 - noise^2 estimates the error without it.
-      const RenderResult::MoreReference::Pbr& p = *m.pbr;
-      auto withoutNoise = [&p](double rmse) {
-        return std::sqrt(std::max(0.0, rmse * rmse - p.noiseRmse * p.noiseRmse));
-      };
-      e["noise"] = {{"rmse", p.noiseRmse},
-                    {"mean_stderr", p.meanStderr},
-                    {"rmse_without_noise", withoutNoise(m.image.rmse)}};
-      // At the best exposure scale: the error a brightness difference does not explain.
-      e["scaled"] = {{"scale", m.bestScale},
-                     {"rmse", m.scaledRmse},
-                     {"rmse_without_noise", withoutNoise(m.scaledRmse)}};
-      e["mean"] = {{"image", m.imageMean}, {"reference", m.referenceMean}};
-      e["reference"]["pbr"] = {{"mode", p.mode},
-                               {"ambient", {{"tracer", "none"}, {"raster", p.rasterAmbient}}},
-                               {"shadow_rays", p.shadowRays},
-                               {"width", p.width},
-                               {"thickness", p.thickness},
-                               {"thickness_source", p.thicknessSource},
-                               {"spp", p.spp},
-                               {"stopped_at_noise_target", p.stoppedAtTarget},
-                               {"cache", {{"key", p.key}, {"file", p.file}, {"hit", p.cacheHit}}},
-                               {"render_ms", p.renderMs}};
-    }
+    if (m.slice) m.slice->json(m, e);  // the reference's own fields
     error[m.name] = e;
   }
   if (!r.errorByEyeLayers.empty()) {

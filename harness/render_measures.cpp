@@ -26,17 +26,6 @@ VisibilityError visibilityError(const std::vector<uint8_t>& a, const std::vector
   return compareVisibility(floats(a), floats(b));
 }
 
-const char* kReferenceOit = "abuffer";
-
-Spec referenceShadowSpec(const Spec& shadow) {
-  Spec ref;
-  ref.name = "exact";
-  ref.options["method"] = "abuffer";
-  auto size = shadow.options.find("size");
-  if (size != shadow.options.end()) ref.options["size"] = size->second;
-  return ref;
-}
-
 RenderCache::Reference renderReference(Device& dev, const Scene& scene,
                                        const RenderSettings& settings, const Spec& refShadow,
                                        const RenderRequest& req) {

@@ -8,18 +8,21 @@
 #include <vector>
 
 #include "harness/invariants.h"
+#include "harness/references/exact/exact_reference.h"
 #include "harness/render.h"
 
 namespace sb {
 
 class Renderer;
 
-// The reference's transparency: exact, from sorted fragment lists.
-extern const char* kReferenceOit;
-// The reference for a technique: exact shadows at its light-map size.
-Spec referenceShadowSpec(const Spec& shadow);
 // Everything the reference's pixels depend on (the cache's key).
 std::string referenceKey(const RenderRequest& req, const RenderSettings& s, const Spec& refShadow);
+
+// The world size of one pixel (one texel of a square map of `side`) at p for this
+// view-projection: 2 w / (P[1][1] side), w the clip w (1 for an orthographic light).
+float worldPixelAt(const glm::mat4& proj, const glm::mat4& viewProj, glm::vec3 p, float side);
+// One pixel at the scene's centre: the width of world strands that have none of their own.
+double pixelAtSceneCentre(const Scene& scene, const RenderSettings& s);
 
 // The host memory the final image takes after the frames: the RGBA32F rows
 // read back and the image made of them, both held at once.
@@ -45,13 +48,6 @@ std::vector<RenderResult::MoreReference> moreReferences(
 // a side over 16384. Before any work.
 void checkMoreReferences(const RenderRequest& req, const RenderSettings& settings,
                          const Spec& refShadow);
-// The anti-aliased exact reference: `settings` at samples x samples per pixel
-// and per light texel, strands with their true width, box-filtered.
-RenderResult::MoreReference renderAaReference(const RenderRequest& req, const Scene& scene,
-                                              const RenderSettings& settings, const Spec& refShadow,
-                                              int samples);
-// The mean of each samples x samples block (the image's size divided by samples).
-Image boxFilter(const Image& image, int samples);
 VisibilityError visibilityError(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b);
 // Buckets 0, 1, 2-3, 4-7, ... of eye layers; errors averaged per bucket.
 std::vector<LayerBucket> errorByLayers(const RenderResult& out, const DepthComplexity& eye,

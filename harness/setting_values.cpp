@@ -271,7 +271,7 @@ ojson referencesFrom(const std::vector<std::string>& specs) {
     } catch (const InputError& e) {
       throw Problem{e.what()};
     }
-    if (r.name == "exact") continue;  // always rendered
+    if (r.name == defaultReference().name) continue;  // always rendered
     if (std::find(names.begin(), names.end(), r.name) != names.end())
       throw Problem{"two '" + r.name +
                     "' references: give each reference once (its error is error." + r.name + ")"};

@@ -28,13 +28,27 @@ using namespace setting_values;
 // "exact or aa:samples=1..8": the references and their options.
 std::string referenceNames() {
   std::vector<std::string> names;
-  for (const ReferenceKind& k : referenceCatalog()) {
-    std::string n = k.name;
-    for (const OptionInfo& o : k.options)
-      n += (n == k.name ? ":" : ",") + o.name + "=" + optionRange(o, "|");
+  for (const ReferenceDescriptor* k : referenceCatalog()) {
+    std::string n = k->name;
+    for (const OptionInfo& o : k->options)
+      n += (n == k->name ? ":" : ",") + o.name + "=" + optionRange(o, "|");
     names.push_back(n);
   }
   return joinOr(names);
+}
+
+// The settings' example of a reference spec: the first further reference's own (a cheap one).
+std::string referenceExample() {
+  for (const ReferenceDescriptor* k : referenceCatalog())
+    if (!k->isDefault) return k->example.empty() ? k->name : k->example;
+  return defaultReference().name;
+}
+
+// A misspelt reference: the example's name with its last letter doubled.
+std::string misspeltReference() {
+  const std::string example = referenceExample();
+  const std::string name = example.substr(0, example.find(':'));
+  return name + name.back();
 }
 
 // Accessors of common field kinds.
@@ -223,7 +237,7 @@ std::vector<Setting> buildTable() {
         "it; --reference SPEC (more than once) adds another reference, its error under "
         "error.<name>: " +
             referenceNames() + " (the default reference is always rendered with them)",
-        "aa:samples=2", "aa:samples=9"));
+        referenceExample(), misspeltReference()));
     s.get = [](const RenderRequest& r) -> ojson {
       if (r.references.empty()) return r.reference;
       ojson list = ojson::array({"exact"});

@@ -4,7 +4,7 @@
 // points, a radius per point. That is the shape the rasterized techniques draw (a
 // camera-facing ribbon, or a one-pixel line), and pbrt's flat curves, whose offset across
 // the ribbon is the hair BSDF's h. Plain data in, no scene or GPU code: the harness converts
-// its Scene (harness/pbr_reference.cpp).
+// its Scene (harness/references/pbr/pbr_reference.cpp).
 #pragma once
 
 #include <cstdint>

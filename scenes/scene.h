@@ -27,7 +27,7 @@ struct Strands {
   // The file gave no thickness (TressFX, PLY): `thickness` holds the loaders' fallback
   // (detail::kDefaultThickness world units), not a width of the strands; the render JSON's
   // scene.thickness_source says "fallback", and the path reference's world width takes
-  // its own (harness/pbr_reference.cpp).
+  // its own (harness/references/pbr/pbr_reference.cpp).
   bool thicknessFallback = false;
 
   std::size_t strandCount() const { return pointCount.size(); }

@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "harness/pbr_reference.h"
 #include "harness/reference_spec.h"
+#include "harness/references/pbr/pbr_reference.h"
 #include "harness/render.h"
 #include "imaging/metrics.h"
 #include "pbr/hair_bsdf.h"
@@ -204,7 +204,7 @@ TEST(PbrReference, ChiangOnWorldWidthsAgreesWithRungTwoOnARealGroom) {
     EXPECT_EQ(out.moreReferences.size(), 1u);
     const auto& m = out.moreReferences.at(0);
     const double ratio = m.imageMean / m.referenceMean;
-    const double noise = m.pbr->noiseRmse;
+    const double noise = sb::pbrSlice(m)->noiseRmse;
     const double clean = std::sqrt(std::max(0.0, m.image.rmse * m.image.rmse - noise * noise));
     std::cout << "[ measured ] " << backend << ", " << shading << ": mean image / rung 2 " << ratio
               << ", RMSE " << m.image.rmse << " (noise " << noise << ", removed " << clean
@@ -250,18 +250,19 @@ TEST(PbrReference, CacheIsReusedAndKeyed) {
       pbrRequest("straight:strands=12,points=5,head=0", "exact", "lines", 1, "pbr:mode=path,spp=4");
   const sb::RenderResult first = sb::runRender(r);
   const sb::RenderResult second = sb::runRender(r);
-  ASSERT_TRUE(first.moreReferences.at(0).pbr && second.moreReferences.at(0).pbr);
-  EXPECT_FALSE(first.moreReferences[0].pbr->cacheHit);
-  EXPECT_TRUE(second.moreReferences[0].pbr->cacheHit);
-  EXPECT_TRUE(fs::exists(second.moreReferences[0].pbr->file));
+  ASSERT_TRUE(sb::pbrSlice(first.moreReferences.at(0)) &&
+              sb::pbrSlice(second.moreReferences.at(0)));
+  EXPECT_FALSE(sb::pbrSlice(first.moreReferences[0])->cacheHit);
+  EXPECT_TRUE(sb::pbrSlice(second.moreReferences[0])->cacheHit);
+  EXPECT_TRUE(fs::exists(sb::pbrSlice(second.moreReferences[0])->file));
   EXPECT_EQ(first.moreReferences[0].referenceImage.pixels,
             second.moreReferences[0].referenceImage.pixels);
   // Another seed (or scene, light, size) is another key: rendered again.
   sb::RenderRequest other = r;
   other.references = {"pbr:mode=path,spp=4,seed=2"};
   const sb::RenderResult third = sb::runRender(other);
-  EXPECT_FALSE(third.moreReferences.at(0).pbr->cacheHit);
-  EXPECT_NE(third.moreReferences[0].pbr->key, first.moreReferences[0].pbr->key);
+  EXPECT_FALSE(sb::pbrSlice(third.moreReferences.at(0))->cacheHit);
+  EXPECT_NE(sb::pbrSlice(third.moreReferences[0])->key, sb::pbrSlice(first.moreReferences[0])->key);
 }
 
 TEST(PbrReference, PathNoiseFallsWithSamplesAndIsDeterministic) {
@@ -274,10 +275,10 @@ TEST(PbrReference, PathNoiseFallsWithSamplesAndIsDeterministic) {
   };
   const auto a = run(4), b = run(16), again = run(16);
   ::unsetenv("SB_PBR_CACHE");
-  std::cout << "[ measured ] path noise RMSE at 4 spp " << a.pbr->noiseRmse << ", at 16 "
-            << b.pbr->noiseRmse << "\n";
-  EXPECT_GT(a.pbr->noiseRmse, 0.0);
-  EXPECT_LT(b.pbr->noiseRmse, a.pbr->noiseRmse * 0.75);  // about 1/2 expected
+  std::cout << "[ measured ] path noise RMSE at 4 spp " << sb::pbrSlice(a)->noiseRmse << ", at 16 "
+            << sb::pbrSlice(b)->noiseRmse << "\n";
+  EXPECT_GT(sb::pbrSlice(a)->noiseRmse, 0.0);
+  EXPECT_LT(sb::pbrSlice(b)->noiseRmse, sb::pbrSlice(a)->noiseRmse * 0.75);  // about 1/2 expected
   EXPECT_EQ(b.referenceImage.pixels, again.referenceImage.pixels);
 }
 
@@ -292,8 +293,8 @@ TEST(PbrReference, SingleIsDeterministicCachedAndStatesItsNoise) {
     const sb::RenderRequest r = pbrRequest(scene, "exact", "lines", 1, "pbr:mode=single,spp=16");
     const sb::RenderResult a = sb::runRender(r);
     const sb::RenderResult b = sb::runRender(r);
-    EXPECT_FALSE(a.moreReferences.at(0).pbr->cacheHit);
-    EXPECT_TRUE(b.moreReferences.at(0).pbr->cacheHit);
+    EXPECT_FALSE(sb::pbrSlice(a.moreReferences.at(0))->cacheHit);
+    EXPECT_TRUE(sb::pbrSlice(b.moreReferences.at(0))->cacheHit);
     EXPECT_EQ(a.moreReferences[0].referenceImage.pixels, b.moreReferences[0].referenceImage.pixels);
     return a;
   }();
@@ -306,10 +307,10 @@ TEST(PbrReference, SingleIsDeterministicCachedAndStatesItsNoise) {
   const sb::RenderResult::MoreReference& m = first.moreReferences.at(0);
   EXPECT_EQ(again.moreReferences.at(0).referenceImage.pixels, m.referenceImage.pixels);
   EXPECT_GT(m.referenceMean, 0.0);  // it lights the strands
-  EXPECT_EQ(m.pbr->spp, 16u);
-  EXPECT_GT(m.pbr->noiseRmse, 0.0);  // coverage of thin fibres varies within a pixel
-  EXPECT_EQ(early.moreReferences.at(0).pbr->spp, sb::pbr::kMinSamplesForTarget);
-  EXPECT_TRUE(early.moreReferences.at(0).pbr->stoppedAtTarget);
+  EXPECT_EQ(sb::pbrSlice(m)->spp, 16u);
+  EXPECT_GT(sb::pbrSlice(m)->noiseRmse, 0.0);  // coverage of thin fibres varies within a pixel
+  EXPECT_EQ(sb::pbrSlice(early.moreReferences.at(0))->spp, sb::pbr::kMinSamplesForTarget);
+  EXPECT_TRUE(sb::pbrSlice(early.moreReferences.at(0))->stoppedAtTarget);
   const nlohmann::json e = sb::renderJson(first)["error"]["pbr"];
   EXPECT_EQ(e["reference"]["pbr"]["mode"], "single");
   EXPECT_EQ(e["reference"]["pbr"]["ambient"]["tracer"], "none");
@@ -319,22 +320,22 @@ TEST(PbrReference, SingleIsDeterministicCachedAndStatesItsNoise) {
   EXPECT_LE(e["scaled"]["rmse"].get<double>(), e["rmse"].get<double>() + 1e-12);
   EXPECT_GT(e["scaled"]["scale"].get<double>(), 0.0);
   std::cout << "[ measured ] single, 16 spp: mean " << m.referenceMean << ", noise RMSE "
-            << m.pbr->noiseRmse << "; raster vs single RMSE " << m.image.rmse << ", at scale "
-            << m.bestScale << " " << m.scaledRmse << "\n";
+            << sb::pbrSlice(m)->noiseRmse << "; raster vs single RMSE " << m.image.rmse
+            << ", at scale " << m.bestScale << " " << m.scaledRmse << "\n";
 }
 
 TEST(PbrReference, SpecsParseAndBadOnesAreRefused) {
   const sb::ReferenceSpec s = sb::parseReferenceSpec("pbr:mode=transmittance,spp=4,bounces=2");
-  EXPECT_EQ(s.mode, "transmittance");
-  EXPECT_EQ(s.spp, 4);
+  EXPECT_EQ(sb::pbrOptions(s).mode, "transmittance");
+  EXPECT_EQ(sb::pbrOptions(s).spp, 4);
   EXPECT_EQ(sb::parseReferenceSpec(s.str()), s);
-  EXPECT_EQ(sb::pbrWidthModel(s), "footprint");
-  EXPECT_EQ(sb::pbrWidthModel(sb::parseReferenceSpec("pbr")), "world");
+  EXPECT_EQ(sb::pbrWidthModel(sb::pbrOptions(s)), "footprint");
+  EXPECT_EQ(sb::pbrWidthModel(sb::pbrOptions(sb::parseReferenceSpec("pbr"))), "world");
   EXPECT_THROW(sb::parseReferenceSpec("pbr:mode=volume"), sb::InputError);
   EXPECT_THROW(sb::parseReferenceSpec("pbr:spp=0"), sb::InputError);
   EXPECT_THROW(sb::parseReferenceSpec("pbr:bounces=1025"), sb::InputError);
-  EXPECT_EQ(sb::parseReferenceSpec("pbr:mode=single").mode, "single");
-  EXPECT_EQ(sb::pbrWidthModel(sb::parseReferenceSpec("pbr:mode=single")), "world");
+  EXPECT_EQ(sb::pbrOptions(sb::parseReferenceSpec("pbr:mode=single")).mode, "single");
+  EXPECT_EQ(sb::pbrWidthModel(sb::pbrOptions(sb::parseReferenceSpec("pbr:mode=single"))), "world");
   EXPECT_THROW(sb::parseReferenceSpec("pbr:samples=4"), sb::InputError);
 }
 

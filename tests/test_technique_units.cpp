@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "harness/baselines.h"
+#include "harness/reference_spec.h"
 #include "harness/suite.h"
 #include "harness/technique_list.h"
 #include "render/common/unit.h"
@@ -322,6 +323,78 @@ TEST(TechniqueUnits, NoFileOutsideAFolderNamesItsTechnique) {
   EXPECT_TRUE(found.empty()) << "technique names outside their folders:" << list;
 }
 
+// "file: name" for each string literal under `root` (C++ and GLSL, outside tests/, #include
+// lines aside: a path) that names a registered reference outside its own folder
+// (harness/references/<folder>/). The default reference (exact) is the exact techniques'
+// (exact shadows with abuffer transparency), whose names the check above allows anywhere;
+// pbr/ is the pbr reference's physics, named for it.
+std::vector<std::string> referenceNamesOutsideFolders(const fs::path& root) {
+  std::map<std::string, std::string> homes;  // name: its folder
+  for (const sb::ReferenceDescriptor* d : sb::referenceCatalog())
+    if (!d->isDefault) homes[d->name] = "harness/references/" + d->folder + "/";
+  const std::map<std::string, std::string> reuse = {{"pbr/", "pbr"}};
+  std::vector<std::string> found;
+  for (const auto& entry : fs::recursive_directory_iterator(root)) {
+    const std::string ext = entry.path().extension().string();
+    if (!entry.is_regular_file() ||
+        !(ext == ".cpp" || ext == ".h" || ext == ".glsl" || ext == ".vert" || ext == ".frag" ||
+          ext == ".comp" || ext == ".mesh"))
+      continue;
+    const std::string rel = fs::relative(entry.path(), root).generic_string();
+    if (rel.rfind("tests/", 0) == 0 || rel.rfind("build", 0) == 0 || rel.rfind("fuzz/", 0) == 0)
+      continue;
+    std::string src = sbtest::readFile(entry.path());
+    src = std::regex_replace(src, std::regex(R"(#\s*include[^\n]*)"), "");
+    const std::vector<std::string> literals = stringLiterals(src);
+    for (const auto& [name, home] : homes) {
+      if (rel.rfind(home, 0) == 0) continue;
+      bool allowed = false;
+      for (const auto& [prefix, n] : reuse)
+        allowed = allowed || (rel.rfind(prefix, 0) == 0 && n == name);
+      if (allowed) continue;
+      for (const std::string& lit : literals)
+        if (namesWord(lit, name)) {
+          found.push_back(rel + ": " + name + " (\"" + lit + "\")");
+          break;
+        }
+    }
+  }
+  return found;
+}
+
+TEST(ReferenceUnits, NoFileOutsideAFolderNamesItsReference) {
+  const std::vector<std::string> found = referenceNamesOutsideFolders(SB_SOURCE_DIR);
+  std::string list;
+  for (const auto& f : found) list += "\n  " + f;
+  EXPECT_TRUE(found.empty()) << "reference names outside their folders:" << list;
+}
+
+TEST(ReferenceUnits, NamesOutsideFoldersAreFound) {
+  // The control: a reference's name planted in a string outside its folder is found; in a
+  // comment, an #include, its own folder or (pbr) the pbr/ library it is not.
+  const fs::path root = sbtest::tempDir("reference-names");
+  for (const char* d : {"harness", "harness/references/aa", "pbr"})
+    fs::create_directories(root / d);
+  std::ofstream(root / "harness" / "x.cpp") << "#include \"pbr/hair_bsdf.h\"\n"
+                                               "// \"aa\" in a comment\n"
+                                               "const char* s = \"--reference aa:samples=2\";\n";
+  std::ofstream(root / "harness" / "y.cpp") << "const char* ok = \"aab\";\n";
+  std::ofstream(root / "harness" / "references" / "aa" / "z.cpp") << "const char* n = \"aa\";\n";
+  std::ofstream(root / "pbr" / "w.cpp") << "const char* n = \"pbr reference\";\n";
+  const std::vector<std::string> found = referenceNamesOutsideFolders(root);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(found[0].rfind("harness/x.cpp: aa", 0), 0u) << found[0];
+  // Every reference is a unit in its own folder, the default (exact) among them.
+  ASSERT_FALSE(sb::referenceCatalog().empty());
+  EXPECT_TRUE(sb::referenceCatalog().front()->isDefault);
+  for (const sb::ReferenceDescriptor* d : sb::referenceCatalog()) {
+    EXPECT_EQ(d->folder, d->name);
+    EXPECT_TRUE(
+        fs::exists(fs::path(SB_SOURCE_DIR) / "harness" / "references" / d->folder / "unit.cpp"))
+        << d->name;
+  }
+}
+
 TEST(TechniqueUnits, NamesOutsideFoldersAreFound) {
   // The check itself: a name in a string is found, in a comment is not, in its folder is not.
   const fs::path root = sbtest::tempDir("names-outside");
@@ -371,12 +444,16 @@ std::vector<std::string> optionReadsByName(const fs::path& root) {
   if (fs::is_directory(root / "techniques"))
     for (const auto& e : fs::recursive_directory_iterator(root / "techniques"))
       if (e.is_regular_file() && source(e.path())) scan(e.path());
-  // The references' code in the harness: reference_spec.*, pbr_reference.*, render_references.
+  // The references' code in the harness: reference_spec.*, render_references.cpp and every
+  // reference unit's folder (harness/references/).
   if (fs::is_directory(root / "harness"))
     for (const auto& e : fs::directory_iterator(root / "harness"))
       if (e.is_regular_file() && source(e.path()) &&
           e.path().filename().string().find("reference") != std::string::npos)
         scan(e.path());
+  if (fs::is_directory(root / "harness" / "references"))
+    for (const auto& e : fs::recursive_directory_iterator(root / "harness" / "references"))
+      if (e.is_regular_file() && source(e.path())) scan(e.path());
   std::sort(found.begin(), found.end());
   return found;
 }
@@ -408,7 +485,8 @@ TEST(TechniqueUnits, OptionReadsByNameAreFound) {
   const fs::path root = sbtest::tempDir("option-reads");
   const fs::path src(SB_SOURCE_DIR);
   for (const char* f : {"techniques/shadowmap/unit.cpp", "techniques/kajiya_kay/unit.cpp",
-                        "harness/reference_spec.cpp", "harness/pbr_reference.cpp"}) {
+                        "harness/reference_spec.cpp", "harness/references/pbr/unit.cpp",
+                        "harness/references/pbr/pbr_reference.cpp"}) {
     fs::create_directories((root / f).parent_path());
     fs::copy_file(src / f, root / f, fs::copy_options::overwrite_existing);
   }
@@ -423,15 +501,15 @@ TEST(TechniqueUnits, OptionReadsByNameAreFound) {
          "int planted3(const sb::OptionReader& x);\n"
          "int planted4(const Reader& o) { return int(o.integer(\"samples\")); }\n";
   // As pbr_reference.cpp read the exact shadow's bias before it went through its table.
-  std::ofstream(root / "harness" / "pbr_reference.cpp", std::ios::app)
+  std::ofstream(root / "harness" / "references" / "pbr" / "pbr_reference.cpp", std::ios::app)
       << "double planted5(const Spec& s) { return readerFor(findTechnique(Family::Shadow, "
          "s.name), s).number(\"bias\"); }\n";
   const std::vector<std::string> found = optionReadsByName(root);
   ASSERT_EQ(found.size(), 4u);
-  EXPECT_EQ(found[0].rfind("harness/pbr_reference.cpp:", 0), 0u) << found[0];
-  EXPECT_NE(found[0].find(".number(\"bias\")"), std::string::npos) << found[0];
-  EXPECT_EQ(found[1].rfind("harness/reference_spec.cpp:", 0), 0u) << found[1];
-  EXPECT_NE(found[1].find("o.integer(\"samples\")"), std::string::npos) << found[1];
+  EXPECT_EQ(found[0].rfind("harness/reference_spec.cpp:", 0), 0u) << found[0];
+  EXPECT_NE(found[0].find("o.integer(\"samples\")"), std::string::npos) << found[0];
+  EXPECT_EQ(found[1].rfind("harness/references/pbr/pbr_reference.cpp:", 0), 0u) << found[1];
+  EXPECT_NE(found[1].find(".number(\"bias\")"), std::string::npos) << found[1];
   EXPECT_EQ(found[2].rfind("techniques/kajiya_kay/unit.cpp:", 0), 0u) << found[2];
   EXPECT_EQ(found[3].rfind("techniques/shadowmap/unit.cpp:", 0), 0u) << found[3];
 }

@@ -1,5 +1,6 @@
-#include "harness/pbr_reference.h"
+#include "harness/references/pbr/pbr_reference.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -9,12 +10,12 @@
 #include <sstream>
 
 #include "base/fnv.h"
+#include "harness/render_steps.h"
 #include "harness/setting_values.h"
 #include "harness/stop.h"
 #include "render/common/unit.h"
 #include "render/shading/hair_shading.h"
 #include "reports/files.h"
-#include "techniques/exact/exact.h"
 
 namespace sb {
 
@@ -36,13 +37,6 @@ glm::mat4 cameraViewProj(const RenderSettings& s) {
   return s.camera.projection(float(s.width) / float(s.height)) * s.camera.view();
 }
 
-// The world size of one pixel (one texel of a square map of `side`) at p for this
-// view-projection: 2 w / (P[1][1] side), w the clip w (1 for an orthographic light).
-float pixelAt(const glm::mat4& proj, const glm::mat4& viewProj, glm::vec3 p, float side) {
-  const float w = (viewProj * glm::vec4(p, 1.0f)).w;
-  return 2.0f * std::abs(w) / (std::abs(proj[1][1]) * side);
-}
-
 std::vector<Light> allLights(const RenderSettings& s) {
   std::vector<Light> l{s.light};
   l.insert(l.end(), s.extraLights.begin(), s.extraLights.end());
@@ -54,13 +48,13 @@ uint64_t fnvVector(uint64_t h, const std::vector<T>& v) {
   return fnv1a(h, v.data(), v.size() * sizeof(T));
 }
 
-// The exact shadow's map (refShadow is always the exact shadow).
-long long mapSize(const Spec& refShadow) { return ExactShadow::optionsOf(refShadow).size; }
-double mapBias(const Spec& refShadow) { return ExactShadow::optionsOf(refShadow).bias; }
+// The exact shadow's map (refShadow is always the exact reference's shadow).
+long long mapSize(const Spec& refShadow) { return referenceLightMap(refShadow).size; }
+double mapBias(const Spec& refShadow) { return referenceLightMap(refShadow).bias; }
 
 // Everything the reference's pixels depend on, as text (hashed into the cache's key).
 std::string cacheKeyText(const Scene& scene, const RenderSettings& s, const Spec& refShadow,
-                         const ReferenceSpec& spec) {
+                         const PbrReference& spec) {
   std::ostringstream k;
   k.precision(9);
   auto v3 = [&](const glm::vec3& v) { k << v.x << "," << v.y << "," << v.z << ";"; };
@@ -208,15 +202,13 @@ std::string pbrCacheDir() {
   return "";
 }
 
-std::string pbrWidthModel(const ReferenceSpec& spec) {
+std::string pbrWidthModel(const PbrReference& spec) {
   if (spec.width != "auto") return spec.width;
   return spec.mode == "transmittance" ? "footprint" : "world";
 }
 
-double pbrThickness(const Scene& scene, const RenderSettings& s, const ReferenceSpec& spec) {
-  if (spec.thickness > 0) return spec.thickness;
-  const glm::mat4 proj = s.camera.projection(float(s.width) / float(s.height));
-  return pixelAt(proj, proj * s.camera.view(), scene.bounds().center(), float(s.height));
+double pbrThickness(const Scene& scene, const RenderSettings& s, const PbrReference& spec) {
+  return spec.thickness > 0 ? spec.thickness : pixelAtSceneCentre(scene, s);
 }
 
 // footprint: shadow rays start at the centres of the exact shadow's texels (transmittance mode
@@ -259,7 +251,7 @@ pbr::StrandScene pbrScene(const Scene& scene, const RenderSettings& s, const Spe
 }
 
 pbr::TraceGeometry pbrGeometry(const Scene& scene, const RenderSettings& s, const Spec& refShadow,
-                               const ReferenceSpec& spec, int light) {
+                               const PbrReference& spec, int light) {
   pbr::TraceGeometry g;
   const Strands& st = scene.strands;
   g.firstPoint = st.firstPoint;
@@ -292,12 +284,15 @@ pbr::TraceGeometry pbrGeometry(const Scene& scene, const RenderSettings& s, cons
     side = float(mapSize(refShadow));
   }
   for (std::size_t i = 0; i < st.points.size(); ++i)
-    g.radius[i] = 0.5f * px * pixelAt(proj, viewProj, st.points[i], side);
+    g.radius[i] = 0.5f * px * worldPixelAt(proj, viewProj, st.points[i], side);
   return g;
 }
 
-RenderResult::MoreReference renderPbrReference(const Scene& scene, const RenderSettings& s,
-                                               const Spec& refShadow, const ReferenceSpec& spec) {
+RenderResult::MoreReference PbrReference::render(const ReferenceInputs& in) const {
+  const Scene& scene = in.scene;
+  const RenderSettings& s = in.settings;
+  const Spec& refShadow = in.refShadow;
+  const PbrReference& spec = *this;
   const auto start = std::chrono::steady_clock::now();
   RenderResult::MoreReference m;
   m.name = "pbr";
@@ -305,7 +300,8 @@ RenderResult::MoreReference renderPbrReference(const Scene& scene, const RenderS
   m.samples = spec.spp;
   m.width = s.width;
   m.height = s.height;
-  RenderResult::MoreReference::Pbr info;
+  auto slice = std::make_shared<PbrSlice>();
+  PbrSlice& info = *slice;
   info.mode = spec.mode;
   info.width = pbrWidthModel(spec);
   // The tracer has no environment light: the raster's ambient term (its strength here) is
@@ -391,10 +387,55 @@ RenderResult::MoreReference renderPbrReference(const Scene& scene, const RenderS
   for (std::size_t i = 0; i < img.mean.size(); ++i)
     for (int c = 0; c < 3; ++c) m.referenceImage.pixels[i * 4 + std::size_t(c)] = img.mean[i][c];
   m.hostBytes = img.mean.size() * (sizeof(glm::vec3) + sizeof(float) + 16);
-  m.pbr = info;
+  m.slice = std::move(slice);
   m.wallMs =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return m;
+}
+
+std::string PbrReference::str() const {
+  // Written as before the unit (precision 9): the text is part of the disk cache's key.
+  std::ostringstream o;
+  o.precision(9);
+  o << "pbr:mode=" << mode << ",spp=" << spp << ",bounces=" << bounces << ",width=" << width
+    << ",thickness=" << thickness << ",noise=" << noise << ",seed=" << seed;
+  return o.str();
+}
+
+void PbrSlice::json(const RenderResult::MoreReference& m, nlohmann::json& e) const {
+  // The reference's own noise: sqrt(mean stderr^2) is the RMSE a perfect image would
+  // score against it, so rmse^2 - noise^2 estimates the error without it.
+  auto withoutNoise = [this](double rmse) {
+    return std::sqrt(std::max(0.0, rmse * rmse - noiseRmse * noiseRmse));
+  };
+  e["noise"] = {{"rmse", noiseRmse},
+                {"mean_stderr", meanStderr},
+                {"rmse_without_noise", withoutNoise(m.image.rmse)}};
+  // At the best exposure scale: the error a brightness difference does not explain.
+  e["scaled"] = {{"scale", m.bestScale},
+                 {"rmse", m.scaledRmse},
+                 {"rmse_without_noise", withoutNoise(m.scaledRmse)}};
+  e["mean"] = {{"image", m.imageMean}, {"reference", m.referenceMean}};
+  e["reference"]["pbr"] = {{"mode", mode},
+                           {"ambient", {{"tracer", "none"}, {"raster", rasterAmbient}}},
+                           {"shadow_rays", shadowRays},
+                           {"width", width},
+                           {"thickness", thickness},
+                           {"thickness_source", thicknessSource},
+                           {"spp", spp},
+                           {"stopped_at_noise_target", stoppedAtTarget},
+                           {"cache", {{"key", key}, {"file", file}, {"hit", cacheHit}}},
+                           {"render_ms", renderMs}};
+}
+
+const PbrReference& pbrOptions(const ReferenceSpec& spec) {
+  const auto* p = dynamic_cast<const PbrReference*>(spec.unit.get());
+  if (!p) throw InputError("reference '" + spec.str() + "' is not a pbr reference");
+  return *p;
+}
+
+const PbrSlice* pbrSlice(const RenderResult::MoreReference& m) {
+  return dynamic_cast<const PbrSlice*>(m.slice.get());
 }
 
 }  // namespace sb
