@@ -381,7 +381,7 @@ ojson fromJson(const Setting& s, const ojson& v) {
       if (v.is_boolean()) return v;
       if (v.is_string()) return fromText(s, v.get<std::string>());
       const char* expected =
-          "expected true, false, a reference spec (\"aa:samples=4\") or a list of them";
+          "expected true, false, a reference spec (\"NAME:key=value,...\") or a list of them";
       if (!v.is_array() || v.empty()) throw Problem{expected};
       std::vector<std::string> specs;
       for (const ojson& e : v) {

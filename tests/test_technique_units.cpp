@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <regex>
@@ -273,6 +274,38 @@ bool namesWord(const std::string& text, const std::string& name) {
   return false;
 }
 
+// "file: name (literal)" for each C++ or GLSL file under `root` (outside tests/, fuzz/ and the
+// build) with a string literal naming one of `names` where `allowed(file, name)` is false.
+// withIncludes false: #include lines (paths) are not read.
+std::vector<std::string> namesInLiterals(
+    const fs::path& root, const std::set<std::string>& names,
+    const std::function<bool(const std::string&, const std::string&)>& allowed,
+    bool withIncludes = true) {
+  std::vector<std::string> found;
+  for (const auto& entry : fs::recursive_directory_iterator(root)) {
+    const std::string ext = entry.path().extension().string();
+    if (!entry.is_regular_file() ||
+        !(ext == ".cpp" || ext == ".h" || ext == ".glsl" || ext == ".vert" || ext == ".frag" ||
+          ext == ".comp" || ext == ".mesh"))
+      continue;
+    const std::string rel = fs::relative(entry.path(), root).generic_string();
+    if (rel.rfind("tests/", 0) == 0 || rel.rfind("build", 0) == 0 || rel.rfind("fuzz/", 0) == 0)
+      continue;
+    std::string src = sbtest::readFile(entry.path());
+    if (!withIncludes) src = std::regex_replace(src, std::regex(R"(#\s*include[^\n]*)"), "");
+    const std::vector<std::string> literals = stringLiterals(src);
+    for (const std::string& name : names) {
+      if (allowed(rel, name)) continue;
+      for (const std::string& lit : literals)
+        if (namesWord(lit, name)) {
+          found.push_back(rel + ": " + name + " (\"" + lit + "\")");
+          break;
+        }
+    }
+  }
+  return found;
+}
+
 // "file: name" for each string literal under `root` (C++ and GLSL, outside tests/)
 // that names a registered technique outside its own folder, except what the issue
 // allows: the references (exact, peel, abuffer) anywhere, the paper benchmarks and
@@ -286,34 +319,19 @@ std::vector<std::string> namesOutsideFolders(const fs::path& root) {
       {"techniques/rt_oit/", {"kbuffer"}}};          // k=: the k-buffer's merge of the hits past k
   // A name's folders: two descriptors may share one (occupancy: shadow and transparency).
   std::map<std::string, std::set<std::string>> homes;
-  for (const TechniqueDescriptor* d : all()) homes[d->name].insert("techniques/" + d->folder + "/");
-  std::vector<std::string> found;
-  for (const auto& entry : fs::recursive_directory_iterator(root)) {
-    const std::string ext = entry.path().extension().string();
-    if (!entry.is_regular_file() ||
-        !(ext == ".cpp" || ext == ".h" || ext == ".glsl" || ext == ".vert" || ext == ".frag" ||
-          ext == ".comp" || ext == ".mesh"))
-      continue;
-    const std::string rel = fs::relative(entry.path(), root).generic_string();
-    if (rel.rfind("tests/", 0) == 0 || rel.rfind("build", 0) == 0 || rel.rfind("fuzz/", 0) == 0 ||
-        papers.count(rel))
-      continue;
-    const std::vector<std::string> literals = stringLiterals(sbtest::readFile(entry.path()));
-    for (const auto& [name, folders] : homes) {
-      // "none" (the default shadow and transparency) is also the word for absence.
-      bool allowed = references.count(name) > 0 || name == "none";
-      for (const std::string& home : folders) allowed = allowed || rel.rfind(home, 0) == 0;
-      for (const auto& [prefix, names] : reuse)
-        allowed = allowed || (rel.rfind(prefix, 0) == 0 && names.count(name));
-      if (allowed) continue;
-      for (const std::string& lit : literals)
-        if (namesWord(lit, name)) {
-          found.push_back(rel + ": " + name + " (\"" + lit + "\")");
-          break;
-        }
-    }
+  std::set<std::string> names;
+  for (const TechniqueDescriptor* d : all()) {
+    homes[d->name].insert("techniques/" + d->folder + "/");
+    names.insert(d->name);
   }
-  return found;
+  return namesInLiterals(root, names, [&](const std::string& rel, const std::string& name) {
+    // "none" (the default shadow and transparency) is also the word for absence.
+    bool allowed = papers.count(rel) > 0 || references.count(name) > 0 || name == "none";
+    for (const std::string& home : homes.at(name)) allowed = allowed || rel.rfind(home, 0) == 0;
+    for (const auto& [prefix, reused] : reuse)
+      allowed = allowed || (rel.rfind(prefix, 0) == 0 && reused.count(name));
+    return allowed;
+  });
 }
 
 TEST(TechniqueUnits, NoFileOutsideAFolderNamesItsTechnique) {
@@ -330,36 +348,22 @@ TEST(TechniqueUnits, NoFileOutsideAFolderNamesItsTechnique) {
 // pbr/ is the pbr reference's physics, named for it.
 std::vector<std::string> referenceNamesOutsideFolders(const fs::path& root) {
   std::map<std::string, std::string> homes;  // name: its folder
+  std::set<std::string> names;
   for (const sb::ReferenceDescriptor* d : sb::referenceCatalog())
-    if (!d->isDefault) homes[d->name] = "harness/references/" + d->folder + "/";
-  const std::map<std::string, std::string> reuse = {{"pbr/", "pbr"}};
-  std::vector<std::string> found;
-  for (const auto& entry : fs::recursive_directory_iterator(root)) {
-    const std::string ext = entry.path().extension().string();
-    if (!entry.is_regular_file() ||
-        !(ext == ".cpp" || ext == ".h" || ext == ".glsl" || ext == ".vert" || ext == ".frag" ||
-          ext == ".comp" || ext == ".mesh"))
-      continue;
-    const std::string rel = fs::relative(entry.path(), root).generic_string();
-    if (rel.rfind("tests/", 0) == 0 || rel.rfind("build", 0) == 0 || rel.rfind("fuzz/", 0) == 0)
-      continue;
-    std::string src = sbtest::readFile(entry.path());
-    src = std::regex_replace(src, std::regex(R"(#\s*include[^\n]*)"), "");
-    const std::vector<std::string> literals = stringLiterals(src);
-    for (const auto& [name, home] : homes) {
-      if (rel.rfind(home, 0) == 0) continue;
-      bool allowed = false;
-      for (const auto& [prefix, n] : reuse)
-        allowed = allowed || (rel.rfind(prefix, 0) == 0 && n == name);
-      if (allowed) continue;
-      for (const std::string& lit : literals)
-        if (namesWord(lit, name)) {
-          found.push_back(rel + ": " + name + " (\"" + lit + "\")");
-          break;
-        }
+    if (!d->isDefault) {
+      homes[d->name] = "harness/references/" + d->folder + "/";
+      names.insert(d->name);
     }
-  }
-  return found;
+  const std::map<std::string, std::string> reuse = {{"pbr/", "pbr"}};
+  return namesInLiterals(
+      root, names,
+      [&](const std::string& rel, const std::string& name) {
+        if (rel.rfind(homes.at(name), 0) == 0) return true;
+        for (const auto& [prefix, n] : reuse)
+          if (rel.rfind(prefix, 0) == 0 && n == name) return true;
+        return false;
+      },
+      false);
 }
 
 TEST(ReferenceUnits, NoFileOutsideAFolderNamesItsReference) {

@@ -150,6 +150,6 @@ SB_REFERENCE({.name = "aa",
                       "(error.aa)",
               .example = "aa:samples=2",
               .options = kOptions.infos(),
-              .make = [](const OptionReader& r) {
-                return std::make_shared<const AaReference>(kOptions.read(r));
+              .make = [](const OptionReader& reader) {
+                return std::make_shared<const AaReference>(kOptions.read(reader));
               }});

@@ -39,4 +39,6 @@ SB_REFERENCE(
              "transmittance; mode=path path-traces the hair BSDF with multiple scattering. Cached "
              "by a hash of its inputs (error.pbr)",
      .options = kOptions.infos(),
-     .make = [](const OptionReader& r) { return std::make_shared<const R>(kOptions.read(r)); }});
+     .make = [](const OptionReader& reader) {
+       return std::make_shared<const R>(kOptions.read(reader));
+     }});
