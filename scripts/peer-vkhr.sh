@@ -3,11 +3,14 @@
 # Vulkan driver: builds the user's vkhr checkout against Debian 12's packages (our CMake file
 # and source fixes in scripts/peer-vkhr/, applied to a copy), then scripts/peer-vkhr.py writes
 # matching scenes, runs vkhr's --benchmark mode and strandbench's matching render interleaved
-# in rounds, and writes the table into docs/peer-vkhr-measured.md. docs/peers.md says more.
+# in rounds, and writes the run as data: into the docs' results store when run through
+# scripts/docs-record.sh (docs/peer-vkhr-measured.md's blocks are rendered from it), else
+# printed. docs/peers.md says more.
 #
 #   scripts/peer-vkhr.sh VKHR_SRC [peer-vkhr.py options: --rounds N --frames N --repeat N
 #     --rows matched:640x360,thin:640x360,raymarch:320x180,... --hair FILE --alpha A
-#     --block NAME --doc FILE | --no-doc]   (scripts/peer-vkhr.py --help says each)
+#     --json FILE]   (scripts/peer-vkhr.py --help says each)
+#   scripts/docs-record.sh peer-vkhr scripts/peer-vkhr.sh VKHR_SRC ...   (the docs' run)
 #
 # VKHR_SRC: a vkhr source checkout (git clone https://github.com/CaffeineViking/vkhr; its
 # submodules and large files are not needed). strandbench is not in it and it is not changed:
@@ -21,7 +24,6 @@ if [ $# -lt 1 ] || [ "${1:-}" = "-h" ] || [ "${1:-}" = "--help" ]; then
   usage
   exit 2
 fi
-cmdline="scripts/peer-vkhr.sh VKHR_SRC${2:+ ${*:2}}"
 src=$(cd "$1" 2>/dev/null && pwd) || { echo "peer-vkhr: $1: no such folder" >&2; exit 2; }
 shift
 for f in src/main.cc include/vkhr/benchmark.hh include/vkhr/rasterizer/interface.hh share/shaders; do
@@ -85,4 +87,4 @@ fi
 
 commit=$(git -C "$src" rev-parse --short HEAD 2>/dev/null || echo "unknown (not a git checkout)")
 exec python3 "$root/scripts/peer-vkhr.py" --vkhr "$work/src/_build/vkhr" --vkhr-root "$work/src" \
-  --vkhr-commit "$commit" --work "$work/run" --command "$cmdline" "$@"
+  --vkhr-commit "$commit" --work "$work/run" "$@"
