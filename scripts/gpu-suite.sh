@@ -6,7 +6,8 @@
 #   --out DIR   the folder (default out/gpu-<date>); a stopped run continues (--resume)
 #   --small     the quick suite only (minutes on CPU drivers; proves the script works)
 #   --suites S  the suites to run (names in suites/, default: quick, every paper-* and
-#               ray-tracing, geometry)
+#               ray-tracing, geometry: the axes geometry=cpu|compute|mesh, lod=, lod_pixels=
+#               and instances=; its mesh groups run where Vulkan has VK_EXT_mesh_shader)
 # On a machine without an NVIDIA GPU it runs on whatever devices there are (Mesa's llvmpipe
 # and lavapipe here) and says so in the summary. Timing: GPU timestamps on both APIs, no
 # finish between passes (SB_VULKAN_GPU_TIMING=1, SB_GL_GPU_TIMING=1: Vulkan timestamps, GL
@@ -21,7 +22,7 @@ while (($#)); do
     --out) out=${2:?--out needs a folder}; shift ;;
     --small) suites="quick" ;;
     --suites) suites=${2:?--suites needs names}; shift ;;
-    -h | --help) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h | --help) sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "gpu-suite.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
   shift

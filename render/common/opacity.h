@@ -27,21 +27,31 @@ using glm::pow;
 
 // Window depths from the light of every hair point (the segments' end
 // points), clamped to [0,1]. Lines and ribbons are linear in depth between
-// their end points, so min/max of these is the hair's exact depth range.
+// their end points, so min/max of these is the hair's exact depth range. The
+// points are the device's, or the host's where the device makes them as it
+// draws (GpuScene::hostPoints: the mesh path, whose scene.points are the guides).
 inline std::vector<float> hairLightDepths(Device& dev, const GpuScene& scene,
                                           const glm::mat4& viewProj) {
   std::vector<float> z;
   if (!scene.hasHair()) return z;
+  auto add = [&](const glm::vec3& p) {
+    const glm::vec4 c = viewProj * glm::vec4(p, 1.0f);
+    if (!(c.w != 0.0f)) return;
+    const float d = c.z / c.w;
+    if (std::isfinite(d)) z.push_back(std::clamp(d, 0.0f, 1.0f));
+  };
+  if (scene.hostPoints) {
+    z.reserve(scene.hostPoints->size());
+    for (const glm::vec3& p : *scene.hostPoints) add(p);
+    return z;
+  }
   const std::vector<uint8_t> bytes = dev.readBuffer(scene.points);
   const std::size_t n = bytes.size() / sizeof(glm::vec4);
   z.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
     glm::vec4 p;
     std::memcpy(&p, bytes.data() + i * sizeof p, sizeof p);
-    const glm::vec4 c = viewProj * glm::vec4(glm::vec3(p), 1.0f);
-    if (!(c.w != 0.0f)) continue;
-    const float d = c.z / c.w;
-    if (std::isfinite(d)) z.push_back(std::clamp(d, 0.0f, 1.0f));
+    add(glm::vec3(p));
   }
   return z;
 }

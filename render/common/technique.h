@@ -65,6 +65,10 @@ struct GpuScene {
   float hairAlpha = 1.0f;
   float shadowAlpha = 0.5f;
   Bounds bounds;
+  // The drawn strands' points on the host, while the renderer sets its techniques up,
+  // where the device holds none (--geometry mesh: only the groom; these are the points
+  // its mesh shader makes). Null otherwise: scene.points is read back. Null after setup.
+  const std::vector<glm::vec3>* hostPoints = nullptr;
   bool hasHair() const { return segmentCount > 0; }
   bool hasMesh() const { return meshTriangles > 0; }
 };

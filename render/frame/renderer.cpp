@@ -158,6 +158,7 @@ Renderer::Renderer(Device& dev, const Scene& scene, const RenderSettings& settin
   if (lights_.size() > 1 &&
       kept({Unit::Kind::Measures, lights_.back()->endNode, graph_.nodes().size(), {}}))
     dev_.compilePipelines(sumPipelines);
+  gpu_.hostPoints = nullptr;  // the scene is the caller's: only the setup above reads it
 }
 
 // The whole plan before anything is made: what the kept passes use and what
@@ -335,7 +336,10 @@ void Renderer::upload(const Scene& scene) {
   }
   // --geometry mesh: only the groom is on the device (Geometry::strandVertexShader).
   const bool meshPath = settings_.geometry == GeometryPath::Mesh;
-  if (meshPath) uploadMeshGroom(dev_, scene, gpu_);
+  if (meshPath) {
+    uploadMeshGroom(dev_, scene, gpu_);
+    gpu_.hostPoints = &scene.strands.points;  // for the light's depth range; reset after setup
+  }
   static const Strands kNone;
   const Strands& st = generated || meshPath ? kNone : scene.strands;
   std::vector<glm::vec4> points(st.points.size()), colors(st.points.size());

@@ -10,13 +10,6 @@ void uploadMeshGroom(Device& dev, const Scene& scene, GpuScene& gpu) {
   const Groom& g = scene.groom;
   if (g.empty())
     throw InputError("--geometry mesh: the scene has no groom (guides= or instances=)");
-  // The mesh shader makes every strand of every instance: it does not read the level of
-  // detail's per-instance shares and guide order (generate.comp does), so it refuses rather
-  // than draw the full model.
-  if (g.hasLod())
-    throw InputError(
-        "--geometry mesh: the level of detail (lod=, lod_pixels=) is not on the "
-        "mesh path yet; use --geometry compute or cpu");
   const uint64_t segments = g.totalStrands() * (g.points - 1);
   if (segments > UINT32_MAX)
     throw InputError("--geometry mesh: " + std::to_string(segments) +
@@ -26,10 +19,10 @@ void uploadMeshGroom(Device& dev, const Scene& scene, GpuScene& gpu) {
   table[SB_GROOM_TABLE_POINTS] = g.points;
   table[SB_GROOM_TABLE_STRANDS] = g.strands;
   table[SB_GROOM_TABLE_SEGMENTS] = static_cast<uint32_t>(segments);
-  const float floats[] = {g.spread, g.offset, g.noise, g.clump, g.alongStep, scene.hairAlpha, 1.0f};
+  table[SB_GROOM_TABLE_INSTANCES] = g.instanceCount();
+  const float floats[] = {g.spread, g.offset, g.noise, g.clump, g.alongStep, scene.hairAlpha};
   const uint32_t at[] = {SB_GROOM_TABLE_RULE,     SB_GROOM_TABLE_RULE + 1, SB_GROOM_TABLE_RULE + 2,
-                         SB_GROOM_TABLE_RULE + 3, SB_GROOM_TABLE_ALONG,    SB_GROOM_TABLE_ALPHA,
-                         SB_GROOM_TABLE_WIDEN};
+                         SB_GROOM_TABLE_RULE + 3, SB_GROOM_TABLE_ALONG,    SB_GROOM_TABLE_ALPHA};
   for (std::size_t i = 0; i < std::size(floats); ++i)
     table[at[i]] = std::bit_cast<uint32_t>(floats[i]);
   table.insert(table.end(), g.neighbours.begin(), g.neighbours.end());
@@ -38,6 +31,12 @@ void uploadMeshGroom(Device& dev, const Scene& scene, GpuScene& gpu) {
   table[SB_GROOM_TABLE_PLACEMENTS] = static_cast<uint32_t>(table.size());
   for (const glm::vec4& p : g.placements)
     for (int k = 0; k < 4; ++k) table.push_back(std::bit_cast<uint32_t>(p[k]));
+  // The level of detail, as generate.comp reads it (every instance's, all kept without one).
+  table[SB_GROOM_TABLE_LODS] = static_cast<uint32_t>(table.size());
+  for (const GroomInstanceLod& l : g.lods)
+    table.insert(table.end(), {l.first, l.kept, std::bit_cast<uint32_t>(l.widen), 0u});
+  table[SB_GROOM_TABLE_ORDER] = static_cast<uint32_t>(table.size());
+  table.insert(table.end(), g.guideOrder.begin(), g.guideOrder.end());
 
   auto input = [&](const std::string& name, const void* data, std::size_t bytes) {
     return dev.createBuffer({"scene." + name, Owner::Scene, BufferUsage::Storage, bytes}, data);
