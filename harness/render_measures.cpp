@@ -34,6 +34,11 @@ Spec referenceShadowSpec(const Spec& shadow) {
   ref.options["method"] = "abuffer";
   auto size = shadow.options.find("size");
   if (size != shadow.options.end()) ref.options["size"] = size->second;
+  // A jittered lookup (occupancy's jitter=on) is judged against the exact maps looked up with
+  // the same jitter: the same sampling of the light map, as the same size is.
+  for (const char* key : {"jitter", "jitter_samples"})
+    if (auto it = shadow.options.find(key); it != shadow.options.end())
+      ref.options[key] = it->second;
   return ref;
 }
 

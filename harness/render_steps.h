@@ -16,7 +16,8 @@ class Renderer;
 
 // The reference's transparency: exact, from sorted fragment lists.
 extern const char* kReferenceOit;
-// The reference for a technique: exact shadows at its light-map size.
+// The reference for a technique: exact shadows at its light-map size, its lookup jittered as
+// the technique's is (jitter, jitter_samples).
 Spec referenceShadowSpec(const Spec& shadow);
 // Everything the reference's pixels depend on (the cache's key).
 std::string referenceKey(const RenderRequest& req, const RenderSettings& s, const Spec& refShadow);

@@ -149,6 +149,31 @@ TEST_P(FigureSmall, WritesItsGridAndTableOnBothBackends) {
   }
 }
 
+// --backend both: one run, the paper's rows once per API, the paper table with a column per API.
+TEST(Figure, BothBackendsInOneRunShowEachAPI) {
+  const fs::path dir = tempDir("figure-both");
+  const fs::path out = dir / "out";
+  const CliResult r = runCli("figure osm-steps --small --backend both --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  const json fig = json::parse(readFile(out / "figure.json"));
+  EXPECT_EQ(fig["backend"], "gl + vulkan");
+  EXPECT_EQ(fig["rows"], json::array({"340k lines (gl)", "340k lines (vulkan)"}));
+  ASSERT_EQ(fig["cells"].size(), 2u);
+  for (const json& row : fig["cells"]) {
+    EXPECT_FALSE(row[0].contains("note")) << row[0].dump();
+    EXPECT_TRUE(row[0]["frame_ms"].is_number()) << row[0].dump();
+  }
+  EXPECT_NE(fig["cells"][0][0]["case"], fig["cells"][1][0]["case"]);
+  const std::string md = readFile(out / "figure.md");
+  for (const char* s : {"--backend both", "Backend gl + vulkan", "| gl (ms) |", "| vulkan (ms) |"})
+    EXPECT_NE(md.find(s), std::string::npos) << s << "\n" << md;
+  // Control: a single API's page has no other API's column.
+  const fs::path gl = dir / "gl";
+  ASSERT_EQ(runCli("figure osm-steps --small --backend gl --out " + gl.string()).status, 0);
+  EXPECT_EQ(readFile(gl / "figure.md").find("| vulkan (ms) |"), std::string::npos);
+  fs::remove_all(dir);
+}
+
 // Test names: the figure's name with '-' as '_'.
 std::string testName(const ::testing::TestParamInfo<std::string>& p) {
   std::string n = p.param;
@@ -302,6 +327,37 @@ TEST(Figure, ErrorClaimsHoldOrFailOnTheCellsValues) {
   // b has no banding: no verdict; a cell outside the grid: none either.
   EXPECT_EQ(sb::report::errorClaimVerdict(g, {"x", "banding", "below", 0, 0, 0, 1, 0.05}), "-");
   EXPECT_EQ(sb::report::errorClaimVerdict(g, {"x", "image_rmse", "below", 0, 0, 2, 1, 0.05}), "-");
+}
+
+// Memory claims: a cell's shadow MiB against another cell's (scaled by a factor) or against the
+// paper's own number; each fails when the numbers say so.
+TEST(Figure, MemoryClaimsHoldOrFailOnTheCellsShadowMemory) {
+  sb::report::FigureGrid g;
+  g.rows = {"r"};
+  g.columns = {"a", "b"};
+  const double mib = 1024.0 * 1024.0;
+  const json ra = {{"memory", {{"shadow_bytes", 10 * mib}}}};
+  const json rb = {{"memory", {{"shadow_bytes", 130 * mib}}}};
+  sb::report::FigureCell a, b;
+  a.result = &ra;
+  b.result = &rb;
+  g.cells = {{a, b}};
+  sb::report::FigureErrorClaim c{"a below b", "shadow_mib", "below", 0, 0, 0, 1, 0.05};
+  EXPECT_EQ(sb::report::errorClaimVerdict(g, c), "holds");
+  c.factor = 0.1;  // an order of magnitude below: 10 against 13
+  EXPECT_EQ(sb::report::errorClaimVerdict(g, c), "holds");
+  c.factor = 0.05;  // against 6.5: fails
+  EXPECT_EQ(sb::report::errorClaimVerdict(g, c), "fails");
+  sb::report::FigureErrorClaim paper{"a is 10 MB", "shadow_mib", "same", 0, 0, 0, 0, 0.1};
+  paper.paper = 10.5;
+  EXPECT_EQ(sb::report::errorClaimVerdict(g, paper), "holds");
+  EXPECT_EQ(*sb::report::claimTarget(g, paper), 10.5);
+  paper.paper = 18;
+  EXPECT_EQ(sb::report::errorClaimVerdict(g, paper), "fails");
+  // A result without memory: no verdict.
+  const json none = json::object();
+  g.cells[0][0].result = &none;
+  EXPECT_EQ(sb::report::errorClaimVerdict(g, paper), "-");
 }
 
 }  // namespace
