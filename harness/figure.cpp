@@ -415,12 +415,13 @@ FigurePaperTable figurePaperTable(const std::string& name, std::size_t index) {
   out.title = t.value("title", "");
   out.source = t.value("source", "");
   const ojson defaults = doc.value("defaults", ojson::object());
+  const ojson groups = doc.value("groups", ojson::array());
   for (const ojson& r : t.value("rows", ojson::array())) {
     FigurePaperRow row;
     row.label = r.value("label", "");
     const std::string group = r.value("group", t.value("group", ""));
     const ojson* g = nullptr;
-    for (const ojson& candidate : doc.value("groups", ojson::array()))
+    for (const ojson& candidate : groups)
       if (candidate.value("name", "") == group) g = &candidate;
     if (!g)
       throw InputError(where + ": table \"" + out.title + "\", row \"" + row.label +

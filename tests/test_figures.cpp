@@ -4,6 +4,7 @@
 // check fails on a grid of the wrong shape. One ctest entry per figure (ctest -j2 splits them).
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 
@@ -171,6 +172,30 @@ TEST(Figure, BothBackendsInOneRunShowEachAPI) {
   const fs::path gl = dir / "gl";
   ASSERT_EQ(runCli("figure osm-steps --small --backend gl --out " + gl.string()).status, 0);
   EXPECT_EQ(readFile(gl / "figure.md").find("| vulkan (ms) |"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+// The papers' numbers the benchmarks print come from the figure files (one place), with the
+// techniques of the rows' groups; a row naming a group the suite lacks is refused.
+TEST(Figure, PaperTablesAreReadFromTheFigureFiles) {
+  const sb::FigurePaperTable t = sb::figurePaperTable("occ-fig2");
+  const json file = figureFile("occ-fig2");
+  ASSERT_EQ(t.rows.size(), file["tables"][0]["rows"].size());
+  for (std::size_t i = 0; i < t.rows.size(); ++i) {
+    EXPECT_EQ(t.rows[i].label, file["tables"][0]["rows"][i]["label"]);
+    EXPECT_EQ(*t.rows[i].paper, file["tables"][0]["rows"][i]["paper"].get<double>());
+    EXPECT_EQ(t.rows[i].unit, "fps");
+  }
+  EXPECT_EQ(t.row("peel", true).label, "depth peeling");
+  EXPECT_EQ(t.row("peel", true).shadow, "occupancy");  // the suite's default
+  EXPECT_NEAR(*t.row("peel", true).paperMs(), 1000.0 / 4.01, 1e-9);
+  expectInputError([&] { t.row("kbuffer", true); }, {"occ-fig2", "kbuffer"});
+  const fs::path dir = tempDir("figure-paper-table");
+  json bad = file;
+  bad["tables"][0]["rows"][0]["group"] = "nope";
+  std::ofstream(dir / "bad.json") << bad.dump();
+  expectInputError([&] { sb::figurePaperTable((dir / "bad.json").string()); }, {"group \"nope\""});
+  expectInputError([&] { sb::figurePaperTable("occ-fig2", 5); }, {"no paper table 6"});
   fs::remove_all(dir);
 }
 
