@@ -51,7 +51,7 @@ PY
 import json, sys
 try:
     rs = json.load(open(sys.argv[1]))["results"]
-    print(max(int(r.get("scene", {}).get("vertices", 0) or 0) for r in rs))
+    print(max(int(r.get("scene", {}).get("points", 0) or 0) for r in rs))
 except Exception:
     print(0)
 PY
