@@ -13,9 +13,10 @@ const OptionTable<ExactShadow::Options>& ExactShadow::options() {
                    "from the light); the tests prove them identical"),
        opt::mapSize(&O::size, "light map resolution (size x size), 1..16384"), opt::bias(&O::bias),
        opt::layersCap(&O::layers),
-       opt::flag(&O::jitter, "jitter", false,
-                 "on | off: lookup jittered by up to half a texel as occupancy's jitter=on (the "
-                 "reference of a jittered lookup samples as it does)"),
+       opt::flag(
+           &O::jitter, "jitter", false,
+           "on | off: lookup jittered by up to half a texel (render/common/light_jitter.glsl): "
+           "the reference of a jittered lookup samples as it does"),
        opt::integer(&O::jitterSamples, "jitter_samples", 1, 1, 64,
                     "jitter=on: jittered lookups averaged, 1..64")});
   return table;
