@@ -1,7 +1,11 @@
 // `strandbench bench-shadows` and `bench-oit`: the papers' timing figures as ratios measured on
 // one backend in one run (not a test: these machines are shared and noisy, so only ratios
 // within a run are compared, their cases interleaved round by round, each ratio with its 95%
-// interval; harness/measure.h).
+// interval; harness/measure.h). The papers' numbers and the techniques they time are read from
+// the figures that reproduce them (dom-fig1, occ-fps, occ-fig2: harness/figure.h
+// figurePaperTable); the benchmarks add a scene of your choice, OSM's time-per-map fit and
+// the depth-peeling rows.
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <iomanip>
@@ -10,8 +14,10 @@
 #include <memory>
 #include <optional>
 #include <set>
+#include <sstream>
 
 #include "cli/commands.h"
+#include "harness/figure.h"
 #include "harness/measure.h"
 #include "harness/render.h"
 #include "harness/run_options.h"
@@ -63,14 +69,28 @@ void fitLine(const std::vector<double>& x, const std::vector<double>& y, double&
   r2 = num * num / ((n * sxx - sx * sx) * (n * syy - sy * sy));
 }
 
-const std::vector<std::pair<std::string, std::string>> kFig1 = {
-    {"none", "154 fps"},
-    {"osm:maps=16", "81 fps"},
-    {"osm:maps=128", "2.3 fps"},
-    {"dc:clusters=4", "73-79 fps"},
-    {"dom:layers=3", "114 fps"},
-    {"dom:layers=4", "-"},
-    {"occupancy", "(occupancy paper: 41 ms vs DOM4 33.5 ms)"}};
+// "X / Y ms = R": a ratio of the paper's times (fps converted), for the printed paper side.
+std::string paperRatio(const FigurePaperRow& a, const FigurePaperRow& b) {
+  std::ostringstream o;
+  o << std::fixed << std::setprecision(2);
+  if (!a.paperMs() || !b.paperMs()) return "no paper number";
+  o << *a.paperMs() << " / " << *b.paperMs() << " ms = " << *a.paperMs() / *b.paperMs();
+  return o.str();
+}
+
+// The paper's number as the paper gives it: "154 fps", or "-".
+std::string paperText(const FigurePaperRow& r) {
+  if (!r.paper) return "-";
+  std::ostringstream o;
+  o << *r.paper << " " << r.unit;
+  return o.str();
+}
+
+// The paper's ordering of a over b (a faster where its time is below b's).
+OrderingClaim paperOrdering(const FigurePaperRow& a, const FigurePaperRow& b) {
+  const bool faster = a.paperMs() && b.paperMs() && *a.paperMs() < *b.paperMs();
+  return {1.0, faster, a.label + (faster ? " faster than " : " slower than ") + b.label};
+}
 
 // Every case checked (and the device made once) before the first line is printed.
 void checkCases(const RenderRequest& base, std::string RenderRequest::*technique,
@@ -99,8 +119,16 @@ void printHeader(const RenderRequest& base, const RepetitionOptions& reps) {
 }
 
 int runBench(const BenchOptions& o) {
+  // The papers' numbers, kept once in the figures that reproduce them.
+  const FigurePaperTable fig1 = figurePaperTable("dom-fig1");
+  const FigurePaperTable occ = figurePaperTable("occ-fps");
+  std::vector<const FigurePaperRow*> paperRows;
+  for (const FigurePaperTable* t : {&fig1, &occ})
+    for (const FigurePaperRow& r : t->rows) paperRows.push_back(&r);
   std::vector<std::string> specs;
-  for (const auto& row : kFig1) specs.push_back(row.first);
+  for (const FigurePaperRow* r : paperRows)
+    if (std::find(specs.begin(), specs.end(), r->shadow) == specs.end()) specs.push_back(r->shadow);
+  const std::size_t paperCases = specs.size();
   for (int maps : o.osmMaps) {
     if (maps < 1 || maps > 512)
       throw InputError("--osm-maps " + std::to_string(maps) + ": map counts must be in 1..512");
@@ -126,27 +154,41 @@ int runBench(const BenchOptions& o) {
   std::map<std::string, const Measurement*> m;
   for (std::size_t i = 0; i < specs.size(); ++i) m[specs[i]] = &ms[i];
 
-  std::cout << "Deep opacity maps paper, Fig. 1 (GeForce 8800, fps) beside ours (shadow ms, "
-               "frame ms):\n";
-  for (std::size_t i = 0; i < kFig1.size(); ++i)
-    std::cout << "  " << std::left << std::setw(16) << kFig1[i].first << std::right << " shadow "
+  std::cout << fig1.title << " (" << fig1.source << ") and " << occ.title << " (" << occ.source
+            << ") beside ours (shadow ms, frame ms):\n";
+  for (const FigurePaperRow* r : paperRows) {
+    const std::size_t i = std::find(specs.begin(), specs.end(), r->shadow) - specs.begin();
+    std::cout << "  " << std::left << std::setw(16) << r->shadow << std::right << " shadow "
               << describe(ms[i]) << "  frame " << median(frames[i]) << " ms  paper "
-              << kFig1[i].second << "\n";
+              << paperText(*r) << "\n";
+  }
   std::cout << "\nratios (one backend, rounds interleaved, 95% paired bootstrap intervals):\n";
-  printRatio(std::cout, "DOM(3) / OSM(16) shadow time", *m["dom:layers=3"], *m["osm:maps=16"],
-             "paper, from fps: frames 8.8 / 12.3 ms = 0.71; shadow part over 'no shadows' 2.3 / "
-             "5.9 ms = 0.39",
-             OrderingClaim{1.0, true, "DOM(3) faster than OSM(16)"});
-  printRatio(std::cout, "occupancy / DOM(4) shadow time", *m["occupancy"], *m["dom:layers=4"],
-             "occupancy paper: 41 / 33.5 = 1.22",
-             OrderingClaim{1.0, false, "occupancy slower than DOM(4)"});
+  const FigurePaperRow& none = fig1.row("none");
+  const FigurePaperRow& dom3 = fig1.row("dom:layers=3");
+  const FigurePaperRow& osm16 = fig1.row("osm:maps=16");
+  std::string shadowPart = "no paper number";
+  if (dom3.paperMs() && osm16.paperMs() && none.paperMs()) {
+    std::ostringstream p;
+    p << std::fixed << std::setprecision(2) << *dom3.paperMs() - *none.paperMs() << " / "
+      << *osm16.paperMs() - *none.paperMs()
+      << " ms = " << (*dom3.paperMs() - *none.paperMs()) / (*osm16.paperMs() - *none.paperMs());
+    shadowPart = p.str();
+  }
+  printRatio(std::cout, "DOM(3) / OSM(16) shadow time", *m[dom3.shadow], *m[osm16.shadow],
+             "paper, from fps: frames " + paperRatio(dom3, osm16) +
+                 "; shadow part over 'no shadows' " + shadowPart,
+             paperOrdering(dom3, osm16));
+  const FigurePaperRow& occupancy = occ.row("occupancy");
+  const FigurePaperRow& dom4 = occ.row("dom:layers=4");
+  printRatio(std::cout, "occupancy / DOM(4) shadow time", *m[occupancy.shadow], *m[dom4.shadow],
+             "occupancy paper: " + paperRatio(occupancy, dom4), paperOrdering(occupancy, dom4));
 
   std::cout << "\nOpacity shadow maps paper, Fig. 4: time against the number of maps "
                "(passes=single, one geometry pass per map):\n";
   std::vector<double> xs, ys;
   std::vector<const Measurement*> osm;
   for (std::size_t k = 0; k < o.osmMaps.size(); ++k) {
-    const Measurement& r = ms[kFig1.size() + k];
+    const Measurement& r = ms[paperCases + k];
     osm.push_back(&r);
     xs.push_back(o.osmMaps[k]);
     ys.push_back(r.median.estimate);
@@ -191,7 +233,7 @@ int runBench(const BenchOptions& o) {
 // their passes from the techniques' own counters, their times against each
 // other, and the classic peel against occupancy-ordered blending beside the
 // occupancy paper's Fig. 2 ratio. Self-contained: one render per technique.
-void printPeelingRows(const RenderRequest& base, double occupancyMs) {
+void printPeelingRows(const RenderRequest& base, double occupancyMs, const FigurePaperTable& fig2) {
   std::map<std::string, RenderResult> out;
   for (const char* oit : {"peel_classic", "dual_peel"}) {
     RenderRequest r = base;
@@ -221,14 +263,17 @@ void printPeelingRows(const RenderRequest& base, double occupancyMs) {
             << counter("dual_peel", "geometry_passes") / counter("peel_classic", "geometry_passes")
             << ")\n"
             << "peel_classic / occupancy-ordered time: " << classic / occupancyMs
-            << "  (paper: 51 / 4.01 fps = 12.7)\n";
+            << "  (paper: " << paperRatio(fig2.row("peel", true), fig2.row("occupancy", true))
+            << ")\n";
 }
 
 int runOitBench(const RenderRequest& base, const RepetitionOptions& reps) {
-  const std::vector<std::pair<std::string, double>> rows = {
-      {"peel", 4.01}, {"occupancy", 51}, {"wavg", 72}, {"wboit", 0}, {"none", 120}};
+  // The paper's numbers, kept once in the figure that reproduces them; weighted blended OIT
+  // (no number in the paper) beside them.
+  const FigurePaperTable fig2 = figurePaperTable("occ-fig2");
   std::vector<std::string> oits;
-  for (const auto& row : rows) oits.push_back(row.first);
+  for (const FigurePaperRow& r : fig2.rows) oits.push_back(r.oit);
+  oits.push_back("wboit");
   checkCases(base, &RenderRequest::oit, oits);
   std::cout << std::fixed << std::setprecision(2);
   std::cout << "shadow " << base.shadow << "; ";
@@ -248,21 +293,25 @@ int runOitBench(const RenderRequest& base, const RepetitionOptions& reps) {
   for (std::size_t i = 0; i < oits.size(); ++i) m[oits[i]] = &ms[i];
   if (eye)
     std::cout << "eye depth complexity: max " << eye->max << ", mean " << eye->mean
-              << "  (paper's Fig. 2 scene: 112)\n\n";
-  for (const auto& [oit, fps] : rows) {
+              << "  (paper: " << fig2.source << ")\n\n";
+  for (const std::string& oit : oits) {
     std::cout << "  " << std::left << std::setw(10) << oit << std::right << " "
               << describe(*m[oit]);
-    if (fps > 0) std::cout << "   paper " << fps << " fps = " << 1000.0 / fps << " ms";
+    for (const FigurePaperRow& r : fig2.rows)
+      if (r.oit == oit && r.paperMs())
+        std::cout << "   paper " << paperText(r) << " = " << *r.paperMs() << " ms";
     std::cout << "\n";
   }
   std::cout << "\nratios (95% paired bootstrap intervals):\n";
-  printRatio(std::cout, "depth peeling / occupancy-ordered time", *m["peel"], *m["occupancy"],
-             "paper: 51 / 4.01 fps = 12.7",
-             OrderingClaim{1.0, false, "occupancy-ordered faster than depth peeling"});
-  printRatio(std::cout, "weighted average / occupancy-ordered time", *m["wavg"], *m["occupancy"],
-             "paper: 51 / 72 fps = 0.71",
-             OrderingClaim{1.0, true, "weighted average faster than occupancy-ordered"});
-  printPeelingRows(base, m["occupancy"]->median.estimate);
+  const FigurePaperRow& peel = fig2.row("peel", true);
+  const FigurePaperRow& occupancy = fig2.row("occupancy", true);
+  const FigurePaperRow& wavg = fig2.row("wavg", true);
+  printRatio(std::cout, "depth peeling / occupancy-ordered time", *m[peel.oit], *m[occupancy.oit],
+             "paper: " + paperRatio(peel, occupancy), paperOrdering(peel, occupancy));
+  printRatio(std::cout, "weighted average / occupancy-ordered time", *m[wavg.oit],
+             *m[occupancy.oit], "paper: " + paperRatio(wavg, occupancy),
+             paperOrdering(wavg, occupancy));
+  printPeelingRows(base, m[occupancy.oit]->median.estimate, fig2);
   std::cout << "\nafter: " << machineState() << "\n";
   return 0;
 }

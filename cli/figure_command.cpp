@@ -28,7 +28,11 @@ void registerFigureCommand(CLI::App& app) {
   cmd->add_flag("--list", *list, "list the figures");
   cmd->add_flag("--small", o->small,
                 "the figure's small variant (smaller scene, size, repeats; under a minute)");
-  cmd->add_option("--backend", o->backend, setting_values::joinOr(backendNames()))
+  std::vector<std::string> backends = backendNames();
+  backends.push_back(kBothBackends);
+  cmd->add_option("--backend", o->backend,
+                  setting_values::joinOr(backends) +
+                      " (both: every case on each API in one interleaved run, a row per API)")
       ->capture_default_str();
   auto runs = std::make_shared<CliRunOptions>(
       *cmd,

@@ -86,8 +86,8 @@ void applySmall(ojson& doc, const std::string& where) {
   }
 }
 
-// Every case on one backend: the default's "backends", no other layer naming one.
-void onBackend(ojson& doc, const std::string& backend) {
+// Every case on the figure's backends: the default's "backends", no other layer naming one.
+void onBackends(ojson& doc, const std::vector<std::string>& backends) {
   auto strip = [](ojson& layer) {
     if (!layer.is_object()) return;
     layer.erase("backend");
@@ -96,7 +96,7 @@ void onBackend(ojson& doc, const std::string& backend) {
   };
   if (!doc.contains("defaults")) doc["defaults"] = ojson::object();
   strip(doc["defaults"]);
-  doc["defaults"]["backends"] = ojson::array({backend});
+  doc["defaults"]["backends"] = backends;
   if (doc.contains("presets") && doc["presets"].is_object())
     for (auto& [name, p] : doc["presets"].items()) strip(p);
   if (doc.contains("groups") && doc["groups"].is_array())
@@ -261,6 +261,16 @@ void techniqueSpecs(const nlohmann::json& j, const std::string& key,
 
 }  // namespace
 
+std::vector<std::string> figureBackends(const std::string& backend) {
+  std::vector<std::string> names = backendNames();
+  if (backend == kBothBackends) return names;
+  if (std::find(names.begin(), names.end(), backend) == names.end()) {
+    names.push_back(kBothBackends);
+    throw InputError("--backend " + backend + ": " + unknownNameMessage("backend", backend, names));
+  }
+  return {backend};
+}
+
 fs::path figuresDir() { return fs::path(SB_SOURCE_DIR) / "suites" / "figures"; }
 
 fs::path modelsDir() {
@@ -282,9 +292,7 @@ ojson figureSuite(const std::string& name, bool small, const std::string& backen
   const std::string where = "figure " + file.string();
   ojson doc = readJsonFile<ojson>(file);
   if (!doc.is_object()) throw InputError(where + ": not a JSON object");
-  const auto names = backendNames();
-  if (std::find(names.begin(), names.end(), backend) == names.end())
-    throw InputError("--backend " + backend + ": " + unknownNameMessage("backend", backend, names));
+  const std::vector<std::string> backends = figureBackends(backend);
   report::checkFigureBlock(nlohmann::json::parse(doc.dump()), where);
   if (const ojson* models = doc["figure"].contains("models") ? &doc["figure"]["models"] : nullptr) {
     for (const auto& m : *models) {
@@ -297,7 +305,7 @@ ojson figureSuite(const std::string& name, bool small, const std::string& backen
   }
   if (small) applySmall(doc, where);
   doc.erase("small");
-  onBackend(doc, backend);
+  onBackends(doc, backends);
   for (const char* key : {"defaults", "presets", "groups"})
     if (doc.contains(key)) resolveModels(doc[key], modelsDir().string() + "/");
   return doc;
@@ -352,7 +360,8 @@ int runFigure(const FigureOptions& o) {
 
     const auto results = readJsonFile<nlohmann::json>(tmp / "results.json");
     const auto figure = nlohmann::json::parse(doc["figure"].dump());
-    report::FigureGrid grid = report::buildFigureGrid(figure, results, name, o.backend);
+    report::FigureGrid grid =
+        report::buildFigureGrid(figure, results, name, figureBackends(o.backend));
     addBanding(grid, tmp);
     const nlohmann::json layout = composeGrid(grid, tmp);
     writeFileAtomic(tmp / "figure.json", report::figureJson(grid, layout).dump(1) + "\n");
@@ -378,6 +387,53 @@ int runFigure(const FigureOptions& o) {
     fs::remove_all(tmp, ec);
     throw;
   }
+}
+
+std::optional<double> FigurePaperRow::paperMs() const {
+  if (!paper || *paper <= 0) return std::nullopt;
+  if (unit == "fps") return 1000.0 / *paper;
+  if (unit == "ms") return paper;
+  return std::nullopt;
+}
+
+const FigurePaperRow& FigurePaperTable::row(const std::string& spec, bool oit) const {
+  for (const FigurePaperRow& r : rows)
+    if ((oit ? r.oit : r.shadow) == spec) return r;
+  throw InputError("figure " + figure + ", table \"" + title + "\": no row with " +
+                   (oit ? "oit " : "shadow ") + spec + " (suites/figures/" + figure + ".json)");
+}
+
+FigurePaperTable figurePaperTable(const std::string& name, std::size_t index) {
+  const fs::path file = figureFile(name);
+  const std::string where = "figure " + file.string();
+  const ojson doc = readJsonFile<ojson>(file);
+  if (!doc.contains("tables") || !doc["tables"].is_array() || index >= doc["tables"].size())
+    throw InputError(where + ": has no paper table " + std::to_string(index + 1) + " (\"tables\")");
+  const ojson& t = doc["tables"][index];
+  FigurePaperTable out;
+  out.figure = figureName(name);
+  out.title = t.value("title", "");
+  out.source = t.value("source", "");
+  const ojson defaults = doc.value("defaults", ojson::object());
+  const ojson groups = doc.value("groups", ojson::array());
+  for (const ojson& r : t.value("rows", ojson::array())) {
+    FigurePaperRow row;
+    row.label = r.value("label", "");
+    const std::string group = r.value("group", t.value("group", ""));
+    const ojson* g = nullptr;
+    for (const ojson& candidate : groups)
+      if (candidate.value("name", "") == group) g = &candidate;
+    if (!g)
+      throw InputError(where + ": table \"" + out.title + "\", row \"" + row.label +
+                       "\": group \"" + group + "\" is not a group of the suite");
+    row.shadow = g->value("shadow", defaults.value("shadow", row.shadow));
+    row.oit = g->value("oit", defaults.value("oit", row.oit));
+    if (r.contains("paper") && r["paper"].is_number()) row.paper = r["paper"].get<double>();
+    row.unit = r.value("paper_unit", t.value("paper_unit", row.unit));
+    row.baseline = r.value("baseline", false);
+    out.rows.push_back(std::move(row));
+  }
+  return out;
 }
 
 std::vector<std::string> figureDepends(const std::string& name) {

@@ -1,5 +1,6 @@
 #include "reports/figure_report.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
@@ -164,79 +165,87 @@ std::vector<FigureClaim> figureClaims(const json& results) {
   const json* tables = find(results, {"tables"});
   const json* rs = find(results, {"results"});
   if (!tables || !tables->is_array() || !rs || !rs->is_array()) return claims;
-  auto first = [&](const std::string& group, const json* match) -> const json* {
-    for (const json& r : *rs)
-      if (matches(r, group, match) && failureOf(r).empty()) return &r;
-    return nullptr;
-  };
-  for (const json& t : *tables) {
-    const std::string tableMetric = text(find(t, {"metric"}));
-    if (!tableMetric.empty() && tableMetric != "frame_ms") continue;
-    const json* rows = find(t, {"rows"});
-    if (!rows || !rows->is_array()) continue;
-    const json* base = nullptr;
-    for (const json& r : *rows)
-      if (const json* b = find(r, {"baseline"}); b && *b == true) base = &r;
-    // A claim compares frame times: a baseline of another metric (one step) makes none.
-    if (!base) continue;
-    if (const std::string m = text(find(*base, {"metric"})); !m.empty() && m != "frame_ms")
-      continue;
-    const std::string tableGroup = text(find(t, {"group"}));
-    auto groupOfRow = [&](const json& r) {
-      const std::string g = text(find(r, {"group"}));
-      return g.empty() ? tableGroup : g;
+  // A run on both APIs makes each claim once per API (its ratio is of one API's rounds).
+  std::vector<std::string> backends;
+  for (const json& r : *rs)
+    if (std::find(backends.begin(), backends.end(), backendOf(r)) == backends.end())
+      backends.push_back(backendOf(r));
+  for (const std::string& backend : backends) {
+    auto first = [&](const std::string& group, const json* match) -> const json* {
+      for (const json& r : *rs)
+        if (backendOf(r) == backend && matches(r, group, match) && failureOf(r).empty()) return &r;
+      return nullptr;
     };
-    const std::string unit = text(find(t, {"paper_unit"}));
-    auto paperMs = [&](const json& r) -> std::optional<double> {
-      const auto p = number(find(r, {"paper"}));
-      if (!p || *p <= 0) return std::nullopt;
-      return unit == "fps" ? 1000.0 / *p : *p;
-    };
-    const auto basePaper = paperMs(*base);
-    const json* baseResult = first(groupOfRow(*base), find(*base, {"match"}));
-    for (const json& r : *rows) {
-      if (&r == base) continue;
-      const std::string rowMetric = text(find(r, {"metric"}));
-      if (!rowMetric.empty() && rowMetric != "frame_ms") continue;
-      const auto paper = paperMs(r);
-      if (!paper || !basePaper) continue;
-      FigureClaim c;
-      c.table = text(find(t, {"title"}));
-      c.row = text(find(r, {"label"}));
-      c.baseline = text(find(*base, {"label"}));
-      c.paperRatio = *paper / *basePaper;
-      const bool below = c.paperRatio < 1.0;
-      const json* ours = first(groupOfRow(r), find(r, {"match"}));
-      const std::vector<double> num = frameSamples(ours), den = frameSamples(baseResult);
-      c.time = c.fragments = c.bytes = "-";
-      // A verdict in time only from a ratio of one interleaved run (round r timed both cases,
-      // paired): two runs' medians differ by the machine's state as much as by technique.
-      const std::string run = interleavedRun(ours);
-      c.oneRun = !run.empty() && run == interleavedRun(baseResult) && num.size() == den.size();
-      if (!num.empty() && !den.empty() && !c.oneRun) {
-        c.estimate = median(num) / median(den);
-        c.time = "none: not timed in one interleaved run";
-      } else if (!num.empty() && !den.empty()) {
-        const Interval i = bootstrapRatio(num, den, /*paired=*/true);
-        c.low = i.low;
-        c.estimate = i.estimate;
-        c.high = i.high;
-        // An interval of one or two samples a side says nothing: no verdict in time.
-        c.time = num.size() < 3 || den.size() < 3 ? "undecided (too few samples; --min-reps 3)"
-                                                  : orderingVerdict(i, 1.0, below);
-      }
-      auto work = [&](std::optional<double> a, std::optional<double> b) -> std::string {
-        if (!a || !b || *b <= 0) return "-";
-        const double ratio = *a / *b;
-        if (ratio == 1.0) return "undecided";
-        return (ratio < 1.0) == below ? "holds" : "fails";
+    const std::string onBackend = backends.size() > 1 ? " (" + backend + ")" : "";
+    for (const json& t : *tables) {
+      const std::string tableMetric = text(find(t, {"metric"}));
+      if (!tableMetric.empty() && tableMetric != "frame_ms") continue;
+      const json* rows = find(t, {"rows"});
+      if (!rows || !rows->is_array()) continue;
+      const json* base = nullptr;
+      for (const json& r : *rows)
+        if (const json* b = find(r, {"baseline"}); b && *b == true) base = &r;
+      // A claim compares frame times: a baseline of another metric (one step) makes none.
+      if (!base) continue;
+      if (const std::string m = text(find(*base, {"metric"})); !m.empty() && m != "frame_ms")
+        continue;
+      const std::string tableGroup = text(find(t, {"group"}));
+      auto groupOfRow = [&](const json& r) {
+        const std::string g = text(find(r, {"group"}));
+        return g.empty() ? tableGroup : g;
       };
-      if (ours && baseResult) {
-        c.fragments = work(frameCounter(*ours, "fragment_invocations"),
-                           frameCounter(*baseResult, "fragment_invocations"));
-        c.bytes = work(frameBytes(*ours), frameBytes(*baseResult));
+      const std::string unit = text(find(t, {"paper_unit"}));
+      auto paperMs = [&](const json& r) -> std::optional<double> {
+        const auto p = number(find(r, {"paper"}));
+        if (!p || *p <= 0) return std::nullopt;
+        return unit == "fps" ? 1000.0 / *p : *p;
+      };
+      const auto basePaper = paperMs(*base);
+      const json* baseResult = first(groupOfRow(*base), find(*base, {"match"}));
+      for (const json& r : *rows) {
+        if (&r == base) continue;
+        const std::string rowMetric = text(find(r, {"metric"}));
+        if (!rowMetric.empty() && rowMetric != "frame_ms") continue;
+        const auto paper = paperMs(r);
+        if (!paper || !basePaper) continue;
+        FigureClaim c;
+        c.table = text(find(t, {"title"})) + onBackend;
+        c.row = text(find(r, {"label"}));
+        c.baseline = text(find(*base, {"label"}));
+        c.paperRatio = *paper / *basePaper;
+        const bool below = c.paperRatio < 1.0;
+        const json* ours = first(groupOfRow(r), find(r, {"match"}));
+        const std::vector<double> num = frameSamples(ours), den = frameSamples(baseResult);
+        c.time = c.fragments = c.bytes = "-";
+        // A verdict in time only from a ratio of one interleaved run (round r timed both cases,
+        // paired): two runs' medians differ by the machine's state as much as by technique.
+        const std::string run = interleavedRun(ours);
+        c.oneRun = !run.empty() && run == interleavedRun(baseResult) && num.size() == den.size();
+        if (!num.empty() && !den.empty() && !c.oneRun) {
+          c.estimate = median(num) / median(den);
+          c.time = "none: not timed in one interleaved run";
+        } else if (!num.empty() && !den.empty()) {
+          const Interval i = bootstrapRatio(num, den, /*paired=*/true);
+          c.low = i.low;
+          c.estimate = i.estimate;
+          c.high = i.high;
+          // An interval of one or two samples a side says nothing: no verdict in time.
+          c.time = num.size() < 3 || den.size() < 3 ? "undecided (too few samples; --min-reps 3)"
+                                                    : orderingVerdict(i, 1.0, below);
+        }
+        auto work = [&](std::optional<double> a, std::optional<double> b) -> std::string {
+          if (!a || !b || *b <= 0) return "-";
+          const double ratio = *a / *b;
+          if (ratio == 1.0) return "undecided";
+          return (ratio < 1.0) == below ? "holds" : "fails";
+        };
+        if (ours && baseResult) {
+          c.fragments = work(frameCounter(*ours, "fragment_invocations"),
+                             frameCounter(*baseResult, "fragment_invocations"));
+          c.bytes = work(frameBytes(*ours), frameBytes(*baseResult));
+        }
+        claims.push_back(std::move(c));
       }
-      claims.push_back(std::move(c));
     }
   }
   return claims;
@@ -297,19 +306,29 @@ std::optional<double> cellMetric(const FigureCell& c, const std::string& metric)
   if (metric == "image_rmse") return at(r, {"error", "image", "rmse"});
   if (metric == "flip_mean") return at(r, {"error", "image", "flip", "mean"});
   if (metric == "visibility_rmse") return at(r, {"error", "visibility", "rmse"});
+  if (metric == "shadow_mib") return memoryMiB(*r, "shadow_bytes");
   return std::nullopt;
 }
 
+namespace {
+const FigureCell* gridCell(const FigureGrid& g, int r, int col) {
+  if (r < 0 || col < 0 || r >= int(g.cells.size()) || col >= int(g.cells[r].size())) return nullptr;
+  return &g.cells[r][col];
+}
+}  // namespace
+
+std::optional<double> claimTarget(const FigureGrid& g, const FigureErrorClaim& c) {
+  if (c.paper) return c.paper;
+  const FigureCell* b = gridCell(g, c.thanRow, c.thanColumn);
+  const auto y = b ? cellMetric(*b, c.metric) : std::nullopt;
+  if (!y) return std::nullopt;
+  return *y * c.factor;
+}
+
 std::string errorClaimVerdict(const FigureGrid& g, const FigureErrorClaim& c) {
-  auto cell = [&](int r, int col) -> const FigureCell* {
-    if (r < 0 || col < 0 || r >= int(g.cells.size()) || col >= int(g.cells[r].size()))
-      return nullptr;
-    return &g.cells[r][col];
-  };
-  const FigureCell* a = cell(c.row, c.column);
-  const FigureCell* b = cell(c.thanRow, c.thanColumn);
-  if (!a || !b) return "-";
-  const auto x = cellMetric(*a, c.metric), y = cellMetric(*b, c.metric);
+  const FigureCell* a = gridCell(g, c.row, c.column);
+  const auto x = a ? cellMetric(*a, c.metric) : std::nullopt;
+  const auto y = claimTarget(g, c);
   if (!x || !y) return "-";
   if (c.relation == "same")
     return std::abs(*x - *y) <= c.tolerance * std::abs(*y) ? "holds" : "fails";
@@ -331,11 +350,15 @@ FigureGrid buildFigureGrid(const json& figure, const json& results, const std::s
       c.metric = text(find(jc, {"metric"}));
       c.relation = text(find(jc, {"relation"}));
       if (const auto t = number(find(jc, {"tolerance"}))) c.tolerance = *t;
+      c.paper = number(find(jc, {"paper"}));
+      if (const auto f = number(find(jc, {"factor"}))) c.factor = *f;
       const json* a = find(jc, {"cell"});
       const json* b = find(jc, {"than"});
-      if (a && a->is_array() && a->size() == 2 && b && b->is_array() && b->size() == 2) {
+      if (a && a->is_array() && a->size() == 2) {
         c.row = (*a)[0].get<int>();
         c.column = (*a)[1].get<int>();
+      }
+      if (b && b->is_array() && b->size() == 2) {
         c.thanRow = (*b)[0].get<int>();
         c.thanColumn = (*b)[1].get<int>();
       }
@@ -378,6 +401,37 @@ FigureGrid buildFigureGrid(const json& figure, const json& results, const std::s
       row.push_back(std::move(cell));
     }
     g.cells.push_back(std::move(row));
+  }
+  return g;
+}
+
+FigureGrid buildFigureGrid(const json& figure, const json& results, const std::string& name,
+                           const std::vector<std::string>& backends) {
+  if (backends.size() == 1) return buildFigureGrid(figure, results, name, backends.front());
+  FigureGrid g;
+  for (const std::string& b : backends) {
+    FigureGrid one = buildFigureGrid(figure, results, name, b);
+    const int offset = static_cast<int>(g.rows.size());
+    if (g.backend.empty()) {
+      g = one;
+      g.rows.clear();
+      g.cells.clear();
+      g.errorClaims.clear();
+    } else {
+      g.backend += " + " + b;
+    }
+    // Per-API rows: the paper's rows once per API, its claims judged on each.
+    for (std::size_t r = 0; r < one.rows.size(); ++r) {
+      g.rows.push_back(one.rows[r] + " (" + b + ")");
+      for (FigureCell& c : one.cells[r]) c.row = g.rows.back();
+      g.cells.push_back(std::move(one.cells[r]));
+    }
+    for (FigureErrorClaim c : one.errorClaims) {
+      c.text += " (" + b + ")";
+      c.row += offset;
+      c.thanRow += offset;
+      g.errorClaims.push_back(std::move(c));
+    }
   }
   return g;
 }
@@ -477,9 +531,11 @@ std::string renderFigureMarkdown(const FigureGrid& g, const json& results,
          "filter (imaging/metrics.h, bandingMeasure): stripes and steps, spatially coherent, "
          "survive the filter; per-pixel noise (what jitter trades them for) averages out.\n\n";
   if (!g.errorClaims.empty()) {
-    o << "## The paper's claims on errors\n\n";
-    o << "Errors are deterministic (a run gives the same images again), so each claim holds or "
-         "fails on this run's images; \"same\" allows the relative tolerance shown.\n\n";
+    o << "## The paper's claims on errors and memory\n\n";
+    o << "Errors and memory are deterministic (a run gives the same images and allocations "
+         "again), so each claim holds or fails on this run; \"same\" allows the relative "
+         "tolerance shown; shadow\\_mib is the memory the shadow technique holds (MiB), "
+         "against another cell or the paper's own number.\n\n";
     Table et;
     et.header = {"Claim", "Metric", "Cell", "Value", "Against", "Value", "Relation", "Verdict"};
     for (const FigureErrorClaim& c : g.errorClaims) {
@@ -487,18 +543,15 @@ std::string renderFigureMarkdown(const FigureGrid& g, const json& results,
         if (r < 0 || col < 0 || r >= int(g.rows.size()) || col >= int(g.columns.size())) return "?";
         return g.rows[r] + " / " + g.columns[col];
       };
-      auto value = [&](int r, int col) -> std::optional<double> {
-        if (r < 0 || col < 0 || r >= int(g.cells.size()) || col >= int(g.cells[r].size()))
-          return std::nullopt;
-        return cellMetric(g.cells[r][col], c.metric);
-      };
+      const FigureCell* cell = gridCell(g, c.row, c.column);
+      const std::string scaled = c.factor == 1.0 || c.paper ? "" : formatSig(c.factor) + " x ";
       et.rows.push_back(
           {{c.text},
            {c.metric},
            {label(c.row, c.column)},
-           numCell(value(c.row, c.column)),
-           {label(c.thanRow, c.thanColumn)},
-           numCell(value(c.thanRow, c.thanColumn)),
+           numCell(cell ? cellMetric(*cell, c.metric) : std::nullopt),
+           {c.paper ? std::string("the paper") : scaled + label(c.thanRow, c.thanColumn)},
+           numCell(claimTarget(g, c)),
            {c.relation == "same" ? "same within " + formatSig(100 * c.tolerance, 2) + "%"
                                  : std::string("below")},
            {errorClaimVerdict(g, c)}});

@@ -21,17 +21,22 @@ struct FigureCell {
   std::optional<double> banding;
 };
 
-// A claim of the paper about errors, read from the figure block's "claims":
-//   {"text": "...", "metric": "image_rmse" | "flip_mean" | "visibility_rmse" | "banding",
-//    "cell": [row, column], "than": [row, column], "relation": "below" | "same",
-//    "tolerance": 0.05}
-// "below": the cell's metric is below the other's; "same": within `tolerance` (relative) of
-// it. Errors are deterministic (the same run gives the same images), so the verdict is
-// holds or fails, "-" where a cell has no value.
+// A claim of the paper about errors or memory, read from the figure block's "claims":
+//   {"text": "...", "metric": "image_rmse" | "flip_mean" | "visibility_rmse" | "banding" |
+//    "shadow_mib", "cell": [row, column], "than": [row, column] | "paper": VALUE,
+//    "factor": F, "relation": "below" | "same", "tolerance": 0.05}
+// The cell's metric against the other cell's times `factor` (default 1; 0.1: "an order of
+// magnitude below"), or against the paper's own value (`paper`, in the metric's unit: MiB for
+// shadow_mib) where there is no "than". "below": the cell's metric is below it; "same":
+// within `tolerance` (relative) of it. Errors and memory are deterministic (the same run
+// gives the same images and allocations), so the verdict is holds or fails, "-" where a
+// cell has no value.
 struct FigureErrorClaim {
   std::string text, metric, relation;
   int row = 0, column = 0, thanRow = 0, thanColumn = 0;
   double tolerance = 0.05;
+  std::optional<double> paper;  // the paper's value, instead of another cell's
+  double factor = 1.0;          // the other cell's value scaled
 };
 
 struct FigureGrid {
@@ -41,9 +46,12 @@ struct FigureGrid {
   std::vector<FigureErrorClaim> errorClaims;
 };
 
-// A cell's value of an error metric (image_rmse, flip_mean, visibility_rmse, banding).
+// A cell's value of a claim's metric (image_rmse, flip_mean, visibility_rmse, banding,
+// shadow_mib: the memory the shadow technique holds, MiB).
 std::optional<double> cellMetric(const FigureCell& c, const std::string& metric);
-// holds / fails / "-" for one error claim of the grid.
+// What a claim's cell is compared with: the paper's value, or the other cell's times factor.
+std::optional<double> claimTarget(const FigureGrid& g, const FigureErrorClaim& c);
+// holds / fails / "-" for one error or memory claim of the grid.
 std::string errorClaimVerdict(const FigureGrid& g, const FigureErrorClaim& c);
 
 // Checks a suite's "figure" block (title, rows, columns, cells: rows x columns, each cell
@@ -55,6 +63,10 @@ void checkFigureBlock(const nlohmann::json& suite, const std::string& where);
 // figure command as "figure") resolved on `backend`: each cell's first matching result.
 FigureGrid buildFigureGrid(const nlohmann::json& figure, const nlohmann::json& results,
                            const std::string& name, const std::string& backend);
+// The same on several APIs (`figure --backend both`): the paper's rows once per API ("ROW
+// (gl)", "ROW (vulkan)"), each error claim judged on each API's rows; backend "gl + vulkan".
+FigureGrid buildFigureGrid(const nlohmann::json& figure, const nlohmann::json& results,
+                           const std::string& name, const std::vector<std::string>& backends);
 
 // figure.json: name, title, backend, rows, columns, and per cell its case id, images, frame
 // time and errors (null where there is no result); `layout` (the grid image's geometry) is
@@ -89,7 +101,8 @@ std::optional<FigureHeader> parseFigureHeader(const std::string& markdown);
 // frame samples of both cases, paired by round; orderingVerdict) where both were timed in one
 // interleaved run, else none; in work, by the fragment shader
 // invocations and bytes ratios (counted, not sampled: "holds" or "fails" on their side of 1,
-// "-" without counters).
+// "-" without counters). Results of several APIs make each claim once per API (the table's
+// title names it).
 struct FigureClaim {
   std::string table, row, baseline;
   double paperRatio = 0;

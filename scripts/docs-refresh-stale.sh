@@ -4,7 +4,7 @@
 # stale store blocks and figure pages; each stale stored run is re-recorded with the command in
 # its meta.json (scripts/docs-record.sh, or the command itself where its script does not take
 # $SB_DOCS_RESULTS but writes the store itself, as scripts/fresh-machine-check.sh does), each stale figure page is re-run with the command in
-# its header (its size and rounds, --docs docs/figures), then `strandbench docs refresh` renders
+# its header (its size and rounds, --docs docs/figures) on both APIs (--backend both), then `strandbench docs refresh` renders
 # every block. Refused on a tree with uncommitted code (the runs must be a commit's); commit the
 # rewritten docs/ afterwards.
 # Usage: scripts/docs-refresh-stale.sh [--list] [--only-runs | --only-figures]
@@ -77,11 +77,12 @@ for page in "${stale_pages[@]}"; do
   keep=()
   for ((i = 2; i < ${#args[@]}; i++)); do
     case ${args[$i]} in
-      --out | --docs) i=$((i + 1)) ;;
+      --out | --docs | --backend) i=$((i + 1)) ;;
       *) keep+=("${args[$i]}") ;;
     esac
   done
-  line=("$cli" figure "$name" "${keep[@]}" --out "$out/$name" --docs "$(dirname "$page")")
+  # Every page on both APIs, whichever its header names (a page made before --backend both).
+  line=("$cli" figure "$name" "${keep[@]}" --backend both --out "$out/$name" --docs "$(dirname "$page")")
   echo "figure $name: ${line[*]}"
   [ $list = 1 ] && continue
   mkdir -p "$out"

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # docs/figures/: one generated page per paper figure (strandbench figure NAME --docs
 # docs/figures), each with its header (command, commit, digest) that tests/test_figure_docs.cpp
-# checks. One run per figure, one after the other, at nice 19.
+# checks. One run per figure (both APIs interleaved: --backend both), one after the other, at
+# nice 19.
 # Usage: scripts/figures-docs.sh [--full] [NAME...]   (default: every figure, --small)
 #   --full   the figures at the paper's size (hours for some: DOM Figs. 3 and 5, occ Fig. 1,
 #            thesis Table 2); without it the --small variants
@@ -22,7 +23,7 @@ out=${SB_FIGURES_OUT:-out/figures}
 mkdir -p "$out"
 for n in "${names[@]}"; do
   start=$(date +%s)
-  nice -n 19 build/strandbench figure "$n" $small ${SB_FIGURES_REPS:+--min-reps $SB_FIGURES_REPS} --backend gl --out "$out/$n" \
+  nice -n 19 build/strandbench figure "$n" $small ${SB_FIGURES_REPS:+--min-reps $SB_FIGURES_REPS} --backend both --out "$out/$n" \
     --docs docs/figures || echo "figure $n: exit $?"
   echo "figure $n: $(($(date +%s) - start)) s"
 done

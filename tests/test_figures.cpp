@@ -4,6 +4,7 @@
 // check fails on a grid of the wrong shape. One ctest entry per figure (ctest -j2 splits them).
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 
@@ -147,6 +148,55 @@ TEST_P(FigureSmall, WritesItsGridAndTableOnBothBackends) {
     EXPECT_TRUE(fs::is_regular_file(out / "results.json"));
     fs::remove_all(dir);
   }
+}
+
+// --backend both: one run, the paper's rows once per API, the paper table with a column per API.
+TEST(Figure, BothBackendsInOneRunShowEachAPI) {
+  const fs::path dir = tempDir("figure-both");
+  const fs::path out = dir / "out";
+  const CliResult r = runCli("figure osm-steps --small --backend both --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  const json fig = json::parse(readFile(out / "figure.json"));
+  EXPECT_EQ(fig["backend"], "gl + vulkan");
+  EXPECT_EQ(fig["rows"], json::array({"340k lines (gl)", "340k lines (vulkan)"}));
+  ASSERT_EQ(fig["cells"].size(), 2u);
+  for (const json& row : fig["cells"]) {
+    EXPECT_FALSE(row[0].contains("note")) << row[0].dump();
+    EXPECT_TRUE(row[0]["frame_ms"].is_number()) << row[0].dump();
+  }
+  EXPECT_NE(fig["cells"][0][0]["case"], fig["cells"][1][0]["case"]);
+  const std::string md = readFile(out / "figure.md");
+  for (const char* s : {"--backend both", "Backend gl + vulkan", "| gl (ms) |", "| vulkan (ms) |"})
+    EXPECT_NE(md.find(s), std::string::npos) << s << "\n" << md;
+  // Control: a single API's page has no other API's column.
+  const fs::path gl = dir / "gl";
+  ASSERT_EQ(runCli("figure osm-steps --small --backend gl --out " + gl.string()).status, 0);
+  EXPECT_EQ(readFile(gl / "figure.md").find("| vulkan (ms) |"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+// The papers' numbers the benchmarks print come from the figure files (one place), with the
+// techniques of the rows' groups; a row naming a group the suite lacks is refused.
+TEST(Figure, PaperTablesAreReadFromTheFigureFiles) {
+  const sb::FigurePaperTable t = sb::figurePaperTable("occ-fig2");
+  const json file = figureFile("occ-fig2");
+  ASSERT_EQ(t.rows.size(), file["tables"][0]["rows"].size());
+  for (std::size_t i = 0; i < t.rows.size(); ++i) {
+    EXPECT_EQ(t.rows[i].label, file["tables"][0]["rows"][i]["label"]);
+    EXPECT_EQ(*t.rows[i].paper, file["tables"][0]["rows"][i]["paper"].get<double>());
+    EXPECT_EQ(t.rows[i].unit, "fps");
+  }
+  EXPECT_EQ(t.row("peel", true).label, "depth peeling");
+  EXPECT_EQ(t.row("peel", true).shadow, "occupancy");  // the suite's default
+  EXPECT_NEAR(*t.row("peel", true).paperMs(), 1000.0 / 4.01, 1e-9);
+  expectInputError([&] { t.row("kbuffer", true); }, {"occ-fig2", "kbuffer"});
+  const fs::path dir = tempDir("figure-paper-table");
+  json bad = file;
+  bad["tables"][0]["rows"][0]["group"] = "nope";
+  std::ofstream(dir / "bad.json") << bad.dump();
+  expectInputError([&] { sb::figurePaperTable((dir / "bad.json").string()); }, {"group \"nope\""});
+  expectInputError([&] { sb::figurePaperTable("occ-fig2", 5); }, {"no paper table 6"});
+  fs::remove_all(dir);
 }
 
 // Test names: the figure's name with '-' as '_'.
@@ -302,6 +352,37 @@ TEST(Figure, ErrorClaimsHoldOrFailOnTheCellsValues) {
   // b has no banding: no verdict; a cell outside the grid: none either.
   EXPECT_EQ(sb::report::errorClaimVerdict(g, {"x", "banding", "below", 0, 0, 0, 1, 0.05}), "-");
   EXPECT_EQ(sb::report::errorClaimVerdict(g, {"x", "image_rmse", "below", 0, 0, 2, 1, 0.05}), "-");
+}
+
+// Memory claims: a cell's shadow MiB against another cell's (scaled by a factor) or against the
+// paper's own number; each fails when the numbers say so.
+TEST(Figure, MemoryClaimsHoldOrFailOnTheCellsShadowMemory) {
+  sb::report::FigureGrid g;
+  g.rows = {"r"};
+  g.columns = {"a", "b"};
+  const double mib = 1024.0 * 1024.0;
+  const json ra = {{"memory", {{"shadow_bytes", 10 * mib}}}};
+  const json rb = {{"memory", {{"shadow_bytes", 130 * mib}}}};
+  sb::report::FigureCell a, b;
+  a.result = &ra;
+  b.result = &rb;
+  g.cells = {{a, b}};
+  sb::report::FigureErrorClaim c{"a below b", "shadow_mib", "below", 0, 0, 0, 1, 0.05};
+  EXPECT_EQ(sb::report::errorClaimVerdict(g, c), "holds");
+  c.factor = 0.1;  // an order of magnitude below: 10 against 13
+  EXPECT_EQ(sb::report::errorClaimVerdict(g, c), "holds");
+  c.factor = 0.05;  // against 6.5: fails
+  EXPECT_EQ(sb::report::errorClaimVerdict(g, c), "fails");
+  sb::report::FigureErrorClaim paper{"a is 10 MB", "shadow_mib", "same", 0, 0, 0, 0, 0.1};
+  paper.paper = 10.5;
+  EXPECT_EQ(sb::report::errorClaimVerdict(g, paper), "holds");
+  EXPECT_EQ(*sb::report::claimTarget(g, paper), 10.5);
+  paper.paper = 18;
+  EXPECT_EQ(sb::report::errorClaimVerdict(g, paper), "fails");
+  // A result without memory: no verdict.
+  const json none = json::object();
+  g.cells[0][0].result = &none;
+  EXPECT_EQ(sb::report::errorClaimVerdict(g, paper), "-");
 }
 
 }  // namespace

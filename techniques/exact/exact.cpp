@@ -183,6 +183,7 @@ void ExactShadow::addTexelPass(FrameGraph& graph, Device& dev, const Pass& pass,
 
 ShadowLookup ExactShadow::lookup() const {
   ShadowLookup l{"techniques/exact/lookup.glsl"};
+  l.defines.defines.push_back({"SB_EXACT_JITTER_SAMPLES", std::to_string(jitterSamples_)});
   l.inputs = lists(false);
   opaque_.addTo(l);
   return l;

@@ -21,6 +21,8 @@ class ExactShadow : public ShadowTechnique {
     uint32_t size;
     float bias;
     uint32_t layers;
+    bool jitter = false;         // the lookup jittered as occupancy's (a jittered reference)
+    uint32_t jitterSamples = 1;  // jittered lookups averaged (jitter=on)
   };
   // Its options, declared once (unit.cpp), and those of a spec of it (InputError when one
   // is bad): the references read its map's size and bias through them (harness/).
@@ -51,6 +53,9 @@ class ExactShadow : public ShadowTechnique {
   // technique's own lookup is then not the exact visibility: only for lists
   // another technique reads.
   void sortBySubmission() { bySubmission_ = true; }
+  // Before setup: the lookup jittered by up to half a texel, `samples` jittered lookups
+  // averaged (render/common/light_jitter.glsl, as occupancy's jitter=on); 0: not jittered.
+  void jitterLookup(uint32_t samples) { jitterSamples_ = samples; }
   // For a technique built on these lists (dsm, avsm), after addPasses():
   // records `pass`, a compute pass with one invocation per texel that reads
   // sortedLists(), its `status` buffer cleared first.
@@ -70,6 +75,7 @@ class ExactShadow : public ShadowTechnique {
   uint32_t maxLayers_;
   uint32_t layers_ = 0;
   bool bySubmission_ = false;
+  uint32_t jitterSamples_ = 0;
   const GpuScene* scene_ = nullptr;
   RenderSettings settings_;
   DepthComplexity complexity_;

@@ -12,7 +12,13 @@ const OptionTable<ExactShadow::Options>& ExactShadow::options() {
                    "abuffer (sorted light-space fragment lists) | peel (depth peeling "
                    "from the light); the tests prove them identical"),
        opt::mapSize(&O::size, "light map resolution (size x size), 1..16384"), opt::bias(&O::bias),
-       opt::layersCap(&O::layers)});
+       opt::layersCap(&O::layers),
+       opt::flag(
+           &O::jitter, "jitter", false,
+           "on | off: lookup jittered by up to half a texel (render/common/light_jitter.glsl): "
+           "the reference of a jittered lookup samples as it does"),
+       opt::integer(&O::jitterSamples, "jitter_samples", 1, 1, 64,
+                    "jitter=on: jittered lookups averaged, 1..64")});
   return table;
 }
 
@@ -23,5 +29,7 @@ ExactShadow::Options ExactShadow::optionsOf(const Spec& spec) {
 
 SB_TECHNIQUE({.options = ExactShadow::options().infos(), .makeShadow = [](const OptionReader& r) {
                 const ExactShadow::Options o = ExactShadow::options().read(r);
-                return std::make_unique<ExactShadow>(o.method, o.size, o.bias, o.layers);
+                auto t = std::make_unique<ExactShadow>(o.method, o.size, o.bias, o.layers);
+                if (o.jitter) t->jitterLookup(o.jitterSamples);
+                return t;
               }});

@@ -3,6 +3,7 @@
 // occupancy bits and slab counts (occupancy_math.glsl); visibility is
 // (1 - alpha_s)^n, times the opaque mesh's hard shadow. Textures only (no
 // storage blocks), fetched without derivatives.
+#include "render/common/light_jitter.glsl"
 #include "render/common/opaque_shadow.glsl"
 #include "occupancy_math.glsl"
 #include "slots.h"
@@ -13,16 +14,6 @@ layout(binding = SB_SLOT_OCC_BITS) uniform usampler2DArray occBits;  // 128 slic
 #if SB_OCC_SLAB_TARGETS > 0
 layout(binding = SB_SLOT_OCC_SLABS) uniform sampler2DArray occSlabs;  // 4 slabs per layer
 #endif
-
-// The paper's anti-aliasing: the lookup moves by up to half a texel. The
-// offset is a smooth but fast-varying function of the point's light-space
-// position in texels (a few radians per texel), deterministic and, unlike a
-// hash of the position's bits, insensitive to the last-bit differences of the
-// interpolated position between the two APIs.
-vec2 occupancyJitter(vec3 texelSpace) {
-  return 0.5 * vec2(sin(dot(texelSpace, vec3(4.1414, 6.2831, 5.3792))),
-                    sin(dot(texelSpace, vec3(6.9173, 3.7351, 4.7717))));
-}
 
 #ifndef SB_OCC_JITTER_SAMPLES
 #define SB_OCC_JITTER_SAMPLES 1
@@ -67,8 +58,8 @@ float shadowVisibility(vec3 worldPos) {
   // that many jittered lookups in the one fragment (1: a single lookup).
   float sum = 0.0;
   for (int j = 0; j < SB_OCC_JITTER_SAMPLES; ++j) {
-    vec3 seed = vec3(texelPos, ndc.z * occParams.y + 1.618034 * float(j));
-    sum += occupancyVisibilityAt(texelPos + occupancyJitter(seed), z);
+    vec3 seed = lightJitterSeed(texelPos, ndc.z, occParams.y, j);
+    sum += occupancyVisibilityAt(texelPos + lightTexelJitter(seed), z);
   }
   return sum / float(SB_OCC_JITTER_SAMPLES);
 #else

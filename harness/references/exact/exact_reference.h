@@ -11,7 +11,8 @@ namespace sb {
 
 // The reference's transparency: exact, from sorted fragment lists.
 extern const char* kReferenceOit;
-// The reference for a technique: exact shadows at its light-map size.
+// The reference for a technique: exact shadows at its light-map size, its lookup jittered as
+// the technique's is (jitter, jitter_samples).
 Spec referenceShadowSpec(const Spec& shadow);
 
 // The light map of the reference's shadow (refShadow): its size and depth bias, read through

@@ -14,6 +14,14 @@ Spec referenceShadowSpec(const Spec& shadow) {
   ref.options["method"] = "abuffer";
   auto size = shadow.options.find("size");
   if (size != shadow.options.end()) ref.options["size"] = size->second;
+  // A jittered lookup (occupancy's jitter=on) is judged against the exact maps looked up with
+  // the same jitter: the same sampling of the light map, as the same size is.
+  // Unjittered, the reference stays the one every other technique has ("exact", one key).
+  if (auto it = shadow.options.find("jitter"); it != shadow.options.end() && it->second == "on") {
+    ref.options["jitter"] = "on";
+    if (auto n = shadow.options.find("jitter_samples"); n != shadow.options.end())
+      ref.options["jitter_samples"] = n->second;
+  }
   return ref;
 }
 
