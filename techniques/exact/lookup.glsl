@@ -11,7 +11,8 @@ layout(std430, binding = SB_SLOT_EXACT_COUNTS) readonly buffer ExactCounts { uin
 layout(std430, binding = SB_SLOT_EXACT_OFFSETS) readonly buffer ExactOffsets {
   uint exactOffsets[];
 };
-layout(std430, binding = SB_SLOT_EXACT_NODES) readonly buffer ExactNodes { uvec2 exactNodes[]; };
+#define SB_EXACT_NODES_READONLY
+#include "nodes.glsl"
 
 float shadowVisibility(vec3 worldPos) {
   vec3 ndc;
@@ -27,7 +28,7 @@ float shadowVisibility(vec3 worldPos) {
   uint zBits = floatBitsToUint(max(z, 0.0));
   while (lo < hi) {
     uint mid = (lo + hi) / 2u;
-    if (exactNodes[base + mid].x < zBits) lo = mid + 1u; else hi = mid;
+    if (exactNode(base + mid).x < zBits) lo = mid + 1u; else hi = mid;
   }
   // pow(0, 0) is undefined in GLSL: no fragment in front means fully lit.
   return lo == 0u ? 1.0 : pow(1.0 - exactParams.z, float(lo));
