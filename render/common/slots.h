@@ -43,14 +43,15 @@
 // exact: the fragment lists, bound by every pass of the technique and the
 // lookup; dsm's compression and avsm's resolve (compute) read them too. The
 // node pool is paged (techniques/exact/nodes.glsl): page 0 is
-// SB_SLOT_EXACT_NODES, pages 1..3 take the lookup's other free slots.
+// SB_SLOT_EXACT_NODES, pages 1..2 take free slots of the lookup, which reads
+// no counts (the offsets' next entry ends a list): GL allows 16 storage blocks
+// a stage, and compute_raster's resolve binds 12 beside the lookup's 4.
 #define SB_SLOT_EXACT_PARAMS 8
 #define SB_SLOT_EXACT_COUNTS 9
 #define SB_SLOT_EXACT_OFFSETS 10
 #define SB_SLOT_EXACT_PAGE1 11
 #define SB_SLOT_EXACT_NODES 12
 #define SB_SLOT_EXACT_PAGE2 13
-#define SB_SLOT_EXACT_PAGE3 14
 // what the lookup does not read: in the light passes and the compute passes on
 // the lists only, which bind no transparency technique, so 16.. is free there
 #define SB_SLOT_EXACT_CURSOR 16

@@ -14,8 +14,7 @@ constexpr uint32_t kParams = SB_SLOT_EXACT_PARAMS, kCounts = SB_SLOT_EXACT_COUNT
                    kOffsets = SB_SLOT_EXACT_OFFSETS, kCursor = SB_SLOT_EXACT_CURSOR,
                    kNodes = SB_SLOT_EXACT_NODES, kState = SB_SLOT_EXACT_STATE,
                    kStatus = SB_SLOT_EXACT_STATUS;
-constexpr uint32_t kPageSlots[] = {kNodes, SB_SLOT_EXACT_PAGE1, SB_SLOT_EXACT_PAGE2,
-                                   SB_SLOT_EXACT_PAGE3};
+constexpr uint32_t kPageSlots[] = {kNodes, SB_SLOT_EXACT_PAGE1, SB_SLOT_EXACT_PAGE2};
 constexpr std::size_t kNodeBytes = 8;                  // uvec2: (depth bits, primitive id)
 constexpr uint32_t kSize = SB_SLOT_PEEL_ADVANCE_SIZE;  // peel_advance.comp's size uniform
 
@@ -36,7 +35,9 @@ void ExactShadow::setup(Device& dev, const GpuScene& scene, const RenderSettings
   sizeUbo_ = dev.createBuffer({"exact.size", Owner::Frame, BufferUsage::Uniform, sizeof sizeData},
                               &sizeData);
   counts_ = dev.createBuffer({"exact.counts", Owner::Shadow, BufferUsage::Storage, texels * 4});
-  offsets_ = dev.createBuffer({"exact.offsets", Owner::Shadow, BufferUsage::Storage, texels * 4});
+  // One more than the texels: the total, where the last list ends (the lookup).
+  offsets_ =
+      dev.createBuffer({"exact.offsets", Owner::Shadow, BufferUsage::Storage, (texels + 1) * 4});
   cursor_ = dev.createBuffer({"exact.cursor", Owner::Shadow, BufferUsage::Storage, texels * 4});
   status_ = dev.createBuffer({"exact.status", Owner::Shadow, BufferUsage::Storage, 16});
   // Sized by prepare()'s count; declared now so that the frame graph is built
@@ -110,7 +111,9 @@ void ExactShadow::prepare(Device& dev) {
   dev.endFrame();
   const ListLayout layout = layoutFromCounts(dev.readBuffer(counts_));
   complexity_ = layout.complexity;
-  dev.updateBuffer(offsets_, layout.offsets.data(), layout.offsets.size() * 4);
+  std::vector<uint32_t> offsets = layout.offsets;
+  offsets.push_back(static_cast<uint32_t>(layout.complexity.total));
+  dev.updateBuffer(offsets_, offsets.data(), offsets.size() * 4);
   // The pool in pages that each fit one storage binding; peeling stores each
   // layer through the shared peel_advance.comp, which binds one.
   const std::vector<Buffer> bound(nodes_.begin(),
@@ -223,7 +226,7 @@ ShadowLookup ExactShadow::lookup() const {
   // Only what it reads: cursor, state and status sit in the transparency's slots.
   ShadowLookup l{"techniques/exact/lookup.glsl"};
   l.defines = readerDefines();
-  l.inputs.uniform(kParams, params_).readStorage(kCounts, counts_).readStorage(kOffsets, offsets_);
+  l.inputs.uniform(kParams, params_).readStorage(kOffsets, offsets_);
   l.inputs.add(pages(false));
   opaque_.addTo(l);
   return l;

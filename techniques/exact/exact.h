@@ -84,7 +84,7 @@ class ExactShadow : public ShadowTechnique {
   // The node pool's pages (poolPageShift, nodes.glsl): the first is
   // "exact.nodes"; the others hold 8 bytes until a pool larger than one binding
   // needs them (the exact reference of a large anti-aliased image).
-  static constexpr uint32_t kPages = 4;
+  static constexpr uint32_t kPages = 3;
   std::vector<Buffer> nodes_;
   uint32_t pageShift_ = 0, pagesUsed_ = 1;
   OpaqueShadow opaque_;

@@ -5,9 +5,9 @@
 #include "render/common/opaque_shadow.glsl"
 #include "render/common/slots.h"
 
-// Only the blocks the lookup reads (GL counts declared blocks per stage).
+// Only the blocks the lookup reads (GL counts declared blocks per stage): a
+// texel's list ends where the next one starts (the offsets hold the total last).
 #include "uniforms.h"
-layout(std430, binding = SB_SLOT_EXACT_COUNTS) readonly buffer ExactCounts { uint exactCounts[]; };
 layout(std430, binding = SB_SLOT_EXACT_OFFSETS) readonly buffer ExactOffsets {
   uint exactOffsets[];
 };
@@ -24,7 +24,7 @@ float shadowVisibility(vec3 worldPos) {
   uvec2 t = min(uvec2(uv * exactParams.y), uvec2(size - 1u));
   uint texel = t.y * size + t.x;
   uint base = exactOffsets[texel];
-  uint lo = 0u, hi = exactCounts[texel];
+  uint lo = 0u, hi = exactOffsets[texel + 1u] - base;
   uint zBits = floatBitsToUint(max(z, 0.0));
   while (lo < hi) {
     uint mid = (lo + hi) / 2u;

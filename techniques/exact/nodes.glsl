@@ -26,40 +26,17 @@ layout(std430, binding = SB_SLOT_EXACT_PAGE2) SB_EXACT_NODES_ACCESS buffer Exact
   uvec2 exactNodes2[];
 };
 #endif
-#if SB_EXACT_PAGES > 3
-layout(std430, binding = SB_SLOT_EXACT_PAGE3) SB_EXACT_NODES_ACCESS buffer ExactNodes3 {
-  uvec2 exactNodes3[];
-};
-#endif
 
-#if SB_EXACT_PAGES == 1
-uvec2 exactNode(uint i) { return exactNodes[i]; }
-#ifndef SB_EXACT_NODES_READONLY
-void setExactNode(uint i, uvec2 k) { exactNodes[i] = k; }
+// exactNode and setExactNode
+#define SB_POOL_TYPE uvec2
+#define SB_POOL_PAGES SB_EXACT_PAGES
+#define SB_POOL_SHIFT SB_EXACT_PAGE_SHIFT
+#define SB_POOL_PAGE0 exactNodes
+#define SB_POOL_PAGE1 exactNodes1
+#define SB_POOL_PAGE2 exactNodes2
+#define SB_POOL_GET exactNode
+#define SB_POOL_SET setExactNode
+#ifdef SB_EXACT_NODES_READONLY
+#define SB_POOL_READONLY
 #endif
-#else
-uvec2 exactNode(uint i) {
-  uint page = i >> SB_EXACT_PAGE_SHIFT, j = i & ((1u << SB_EXACT_PAGE_SHIFT) - 1u);
-#if SB_EXACT_PAGES > 3
-  if (page == 3u) return exactNodes3[j];
-#endif
-#if SB_EXACT_PAGES > 2
-  if (page == 2u) return exactNodes2[j];
-#endif
-  if (page == 1u) return exactNodes1[j];
-  return exactNodes[j];
-}
-#ifndef SB_EXACT_NODES_READONLY
-void setExactNode(uint i, uvec2 k) {
-  uint page = i >> SB_EXACT_PAGE_SHIFT, j = i & ((1u << SB_EXACT_PAGE_SHIFT) - 1u);
-#if SB_EXACT_PAGES > 3
-  if (page == 3u) exactNodes3[j] = k;
-#endif
-#if SB_EXACT_PAGES > 2
-  if (page == 2u) exactNodes2[j] = k;
-#endif
-  if (page == 1u) exactNodes1[j] = k;
-  if (page == 0u) exactNodes[j] = k;
-}
-#endif
-#endif
+#include "render/common/paged_pool.glsl"
