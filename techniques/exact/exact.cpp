@@ -120,8 +120,9 @@ void ExactShadow::prepare(Device& dev) {
                                   method_ == Method::Peel ? nodes_.begin() + 1 : nodes_.end());
   const uint32_t pages = sizePoolPages(
       dev, bound, layout.complexity.total, pageShift_, kNodeBytes, "exact: the node pool",
-      method_ == Method::Peel ? "use method=abuffer, which pages it, or a smaller light map (size=)"
-                              : "use a smaller light map (size=) or fewer strands");
+      method_ == Method::Peel
+          ? "use method=abuffer, which pages it, or a smaller light map (size=)"
+          : "use a smaller --size, light map (size=) or samples=, or fewer strands");
   if (pages != pagesUsed_) {
     pagesUsed_ = pages;
     makeListPipelines(dev);
