@@ -18,8 +18,8 @@
 #include <regex>
 
 #include "harness/render.h"
-#include "render_request.h"
 #include "render/common/unit.h"
+#include "render_request.h"
 #include "test_util.h"
 
 namespace sb {
