@@ -37,7 +37,8 @@ set_target_properties(sb_techniques PROPERTIES IMPORTED_LOCATION ${_techniques})
 file(GLOB_RECURSE SB_SHADER_FILES techniques/*.glsl techniques/*.vert techniques/*.frag
   techniques/*.comp techniques/slots.h techniques/*uniforms.h techniques/unit.json render/*.glsl
   render/*.vert render/*.frag render/*.comp render/*.mesh render/slots.h render/*uniforms.h
-  render/common/uniform_block.h render/generation/groom_table.h scenes/groom_rule.h)
+  render/common/uniform_block.h render/generation/groom_table.h scenes/groom_rule.h
+  base/hash.h)
   # every folder's slots.h, uniforms.h and unit.json (the new folders' too), the generation
   # rule: the same list as CMakeLists.txt's
 string(REPLACE ";" "|" SB_SHADER_LIST "${SB_SHADER_FILES}")

@@ -10,6 +10,8 @@
 #ifndef SB_GROOM_RULE_H
 #define SB_GROOM_RULE_H
 
+#include "base/hash.h"
+
 #ifdef __cplusplus
 #include <cstdint>
 #include <glm/glm.hpp>
@@ -27,15 +29,8 @@ using glm::vec4;
 // Neighbouring guides each guide keeps (scenes/groom.cpp: nearest roots first).
 #define SB_GROOM_NEIGHBOURS 3u
 
-// lowbias32 (Chris Wellons): a 32-bit integer hash, the same in both languages.
-SB_RULE_FN uint groomHash(uint x) {
-  x ^= x >> 16u;
-  x *= 0x7feb352du;
-  x ^= x >> 15u;
-  x *= 0x846ca68bu;
-  x ^= x >> 16u;
-  return x;
-}
+// The project's integer hash (base/hash.h), the same in both languages.
+SB_RULE_FN uint groomHash(uint x) { return hash32(x); }
 
 // Uniform in [0, 1): the top 24 bits, exact in a float.
 SB_RULE_FN float groomUnit(uint h) { return float(h >> 8u) * (1.0f / 16777216.0f); }

@@ -18,8 +18,8 @@
 #include <regex>
 
 #include "harness/render.h"
-#include "render_request.h"
 #include "render/common/unit.h"
+#include "render_request.h"
 #include "test_util.h"
 
 namespace sb {
@@ -139,7 +139,8 @@ TEST(MemoryPlan, AFragmentPoolSplitIntoPagesGivesTheSameImage) {
   for (const std::string backend : {"gl", "vulkan"}) {
     for (const std::string oit : {"abuffer", "kbuffer", "mlab"}) {
       SCOPED_TRACE(backend + " " + oit);
-      const RenderRequest req = sbtest::smallRender(backend, scene, "exact", oit, 24);
+      // Shadow maps: the hook pages exact's node pool too (tests/test_exact_paging.cpp).
+      const RenderRequest req = sbtest::smallRender(backend, scene, "shadowmap", oit, 24);
       const RenderResult whole = runRender(req);
       const std::size_t bytes = bytesOf(whole, oit + ".fragments");
       ASSERT_GT(bytes, 32u * 16);

@@ -9,6 +9,11 @@ namespace sb {
 
 namespace {
 constexpr uint32_t kSizeBinding = SB_SLOT_PEEL_ADVANCE_SIZE;  // peel_advance.comp's SIZE_BINDING
+
+std::string bytesText(uint64_t bytes) {
+  return std::to_string(bytes) + " bytes" +
+         (bytes >> 20 ? " (" + std::to_string(bytes >> 20) + " MiB)" : std::string());
+}
 }  // namespace
 
 ListLayout layoutFromCounts(const std::vector<uint8_t>& countBytes) {
@@ -40,6 +45,21 @@ uint32_t poolPageShift(const DeviceInfo& device, std::size_t entryBytes) {
   uint32_t shift = 0;
   while (shift < 31 && (uint64_t(entryBytes) << (shift + 1)) <= most) ++shift;
   return shift;
+}
+
+uint32_t sizePoolPages(Device& dev, const std::vector<Buffer>& pages, uint64_t entries,
+                       uint32_t pageShift, std::size_t entryBytes, const std::string& what,
+                       const std::string& advice) {
+  entries = std::max<uint64_t>(entries, 1);
+  const uint64_t perPage = 1ull << pageShift, used = (entries + perPage - 1) / perPage;
+  if (used > pages.size())
+    throw InputError(
+        what + ", " + bytesText(entries * entryBytes) + ", needs " + std::to_string(used) +
+        " storage bindings of at most " + bytesText(perPage * entryBytes) + " on this device; " +
+        std::to_string(pages.size()) + (pages.size() == 1 ? " is" : " are") + " bound: " + advice);
+  for (uint64_t page = 0; page < used; ++page)
+    dev.setBufferSize(pages[page], std::min(perPage, entries - page * perPage) * entryBytes);
+  return static_cast<uint32_t>(used);
 }
 
 Pipeline makeHairCountPipeline(Device& dev, const RenderSettings& s, const Pass& pass,

@@ -27,6 +27,15 @@ ListLayout layoutFromCounts(const std::vector<uint8_t>& countBytes);
 // that makes a small scene's pool split.
 uint32_t poolPageShift(const DeviceInfo& device, std::size_t entryBytes);
 
+// Sizes the first pages of a pool of `entries` entries of `entryBytes` (at
+// least one entry) to hold it, pages of 2^pageShift entries, and returns how
+// many it uses; those after keep their size. More than pages.size(): an
+// InputError that starts with `what` ("abuffer: the fragment pool") and ends
+// with `advice`.
+uint32_t sizePoolPages(Device& dev, const std::vector<Buffer>& pages, uint64_t entries,
+                       uint32_t pageShift, std::size_t entryBytes, const std::string& what,
+                       const std::string& advice);
+
 // A pipeline for `pass` (Pass::pipeline: its slots, no colour targets) that
 // counts the hair fragments of every pixel into the storage buffer at
 // `countsBinding`, depth-tested (never written) against an opaque depth when

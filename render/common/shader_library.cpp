@@ -67,7 +67,8 @@ void expand(const std::string& path, const ShaderDefines& defs, ShaderCode& out,
           throw DeviceError(path + ":" + std::to_string(lineNo) + ": no file bound to <" + name +
                             ">");
         target = a->second;
-      } else if (name.rfind("techniques/", 0) == 0 || name.rfind("render/", 0) == 0) {
+      } else if (name.rfind("techniques/", 0) == 0 || name.rfind("render/", 0) == 0 ||
+                 name.rfind("base/", 0) == 0) {
         target = name;  // from the source root, as the C++ includes it
       } else {
         target = (std::filesystem::path(path).parent_path() / name).lexically_normal().string();

@@ -16,7 +16,8 @@
 //           none of these reuse 0 and up (0..4 at most) for their own inputs.
 //   8..15   the shadow technique: its light passes and its lookup (15 is the
 //           opaque mesh's depth map, in every lookup); the occupancy map
-//           passes read 9 from the eye as well (occupancy_oit).
+//           passes read 9 from the eye as well (occupancy_oit). exact's light
+//           passes, which meet no transparency technique, also use 16..18.
 //   16..25  the transparency techniques and the outputs (probe), in passes
 //           that may also bind 0..15.
 //   26..    the shading model in the hair shading passes: its uniform block and
@@ -40,14 +41,22 @@
 #define SB_SLOT_OPAQUE_SHADOW 15  // the opaque mesh's depth from the light (opaque_shadow.glsl)
 
 // exact: the fragment lists, bound by every pass of the technique and the
-// lookup; dsm's compression and avsm's resolve (compute) read them too
+// lookup; dsm's compression and avsm's resolve (compute) read them too. The
+// node pool is paged (techniques/exact/nodes.glsl): page 0 is
+// SB_SLOT_EXACT_NODES, pages 1..2 take free slots of the lookup, which reads
+// no counts (the offsets' next entry ends a list): GL allows 16 storage blocks
+// a stage, and compute_raster's resolve binds 12 beside the lookup's 4.
 #define SB_SLOT_EXACT_PARAMS 8
 #define SB_SLOT_EXACT_COUNTS 9
 #define SB_SLOT_EXACT_OFFSETS 10
-#define SB_SLOT_EXACT_CURSOR 11
+#define SB_SLOT_EXACT_PAGE1 11
 #define SB_SLOT_EXACT_NODES 12
-#define SB_SLOT_EXACT_STATE 13
-#define SB_SLOT_EXACT_STATUS 14
+#define SB_SLOT_EXACT_PAGE2 13
+// what the lookup does not read: in the light passes and the compute passes on
+// the lists only, which bind no transparency technique, so 16.. is free there
+#define SB_SLOT_EXACT_CURSOR 16
+#define SB_SLOT_EXACT_STATE 17
+#define SB_SLOT_EXACT_STATUS 18
 
 // --- transparency techniques and outputs: 16.. ---
 // The exact ones (abuffer, peel): the accumulation they composite

@@ -16,11 +16,6 @@ constexpr uint32_t kSize = SB_SLOT_ABUFFER_SIZE;  // the resolve's size uniform
 constexpr std::size_t kFragmentBytes = 32;
 constexpr uint32_t kPageSlots[] = {kFragments, SB_SLOT_ABUFFER_PAGE1, SB_SLOT_ABUFFER_PAGE2,
                                    SB_SLOT_ABUFFER_PAGE3, SB_SLOT_ABUFFER_PAGE4};
-
-std::string bytesText(uint64_t bytes) {
-  return std::to_string(bytes) + " bytes" +
-         (bytes >> 20 ? " (" + std::to_string(bytes >> 20) + " MiB)" : std::string());
-}
 }  // namespace
 
 void ABufferOit::setup(Device& dev, const GpuScene& scene, const RenderSettings& s,
@@ -33,6 +28,7 @@ void ABufferOit::setup(Device& dev, const GpuScene& scene, const RenderSettings&
   status_ = dev.createBuffer({name() + ".status", Owner::Oit, BufferUsage::Storage, 16});
   // Sized by prepare()'s count.
   pageShift_ = poolPageShift(dev.info(), kFragmentBytes);
+  pages_.resize(kPages);
   for (uint32_t page = 0; page < kPages; ++page)
     pages_[page] = dev.createBuffer(
         {name() + ".fragments" + (page ? ".page" + std::to_string(page) : std::string()),
@@ -81,17 +77,10 @@ void ABufferOit::prepare(Device& dev) {
   }
   dev.updateBuffer(offsets_, layout.offsets.data(), layout.offsets.size() * 4);
   // The pool in pages that each fit one storage binding.
-  const uint64_t entries = std::max<uint64_t>(pool_, 1), perPage = 1ull << pageShift_;
-  const uint64_t pages = (entries + perPage - 1) / perPage;
-  if (pages > kPages)
-    throw InputError(name() + ": the fragment pool, " + bytesText(entries * kFragmentBytes) +
-                     ", needs " + std::to_string(pages) + " storage bindings of at most " +
-                     bytesText(perPage * kFragmentBytes) + " on this device; " +
-                     std::to_string(kPages) + " are bound: lower the resolution");
-  for (uint64_t page = 0; page < pages; ++page)
-    dev.setBufferSize(pages_[page], std::min(perPage, entries - page * perPage) * kFragmentBytes);
+  const uint32_t pages = sizePoolPages(dev, pages_, pool_, pageShift_, kFragmentBytes,
+                                       name() + ": the fragment pool", "lower the resolution");
   if (pages != pagesUsed_) {
-    pagesUsed_ = static_cast<uint32_t>(pages);
+    pagesUsed_ = pages;
     makePipelines(dev);
   }
 }

@@ -34,36 +34,15 @@ layout(std430, binding = SB_SLOT_ABUFFER_STATUS) buffer Status {
   uint resolveCounter;
 };
 
-#if SB_ABUFFER_PAGES == 1
-Fragment fragmentAt(uint i) { return fragments[i]; }
-void setFragment(uint i, Fragment f) { fragments[i] = f; }
-#else
-Fragment fragmentAt(uint i) {
-  uint page = i >> SB_ABUFFER_PAGE_SHIFT, j = i & ((1u << SB_ABUFFER_PAGE_SHIFT) - 1u);
-#if SB_ABUFFER_PAGES > 4
-  if (page == 4u) return fragments4[j];
-#endif
-#if SB_ABUFFER_PAGES > 3
-  if (page == 3u) return fragments3[j];
-#endif
-#if SB_ABUFFER_PAGES > 2
-  if (page == 2u) return fragments2[j];
-#endif
-  if (page == 1u) return fragments1[j];
-  return fragments[j];
-}
-void setFragment(uint i, Fragment f) {
-  uint page = i >> SB_ABUFFER_PAGE_SHIFT, j = i & ((1u << SB_ABUFFER_PAGE_SHIFT) - 1u);
-#if SB_ABUFFER_PAGES > 4
-  if (page == 4u) fragments4[j] = f;
-#endif
-#if SB_ABUFFER_PAGES > 3
-  if (page == 3u) fragments3[j] = f;
-#endif
-#if SB_ABUFFER_PAGES > 2
-  if (page == 2u) fragments2[j] = f;
-#endif
-  if (page == 1u) fragments1[j] = f;
-  if (page == 0u) fragments[j] = f;
-}
-#endif
+// fragmentAt and setFragment
+#define SB_POOL_TYPE Fragment
+#define SB_POOL_PAGES SB_ABUFFER_PAGES
+#define SB_POOL_SHIFT SB_ABUFFER_PAGE_SHIFT
+#define SB_POOL_PAGE0 fragments
+#define SB_POOL_PAGE1 fragments1
+#define SB_POOL_PAGE2 fragments2
+#define SB_POOL_PAGE3 fragments3
+#define SB_POOL_PAGE4 fragments4
+#define SB_POOL_GET fragmentAt
+#define SB_POOL_SET setFragment
+#include "render/common/paged_pool.glsl"

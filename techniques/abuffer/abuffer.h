@@ -1,7 +1,5 @@
 #pragma once
 
-#include <array>
-
 #include "render/common/hair_oit.h"
 
 namespace sb {
@@ -45,7 +43,7 @@ class ABufferOit : public HairOit {
   // The fragment pool's pages (poolPageShift): the first is "<name>.fragments";
   // the others hold 32 bytes until a pool larger than one binding needs them.
   static constexpr uint32_t kPages = 5;
-  std::array<Buffer, kPages> pages_;
+  std::vector<Buffer> pages_;
   uint32_t pageShift_ = 0, pagesUsed_ = 1;
   Pipeline fill_, resolve_;
 };

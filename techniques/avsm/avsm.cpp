@@ -50,7 +50,8 @@ void AdaptiveVolumetricShadowMaps::setup(Device& dev, const GpuScene& scene,
                    ? "has fragment-shader interlock; the interlock path is not written)"
                    : "has no fragment-shader interlock)");
 
-  const ShaderCode comp = loadShader("techniques/avsm/resolve.comp", defines());
+  const ShaderCode comp =
+      loadShader("techniques/avsm/resolve.comp", defines().add(lists_.readerDefines()));
   PipelineDesc c = resolvePass().pipeline(dev, "avsm.resolve", "avsm");
   c.compute = &comp;
   pipeline_ = dev.createPipeline(c);

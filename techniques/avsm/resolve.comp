@@ -17,7 +17,8 @@ layout(std430, binding = SB_SLOT_EXACT_COUNTS) readonly buffer ExactCounts { uin
 layout(std430, binding = SB_SLOT_EXACT_OFFSETS) readonly buffer ExactOffsets {
   uint exactOffsets[];
 };
-layout(std430, binding = SB_SLOT_EXACT_NODES) readonly buffer ExactNodes { uvec2 exactNodes[]; };
+#define SB_EXACT_NODES_READONLY
+#include "../exact/nodes.glsl"
 
 layout(std430, binding = SB_SLOT_AVSM_OUT_COUNT) writeonly buffer AvsmCount { uint avsmCount[]; };
 layout(std430, binding = SB_SLOT_AVSM_OUT_NODES) buffer AvsmNodes { vec2 avsmNodes[]; };
@@ -44,7 +45,7 @@ void main() {
   avsmCurveCount = 0;
   uint removed = 0u;
   for (uint i = 0u; i < n; ++i)
-    removed += uint(avsmInsert(uintBitsToFloat(exactNodes[base + i].x), avsmResolve.x,
+    removed += uint(avsmInsert(uintBitsToFloat(exactNode(base + i).x), avsmResolve.x,
                                SB_AVSM_NODES));
   avsmCount[p] = uint(avsmCurveCount);
   if (n > 0u) {

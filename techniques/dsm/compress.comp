@@ -15,7 +15,8 @@ layout(std430, binding = SB_SLOT_EXACT_COUNTS) readonly buffer ExactCounts { uin
 layout(std430, binding = SB_SLOT_EXACT_OFFSETS) readonly buffer ExactOffsets {
   uint exactOffsets[];
 };
-layout(std430, binding = SB_SLOT_EXACT_NODES) readonly buffer ExactNodes { uvec2 exactNodes[]; };
+#define SB_EXACT_NODES_READONLY
+#include "../exact/nodes.glsl"
 
 layout(std430, binding = SB_SLOT_DSM_OUT_KEPT) writeonly buffer DsmKept { uint dsmKept[]; };
 layout(std430, binding = SB_SLOT_DSM_OUT_OFFSETS) readonly buffer DsmOffsets { uint dsmOffsets[]; };
@@ -55,9 +56,9 @@ void main() {
   bool started = false;
   while (i < n) {
     // The fragments at one depth drop the visibility together.
-    uint bits = exactNodes[base + i].x;
+    uint bits = exactNode(base + i).x;
     float before = v;
-    while (i < n && exactNodes[base + i].x == bits) {
+    while (i < n && exactNode(base + i).x == bits) {
       v *= t;
       ++i;
     }

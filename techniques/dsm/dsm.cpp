@@ -36,7 +36,7 @@ void DeepShadowMaps::setup(Device& dev, const GpuScene& scene, const RenderSetti
   nodes_ = dev.createBuffer(
       {"dsm.nodes", Owner::Shadow, BufferUsage::Storage, 8});  // sized by prepare()
 
-  const ShaderCode comp = loadShader("techniques/dsm/compress.comp");
+  const ShaderCode comp = loadShader("techniques/dsm/compress.comp", lists_.readerDefines());
   PipelineDesc c2 = compressPass().pipeline(dev, "dsm.compress", "dsm");
   c2.compute = &comp;
   pipeline_ = dev.createPipeline(c2);

@@ -2,16 +2,8 @@
 #include "render/common/unit.h"
 
 #include "techniques/dual_peel/dual_peel.h"
+#include "techniques/peel/peel.h"  // its options, those of depth peeling
 
-namespace sb {
-namespace {
-struct O {
-  uint32_t layers;
-};
-const OptionTable<O> kOptions({opt::layersCap(&O::layers)});
-}  // namespace
-}  // namespace sb
-
-SB_TECHNIQUE({.options = kOptions.infos(), .makeOit = [](const OptionReader& r) {
-                return std::make_unique<DualPeelOit>(kOptions.read(r).layers);
+SB_TECHNIQUE({.options = PeelOptions::table().infos(), .makeOit = [](const OptionReader& r) {
+                return std::make_unique<DualPeelOit>(PeelOptions::table().read(r).layers);
               }});

@@ -14,6 +14,8 @@ constexpr uint32_t kParams = SB_SLOT_EXACT_PARAMS, kCounts = SB_SLOT_EXACT_COUNT
                    kOffsets = SB_SLOT_EXACT_OFFSETS, kCursor = SB_SLOT_EXACT_CURSOR,
                    kNodes = SB_SLOT_EXACT_NODES, kState = SB_SLOT_EXACT_STATE,
                    kStatus = SB_SLOT_EXACT_STATUS;
+constexpr uint32_t kPageSlots[] = {kNodes, SB_SLOT_EXACT_PAGE1, SB_SLOT_EXACT_PAGE2};
+constexpr std::size_t kNodeBytes = 8;                  // uvec2: (depth bits, primitive id)
 constexpr uint32_t kSize = SB_SLOT_PEEL_ADVANCE_SIZE;  // peel_advance.comp's size uniform
 
 }  // namespace
@@ -33,12 +35,20 @@ void ExactShadow::setup(Device& dev, const GpuScene& scene, const RenderSettings
   sizeUbo_ = dev.createBuffer({"exact.size", Owner::Frame, BufferUsage::Uniform, sizeof sizeData},
                               &sizeData);
   counts_ = dev.createBuffer({"exact.counts", Owner::Shadow, BufferUsage::Storage, texels * 4});
-  offsets_ = dev.createBuffer({"exact.offsets", Owner::Shadow, BufferUsage::Storage, texels * 4});
+  // One more than the texels: the total, where the last list ends (the lookup).
+  offsets_ =
+      dev.createBuffer({"exact.offsets", Owner::Shadow, BufferUsage::Storage, (texels + 1) * 4});
   cursor_ = dev.createBuffer({"exact.cursor", Owner::Shadow, BufferUsage::Storage, texels * 4});
   status_ = dev.createBuffer({"exact.status", Owner::Shadow, BufferUsage::Storage, 16});
   // Sized by prepare()'s count; declared now so that the frame graph is built
   // (and culled) before any preparation runs.
-  nodes_ = dev.createBuffer({"exact.nodes", Owner::Shadow, BufferUsage::Storage, 8});
+  static_assert(std::size(kPageSlots) == kPages);
+  pageShift_ = poolPageShift(dev.info(), kNodeBytes);
+  nodes_.resize(kPages);
+  for (uint32_t page = 0; page < kPages; ++page)
+    nodes_[page] =
+        dev.createBuffer({"exact.nodes" + (page ? ".page" + std::to_string(page) : std::string()),
+                          Owner::Shadow, BufferUsage::Storage, kNodeBytes});
   if (method_ == Method::Peel)
     state_ =
         dev.createBuffer({"exact.peel_state", Owner::Shadow, BufferUsage::Storage, texels * 16});
@@ -47,31 +57,48 @@ void ExactShadow::setup(Device& dev, const GpuScene& scene, const RenderSettings
   opaque_.setup(dev, scene, size_, lightView_, "exact");
 
   count_ = makeHairCountPipeline(dev, s, countPass(), kCounts, "exact");
-  const ShaderCode vert = Geometry::strandVertexShader(s);
+  makeListPipelines(dev);
+  if (method_ == Method::Peel)
+    advance_ =
+        makePeelAdvancePipeline(dev, advancePass(), kState, kCursor, kOffsets, kNodes, "exact");
+}
+
+ShaderDefines ExactShadow::pageDefines(uint32_t pages) const {
+  ShaderDefines d;
+  d.defines = {{"SB_EXACT_PAGES", std::to_string(pages)},
+               {"SB_EXACT_PAGE_SHIFT", std::to_string(pageShift_)}};
+  return d;
+}
+
+// The light passes that write the lists, compiled for the pages the pool uses
+// (nodes.glsl).
+void ExactShadow::makeListPipelines(Device& dev) {
+  const ShaderCode vert = Geometry::strandVertexShader(settings_);
   PipelineDesc d = listPass("exact.fill").pipeline(dev, "exact.fill", "exact");
   d.vertex = &vert;
-  d.topology = Geometry::strandTopology(s);
+  d.topology = Geometry::strandTopology(settings_);
+  const ShaderDefines pool = pageDefines(pagesUsed_);
   if (method_ == Method::ABuffer) {
-    const ShaderCode frag = loadShader("techniques/exact/fill.frag");
+    dev.destroy(fill_);
+    dev.destroy(sort_);
+    const ShaderCode frag = loadShader("techniques/exact/fill.frag", pool);
     d.fragment = &frag;
     fill_ = dev.createPipeline(d);
-    ShaderDefines order;
+    ShaderDefines order = pool;
     if (bySubmission_) order.defines.push_back({"SB_EXACT_BY_SUBMISSION", "1"});
     const ShaderCode comp = loadShader("techniques/exact/sort.comp", order);
     PipelineDesc c = sortPass().pipeline(dev, "exact.sort", "exact");
     c.compute = &comp;
     sort_ = dev.createPipeline(c);
-  } else {
-    for (int pass = 0; pass < 2; ++pass) {
-      ShaderDefines defs;
-      defs.defines.push_back({"SB_PEEL_PASS", std::to_string(pass)});
-      const ShaderCode frag = loadShader("techniques/exact/peel.frag", defs);
-      d.name = pass == 0 ? "exact.peel.depth" : "exact.peel.id";
-      d.fragment = &frag;
-      (pass == 0 ? peel0_ : peel1_) = dev.createPipeline(d);
-    }
-    advance_ =
-        makePeelAdvancePipeline(dev, advancePass(), kState, kCursor, kOffsets, kNodes, "exact");
+    return;
+  }
+  for (int pass = 0; pass < 2; ++pass) {
+    ShaderDefines defs = pool;
+    defs.defines.push_back({"SB_PEEL_PASS", std::to_string(pass)});
+    const ShaderCode frag = loadShader("techniques/exact/peel.frag", defs);
+    d.name = pass == 0 ? "exact.peel.depth" : "exact.peel.id";
+    d.fragment = &frag;
+    (pass == 0 ? peel0_ : peel1_) = dev.createPipeline(d);
   }
 }
 
@@ -84,36 +111,51 @@ void ExactShadow::prepare(Device& dev) {
   dev.endFrame();
   const ListLayout layout = layoutFromCounts(dev.readBuffer(counts_));
   complexity_ = layout.complexity;
-  dev.updateBuffer(offsets_, layout.offsets.data(), layout.offsets.size() * 4);
-  const std::size_t nodes = std::max<uint64_t>(layout.complexity.total, 1);
-  dev.setBufferSize(nodes_, nodes * 8);
+  std::vector<uint32_t> offsets = layout.offsets;
+  offsets.push_back(static_cast<uint32_t>(layout.complexity.total));
+  dev.updateBuffer(offsets_, offsets.data(), offsets.size() * 4);
+  // The pool in pages that each fit one storage binding; peeling stores each
+  // layer through the shared peel_advance.comp, which binds one.
+  const std::vector<Buffer> bound(nodes_.begin(),
+                                  method_ == Method::Peel ? nodes_.begin() + 1 : nodes_.end());
+  const uint32_t pages = sizePoolPages(
+      dev, bound, layout.complexity.total, pageShift_, kNodeBytes, "exact: the node pool",
+      method_ == Method::Peel
+          ? "use method=abuffer, which pages it, or a smaller light map (size=)"
+          : "use a smaller --size, light map (size=) or samples=, or fewer strands");
+  if (pages != pagesUsed_) {
+    pagesUsed_ = pages;
+    makeListPipelines(dev);
+  }
   layers_ = std::min(complexity_.max, maxLayers_);
 }
 
 // The fragment lists and their parameters: every pass of the technique binds
 // them all (and writes them); the lookup reads them.
-Inputs ExactShadow::lists(bool written) const {
+Inputs ExactShadow::lists() const {
   Inputs in;
-  auto storage = [&](uint32_t slot, Buffer b) {
-    written ? in.storage(slot, b) : in.readStorage(slot, b);
-  };
-  in.uniform(kParams, params_);
-  storage(kCounts, counts_);
-  storage(kOffsets, offsets_);
-  storage(kCursor, cursor_);
-  storage(kNodes, nodes_);
-  storage(kState, state_);
-  storage(kStatus, status_);
+  in.uniform(kParams, params_)
+      .storage(kCounts, counts_)
+      .storage(kOffsets, offsets_)
+      .storage(kCursor, cursor_)
+      .storage(kState, state_)
+      .storage(kStatus, status_);
+  return in.add(pages(true));
+}
+
+// Every page of the node pool, the unused ones too (8 bytes).
+Inputs ExactShadow::pages(bool written) const {
+  Inputs in;
+  for (uint32_t page = 0; page < kPages; ++page)
+    written ? in.storage(kPageSlots[page], nodes_[page])
+            : in.readStorage(kPageSlots[page], nodes_[page]);
   return in;
 }
 
 Inputs ExactShadow::sortedLists() const {
   Inputs in;
-  in.readStorage(kCounts, counts_)
-      .readStorage(kOffsets, offsets_)
-      .readStorage(kCursor, cursor_)
-      .readStorage(kNodes, nodes_);
-  return in;
+  in.readStorage(kCounts, counts_).readStorage(kOffsets, offsets_).readStorage(kCursor, cursor_);
+  return in.add(pages(false));
 }
 
 // A hair pass from the light into the lists (no attachments: the light map's size).
@@ -121,7 +163,7 @@ Pass ExactShadow::listPass(const std::string& name) const {
   return Pass(name)
       .size(size_, size_)
       .inputs(Geometry::inputs(*scene_, lightView_))
-      .inputs(lists(true));
+      .inputs(lists());
 }
 
 Pass ExactShadow::countPass() const {
@@ -131,7 +173,7 @@ Pass ExactShadow::countPass() const {
       .storage(kCounts, counts_);
 }
 
-Pass ExactShadow::sortPass() const { return Pass("exact.sort").inputs(lists(true)); }
+Pass ExactShadow::sortPass() const { return Pass("exact.sort").inputs(lists()); }
 
 Pass ExactShadow::advancePass() const {
   return Pass("exact.peel.advance")
@@ -139,7 +181,7 @@ Pass ExactShadow::advancePass() const {
       .storage(kState, state_)
       .storage(kCursor, cursor_)
       .storage(kOffsets, offsets_)
-      .storage(kNodes, nodes_);
+      .storage(kNodes, nodes_[0]);
 }
 
 void ExactShadow::addPasses(FrameGraph& graph, Device& dev) {
@@ -182,9 +224,12 @@ void ExactShadow::addTexelPass(FrameGraph& graph, Device& dev, const Pass& pass,
 }
 
 ShadowLookup ExactShadow::lookup() const {
+  // Only what it reads: cursor, state and status sit in the transparency's slots.
   ShadowLookup l{"techniques/exact/lookup.glsl"};
+  l.defines = readerDefines();
   l.defines.defines.push_back({"SB_EXACT_JITTER_SAMPLES", std::to_string(jitterSamples_)});
-  l.inputs = lists(false);
+  l.inputs.uniform(kParams, params_).readStorage(kOffsets, offsets_);
+  l.inputs.add(pages(false));
   opaque_.addTo(l);
   return l;
 }
@@ -192,7 +237,10 @@ ShadowLookup ExactShadow::lookup() const {
 ExactShadow::Lists ExactShadow::readLists(Device& dev) {
   Lists l;
   l.stored = readBufferAs<uint32_t>(dev, cursor_);
-  l.keys = readBufferAs<uint32_t>(dev, nodes_);
+  for (uint32_t page = 0; page < pagesUsed_; ++page) {
+    const auto keys = readBufferAs<uint32_t>(dev, nodes_[page]);
+    l.keys.insert(l.keys.end(), keys.begin(), keys.end());
+  }
   l.keys.resize(complexity_.total * 2);
   return l;
 }

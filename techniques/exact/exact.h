@@ -47,6 +47,10 @@ class ExactShadow : public ShadowTechnique {
   // The sorted lists after addPasses' node, read only at their slots (counts,
   // offsets, cursor, nodes): what a technique built on them reads (dsm).
   Inputs sortedLists() const;
+  // After setup: the defines of a shader that reads the nodes (nodes.glsl) and
+  // is compiled before prepare() counts them (the lookup, dsm's, avsm's): every
+  // page bound.
+  ShaderDefines readerDefines() const { return pageDefines(kPages); }
   // Before setup: sort each texel's list in submission order (primitive id,
   // then depth) instead of depth order, the order ordered fragment-shader
   // interlock would process the fragments in (avsm's streaming resolve). The
@@ -63,7 +67,10 @@ class ExactShadow : public ShadowTechnique {
                     Buffer status) const;
 
  private:
-  Inputs lists(bool written) const;
+  Inputs lists() const;
+  Inputs pages(bool written) const;
+  ShaderDefines pageDefines(uint32_t pages) const;
+  void makeListPipelines(Device& dev);
   Pass listPass(const std::string& name) const;
   Pass countPass() const;
   Pass sortPass() const;
@@ -79,7 +86,13 @@ class ExactShadow : public ShadowTechnique {
   const GpuScene* scene_ = nullptr;
   RenderSettings settings_;
   DepthComplexity complexity_;
-  Buffer params_, lightView_, counts_, offsets_, cursor_, nodes_, state_, status_, sizeUbo_;
+  Buffer params_, lightView_, counts_, offsets_, cursor_, state_, status_, sizeUbo_;
+  // The node pool's pages (poolPageShift, nodes.glsl): the first is
+  // "exact.nodes"; the others hold 8 bytes until a pool larger than one binding
+  // needs them (the exact reference of a large anti-aliased image).
+  static constexpr uint32_t kPages = 3;
+  std::vector<Buffer> nodes_;
+  uint32_t pageShift_ = 0, pagesUsed_ = 1;
   OpaqueShadow opaque_;
   Pipeline count_, fill_, sort_, peel0_, peel1_, advance_;
 };

@@ -10,5 +10,5 @@ void main() {
     atomicOr(exactOverflow, 1u);
     return;
   }
-  exactNodes[exactOffsets[p] + i] = fragmentKey();
+  setExactNode(exactOffsets[p] + i, fragmentKey());
 }

@@ -6,24 +6,25 @@
 #include "render/common/opaque_shadow.glsl"
 #include "render/common/slots.h"
 
-// Only the blocks the lookup reads (GL counts declared blocks per stage).
+// Only the blocks the lookup reads (GL counts declared blocks per stage): a
+// texel's list ends where the next one starts (the offsets hold the total last).
 #include "uniforms.h"
-layout(std430, binding = SB_SLOT_EXACT_COUNTS) readonly buffer ExactCounts { uint exactCounts[]; };
 layout(std430, binding = SB_SLOT_EXACT_OFFSETS) readonly buffer ExactOffsets {
   uint exactOffsets[];
 };
-layout(std430, binding = SB_SLOT_EXACT_NODES) readonly buffer ExactNodes { uvec2 exactNodes[]; };
+#define SB_EXACT_NODES_READONLY
+#include "nodes.glsl"
 
 // The visibility in light texel t of a point at window depth z.
 float exactVisibilityAt(uvec2 t, float z) {
   uint size = uint(exactParams.y);
   uint texel = t.y * size + t.x;
   uint base = exactOffsets[texel];
-  uint lo = 0u, hi = exactCounts[texel];
+  uint lo = 0u, hi = exactOffsets[texel + 1u] - base;
   uint zBits = floatBitsToUint(max(z, 0.0));
   while (lo < hi) {
     uint mid = (lo + hi) / 2u;
-    if (exactNodes[base + mid].x < zBits) lo = mid + 1u; else hi = mid;
+    if (exactNode(base + mid).x < zBits) lo = mid + 1u; else hi = mid;
   }
   // pow(0, 0) is undefined in GLSL: no fragment in front means fully lit.
   return lo == 0u ? 1.0 : pow(1.0 - exactParams.z, float(lo));
@@ -38,7 +39,7 @@ float shadowVisibility(vec3 worldPos) {
   uint size = uint(exactParams.y);
 #if SB_EXACT_JITTER_SAMPLES > 0
   // jitter=on: the lookup jittered as occupancy's jitter=on is, averaged over as many lookups
-  // (the reference of a jittered lookup; harness/render_measures.cpp referenceShadowSpec).
+  // (the reference of a jittered lookup; harness/references/exact/unit.cpp referenceShadowSpec).
   vec2 texelPos = uv * exactParams.y;
   float sum = 0.0;
   for (int j = 0; j < SB_EXACT_JITTER_SAMPLES; ++j) {

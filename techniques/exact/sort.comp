@@ -19,12 +19,12 @@ void main() {
   uint base = exactOffsets[p];
   uint n = min(exactCursor[p], exactCounts[p]);
   for (uint i = 1u; i < n; ++i) {
-    uvec2 key = exactNodes[base + i];
+    uvec2 key = exactNode(base + i);
     uint j = i;
-    while (j > 0u && keyLess(SB_EXACT_ORDER(key), SB_EXACT_ORDER(exactNodes[base + j - 1u]))) {
-      exactNodes[base + j] = exactNodes[base + j - 1u];
+    while (j > 0u && keyLess(SB_EXACT_ORDER(key), SB_EXACT_ORDER(exactNode(base + j - 1u)))) {
+      setExactNode(base + j, exactNode(base + j - 1u));
       --j;
     }
-    exactNodes[base + j] = key;
+    setExactNode(base + j, key);
   }
 }

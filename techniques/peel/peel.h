@@ -1,8 +1,16 @@
 #pragma once
 
+#include "base/options.h"
 #include "render/common/hair_oit.h"
 
 namespace sb {
+
+// The options of depth peeling, declared once (unit.cpp): peel's, which
+// peel_classic and dual_peel reuse.
+struct PeelOptions {
+  uint32_t layers;
+  static const OptionTable<PeelOptions>& table();
+};
 
 // Exact transparency by depth peeling from the eye, front to back, one layer
 // per step (three hair draws: smallest depth, smallest primitive id at that

@@ -4,14 +4,12 @@
 #include "techniques/peel/peel.h"
 
 namespace sb {
-namespace {
-struct O {
-  uint32_t layers;
-};
-const OptionTable<O> kOptions({opt::layersCap(&O::layers)});
-}  // namespace
+const OptionTable<PeelOptions>& PeelOptions::table() {
+  static const OptionTable<PeelOptions> table({opt::layersCap(&PeelOptions::layers)});
+  return table;
+}
 }  // namespace sb
 
-SB_TECHNIQUE({.options = kOptions.infos(), .makeOit = [](const OptionReader& r) {
-                return std::make_unique<PeelOit>(kOptions.read(r).layers);
+SB_TECHNIQUE({.options = PeelOptions::table().infos(), .makeOit = [](const OptionReader& r) {
+                return std::make_unique<PeelOit>(PeelOptions::table().read(r).layers);
               }});

@@ -1,17 +1,9 @@
 // --oit peel_classic: depth peeling as the papers time it.
 #include "render/common/unit.h"
 
+#include "techniques/peel/peel.h"  // its options, those of depth peeling
 #include "techniques/peel_classic/peel_classic.h"
 
-namespace sb {
-namespace {
-struct O {
-  uint32_t layers;
-};
-const OptionTable<O> kOptions({opt::layersCap(&O::layers)});
-}  // namespace
-}  // namespace sb
-
-SB_TECHNIQUE({.options = kOptions.infos(), .makeOit = [](const OptionReader& r) {
-                return std::make_unique<ClassicPeelOit>(kOptions.read(r).layers);
+SB_TECHNIQUE({.options = PeelOptions::table().infos(), .makeOit = [](const OptionReader& r) {
+                return std::make_unique<ClassicPeelOit>(PeelOptions::table().read(r).layers);
               }});

@@ -16,16 +16,8 @@
 #define SB_INLINE
 #endif
 
-// A 32-bit integer hash (the "lowbias32" finaliser of Chris Wellons' hash
-// prospector: good avalanche at two multiplies), the same on both APIs.
-SB_INLINE uint stochasticHash(uint x) {
-  x ^= x >> 16u;
-  x *= 0x7feb352du;
-  x ^= x >> 15u;
-  x *= 0x846ca68bu;
-  x ^= x >> 16u;
-  return x;
-}
+// The project's 32-bit integer hash (lowbias32), the same on both APIs.
+#include "base/hash.h"
 
 // The coverage mask of a fragment (bit k: sample k of `samples`, at most 32):
 // each sample independently with probability alpha, so the expected fraction
@@ -33,9 +25,9 @@ SB_INLINE uint stochasticHash(uint x) {
 // fragment (pixel, primitive, pass group, seed).
 SB_INLINE uint stochasticMask(uint key, float alpha, uint samples) {
   uint mask = 0u;
-  uint h = stochasticHash(key);
+  uint h = hash32(key);
   for (uint k = 0u; k < samples; ++k) {
-    h = stochasticHash(h + k * 0x9e3779b9u);
+    h = hash32(h + k * 0x9e3779b9u);
     if (float(h >> 8u) * (1.0f / 16777216.0f) < alpha) mask |= 1u << k;
   }
   return mask;
@@ -44,8 +36,7 @@ SB_INLINE uint stochasticMask(uint key, float alpha, uint samples) {
 // A fragment's key from its pixel, its primitive, the pass group (several
 // groups of MSAA samples make up S) and the seed.
 SB_INLINE uint stochasticKey(uint x, uint y, uint primitive, uint group, uint seed) {
-  return stochasticHash(x + stochasticHash(y + stochasticHash(primitive + stochasticHash(
-                                                                 group + stochasticHash(seed)))));
+  return hash32(x + hash32(y + hash32(primitive + hash32(group + hash32(seed)))));
 }
 
 // The composite with alpha correction: accum = (sum of a c vis, sum of a vis)

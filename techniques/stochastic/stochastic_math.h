@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 
+#include "base/hash.h"  // before the namespace: the GLSL's own #include of it is then empty
+
 namespace sb::glsl {
 using glm::clamp;
 using glm::vec3;
