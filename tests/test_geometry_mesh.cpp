@@ -165,7 +165,7 @@ TEST(GeometryMesh, QuickTechniquesRunOrAreRefusedUpFront) {
 // the same strands and vertex code, but the driver runs a mesh shader on another path than a
 // vertex shader, so the last bits differ even in the eye view alone (the compute path, whose
 // arithmetic is the CPU path's, gives 0: GeometryCompute.TheImageIsTheSameAndTheJsonSaysThePath).
-// One pair per kind here (ctest's time); every quick-suite pair: scripts/mesh-parity.py
+// One pair per kind here (ctest's time); every quick-suite pair: scripts/geometry-parity.py
 // (nightly). The kinds: the eye view alone; a shadow map (the nearest depth) with fragment lists
 // keyed on gl_PrimitiveID; a shadow whose layers the CPU fits to the drawn strands' depth from the
 // light (dom; osm and msm in the level-of-detail test below) with blended transparency; world
