@@ -43,6 +43,13 @@ def quick_specs():
     return sorted(shadows), sorted(oits)
 
 
+def fail(msg):
+    """Bad input, a missing program or a render that failed: the message and exit 2 (the
+    docstring's contract; sys.exit(text) would exit 1, which means a pair over its bound)."""
+    print("geometry-parity.py: " + msg, file=sys.stderr)
+    sys.exit(2)
+
+
 def refused(spec):
     """Whether the technique declares a mesh_refusal (its unit.json). A name both families use
     (none, occupancy, rt) refuses in both or in neither."""
@@ -57,12 +64,11 @@ def refused(spec):
 def render(run, geometry, shadow, oit, size, out):
     driver, backend = run
     args = [CLI, "render"] + (["--driver", driver] if driver else []) + [
-            "--backend", backend, "--geometry", geometry, "--scene", GROOM, "--shadow", shadow, "--oit", oit, "--size", size, "--repeat", "1",
-            "--warmup", "0", "--out", out]
+        "--backend", backend, "--geometry", geometry, "--scene", GROOM, "--shadow", shadow,
+        "--oit", oit, "--size", size, "--repeat", "1", "--warmup", "0", "--out", out]
     p = subprocess.run(args, capture_output=True, text=True, cwd=ROOT)
     if p.returncode != 0:
-        sys.exit("geometry-parity.py: " + " ".join(args[1:]) + ": exit " + str(p.returncode) + ": " +
-                 p.stderr.strip())
+        fail(" ".join(args[1:]) + ": exit " + str(p.returncode) + ": " + p.stderr.strip())
 
 
 def main():
@@ -74,9 +80,9 @@ def main():
     a = ap.parse_args()
     paths = a.paths.split(",")
     if not paths or any(p not in ("compute", "mesh") for p in paths):
-        sys.exit("geometry-parity.py: --paths: compute, mesh or both")
+        fail("--paths: compute, mesh or both")
     if not os.access(CLI, os.X_OK):
-        sys.exit("geometry-parity.py: " + CLI + " missing: run scripts/setup.sh")
+        fail(CLI + " missing: run scripts/setup.sh")
     shadows, oits = quick_specs()
     # (path, (driver, backend), bound, techniques per family)
     plans = []
@@ -107,7 +113,7 @@ def main():
                 render(run, "cpu", shadow, oit, a.size, images[1])
                 p = subprocess.run([CLI, "compare"] + images, capture_output=True, text=True)
                 if p.returncode != 0:
-                    sys.exit("geometry-parity.py: compare: " + p.stderr.strip())
+                    fail("compare: " + p.stderr.strip())
                 e = json.loads(p.stdout)
                 print("%s: %s + %s: max %.3g, RMSE %.3g" % (label, shadow, oit, e["max_abs"],
                                                              e["rmse"]), flush=True)
