@@ -77,12 +77,17 @@ class EGLPlatform : public GLPlatform {
     if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_))
       throw DeviceError("no GL context: EGL eglMakeCurrent without a surface failed (" +
                         eglErrorText() + ")");
+    entered();
   }
   ~EGLPlatform() override {
     eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     if (context_ != EGL_NO_CONTEXT) eglDestroyContext(display_, context_);
     // eglTerminate is left out on purpose: other devices in this process may
     // share the display (EGL displays are per-process singletons).
+    left();
+  }
+  void makeCurrent() override {
+    eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_);
   }
   std::string name() const override { return "egl"; }
   void* getProcAddress(const char* fn) override {

@@ -166,6 +166,7 @@ class GLDriver final : public Driver {
   }
 
   ~GLDriver() override {
+    platform_->makeCurrent();  // its objects, whichever device was used last
     if (!queries_.empty()) gl_.DeleteQueries(GLsizei(queries_.size()), queries_.data());
     for (auto& q : counterQueries_) gl_.DeleteQueries(GLsizei(q.size()), q.data());
     for (auto& [key, fbo] : fbos_) gl_.DeleteFramebuffers(1, &fbo);

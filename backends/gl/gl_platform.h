@@ -21,6 +21,17 @@ class GLPlatform {
   virtual Window* window() { return nullptr; }
   virtual std::string presentMode() const { return ""; }
   virtual void swapBuffers() {}
+  // Makes this context current on the calling thread again.
+  virtual void makeCurrent() = 0;
+
+ protected:
+  // Contexts nest: a device made while another lives (a further reference's, an animation
+  // frame's) makes its context current, and when it goes the newest other live one is made
+  // current again, so the device that was working goes on working. A platform calls
+  // entered() once its context is current and left() at the end of its destructor, after
+  // releasing its context.
+  void entered();
+  void left();
 };
 
 // Both make a GL 4.5 core context current on the calling thread, or throw DeviceError.

@@ -36,10 +36,10 @@ class OSMesaPlatform : public GLPlatform {
           "--platform egl may work)");
     auto create =
         reinterpret_cast<CreateContextAttribsFn>(dlsym(handle_, "OSMesaCreateContextAttribs"));
-    auto makeCurrent = reinterpret_cast<MakeCurrentFn>(dlsym(handle_, "OSMesaMakeCurrent"));
+    makeCurrent_ = reinterpret_cast<MakeCurrentFn>(dlsym(handle_, "OSMesaMakeCurrent"));
     destroy_ = reinterpret_cast<DestroyContextFn>(dlsym(handle_, "OSMesaDestroyContext"));
     getProc_ = reinterpret_cast<GetProcAddressFn>(dlsym(handle_, "OSMesaGetProcAddress"));
-    if (!create || !makeCurrent || !destroy_ || !getProc_)
+    if (!create || !makeCurrent_ || !destroy_ || !getProc_)
       throw DeviceError("no GL context: libOSMesa lacks OSMesaCreateContextAttribs (too old)");
     const int attribs[] = {kOSMesaFormat,
                            kOSMesaRGBA,
@@ -59,19 +59,23 @@ class OSMesaPlatform : public GLPlatform {
           "offer less than 4.5)");
     // OSMesa needs a colour buffer to be current; rendering goes to FBOs.
     buffer_.resize(4 * 4 * 4);
-    if (!makeCurrent(context_, buffer_.data(), kGLUnsignedByte, 4, 4))
+    if (!makeCurrent_(context_, buffer_.data(), kGLUnsignedByte, 4, 4))
       throw DeviceError("no GL context: OSMesaMakeCurrent failed");
+    entered();
   }
   ~OSMesaPlatform() override {
     if (context_) destroy_(context_);
     // The library stays loaded: Mesa keeps thread-local state that may outlive us.
+    left();
   }
+  void makeCurrent() override { makeCurrent_(context_, buffer_.data(), kGLUnsignedByte, 4, 4); }
   std::string name() const override { return "osmesa"; }
   void* getProcAddress(const char* fn) override { return getProc_(fn); }
 
  private:
   void* handle_ = nullptr;
   OSMesaContext context_ = nullptr;
+  MakeCurrentFn makeCurrent_ = nullptr;
   DestroyContextFn destroy_ = nullptr;
   GetProcAddressFn getProc_ = nullptr;
   std::vector<unsigned char> buffer_;

@@ -15,8 +15,13 @@ class WindowGLPlatform : public GLPlatform {
       : window_(GlfwWindow::Api::OpenGL, width, height, title) {
     glfwMakeContextCurrent(window_.handle());
     glfwSwapInterval(0);
+    entered();
   }
-  ~WindowGLPlatform() override { glfwMakeContextCurrent(nullptr); }
+  ~WindowGLPlatform() override {
+    glfwMakeContextCurrent(nullptr);
+    left();
+  }
+  void makeCurrent() override { glfwMakeContextCurrent(window_.handle()); }
   std::string name() const override { return "window"; }
   void* getProcAddress(const char* fn) override {
     return reinterpret_cast<void*>(glfwGetProcAddress(fn));
