@@ -15,6 +15,7 @@
 #include "backends/driver_env.h"
 #include "base/options.h"
 #include "cli/render_summary.h"
+#include "harness/measures/animation/animation.h"
 #include "harness/reference_spec.h"
 #include "harness/render.h"
 #include "harness/settings.h"
@@ -238,7 +239,7 @@ void registerRender(CLI::App& app) {
         }
         write(*heatmap, [&] { return diffHeatmap(result.image, result.referenceImage, 0.25); });
         write(*flipMap, [&] { return flipErrorImage(*result.flip); });
-        write(*strip, [&] { return animationStrip(*result.animation); });
+        write(*strip, [&] { return animationStrip(*result.measure<AnimationResult>()); });
         if (!trace->empty()) {
           writeFileAtomic(*trace, traceJson(result).dump() + "\n");
           written.push_back(*trace);

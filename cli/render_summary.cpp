@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <string>
 
+#include "harness/measures/animation/animation.h"
 #include "harness/settings.h"
 #include "reports/stats.h"
 
@@ -73,10 +74,10 @@ void printRenderSummary(std::ostream& out, const RenderRequest& req, const Rende
         << " samples, " << sig3(m.wallMs / 1000.0) << " s, " << sig3(double(m.bytes) / (1 << 20))
         << " MiB" << (m.cached ? ", cached" : "")
         << "):\n    image: " << imageErrorText(m.image, m.flip) << "\n";
-  if (r.animation) {
+  if (const AnimationResult* a = r.measure<AnimationResult>()) {
     out << "  animation " << settingText(req, *findSetting("animate")) << ": flicker visibility "
-        << sig3(r.animation->visibilityFlicker);
-    if (r.animation->imageFlicker) out << ", image " << sig3(*r.animation->imageFlicker);
+        << sig3(a->visibilityFlicker);
+    if (a->imageFlicker) out << ", image " << sig3(*a->imageFlicker);
     out << "\n";
   }
   if (r.eyeComplexity)

@@ -25,6 +25,7 @@
 #include "harness/checks.h"
 #include "harness/expectations.h"
 #include "harness/json_keys.h"
+#include "harness/measures/invariants/invariants.h"
 #include "harness/settings.h"
 #include "harness/stop.h"
 #include "reports/json_file.h"
@@ -426,9 +427,10 @@ std::vector<Outcome> runComparisons(const Manifest& m, const BaselineCase& c, co
     o.label = backend;
     o.actual = actual;
     o.actualName = "rendered on " + backend;
-    if (result.invariants && !result.invariants->empty()) {
+    if (const InvariantsResult* inv = result.measure<InvariantsResult>();
+        inv && !inv->failures.empty()) {
       std::string what;
-      for (const auto& f : *result.invariants)
+      for (const auto& f : inv->failures)
         what += (what.empty() ? "" : "; ") + f.pass + ": " + f.what;
       o.comparison = false;
       o.verdict.failures.push_back("invariant failed: " + what);

@@ -15,6 +15,7 @@
 
 #include "backends/device.h"
 #include "backends/window.h"
+#include "harness/measures/measure_unit.h"
 #include "harness/render_steps.h"
 #include "harness/settings.h"
 #include "harness/stop.h"
@@ -544,16 +545,6 @@ void outputs(const RenderRequest& req, const Validated& v, Plan& p, Device& dev,
                scene.strands.thicknessFallback ? "fallback" : "strands",
                scene.groom.guideCount,
                scene.groom.instanceCount()};
-  if (v.scene != v.full) {
-    const Groom& g = scene.groom;
-    RenderResult::Lod lod;
-    lod.by = g.lodPixels > 0 ? "lod_pixels" : "lod";
-    lod.setting = g.lodPixels > 0 ? g.lodPixels : g.lod;
-    lod.strandsFull = g.fullStrands();
-    lod.strandsDrawn = g.totalStrands();
-    for (const GroomInstanceLod& l : g.lods) lod.shares.push_back(double(l.kept) / g.strands);
-    out.lod = lod;
-  }
   out.shadow = v.shadow.str();
   out.oit = v.oit.str();
   out.shading = v.settings.shading.spec;
@@ -564,13 +555,14 @@ void outputs(const RenderRequest& req, const Validated& v, Plan& p, Device& dev,
   out.repeat = req.repeat;
   out.warmup = req.warmup;
   out.graph = renderer.graphPasses(p.timed);
-  out.lights = lightShares(v.settings, out);
   out.eyeComplexity = renderer.oit().depthComplexity();
   out.lightComplexity = renderer.shadow().depthComplexity();
 }
 
 // 6. Measures: untimed frames for what the timed ones did not make, the exact
-// reference (cached per sweep), the errors against it, the probe, the invariants.
+// reference (cached per sweep) and the errors against it, then every measure unit
+// (harness/measures/: own error, error by eye layers, level of detail, animation, probe,
+// lights, invariants), each adding its slice.
 void measures(const RenderRequest& req, const Validated& v, Plan& p, Device& dev,
               RenderProgress& progress, RenderCache* cache, RenderResult& out) {
   Renderer& renderer = *p.renderer;
@@ -584,64 +576,70 @@ void measures(const RenderRequest& req, const Validated& v, Plan& p, Device& dev
     progress.phase("measurement frame", p.layers);
     renderer.renderFrame(measured);
   }
+  const Spec refShadow = referenceShadowSpec(v.shadow);
+  // The exact reference of `drawn`, cached per sweep under `key`.
+  RenderCache::Reference fresh, freshFull;
+  auto exact = [&](const Scene& drawn, const std::string& key, RenderCache::Reference& mine,
+                   const std::string& phase) -> const RenderCache::Reference* {
+    if (cache && cache->references.count(key)) return &cache->references.at(key);
+    progress.phase(phase);
+    mine = renderReference(dev, drawn, v.settings, refShadow, req);
+    if (!cache) return &mine;
+    ++cache->referenceRenders;
+    return &(cache->references[key] = std::move(mine));
+  };
+  // The full model's key is the scene's without its level of detail, so a run with
+  // lod off and the full model's reference of a run with it on share one.
+  RenderRequest fullReq = req;
+  Spec fullSpec = Spec::parse(req.scene);
+  fullSpec.options.erase("lod");
+  fullSpec.options.erase("lod_pixels");
+  fullReq.scene = fullSpec.str();
+  const bool lod = v.scene != v.full;
+  const RenderCache::Reference* ref = nullptr;
   if (req.reference || req.probe) {
-    const Spec refShadow = referenceShadowSpec(v.shadow);
-    // The exact reference of `drawn`, cached per sweep under `key`.
-    RenderCache::Reference fresh, freshFull;
-    auto exact = [&](const Scene& drawn, const std::string& key, RenderCache::Reference& mine,
-                     const std::string& phase) -> const RenderCache::Reference* {
-      if (cache && cache->references.count(key)) return &cache->references.at(key);
-      progress.phase(phase);
-      mine = renderReference(dev, drawn, v.settings, refShadow, req);
-      if (!cache) return &mine;
-      ++cache->referenceRenders;
-      return &(cache->references[key] = std::move(mine));
-    };
-    // The full model's key is the scene's without its level of detail, so a run with
-    // lod off and the full model's reference of a run with it on share one.
-    RenderRequest fullReq = req;
-    Spec fullSpec = Spec::parse(req.scene);
-    fullSpec.options.erase("lod");
-    fullSpec.options.erase("lod_pixels");
-    fullReq.scene = fullSpec.str();
-    const bool lod = v.scene != v.full;
-    const RenderCache::Reference* ref =
+    ref =
         exact(scene, referenceKey(lod ? req : fullReq, v.settings, refShadow), fresh, "reference");
     for (const auto& w : ref->warnings) out.warnings.push_back(w);
     if (!out.eyeComplexity) out.eyeComplexity = ref->eye;
     if (!out.lightComplexity) out.lightComplexity = ref->light;
     out.reference = {refShadow.str(), kReferenceOit};
-    if (req.reference) {
-      if (req.image) {
-        out.referenceImage = ref->image;
-        out.imageError = compareImages(out.image, out.referenceImage);
-        if (lod)
-          out.lod->fullModelError =
-              compareImages(out.image, exact(*v.full, referenceKey(fullReq, v.settings, refShadow),
-                                             freshFull, "the full model's reference")
-                                           ->image);
-        // The image as its PNG shows it: display values (imaging/flip.h).
-        out.flip = computeFlip(out.image, out.referenceImage);
-      }
-      out.visibility = renderer.readVisibility();
-      out.visibilityError = visibilityError(out.visibility, ref->visibility);
-      if (ref->eye) out.errorByEyeLayers = errorByLayers(out, *ref->eye, ref->visibility);
-      out.own = ownError(req, dev, scene, v.settings, v.shadow, v.oit, refShadow, out, cache);
-      if (req.image) {
-        if (!req.references.empty()) progress.phase("further references");
-        out.moreReferences = moreReferences(req, scene, v.settings, refShadow, out, cache);
-        for (const auto& m : out.moreReferences)
-          for (const std::string& w : m.warnings) out.warnings.push_back(w);
-      }
-      if (req.animate)
-        out.animation = runAnimation(req, scene, v.settings, v.shadow, v.oit, refShadow, out, *ref);
-    }
-    if (req.probe)
-      out.probe = ProbeResult{req.probe->texel, req.probe->mapSize, v.probeDepths, ref->probe,
-                              renderer.readProbe()};
-    if (req.invariants)
-      out.invariants = checkInvariants(req, out, v.settings, renderer, dev, ref->probe);
   }
+  if (req.reference) {
+    if (req.image) {
+      out.referenceImage = ref->image;
+      out.imageError = compareImages(out.image, out.referenceImage);
+      // The image as its PNG shows it: display values (imaging/flip.h).
+      out.flip = computeFlip(out.image, out.referenceImage);
+    }
+    out.visibility = renderer.readVisibility();
+    out.visibilityError = visibilityError(out.visibility, ref->visibility);
+    if (req.image) {
+      if (!req.references.empty()) progress.phase("further references");
+      out.moreReferences = moreReferences(req, scene, v.settings, refShadow, out, cache);
+      for (const auto& m : out.moreReferences)
+        for (const std::string& w : m.warnings) out.warnings.push_back(w);
+    }
+  }
+  const MeasureInputs in{req,
+                         scene,
+                         *v.full,
+                         v.settings,
+                         v.shadow,
+                         v.oit,
+                         refShadow,
+                         v.probeDepths,
+                         renderer,
+                         dev,
+                         cache,
+                         ref,
+                         [&] {
+                           return exact(*v.full, referenceKey(fullReq, v.settings, refShadow),
+                                        freshFull, "the full model's reference");
+                         },
+                         out};
+  for (const MeasureDescriptor* m : measureCatalog())
+    if (auto slice = m->measure(in)) out.measured.push_back(std::move(slice));
   if (req.validation) out.validationMessages = validationMessageCount();
 }
 

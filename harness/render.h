@@ -125,55 +125,15 @@ struct SceneSummary {
   std::size_t guides = 0, instances = 0;
 };
 
-// Visibility along the probe ray: the exact curve and the technique's.
-struct ProbeResult {
-  glm::uvec2 texel{0, 0};
-  uint32_t mapSize = 0;
-  std::vector<float> lightDepth, exact, visibility;
-};
-
-// One animation frame's error against that frame's reference.
-struct AnimationFrame {
-  int frame = 0;
-  double degrees = 0;
-  std::optional<double> imageRmse, flipMean;  // with an image
-  double visibilityRmse = 0;
-};
-
-// The error of an animation (render --animate). Flicker: the mean over frames
-// t >= 1 and pixels of |(T_t - T_{t-1}) - (R_t - R_{t-1})|, the technique's
-// frame-to-frame change that the reference does not have (image: RGB channels;
-// visibility: pixels where all four frames see a surface).
-struct AnimationResult {
-  AnimateSpec spec;
-  std::vector<AnimationFrame> frames;
-  std::optional<double> imageFlicker;  // with an image
-  double visibilityFlicker = 0;
-  std::size_t visibilityPixels = 0;  // pixel pairs the visibility flicker averages
-  // A few frames for a strip in reports: their indices, the technique's and the
-  // reference's images (with an image).
-  std::vector<int> stripFrames;
-  std::vector<Image> stripImages, stripReferences;
-};
-
-// The error over the pixels whose eye depth complexity (hair fragments in the
-// reference) is in [lo, hi]: where a technique breaks.
-struct LayerBucket {
-  uint32_t lo = 0, hi = 0;
-  std::size_t pixels = 0;
-  std::optional<double> imageMeanAbs, flipMean;  // with an image; mean |T - R| over RGB
-  std::optional<double> visibilityMeanAbs;       // over the pixels with a surface in both
-};
-
-// Each technique's own error: the case's transparency technique (oit other
-// than none) against exact transparency with the same shadow technique, else
-// its shadow technique against exact shadows with the same transparency.
-struct OwnError {
-  std::string technique;  // "transparency" or "shadow"
-  std::string referenceShadow, referenceOit;
-  std::optional<ImageError> image;  // with an image
-  std::optional<double> flipMean;
-  std::optional<VisibilityError> visibility;  // shadow: the same as the total's
+// A measure's result (harness/measures/measure_unit.h): what one measure unit found, kept
+// beside the core fields, and its keys in the report.
+class MeasureSlice {
+ public:
+  virtual ~MeasureSlice() = default;
+  // Adds its top-level keys to the `render --json` object.
+  virtual void json(nlohmann::json& /*report*/) const {}
+  // Adds its keys to the report's `error` object (written with a reference).
+  virtual void errorJson(nlohmann::json& /*error*/) const {}
 };
 
 // What runRender measured; renderJson writes it as the `render --json` object
@@ -211,8 +171,6 @@ struct RenderResult {
   std::optional<ImageError> imageError;  // with a reference and an image
   std::optional<FlipResult> flip;  // LDR-FLIP of the image against the reference, 67 ppd (same)
   std::optional<VisibilityError> visibilityError;  // with a reference
-  std::optional<OwnError> own;                     // with a reference
-  std::vector<LayerBucket> errorByEyeLayers;       // with a reference: 0, 1, 2-3, 4-7, ...
   // The error against each further reference (RenderRequest::references), in
   // their order: error.<name> in JSON, the same fields as error.image.
   struct MoreReference {
@@ -240,20 +198,6 @@ struct RenderResult {
     std::shared_ptr<const ReferenceSlice> slice;
   };
   std::vector<MoreReference> moreReferences;
-  std::optional<AnimationResult> animation;  // with animate
-  // The level of detail (scene lod= or lod_pixels=; docs/geometry.md): what each
-  // instance kept, and the image's error against the full model's exact reference
-  // (with a reference and an image; error.image is against the strands drawn).
-  struct Lod {
-    std::string by;  // "lod" (a fixed share) or "lod_pixels" (by size on screen)
-    double setting = 0;
-    std::size_t strandsFull = 0, strandsDrawn = 0;
-    std::vector<double> shares;  // per instance: kept / strands
-    std::optional<ImageError> fullModelError;
-  };
-  std::optional<Lod> lod;
-  std::optional<ProbeResult> probe;
-  std::optional<std::vector<InvariantFailure>> invariants;  // when requested
   std::optional<DepthComplexity> eyeComplexity, lightComplexity;
   std::vector<std::string> warnings;              // the input's, the techniques', the reference's
   std::optional<std::size_t> validationMessages;  // with validation
@@ -267,17 +211,6 @@ struct RenderResult {
   // tierReason: why (tier=auto's rule for the device, or the tier asked for), each
   // technique's named when they differ.
   std::string tier, tierReason;
-
-  // With extra lights: each light's share of the timed frames (the key light
-  // first), told apart by the names of passes and resources
-  // (Renderer::lightPrefix); "lights.sum" belongs to none.
-  struct LightShare {
-    Light light;
-    std::vector<double> ms;       // per timed frame: the sum of its passes
-    std::size_t shadowBytes = 0;  // its shadow technique's resources
-    std::size_t bytes = 0;  // all its own (the key light's: all but the scene's and the others')
-  };
-  std::vector<LightShare> lights;
 
   // A window platform: each timed frame was shown in the window (Device::present).
   struct Presented {
@@ -295,13 +228,29 @@ struct RenderResult {
   Image referenceImage;             // with a reference and an image
   std::vector<uint8_t> visibility;  // R32F visibility image (with a reference)
 
+  // What the measure units found (harness/measures/), in the order they ran.
+  std::vector<std::shared_ptr<const MeasureSlice>> measured;
+  // A measure's slice by its type (harness/measures/<name>/<name>.h); null where it has none.
+  template <class T>
+  const T* measure() const {
+    for (const auto& m : measured)
+      if (const T* t = dynamic_cast<const T*>(m.get())) return t;
+    return nullptr;
+  }
+  // Puts `slice` in place of the one of its type, or after the others.
+  template <class T>
+  void setMeasure(std::shared_ptr<const T> slice) {
+    for (auto& m : measured)
+      if (dynamic_cast<const T*>(m.get())) {
+        m = std::move(slice);
+        return;
+      }
+    measured.push_back(std::move(slice));
+  }
+
   // Bytes of this run's resources whose owner is `owner` (shadow, oit, scene, frame).
   std::size_t bytesOwnedBy(Owner owner) const;
 };
-
-// An animation's strip: its strip frames side by side, the technique's above
-// the reference's, 2-pixel white gaps (empty without an image).
-Image animationStrip(const AnimationResult& a);
 
 // The `render --json` object (keys in docs/suites-and-results.md).
 nlohmann::json renderJson(const RenderResult& r);

@@ -4,6 +4,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "harness/measures/measure_unit.h"
 #include "harness/reference_spec.h"
 #include "harness/render_steps.h"
 #include "render/frame/renderer.h"
@@ -16,30 +17,26 @@ nlohmann::json boundsJson(const Bounds& b) {
   return {{"min", {b.min.x, b.min.y, b.min.z}}, {"max", {b.max.x, b.max.y, b.max.z}}};
 }
 
+}  // namespace
+
 nlohmann::json visibilityJson(const VisibilityError& e) {
   return {{"rmse", e.rmse}, {"max", e.max}, {"pixels", e.pixels}};
 }
 
-}  // namespace
+nlohmann::json statsJson(const std::vector<double>& samples) {
+  const Stats s = summarize(samples);
+  return {{"median", s.median}, {"min", s.min},       {"max", s.max},
+          {"mean", s.mean},     {"stddev", s.stddev}, {"samples", samples}};
+}
 
-// `error` of the report: {image (with an image), visibility, own, by_eye_layers}. `image`
-// and `visibility` are the total error (against exact shadows plus exact transparency),
-// written once: there is no separate `total` copy.
+// `error` of the report: image (with an image) and visibility, the total error (against exact
+// shadows plus exact transparency, written once: there is no separate `total` copy), each
+// further reference's, and each measure's (own, by_eye_layers, full_model).
 nlohmann::json errorJson(const RenderResult& r) {
   nlohmann::json error;
   if (r.imageError) error["image"] = toJson(*r.imageError);
   if (r.flip) error["image"]["flip"] = toJson(*r.flip);
   if (r.visibilityError) error["visibility"] = visibilityJson(*r.visibilityError);
-  if (r.lod && r.lod->fullModelError) error["full_model"]["image"] = toJson(*r.lod->fullModelError);
-  if (r.own) {
-    const OwnError& o = *r.own;
-    nlohmann::json own = {{"technique", o.technique},
-                          {"reference", {{"shadow", o.referenceShadow}, {"oit", o.referenceOit}}}};
-    if (o.image) own["image"] = toJson(*o.image);
-    if (o.flipMean) own["image"]["flip"] = {{"mean", *o.flipMean}};
-    if (o.visibility) own["visibility"] = visibilityJson(*o.visibility);
-    error["own"] = own;
-  }
   // Each further reference under its name, with error.image's fields and its cost.
   for (const RenderResult::MoreReference& m : r.moreReferences) {
     nlohmann::json e = toJson(m.image);
@@ -56,46 +53,15 @@ nlohmann::json errorJson(const RenderResult& r) {
     if (m.slice) m.slice->json(m, e);  // the reference's own fields
     error[m.name] = e;
   }
-  if (!r.errorByEyeLayers.empty()) {
-    nlohmann::json buckets = nlohmann::json::array();
-    for (const LayerBucket& b : r.errorByEyeLayers) {
-      nlohmann::json j = {{"layers", {b.lo, b.hi}}, {"pixels", b.pixels}};
-      if (b.imageMeanAbs) j["image_mean_abs"] = *b.imageMeanAbs;
-      if (b.flipMean) j["flip_mean"] = *b.flipMean;
-      if (b.visibilityMeanAbs) j["visibility_mean_abs"] = *b.visibilityMeanAbs;
-      buckets.push_back(j);
-    }
-    error["by_eye_layers"] = buckets;
-  }
+  for (const auto& m : r.measured) m->errorJson(error);
   return error;
 }
 
 namespace {
 
-nlohmann::json animationJson(const AnimationResult& a) {
-  nlohmann::json frames = nlohmann::json::array();
-  for (const AnimationFrame& f : a.frames) {
-    nlohmann::json j = {
-        {"frame", f.frame}, {"degrees", f.degrees}, {"visibility", {{"rmse", f.visibilityRmse}}}};
-    if (f.imageRmse) j["image"] = {{"rmse", *f.imageRmse}, {"flip", *f.flipMean}};
-    frames.push_back(j);
-  }
-  nlohmann::json flicker = {{"visibility", a.visibilityFlicker},
-                            {"visibility_pixels", a.visibilityPixels}};
-  if (a.imageFlicker) flicker["image"] = *a.imageFlicker;
-  return {{"kind", a.spec.kind}, {"frames", a.spec.frames}, {"degrees", a.spec.degrees},
-          {"flicker", flicker},  {"per_frame", frames},     {"strip_frames", a.stripFrames}};
-}
-
 nlohmann::json complexityJson(const std::optional<DepthComplexity>& c) {
   if (!c) return nullptr;
   return {{"max", c->max}, {"mean", c->mean}, {"fragments", c->total}};
-}
-
-nlohmann::json statsJson(const std::vector<double>& samples) {
-  const Stats s = summarize(samples);
-  return {{"median", s.median}, {"min", s.min},       {"max", s.max},
-          {"mean", s.mean},     {"stddev", s.stddev}, {"samples", samples}};
 }
 
 }  // namespace
@@ -165,54 +131,10 @@ nlohmann::json renderJson(const RenderResult& r) {
                  {"estimated_bytes", r.estimatedBytes},
                  {"resources", resources}};
 
-  if (!r.lights.empty()) {
-    auto v3 = [](const glm::vec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); };
-    nlohmann::json lights = nlohmann::json::array();
-    for (std::size_t i = 0; i < r.lights.size(); ++i) {
-      const Light& l = r.lights[i].light;
-      const bool point = l.type == LightType::Point;
-      lights.push_back({{"light", i + 1},
-                        {"type", point ? "point" : "directional"},
-                        {point ? "position" : "direction", v3(point ? l.position : l.direction)},
-                        {"color", v3(l.color)},
-                        {"intensity", l.intensity},
-                        {"prefix", Renderer::lightPrefix(i)},
-                        {"ms", statsJson(r.lights[i].ms)},
-                        {"shadow_bytes", r.lights[i].shadowBytes},
-                        {"bytes", r.lights[i].bytes}});
-    }
-    j["lights"] = lights;
-  }
   if (r.measurementGraph) j["measurement_graph"] = *r.measurementGraph;
   if (r.reference) j["reference"] = {{"shadow", r.reference->first}, {"oit", r.reference->second}};
   if (r.visibilityError) j["error"] = errorJson(r);
-  if (r.animation) j["animation"] = animationJson(*r.animation);
-  if (r.lod) {
-    const RenderResult::Lod& l = *r.lod;
-    double lo = 1, hi = 0, sum = 0;
-    for (double s : l.shares) {
-      lo = std::min(lo, s);
-      hi = std::max(hi, s);
-      sum += s;
-    }
-    j["lod"] = {{"by", l.by},
-                {l.by, l.setting},
-                {"strands", l.strandsDrawn},
-                {"strands_full", l.strandsFull},
-                {"share", {{"min", lo}, {"mean", sum / double(l.shares.size())}, {"max", hi}}}};
-    if (l.shares.size() <= 100) j["lod"]["instances"] = l.shares;
-  }
-  if (r.probe)
-    j["probe"] = {{"texel", {r.probe->texel.x, r.probe->texel.y}},
-                  {"map_size", r.probe->mapSize},
-                  {"light_depth", r.probe->lightDepth},
-                  {"exact", r.probe->exact},
-                  {"visibility", r.probe->visibility}};
-  if (r.invariants) {
-    nlohmann::json list = nlohmann::json::array();
-    for (const auto& f : *r.invariants) list.push_back({{"pass", f.pass}, {"what", f.what}});
-    j["invariants"] = {{"failures", list}};
-  }
+  for (const auto& m : r.measured) m->json(j);
   if (r.eyeComplexity || r.lightComplexity)
     j["depth_complexity"] = {{"eye", complexityJson(r.eyeComplexity)},
                              {"light", complexityJson(r.lightComplexity)}};

@@ -1,6 +1,7 @@
 // The steps of runRender (harness/render.h) shared between its files: render.cpp
-// (validation, device, plan, frames), render_measures.cpp (reference, errors,
-// invariants) and render_json.cpp. Internal to harness/render*.cpp.
+// (validation, device, plan, frames, measures), render_measures.cpp (the reference),
+// render_references.cpp and render_json.cpp. Internal to harness/render*.cpp and the
+// measure units (harness/measures/).
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -49,24 +50,8 @@ std::vector<RenderResult::MoreReference> moreReferences(
 void checkMoreReferences(const RenderRequest& req, const RenderSettings& settings,
                          const Spec& refShadow);
 VisibilityError visibilityError(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b);
-// Buckets 0, 1, 2-3, 4-7, ... of eye layers; errors averaged per bucket.
-std::vector<LayerBucket> errorByLayers(const RenderResult& out, const DepthComplexity& eye,
-                                       const std::vector<uint8_t>& referenceVisibility);
-// The case's own error (OwnError), its reference rendered once per sweep.
-OwnError ownError(const RenderRequest& req, Device& dev, const Scene& scene,
-                  const RenderSettings& settings, const Spec& shadowSpec, const Spec& oitSpec,
-                  const Spec& refShadow, const RenderResult& out, RenderCache* cache);
-// Frames 1 .. N-1 of an animation, each by the technique and by the reference.
-AnimationResult runAnimation(const RenderRequest& req, const Scene& scene,
-                             const RenderSettings& settings, const Spec& shadowSpec,
-                             const Spec& oitSpec, const Spec& refShadow, const RenderResult& out,
-                             const RenderCache::Reference& ref);
-std::vector<RenderResult::LightShare> lightShares(const RenderSettings& s, const RenderResult& r);
-// The invariants of a finished run (harness/invariants.h), the reported errors included.
-std::vector<InvariantFailure> checkInvariants(const RenderRequest& req, const RenderResult& out,
-                                              const RenderSettings& settings, Renderer& renderer,
-                                              Device& dev, const std::vector<float>& exactProbe);
-// `error` of the report: {image (with an image), visibility, total, own}.
+// `error` of the report: image (with an image), visibility, each further reference's, and
+// each measure's (own, by_eye_layers, full_model).
 nlohmann::json errorJson(const RenderResult& r);
 
 }  // namespace sb

@@ -19,6 +19,9 @@
 #include "base/fnv.h"
 #include "harness/case_store.h"
 #include "harness/measure.h"
+#include "harness/measures/animation/animation.h"
+#include "harness/measures/invariants/invariants.h"
+#include "harness/measures/probe/probe.h"
 #include "harness/stop.h"
 #include "imaging/image.h"
 #include "imaging/metrics.h"
@@ -107,8 +110,8 @@ CaseRun runCase(const fs::path& dir, const SweepCase& c, const RenderRequest& re
         images[m.name] = base + "." + m.name + ".png";
       }
     }
-    if (out.animation) {
-      writeImage(animationStrip(*out.animation), (dir / (base + ".animation.png")).string());
+    if (const AnimationResult* a = out.measure<AnimationResult>()) {
+      writeImage(animationStrip(*a), (dir / (base + ".animation.png")).string());
       images["animation"] = base + ".animation.png";
     }
   }
@@ -116,7 +119,8 @@ CaseRun runCase(const fs::path& dir, const SweepCase& c, const RenderRequest& re
     // Identical results run to run: the case again, on a fresh device.
     const RenderResult again = runRender(request, &cache);
     auto curve = [](const RenderResult& r) {
-      return r.probe ? r.probe->visibility : std::vector<float>{};
+      const ProbeResult* p = r.measure<ProbeResult>();
+      return p ? p->visibility : std::vector<float>{};
     };
     auto work = [](const RenderResult& r) {
       std::vector<PassWork> w;
@@ -127,10 +131,7 @@ CaseRun runCase(const fs::path& dir, const SweepCase& c, const RenderRequest& re
                                      std::pair{"visibility", again.visibility == out.visibility},
                                      std::pair{"probe", curve(again) == curve(out)},
                                      std::pair{"work counters", work(again) == work(out)}})
-      if (!same) {
-        if (!out.invariants) out.invariants.emplace();
-        out.invariants->push_back({what, "not identical run to run"});
-      }
+      if (!same) addInvariantFailure(out, {what, "not identical run to run"});
   }
   return run;
 }

@@ -18,11 +18,13 @@
 #include <vector>
 
 #include "backends/device.h"
+#include "harness/measures/invariants/invariants.h"
+#include "harness/measures/probe/probe.h"
 #include "harness/render.h"
 #include "imaging/image.h"
 #include "imaging/metrics.h"
-#include "scenes/view.h"
 #include "render/common/technique.h"
+#include "scenes/view.h"
 #include "tests/test_util.h"
 
 namespace sbtest {
@@ -98,8 +100,9 @@ class ProbedShadowTest : public BackendTest {
   // Largest |technique - exact| along the probe ray.
   static double probeMaxError(const sb::RenderResult& out) {
     double worst = 0;
-    for (std::size_t i = 0; i < out.probe->exact.size(); ++i)
-      worst = std::max(worst, double(std::abs(out.probe->visibility[i] - out.probe->exact[i])));
+    const sb::ProbeResult& probe = *out.measure<sb::ProbeResult>();
+    for (std::size_t i = 0; i < probe.exact.size(); ++i)
+      worst = std::max(worst, double(std::abs(probe.visibility[i] - probe.exact[i])));
     return worst;
   }
   static double counter(const sb::RenderResult& out, const std::string& name) {
@@ -114,7 +117,8 @@ class ProbedShadowTest : public BackendTest {
     std::cout << "[ measured ] " << r.backend << " " << r.scene << " " << r.shadow
               << ": visibility RMSE " << out.visibilityError->rmse << ", max "
               << out.visibilityError->max << ", probe max " << probeMaxError(out) << "\n";
-    EXPECT_TRUE(out.invariants->empty()) << out.invariants->front().what;
+    const auto& failures = out.measure<sb::InvariantsResult>()->failures;
+    EXPECT_TRUE(failures.empty()) << failures.front().what;
     return out;
   }
 };

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "backends/device.h"
+#include "harness/measures/invariants/invariants.h"
 #include "harness/render.h"
 #include "imaging/metrics.h"
 #include "pbr/hair_bsdf.h"
@@ -150,7 +151,8 @@ sb::Image render(const std::string& shading, const std::string& shadow, const ch
   req.warmup = 0;
   req.invariants = req.reference = true;
   const sb::RenderResult r = sb::runRender(req);
-  EXPECT_TRUE(r.invariants && r.invariants->empty()) << shading << " " << shadow;
+  const sb::InvariantsResult* inv = r.measure<sb::InvariantsResult>();
+  EXPECT_TRUE(inv && inv->failures.empty()) << shading << " " << shadow;
   return r.image;
 }
 

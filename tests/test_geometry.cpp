@@ -13,6 +13,7 @@
 
 #include "base/errors.h"
 #include "harness/checks.h"
+#include "harness/measures/lod/lod.h"
 #include "harness/render.h"
 #include "imaging/metrics.h"
 #include "render/frame/renderer.h"
@@ -270,23 +271,24 @@ TEST(GroomLod, TheErrorIsAgainstTheFullModelsReference) {
     return sb::runRender(r);
   };
   const sb::RenderResult full = run(""), quarter = run(",lod=0.25"), all = run(",lod_pixels=1");
-  EXPECT_FALSE(full.lod);
-  ASSERT_TRUE(quarter.lod && quarter.lod->fullModelError && quarter.imageError);
-  EXPECT_EQ(quarter.lod->by, "lod");
-  EXPECT_EQ(quarter.lod->shares, std::vector<double>{0.25});
-  EXPECT_EQ(quarter.lod->strandsDrawn, 24u);
-  EXPECT_EQ(quarter.lod->strandsFull, 96u);
+  EXPECT_FALSE(full.measure<sb::LevelOfDetail>());
+  const sb::LevelOfDetail* q = quarter.measure<sb::LevelOfDetail>();
+  ASSERT_TRUE(q && q->fullModelError && quarter.imageError);
+  EXPECT_EQ(q->by, "lod");
+  EXPECT_EQ(q->shares, std::vector<double>{0.25});
+  EXPECT_EQ(q->strandsDrawn, 24u);
+  EXPECT_EQ(q->strandsFull, 96u);
   EXPECT_EQ(quarter.scene.strands, 24u);
-  EXPECT_EQ(quarter.lod->fullModelError->rmse,
-            sb::compareImages(quarter.image, full.referenceImage).rmse);
-  EXPECT_NE(quarter.lod->fullModelError->rmse, quarter.imageError->rmse);
-  ASSERT_TRUE(all.lod && all.lod->fullModelError && all.imageError);
-  EXPECT_EQ(all.lod->shares, std::vector<double>{1.0});
-  EXPECT_EQ(all.lod->fullModelError->rmse, all.imageError->rmse);
+  EXPECT_EQ(q->fullModelError->rmse, sb::compareImages(quarter.image, full.referenceImage).rmse);
+  EXPECT_NE(q->fullModelError->rmse, quarter.imageError->rmse);
+  const sb::LevelOfDetail* a = all.measure<sb::LevelOfDetail>();
+  ASSERT_TRUE(a && a->fullModelError && all.imageError);
+  EXPECT_EQ(a->shares, std::vector<double>{1.0});
+  EXPECT_EQ(a->fullModelError->rmse, all.imageError->rmse);
   const nlohmann::json j = sb::renderJson(quarter);
   EXPECT_EQ(j["lod"]["share"]["mean"], 0.25) << j["lod"].dump();
   EXPECT_EQ(j["lod"]["lod"], 0.25);
-  EXPECT_EQ(j["error"]["full_model"]["image"]["rmse"], quarter.lod->fullModelError->rmse);
+  EXPECT_EQ(j["error"]["full_model"]["image"]["rmse"], q->fullModelError->rmse);
 }
 
 TEST(GroomRule, BadOptionsAreRefused) {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <iostream>
 
+#include "harness/measures/lights/lights.h"
 #include "harness/render.h"
 #include "harness/settings.h"
 #include "tests/test_util.h"
@@ -113,11 +114,13 @@ TEST_P(ExtraLights, TwoLightsAreTheSumOfEachLightAlone) {
 
   // Each light's share: its own shadow maps (as many bytes as the key light's)
   // and passes; the sum of the lights is a pass of its own.
-  ASSERT_EQ(r12.lights.size(), 2u);
-  EXPECT_GT(r12.lights[0].shadowBytes, 0u);
-  EXPECT_EQ(r12.lights[1].shadowBytes, r12.lights[0].shadowBytes);
-  EXPECT_EQ(r12.lights[1].light.type, LightType::Point);
-  for (const auto& l : r12.lights) {
+  ASSERT_TRUE(r12.measure<LightShares>());
+  const std::vector<LightShare>& lights = r12.measure<LightShares>()->lights;
+  ASSERT_EQ(lights.size(), 2u);
+  EXPECT_GT(lights[0].shadowBytes, 0u);
+  EXPECT_EQ(lights[1].shadowBytes, lights[0].shadowBytes);
+  EXPECT_EQ(lights[1].light.type, LightType::Point);
+  for (const auto& l : lights) {
     ASSERT_EQ(l.ms.size(), 2u);
     EXPECT_GT(l.ms[0], 0.0);
   }
@@ -128,7 +131,7 @@ TEST_P(ExtraLights, TwoLightsAreTheSumOfEachLightAlone) {
   EXPECT_TRUE(hasPass("lights.sum"));
   EXPECT_TRUE(hasPass("osm.map"));
   EXPECT_TRUE(hasPass("light2.osm.map"));
-  EXPECT_TRUE(r1.lights.empty()) << "one light: no per-light block";
+  EXPECT_FALSE(r1.measure<LightShares>()) << "one light: no per-light block";
   const nlohmann::json j = renderJson(r12);
   ASSERT_TRUE(j.contains("lights"));
   EXPECT_EQ(j["lights"][1]["prefix"], "light2.");

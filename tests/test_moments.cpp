@@ -13,6 +13,8 @@
 #include <vector>
 
 #include "gpu_test_util.h"
+#include "harness/measures/invariants/invariants.h"
+#include "harness/measures/probe/probe.h"
 #include "harness/render.h"
 #include "techniques/mboit/mboit_math.h"
 
@@ -142,14 +144,14 @@ class MomentShadows : public sbtest::ProbedShadowTest {
   RenderResult run(const RenderRequest& r) {
     RenderResult out = runRender(r);
     double probeMax = 0;
-    for (std::size_t i = 0; i < out.probe->exact.size(); ++i)
-      probeMax =
-          std::max(probeMax, double(std::abs(out.probe->visibility[i] - out.probe->exact[i])));
+    const ProbeResult& probe = *out.measure<ProbeResult>();
+    for (std::size_t i = 0; i < probe.exact.size(); ++i)
+      probeMax = std::max(probeMax, double(std::abs(probe.visibility[i] - probe.exact[i])));
     std::cout << "[ measured ] " << r.backend << " " << r.scene << " " << r.shadow
               << ": visibility RMSE " << out.visibilityError->rmse << ", max "
               << out.visibilityError->max << ", probe max " << probeMax << "\n";
-    if (out.invariants) {
-      EXPECT_TRUE(out.invariants->empty()) << out.invariants->front().what;
+    if (const InvariantsResult* inv = out.measure<InvariantsResult>()) {
+      EXPECT_TRUE(inv->failures.empty()) << inv->failures.front().what;
     }
     return out;
   }

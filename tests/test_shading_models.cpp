@@ -9,6 +9,7 @@
 
 #include "backends/device.h"
 #include "base/errors.h"
+#include "harness/measures/invariants/invariants.h"
 #include "harness/render.h"
 #include "imaging/metrics.h"
 #include "render/shading/shading_model.h"
@@ -144,7 +145,8 @@ TEST(ShadingModelsRender, BothBackendsAgreeAndTheModelsDiffer) {
       try {
         const sb::RenderResult r = sb::runRender(req);
         EXPECT_EQ(r.shading, spec);
-        ASSERT_TRUE(r.invariants && r.invariants->empty()) << spec << " " << backend;
+        const sb::InvariantsResult* inv = r.measure<sb::InvariantsResult>();
+        ASSERT_TRUE(inv && inv->failures.empty()) << spec << " " << backend;
         images[backend] = r.image;
       } catch (const sb::DeviceError& e) {
         GTEST_SKIP() << "backend unavailable: " << e.what();

@@ -11,6 +11,7 @@
 #include <random>
 
 #include "gpu_test_util.h"
+#include "harness/measures/probe/probe.h"
 #include "harness/render.h"
 #include "techniques/adsm/adsm_math.h"
 #include "techniques/dsm/dsm_math.h"
@@ -319,7 +320,8 @@ TEST(ShadowMoreInvariants, RayMayRiseOnlyWhereTheTechniqueSaysSo) {
 class ShadowMore : public sbtest::ProbedShadowTest {
  protected:
   static double probeMinExact(const RenderResult& out) {
-    return *std::min_element(out.probe->exact.begin(), out.probe->exact.end());
+    const std::vector<float>& exact = out.measure<ProbeResult>()->exact;
+    return *std::min_element(exact.begin(), exact.end());
   }
 };
 

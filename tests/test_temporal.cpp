@@ -14,6 +14,7 @@
 
 #include "browser_util.h"
 #include "gpu_test_util.h"
+#include "harness/measures/animation/animation.h"
 #include "harness/render.h"
 #include "harness/settings.h"
 #include "imaging/image.h"
@@ -42,8 +43,9 @@ class Temporal : public sbtest::BackendTest {
   }
   AnimationResult animate(const RenderRequest& r) {
     const RenderResult out = runRender(r);
-    EXPECT_TRUE(out.animation.has_value());
-    const AnimationResult& a = *out.animation;
+    const AnimationResult* slice = out.measure<AnimationResult>();
+    EXPECT_TRUE(slice);
+    const AnimationResult a = slice ? *slice : AnimationResult{};
     std::cout << "[ measured ] " << r.backend << " " << r.scene << " " << r.shadow << " "
               << settingText(r, *findSetting("animate")) << ": flicker visibility "
               << a.visibilityFlicker << ", image " << a.imageFlicker.value_or(-1) << "\n";
@@ -74,14 +76,18 @@ TEST_P(Temporal, FlickerIsZeroExactlyForTheReference) {
 
   const RenderResult osm =
       runRender(request(scene, "osm:maps=4", "light-orbit:frames=3,degrees=20"));
-  EXPECT_GT(osm.animation->visibilityFlicker, 0.0);
-  EXPECT_GT(*osm.animation->imageFlicker, 0.0);
-  EXPECT_EQ(osm.animation->frames[0].visibilityRmse, osm.visibilityError->rmse);
+  const AnimationResult* oa = osm.measure<AnimationResult>();
+  ASSERT_TRUE(oa);
+  EXPECT_GT(oa->visibilityFlicker, 0.0);
+  EXPECT_GT(*oa->imageFlicker, 0.0);
+  EXPECT_EQ(oa->frames[0].visibilityRmse, osm.visibilityError->rmse);
 
   // A camera orbit moves the reference's image too.
   const RenderResult cam =
       runRender(request(scene, "osm:maps=4", "camera-orbit:frames=2,degrees=40"));
-  EXPECT_NE(cam.animation->stripReferences[0].pixels, cam.animation->stripReferences[1].pixels);
+  const AnimationResult* ca = cam.measure<AnimationResult>();
+  ASSERT_TRUE(ca);
+  EXPECT_NE(ca->stripReferences[0].pixels, ca->stripReferences[1].pixels);
 }
 
 // Deep opacity maps paper: OSM's layering bands crawl as the light moves.
@@ -242,8 +248,7 @@ TEST(OwnError, ZeroForTheExactTechniquesAndReportedForTheOthers) {
     EXPECT_EQ(row.at("own_technique"), r["error"]["own"]["technique"]);
     EXPECT_DOUBLE_EQ(std::stod(row.at("own_image_rmse")),
                      r["error"]["own"]["image"]["rmse"].get<double>());
-    EXPECT_DOUBLE_EQ(std::stod(row.at("image_rmse")),
-                     r["error"]["image"]["rmse"].get<double>());
+    EXPECT_DOUBLE_EQ(std::stod(row.at("image_rmse")), r["error"]["image"]["rmse"].get<double>());
   }
   EXPECT_EQ(rows.back().at("animation"), "light-orbit");
   const std::string md = sbtest::readFile(dir / "run" / "report.md");
