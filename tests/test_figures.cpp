@@ -118,10 +118,22 @@ std::vector<std::string> missingModels(const json& file) {
   return missing;
 }
 
-class FigureSmall : public ::testing::TestWithParam<std::string> {};
+// (figure, API): the test command runs every figure on one API, the APIs alternating down the
+// list (Figures/); the nightly job runs each on the other (Nightly/, which ctest leaves out:
+// cmake/TestSuites.cmake). Together every figure on both.
+using FigureApi = std::pair<std::string, std::string>;
+class FigureSmall : public ::testing::TestWithParam<FigureApi> {};
 
-TEST_P(FigureSmall, WritesItsGridAndTableOnBothBackends) {
-  const std::string name = GetParam();
+std::vector<FigureApi> figureApis(bool nightly) {
+  std::vector<FigureApi> out;
+  const std::vector<std::string> names = sb::figureNames();
+  for (std::size_t i = 0; i < names.size(); ++i)
+    out.emplace_back(names[i], (i % 2 == 0) != nightly ? "gl" : "vulkan");
+  return out;
+}
+
+TEST_P(FigureSmall, WritesItsGridAndTable) {
+  const auto& [name, backend] = GetParam();
   const json file = figureFile(name);
   ASSERT_TRUE(kPaperShapes.contains(name)) << name << ": add the paper's grid shape to the test";
   EXPECT_EQ(file["figure"]["rows"].size(), static_cast<std::size_t>(kPaperShapes.at(name).first));
@@ -129,25 +141,23 @@ TEST_P(FigureSmall, WritesItsGridAndTableOnBothBackends) {
             static_cast<std::size_t>(kPaperShapes.at(name).second));
   if (const auto missing = missingModels(file); !missing.empty())
     GTEST_SKIP() << name << " needs " << missing[0] << ", which is not there (../shared/models)";
-  for (const std::string backend : {"gl", "vulkan"}) {
-    const fs::path dir = tempDir("figure-" + name);
-    const fs::path out = dir / "out";
-    const CliResult r =
-        runCli("figure " + name + " --small --backend " + backend + " --out " + out.string());
-    EXPECT_EQ(r.status, 0) << backend << "\n" << r.out << r.err;
-    for (const std::string& p : checkFigureFolder(out, file, backend))
-      ADD_FAILURE() << name << " on " << backend << ": " << p;
-    // Only the figure folder is left: no temporary folder beside it.
-    int entries = 0;
-    for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++entries;
-    EXPECT_EQ(entries, 1) << "a temporary folder was left in " << dir;
-    // What it says it wrote is there (the sweep runs in a temporary folder renamed at the
-    // end: its messages name the final one).
-    EXPECT_EQ(r.out.find(".tmp-"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("wrote " + (out / "results.json").string()), std::string::npos) << r.out;
-    EXPECT_TRUE(fs::is_regular_file(out / "results.json"));
-    fs::remove_all(dir);
-  }
+  const fs::path dir = tempDir("figure-" + name);
+  const fs::path out = dir / "out";
+  const CliResult r =
+      runCli("figure " + name + " --small --backend " + backend + " --out " + out.string());
+  EXPECT_EQ(r.status, 0) << backend << "\n" << r.out << r.err;
+  for (const std::string& p : checkFigureFolder(out, file, backend))
+    ADD_FAILURE() << name << " on " << backend << ": " << p;
+  // Only the figure folder is left: no temporary folder beside it.
+  int entries = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++entries;
+  EXPECT_EQ(entries, 1) << "a temporary folder was left in " << dir;
+  // What it says it wrote is there (the sweep runs in a temporary folder renamed at the
+  // end: its messages name the final one).
+  EXPECT_EQ(r.out.find(".tmp-"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("wrote " + (out / "results.json").string()), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::is_regular_file(out / "results.json"));
+  fs::remove_all(dir);
 }
 
 // --backend both: one run, the paper's rows once per API, the paper table with a column per API.
@@ -199,15 +209,16 @@ TEST(Figure, PaperTablesAreReadFromTheFigureFiles) {
   fs::remove_all(dir);
 }
 
-// Test names: the figure's name with '-' as '_'.
-std::string testName(const ::testing::TestParamInfo<std::string>& p) {
-  std::string n = p.param;
+// Test names: the figure's name with '-' as '_', then the API.
+std::string testName(const ::testing::TestParamInfo<FigureApi>& p) {
+  std::string n = p.param.first + "_" + p.param.second;
   for (char& c : n)
     if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
   return n;
 }
 
-INSTANTIATE_TEST_SUITE_P(Figures, FigureSmall, ::testing::ValuesIn(sb::figureNames()), testName);
+INSTANTIATE_TEST_SUITE_P(Figures, FigureSmall, ::testing::ValuesIn(figureApis(false)), testName);
+INSTANTIATE_TEST_SUITE_P(Nightly, FigureSmall, ::testing::ValuesIn(figureApis(true)), testName);
 
 TEST(Figure, EveryPaperFigureHasAFile) {
   const auto names = sb::figureNames();
