@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "base/errors.h"
+#include "base/unit_folder.h"
 
 namespace sb {
 
@@ -18,16 +19,6 @@ std::map<std::string, ReferenceDescriptor>& registry() {
   return references;
 }
 
-// The folder of a unit.cpp from its __FILE__: the one after the last "references/".
-std::string referenceFolder(const std::string& file) {
-  const std::string root = "harness/references/";
-  const std::size_t at = file.rfind(root);
-  if (at == std::string::npos)
-    throw std::logic_error(file + ": a reference registers from " + root + "<folder>/unit.cpp");
-  const std::size_t begin = at + root.size();
-  return file.substr(begin, file.find('/', begin) - begin);
-}
-
 }  // namespace
 
 RenderResult::MoreReference Reference::render(const ReferenceInputs&) const {
@@ -35,7 +26,7 @@ RenderResult::MoreReference Reference::render(const ReferenceInputs&) const {
 }
 
 ReferenceRegistrar::ReferenceRegistrar(const char* file, ReferenceDescriptor d) {
-  d.folder = referenceFolder(file);
+  d.folder = unitFolder(file, "harness/references/", "reference");
   if (d.name.empty() || d.help.empty() || !d.make)
     throw std::logic_error(std::string(file) + ": a reference needs a name, help and make");
   const std::string name = d.name;
