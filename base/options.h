@@ -11,6 +11,7 @@
 #include <functional>
 #include <map>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -218,6 +219,17 @@ std::vector<Option<S>> nested(P S::*part, std::vector<Option<P>> options) {
         {std::move(o.info),
          [part, fill = std::move(o.fill)](S& s, const OptionReader& r) { fill(s.*part, r); },
          [part, show = std::move(o.show)](const S& s) { return show(s.*part); }});
+  return out;
+}
+// The options of a base of S (declarations shared by several structs derived from P), as
+// options of S.
+template <class S, class P>
+requires std::is_base_of_v<P, S> std::vector<Option<S>> inherited(std::vector<Option<P>> options) {
+  std::vector<Option<S>> out;
+  for (auto& o : options)
+    out.push_back({std::move(o.info),
+                   [fill = std::move(o.fill)](S& s, const OptionReader& r) { fill(s, r); },
+                   [show = std::move(o.show)](const S& s) { return show(s); }});
   return out;
 }
 }  // namespace opt

@@ -27,7 +27,8 @@ set(_techniques ${CMAKE_BINARY_DIR}/libsb_techniques_prebuilt.a)
 file(COPY_FILE ${SB_PREBUILT_DIR}/libsb_techniques.a ${_techniques})
 execute_process(COMMAND ${CMAKE_AR} d ${_techniques} embedded_shaders.cpp.o
                 COMMAND_ERROR_IS_FATAL ANY)
-foreach(_lib sb_cli sb_harness sb_imaging sb_reports sb_pbr sb_backends sb_scenes sb_base)
+foreach(_lib sb_cli sb_harness sb_imaging sb_reports sb_pbr sb_backends sb_scene_units sb_scenes
+    sb_base)
   add_library(${_lib} STATIC IMPORTED)
   set_target_properties(${_lib} PROPERTIES IMPORTED_LOCATION ${SB_PREBUILT_DIR}/lib${_lib}.a)
 endforeach()
@@ -60,7 +61,8 @@ foreach(_folder IN LISTS SB_UNIT_FOLDERS)
   list(APPEND _tests ${_folder_tests})
 endforeach()
 set(_libs sb_cli "$<LINK_LIBRARY:WHOLE_ARCHIVE,sb_harness>" sb_imaging sb_reports sb_pbr
-  "$<LINK_LIBRARY:WHOLE_ARCHIVE,sb_techniques>" sb_backends sb_scenes sb_base
+  "$<LINK_LIBRARY:WHOLE_ARCHIVE,sb_techniques>" sb_backends
+  "$<LINK_LIBRARY:WHOLE_ARCHIVE,sb_scene_units>" sb_scenes sb_base
   CLI11::CLI11 nlohmann_json::nlohmann_json
   glm::glm tinyobjloader::tinyobjloader Vulkan::Vulkan PkgConfig::EGL PkgConfig::GLFW
   glslang::glslang glslang::SPIRV glslang::glslang-default-resource-limits embree ${CMAKE_DL_LIBS}

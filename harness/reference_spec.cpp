@@ -3,19 +3,17 @@
 #include "harness/reference_spec.h"
 
 #include <algorithm>
-#include <map>
 #include <stdexcept>
 
 #include "base/errors.h"
-#include "base/unit_folder.h"
+#include "base/unit_registry.h"
 
 namespace sb {
 
 namespace {
 
-// Filled during static initialisation, hence a function-local static.
-std::map<std::string, ReferenceDescriptor>& registry() {
-  static std::map<std::string, ReferenceDescriptor> references;
+UnitRegistry<ReferenceDescriptor>& registry() {
+  static UnitRegistry<ReferenceDescriptor> references("reference", "harness/references/");
   return references;
 }
 
@@ -26,17 +24,13 @@ RenderResult::MoreReference Reference::render(const ReferenceInputs&) const {
 }
 
 ReferenceRegistrar::ReferenceRegistrar(const char* file, ReferenceDescriptor d) {
-  d.folder = unitFolder(file, "harness/references/", "reference");
-  if (d.name.empty() || d.help.empty() || !d.make)
+  if (d.help.empty() || !d.make)
     throw std::logic_error(std::string(file) + ": a reference needs a name, help and make");
-  const std::string name = d.name;
-  if (!registry().emplace(name, std::move(d)).second)
-    throw std::logic_error("two references named " + name);
+  registry().add(file, std::move(d));
 }
 
 std::vector<const ReferenceDescriptor*> referenceCatalog() {
-  std::vector<const ReferenceDescriptor*> out;
-  for (const auto& [name, d] : registry()) out.push_back(&d);
+  std::vector<const ReferenceDescriptor*> out = registry().all();
   std::stable_partition(out.begin(), out.end(),
                         [](const ReferenceDescriptor* d) { return d->isDefault; });
   return out;

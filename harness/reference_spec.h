@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "base/options.h"
+#include "base/unit_registry.h"
 #include "harness/render.h"
 
 namespace sb {
@@ -71,14 +72,7 @@ struct ReferenceRegistrar {
 
 // A reference's folder registers it from its unit.cpp, at file scope:
 //   SB_REFERENCE({.name = "aa", .help = "...", .options = kTable.infos(), .make = ...});
-#define SB_REFERENCE(...)                                                                  \
-  namespace sb {                                                                           \
-  namespace {                                                                              \
-  const ReferenceRegistrar SB_REFERENCE_NAME(registered, __LINE__){__FILE__, __VA_ARGS__}; \
-  }                                                                                        \
-  }
-#define SB_REFERENCE_NAME(a, b) SB_REFERENCE_JOIN(a, b)
-#define SB_REFERENCE_JOIN(a, b) a##b
+#define SB_REFERENCE(...) SB_REGISTER(ReferenceRegistrar, __VA_ARGS__)
 
 // Every reference, the default first, then by name.
 std::vector<const ReferenceDescriptor*> referenceCatalog();

@@ -161,4 +161,22 @@ Strands loadStrandFile(const std::string& path, uint32_t pointsPerStrand,
                    "' (expected .hair, .tfx or .ply)");
 }
 
+Scene withLevelOfDetail(const Scene& full, const Camera& camera, uint32_t imageHeight) {
+  Scene s;  // all but the strands, which the rule makes again
+  s.name = full.name;
+  s.mesh = full.mesh;
+  s.hairAlpha = full.hairAlpha;
+  s.shadowAlpha = full.shadowAlpha;
+  s.hairColor = full.hairColor;
+  s.frameByBox = full.frameByBox;
+  s.warnings = full.warnings;
+  s.up = full.up;
+  s.upReason = full.upReason;
+  s.groom = full.groom;
+  groomLevelOfDetail(s.groom, camera, imageHeight);
+  s.strands = generateStrands(s.groom);
+  s.strands.thicknessFallback = full.strands.thicknessFallback;
+  return s;
+}
+
 }  // namespace sb

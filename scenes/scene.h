@@ -69,10 +69,12 @@ struct Scene {
   Bounds bounds() const;  // strands and mesh together
 };
 
+// The registered scene generators (scenes/scene_unit.h), in their order.
 struct SceneInfo {
   std::string name;
   std::string help;
   std::vector<OptionInfo> options;
+  std::string folder;  // scenes/generators/<folder>/
 };
 const std::vector<SceneInfo>& sceneCatalog();
 

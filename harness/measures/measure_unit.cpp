@@ -3,33 +3,27 @@
 
 #include <algorithm>
 #include <cstring>
-#include <map>
 #include <stdexcept>
 
-#include "base/unit_folder.h"
+#include "base/unit_registry.h"
 
 namespace sb {
 
 namespace {
-// Filled during static initialisation, hence a function-local static.
-std::map<std::string, MeasureDescriptor>& registry() {
-  static std::map<std::string, MeasureDescriptor> measures;
+UnitRegistry<MeasureDescriptor>& registry() {
+  static UnitRegistry<MeasureDescriptor> measures("measure", "harness/measures/");
   return measures;
 }
 }  // namespace
 
 MeasureRegistrar::MeasureRegistrar(const char* file, MeasureDescriptor d) {
-  d.folder = unitFolder(file, "harness/measures/", "measure");
-  if (d.name.empty() || d.help.empty() || !d.measure)
+  if (d.help.empty() || !d.measure)
     throw std::logic_error(std::string(file) + ": a measure needs a name, help and measure");
-  const std::string name = d.name;
-  if (!registry().emplace(name, std::move(d)).second)
-    throw std::logic_error("two measures named " + name);
+  registry().add(file, std::move(d));
 }
 
 std::vector<const MeasureDescriptor*> measureCatalog() {
-  std::vector<const MeasureDescriptor*> out;
-  for (const auto& [name, d] : registry()) out.push_back(&d);  // by name
+  std::vector<const MeasureDescriptor*> out = registry().all();  // by name
   std::stable_sort(
       out.begin(), out.end(),
       [](const MeasureDescriptor* a, const MeasureDescriptor* b) { return a->order < b->order; });

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "base/unit_registry.h"
 #include "harness/render.h"
 
 namespace sb {
@@ -56,14 +57,7 @@ struct MeasureRegistrar {
 
 // A measure's folder registers it from its unit.cpp, at file scope:
 //   SB_MEASURE({.name = "probe", .help = "...", .measure = ...});
-#define SB_MEASURE(...)                                                                \
-  namespace sb {                                                                       \
-  namespace {                                                                          \
-  const MeasureRegistrar SB_MEASURE_NAME(registered, __LINE__){__FILE__, __VA_ARGS__}; \
-  }                                                                                    \
-  }
-#define SB_MEASURE_NAME(a, b) SB_MEASURE_JOIN(a, b)
-#define SB_MEASURE_JOIN(a, b) a##b
+#define SB_MEASURE(...) SB_REGISTER(MeasureRegistrar, __VA_ARGS__)
 
 // Every measure, in the order they run.
 std::vector<const MeasureDescriptor*> measureCatalog();

@@ -2,9 +2,9 @@
 // is made from it: the factories by name and the option declarations.
 #include <algorithm>
 #include <iterator>
-#include <map>
 #include <nlohmann/json.hpp>
 
+#include "base/unit_registry.h"
 #include "render/common/shader_library.h"
 #include "render/common/unit.h"
 
@@ -12,9 +12,11 @@ namespace sb {
 
 namespace {
 
-// Filled during static initialisation, hence a function-local static.
-std::map<std::string, TechniqueDescriptor>& registry(Family f) {
-  static std::map<std::string, TechniqueDescriptor> families[3];
+// One registry per family: a shadow and a transparency technique may share a name ("none").
+UnitRegistry<TechniqueDescriptor>& registry(Family f) {
+  static UnitRegistry<TechniqueDescriptor> families[3] = {{"shadow technique", "techniques/"},
+                                                          {"transparency technique", "techniques/"},
+                                                          {"shading model", "techniques/"}};
   return families[static_cast<int>(f)];
 }
 
@@ -35,16 +37,6 @@ const char* familyName(Family f) {
 const char* familyFlag(Family f) { return f == Family::Transparency ? "oit" : familyName(f); }
 
 namespace {
-
-// The folder of a unit.cpp from its __FILE__ (absolute or relative): the one after the last
-// "techniques/".
-std::string unitFolder(const std::string& file) {
-  const std::size_t at = file.rfind("techniques/");
-  if (at == std::string::npos)
-    throw std::logic_error(file + ": a technique registers from techniques/<folder>/unit.cpp");
-  const std::size_t begin = at + std::string("techniques/").size();
-  return file.substr(begin, file.find('/', begin) - begin);
-}
 
 // A unit.json key's value as T, or `fallback` where it is absent.
 template <class T>
@@ -110,21 +102,17 @@ void describeUnit(TechniqueDescriptor& d, const std::string& path, const std::st
 }
 
 TechniqueRegistrar::TechniqueRegistrar(const char* file, TechniqueDescriptor d) {
-  d.folder = unitFolder(file);
   d.family = d.makeShading ? Family::Shading : d.makeOit ? Family::Transparency : Family::Shadow;
+  d.folder = registry(d.family).folderOf(file);  // its unit.json describes it (and names it)
   const std::string path = "techniques/" + d.folder + "/unit.json";
   const auto json = embeddedShaders().find(path);
   if (json == embeddedShaders().end()) throw std::logic_error(path + " is missing");
   describeUnit(d, path, json->second);
-  const Family f = d.family;
-  const std::string name = d.name;
-  if (!registry(f).emplace(name, std::move(d)).second)
-    throw std::logic_error(std::string("two ") + familyName(f) + " techniques named " + name);
+  registry(d.family).add(file, std::move(d));
 }
 
 std::vector<const TechniqueDescriptor*> techniques(Family f) {
-  std::vector<const TechniqueDescriptor*> out;
-  for (const auto& [name, d] : registry(f)) out.push_back(&d);
+  std::vector<const TechniqueDescriptor*> out = registry(f).all();
   // The baseline first: the viewer starts there and `list` reads from it.
   std::stable_partition(out.begin(), out.end(),
                         [](const TechniqueDescriptor* d) { return d->name == "none"; });
@@ -132,8 +120,7 @@ std::vector<const TechniqueDescriptor*> techniques(Family f) {
 }
 
 const TechniqueDescriptor* tryFindTechnique(Family f, const std::string& name) {
-  const auto it = registry(f).find(name);
-  return it == registry(f).end() ? nullptr : &it->second;
+  return registry(f).find(name);
 }
 
 std::vector<std::string> techniqueNames(Family f, bool (*keep)(const TechniqueDescriptor&)) {
@@ -158,18 +145,11 @@ const TechniqueDescriptor& defaultTechnique(Family f) {
 
 const TechniqueDescriptor& findTechnique(Family f, const std::string& name) {
   if (const TechniqueDescriptor* d = tryFindTechnique(f, name)) return *d;
-  std::vector<std::string> names;
-  for (const TechniqueDescriptor* d : techniques(f)) names.push_back(d->name);
-  const std::string kind = f == Family::Shading ? std::string("shading model")
-                                                : std::string(familyName(f)) + " technique";
-  throw InputError(unknownNameMessage(kind, name, names));
+  throw InputError(unknownNameMessage(registry(f).kind(), name, techniqueNames(f)));
 }
 
 OptionReader readerFor(const TechniqueDescriptor& d, const Spec& spec) {
-  const std::string what = d.family == Family::Shading
-                               ? "shading model '" + d.name + "'"
-                               : std::string(familyName(d.family)) + " technique '" + d.name + "'";
-  return OptionReader(spec, d.options, what);
+  return OptionReader(spec, d.options, registry(d.family).kind() + " '" + d.name + "'");
 }
 
 std::unique_ptr<ShadowTechnique> makeShadowTechnique(const Spec& spec) {

@@ -4,7 +4,7 @@
 // and factory in its unit.cpp, which registers it (SB_TECHNIQUE, below). Nothing
 // central lists techniques: `strandbench list`, option validation, the viewer's
 // stepping, suite validation and docs/techniques.md all read this registry.
-// sb_techniques is linked whole (CMakeLists.txt) so that no registrar is dropped.
+// One registry for every kind of unit: base/unit_registry.h.
 #pragma once
 
 #include <functional>
@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "base/options.h"
+#include "base/unit_registry.h"
 #include "render/common/technique.h"
 #include "render/shading/shading_model.h"
 
@@ -79,14 +80,7 @@ struct TechniqueRegistrar {
 //   SB_TECHNIQUE({.options = kOptions.infos(), .makeShadow = build<DeepOpacityMaps>(kOptions)});
 // (a static registrar in namespace sb; one per line, so a file may register two names, each
 // with its `.name`).
-#define SB_TECHNIQUE(...)                                                                  \
-  namespace sb {                                                                           \
-  namespace {                                                                              \
-  const TechniqueRegistrar SB_TECHNIQUE_NAME(registered, __LINE__){__FILE__, __VA_ARGS__}; \
-  }                                                                                        \
-  }
-#define SB_TECHNIQUE_NAME(a, b) SB_TECHNIQUE_JOIN(a, b)
-#define SB_TECHNIQUE_JOIN(a, b) a##b
+#define SB_TECHNIQUE(...) SB_REGISTER(TechniqueRegistrar, __VA_ARGS__)
 
 // A family's techniques: "none" first, then by name.
 std::vector<const TechniqueDescriptor*> techniques(Family f);
