@@ -52,8 +52,17 @@ add_custom_command(
 
 set(_sources "")
 set(_tests "")
+# SB_UNIT_FOLDERS: technique folders (techniques/<folder>); SB_SCENE_UNIT_FOLDERS: scene
+# generator folders (scenes/generators/<folder>).
+set(_folders "")
 foreach(_folder IN LISTS SB_UNIT_FOLDERS)
-  file(GLOB _folder_sources techniques/${_folder}/*.cpp)
+  list(APPEND _folders techniques/${_folder})
+endforeach()
+foreach(_folder IN LISTS SB_SCENE_UNIT_FOLDERS)
+  list(APPEND _folders scenes/generators/${_folder})
+endforeach()
+foreach(_folder IN LISTS _folders)
+  file(GLOB _folder_sources ${_folder}/*.cpp)
   set(_folder_tests ${_folder_sources})
   list(FILTER _folder_tests INCLUDE REGEX "/test_[^/]*\\.cpp$")
   list(FILTER _folder_sources EXCLUDE REGEX "/test_[^/]*\\.cpp$")

@@ -10,7 +10,6 @@
 
 #include "backends/device.h"
 #include "harness/backend_names.h"
-#include "harness/invariants.h"
 #include "imaging/flip.h"
 #include "imaging/image.h"
 #include "imaging/metrics.h"

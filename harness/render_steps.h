@@ -8,7 +8,6 @@
 #include <string>
 #include <vector>
 
-#include "harness/invariants.h"
 #include "harness/references/exact/exact_reference.h"
 #include "harness/render.h"
 

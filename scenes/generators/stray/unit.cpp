@@ -18,8 +18,6 @@ using SO = StrayOptions;
 Scene makeStray(const SO& o) {
   Scene scene;
   checkGenerated(o);
-  const float radius = o.radius;
-  const float offset = o.offset;
   if (!o.mesh.empty()) scene.mesh = loadMesh(o.mesh);
   Rng rng(o.seed);
   reserve(scene.strands, std::size_t(o.strands) + 1, std::size_t(o.points));
@@ -29,13 +27,13 @@ Scene makeStray(const SO& o) {
     appendStrand(scene.strands, line, o.points, color, o.thickness);
   };
   for (int64_t k = 0; k < o.strands; ++k) {
-    const float r = radius * std::sqrt(rng.u());
+    const float r = o.radius * std::sqrt(rng.u());
     const float phi = rng.range(0.0f, 2.0f * kPi);
     vertical({r * std::cos(phi), r * std::sin(phi)}, strandColor(rng, scene.hairColor));
   }
   // Towards the light: against fitLight()'s direction, in the horizontal plane.
   const glm::vec2 towardLight = glm::normalize(glm::vec2(1.0f, 0.8f));
-  vertical(offset * towardLight, scene.hairColor);
+  vertical(o.offset * towardLight, scene.hairColor);
   return scene;
 }
 
