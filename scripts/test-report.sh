@@ -12,8 +12,10 @@ skip_counts() { cat "$build"/test-skips/*.txt 2>/dev/null | cut -f1 | sed 's/: .
 slowest() {
   local log="$build/Testing/Temporary/LastTest.log"
   [ -f "$log" ] || return 0
+  # The first N by reading every line (not head, which would close the pipe early and end
+  # sort with SIGPIPE: under pipefail, a failed report and so a failed test command).
   awk '/^[0-9]+\/[0-9]+ Test: /{name=$3} /^Test time =/{printf "%8.1f  %s\n", $4, name}' "$log" |
-    sort -rn | head -n "$1"
+    sort -rn | awk -v n="$1" 'NR <= n'
 }
 
 # Sums an attribute over the <testsuite> elements of every report.
