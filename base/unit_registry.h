@@ -4,7 +4,7 @@
 // folder whose unit.cpp registers its descriptor at file scope, through SB_REGISTER (below);
 // the descriptor names the unit, the registry fills its folder from where unit.cpp is.
 // Nothing central lists units: each kind's catalog, help, docs and validation read its
-// registry. The libraries holding units are linked whole (CMakeLists.txt, sb_link_whole) so
+// registry. The libraries holding units are linked whole (CMakeLists.txt, WHOLE_ARCHIVE) so
 // that no registrar is dropped.
 #pragma once
 

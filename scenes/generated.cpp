@@ -164,13 +164,4 @@ glm::vec3 strandColor(Rng& rng, const glm::vec3& base) {
   return glm::clamp(base * brightness * tint, 0.0f, 1.0f);
 }
 
-void reserve(Strands& s, std::size_t strands, std::size_t points) {
-  s.firstPoint.reserve(strands);
-  s.pointCount.reserve(strands);
-  s.points.reserve(strands * points);
-  s.colors.reserve(strands * points);
-  s.thickness.reserve(strands * points);
-  s.transparency.reserve(strands * points);
-}
-
 }  // namespace sb

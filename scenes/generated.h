@@ -70,7 +70,6 @@ void addOffsets(std::vector<glm::vec3>& c, float length, float shell,
 void appendStrand(Strands& out, const std::vector<glm::vec3>& fine, int points,
                   const glm::vec3& color, float thickness);
 glm::vec3 strandColor(Rng& rng, const glm::vec3& base);
-void reserve(Strands& s, std::size_t strands, std::size_t points);
 // The segments of the fine curve a strand of `points` is sampled from.
 inline int fineSegments(int points) { return std::max(128, 4 * (points - 1)); }
 

@@ -43,14 +43,8 @@ void applyScaleAndZeroSegments(const SceneBase& o, Scene& scene) {
   if (!o.zeroSegments) return;
   Strands in = std::move(scene.strands), out;
   out.thicknessFallback = in.thicknessFallback;
-  const std::size_t strands = in.strandCount();
-  out.firstPoint.reserve(strands);
-  out.pointCount.reserve(strands);
-  out.points.reserve(2 * in.points.size());
-  out.colors.reserve(2 * in.points.size());
-  out.thickness.reserve(2 * in.points.size());
-  out.transparency.reserve(2 * in.points.size());
-  for (std::size_t k = 0; k < strands; ++k) {
+  reserve(out, in.strandCount(), 2 * in.points.size() / std::max<std::size_t>(1, in.strandCount()));
+  for (std::size_t k = 0; k < in.strandCount(); ++k) {
     out.firstPoint.push_back(uint32_t(out.points.size()));
     out.pointCount.push_back(2 * in.pointCount[k]);
     for (uint32_t i = in.firstPoint[k]; i < in.firstPoint[k] + in.pointCount[k]; ++i)
@@ -110,6 +104,15 @@ void applyGroom(const SceneBase& o, Scene& scene) {
 }
 
 }  // namespace
+
+void reserve(Strands& s, std::size_t strands, std::size_t points) {
+  s.firstPoint.reserve(strands);
+  s.pointCount.reserve(strands);
+  s.points.reserve(strands * points);
+  s.colors.reserve(strands * points);
+  s.thickness.reserve(strands * points);
+  s.transparency.reserve(strands * points);
+}
 
 void checkTotal(const SceneBase& o, uint64_t strands, uint64_t points) {
   if (strands * points > kMaxTotalPoints) {
@@ -176,10 +179,12 @@ const std::vector<SceneInfo>& sceneCatalog() {
 }
 
 Scene makeScene(const Spec& spec) {
-  std::vector<std::string> names;
-  for (const SceneInfo& s : sceneCatalog()) names.push_back(s.name);
   const SceneDescriptor* unit = registry().find(spec.name);
-  if (!unit) throw InputError(unknownNameMessage("scene", spec.name, names));
+  if (!unit) {
+    std::vector<std::string> names;  // in the catalog's order
+    for (const SceneInfo& s : sceneCatalog()) names.push_back(s.name);
+    throw InputError(unknownNameMessage("scene", spec.name, names));
+  }
   const std::string what = "scene '" + unit->name + "'";
   SceneBase base;
   base.scene = unit->name;

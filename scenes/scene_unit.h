@@ -47,6 +47,8 @@ inline constexpr int64_t kMaxStrands = 50'000'000;
 inline constexpr int64_t kMaxPointsPerStrand = 100'000;
 // Refuses strands x points over kMaxTotalPoints, naming the scene.
 void checkTotal(const SceneBase& o, uint64_t strands, uint64_t points);
+// Room for `strands` strands of `points` points in every per-strand and per-point array.
+void reserve(Strands& s, std::size_t strands, std::size_t points);
 
 // unit.cpp gives name, help, order and make (sceneUnit builds the last two from its typed
 // options); the registry fills `folder`.
